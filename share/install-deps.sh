@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# jointrom dependency installer (Debian 12).
+# Installs what jointrom needs when it is missing: PETSc and SLEPc 3.18 (with MUMPS and parallel
+# HDF5), OpenMPI, gnuplot for the PNG plots. Quiet and quick when everything is present.
+# Usage: share/install-deps.sh [--check]   (--check: report only, exit 1 if something is missing)
+set -u
+pkgs="petsc-dev slepc-dev libhdf5-openmpi-dev gnuplot-nox make gcc"
+missing=""
+[ -f /usr/lib/petsc/lib/petsc/conf/variables ] || missing="$missing petsc-dev"
+[ -f /usr/lib/slepc/lib/slepc/conf/slepc_common ] || missing="$missing slepc-dev"
+[ -d /usr/include/hdf5/openmpi ] || missing="$missing libhdf5-openmpi-dev"
+command -v mpiexec >/dev/null 2>&1 || missing="$missing petsc-dev"
+command -v gnuplot >/dev/null 2>&1 || missing="$missing gnuplot-nox"
+[ -z "$missing" ] && exit 0
+if [ "${1:-}" = "--check" ]; then
+  echo "jointrom: missing Debian packages:$missing (run share/install-deps.sh)" >&2
+  exit 1
+fi
+echo "jointrom: installing missing Debian packages:$missing"
+SUDO=""
+if [ "$(id -u)" != 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then SUDO=sudo; else
+    echo "jointrom: need root (or sudo) to install:$missing" >&2; exit 1
+  fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -q || { echo "jointrom: apt-get update failed" >&2; exit 1; }
+# shellcheck disable=SC2086
+$SUDO apt-get install -y -q --no-install-recommends $pkgs || { echo "jointrom: apt-get install failed for: $pkgs" >&2; exit 1; }
+echo "jointrom: dependencies installed"

@@ -1,0 +1,73 @@
+/* Output files written atomically (temporary name beside the target, renamed when complete), and
+   PNG plots made by gnuplot scripts in share/. Rank 0 writes; the others get fp = NULL. */
+#include <jointrom.h>
+#include <errno.h>
+#include <unistd.h>
+
+/* Open a temporary file beside path on rank 0 (fp NULL elsewhere); tmp receives its name */
+PetscErrorCode JRFileOpenTemp(MPI_Comm comm, const char path[], FILE **fp, char tmp[], size_t len)
+{
+  PetscMPIInt rank;
+  int         err = 0;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  *fp = NULL;
+  PetscCall(PetscSNPrintf(tmp, len, "%s.tmp%d", path, (int)getpid()));
+  if (rank == 0) {
+    *fp = fopen(tmp, "w");
+    if (!*fp) err = errno;
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+  PetscCheck(!err, comm, PETSC_ERR_FILE_OPEN, "Cannot write the file %s: %s", path, strerror(err));
+  PetscFunctionReturn(0);
+}
+
+/* Close the temporary file and rename it to path */
+PetscErrorCode JRFileCommit(MPI_Comm comm, FILE **fp, const char tmp[], const char path[])
+{
+  PetscMPIInt rank;
+  int         err = 0;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0 && *fp) {
+    if (fclose(*fp)) err = errno;
+    else if (rename(tmp, path)) err = errno;
+    if (err) remove(tmp);
+  }
+  *fp = NULL;
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+  PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "Cannot write the file %s: %s", path, strerror(err));
+  PetscFunctionReturn(0);
+}
+
+/* Run gnuplot on share/<script> to write the PNG png; the script reads the gnuplot variable 'out'
+   (the output file) and any assignments in vars ("data='x.csv'; title='...'"). made: whether the
+   PNG was written. A missing gnuplot is a warning, not an error: the data files are written anyway. */
+PetscErrorCode JRPlot(MPI_Comm comm, const char script[], const char png[], const char vars[], PetscBool *made)
+{
+  PetscMPIInt rank;
+  int         ok = 0;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) {
+    const char *share = getenv("JOINTROM_SHARE") ? getenv("JOINTROM_SHARE") : JR_SHARE_DIR;
+    char        tmp[PETSC_MAX_PATH_LEN], cmd[4 * PETSC_MAX_PATH_LEN];
+    if (system("command -v gnuplot > /dev/null 2>&1") != 0) {
+      PetscCall(PetscFPrintf(PETSC_COMM_SELF, stderr, "jointrom: gnuplot not found, %s not drawn (install gnuplot-nox, or run share/install-deps.sh)\n", png));
+    } else {
+      PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.tmp%d", png, (int)getpid()));
+      PetscCall(PetscSNPrintf(cmd, sizeof(cmd), "gnuplot -e \"out='%s'; %s\" '%s/%s'", tmp, vars ? vars : "", share, script));
+      if (system(cmd) == 0 && rename(tmp, png) == 0) ok = 1;
+      else {
+        remove(tmp);
+        PetscCall(PetscFPrintf(PETSC_COMM_SELF, stderr, "jointrom: gnuplot failed on %s/%s, %s not drawn\n", share, script, png));
+      }
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm));
+  if (made) *made = ok ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
