@@ -17,7 +17,7 @@ typedef struct {
   PetscBool hasjoint, hasloop;
 } ElementCtx;
 
-static PetscErrorCode ElementOptions(MPI_Comm comm, ElementCtx *ctx)
+static PetscErrorCode ElementOptions(MPI_Comm comm, PetscBool normal, ElementCtx *ctx)
 {
   PetscBool flg;
 
@@ -63,6 +63,7 @@ static PetscErrorCode ElementOptions(MPI_Comm comm, ElementCtx *ctx)
     PetscCheck(!PetscIsInfOrNanReal(ctx->kn) && ctx->kn >= 0.0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-element_kn %g: the normal stiffness must be non-negative and finite [N/m]", (double)ctx->kn);
     PetscCheck(!PetscIsInfOrNanReal(ctx->mu) && ctx->mu >= 0.0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-element_mu %g: the friction coefficient must be non-negative and finite", (double)ctx->mu);
     PetscCheck(!PetscIsInfOrNanReal(ctx->n0), comm, PETSC_ERR_ARG_OUTOFRANGE, "-element_n0 %g: the normal load must be finite [N]", (double)ctx->n0);
+    PetscCheck(normal || ctx->n0 >= 0.0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-element_n0 %g: the normal load of a jenkins element must be non-negative [N] (initial gaps need -contact_type jenkins_nv)", (double)ctx->n0);
   }
   PetscFunctionReturn(0);
 }
@@ -118,10 +119,10 @@ PetscErrorCode JRTaskElement(MPI_Comm comm)
   PetscFunctionBeginUser;
   PetscCall(JRContactCreate(comm, &c));
   PetscCall(JRContactSetFromOptions(c));
-  PetscCall(ElementOptions(comm, &ctx));
-  PetscCall(JRContactSetHarmonics(c, ctx.H, ctx.N));
   PetscCall(JRContactGetType(c, &type));
   PetscCall(JRContactUsesNormal(c, &normal));
+  PetscCall(ElementOptions(comm, normal, &ctx));
+  PetscCall(JRContactSetHarmonics(c, ctx.H, ctx.N));
   if (ctx.hasjoint) PetscCall(ReadJoint(comm, ctx.joint, normal, c));
   else PetscCall(JRContactSetElements(c, 1, &ctx.kt, &ctx.kn, &ctx.mu, &ctx.n0));
   PetscCall(JRContactSetUp(c));
@@ -183,7 +184,7 @@ PetscErrorCode JRTaskElement(MPI_Comm comm)
     PetscBool made;
     char      vars[3 * PETSC_MAX_PATH_LEN];
     PetscCall(JRFileCommit(comm, &fp, tmp, csv));
-    PetscCall(PetscSNPrintf(vars, sizeof(vars), "data='%s'; nlev=%" PetscInt_FMT "; ttl='%s element%s, hysteresis loop%s'", csv, ctx.nu, type, nel > 1 ? "s (joint)" : "", ctx.nu > 1 ? "s" : ""));
+    PetscCall(PetscSNPrintf(vars, sizeof(vars), "data='%s'; nlev=%" PetscInt_FMT "; normal=%d; ttl='%s element%s, hysteresis loop%s'", csv, ctx.nu, (int)normal, type, nel > 1 ? "s (joint)" : "", ctx.nu > 1 ? "s" : ""));
     PetscCall(JRPlot(comm, "plot_loop.gp", png, vars, &made));
     PetscCall(PetscPrintf(comm, "element: loop written to %s%s%s\n", csv, made ? " and " : "", made ? png : ""));
   }
