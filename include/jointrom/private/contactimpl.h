@@ -30,9 +30,10 @@ typedef struct {
   PetscReal *PG;   /* PG[j*nc*nc + k*nc + m]: sum_{i<j} B_ik B_im (prefix Gram) */
   PetscReal *wdft; /* DFT weights: 1/N for the mean, 2/N for the others */
   /* scratch, length N */
-  PetscReal *u, *v, *g, *f, *lam;
-  PetscInt  *code;
-  PetscReal *S, *G, *dXU, *dXV, *DU, *DV; /* nc, nc*nc, nc, nc, nc*nc, nc*nc */
+  PetscReal *u, *v, *g, *f, *lam, *Lb, *Ub, *uc; /* lam, uc: contact interpolation at first contact samples */
+  PetscInt  *code, *rc;                          /* code by march position; rc[j]: j is a first contact sample */
+  PetscReal *S, *wflat, *dXU, *dXV;      /* nc; nc*nc DFT weight of each row; nc; nc */
+  PetscReal *DU, *DV, *DN;               /* nc*nc scratch */
 } JRAFT;
 
 PETSC_INTERN PetscErrorCode JRAFTCreate(PetscInt, PetscInt, JRAFT **);
@@ -74,6 +75,7 @@ struct _p_JRContact {
 };
 
 PETSC_INTERN PetscErrorCode JRContactRegisterAllReset(void);
+PETSC_INTERN PetscErrorCode JRContactEvaluateChunked(JRContact, PetscInt, PetscInt, const PetscReal[], const PetscReal[], PetscReal[], PetscReal[], PetscReal[], PetscReal[], PetscReal[], JRContactState[]);
 PETSC_INTERN PetscErrorCode JRContactCreate_Jenkins(JRContact);
 PETSC_INTERN PetscErrorCode JRContactCreate_JenkinsNV(JRContact);
 

@@ -24,7 +24,10 @@
 */
 #include <jointrom/private/contactimpl.h>
 
-#define JR_CODE_RECONTACT 4 /* flag: first contact sample after separation */
+#define JR_CODE_RECONTACT 4
+#if defined(JR_COUNT_RUNS)
+long jr_runs = 0, jr_elems = 0;
+#endif /* flag: first contact sample after separation */
 
 /* Tables and scratch for H harmonics and N samples */
 PetscErrorCode JRAFTCreate(PetscInt H, PetscInt N, JRAFT **aft)
@@ -44,8 +47,10 @@ PetscErrorCode JRAFTCreate(PetscInt H, PetscInt N, JRAFT **aft)
   PetscCall(PetscMalloc1((size_t)(N + 1) * nc * nc, &a->PG));
   PetscCall(PetscMalloc1(nc, &a->wdft));
   PetscCall(PetscMalloc5(N, &a->u, N, &a->v, N, &a->g, N, &a->f, N, &a->lam));
-  PetscCall(PetscMalloc1(N, &a->code));
-  PetscCall(PetscMalloc6(nc, &a->S, nc * nc, &a->G, nc, &a->dXU, nc, &a->dXV, nc * nc, &a->DU, nc * nc, &a->DV));
+  PetscCall(PetscMalloc2(N, &a->code, N, &a->rc));
+  PetscCall(PetscMalloc3(N, &a->Lb, N, &a->Ub, N, &a->uc));
+  PetscCall(PetscMalloc6(nc, &a->S, nc * nc, &a->wflat, nc, &a->dXU, nc, &a->dXV, nc * nc, &a->DU, nc * nc, &a->DV));
+  PetscCall(PetscMalloc1(nc * nc, &a->DN));
   for (j = 0; j < N; j++) {
     PetscReal th = 2.0 * PETSC_PI * (PetscReal)j / (PetscReal)N;
     a->Bt[j] = 1.0;
@@ -56,6 +61,8 @@ PetscErrorCode JRAFTCreate(PetscInt H, PetscInt N, JRAFT **aft)
   }
   a->wdft[0] = 1.0 / N;
   for (k = 1; k < nc; k++) a->wdft[k] = 2.0 / N;
+  for (k = 0; k < nc; k++)
+    for (m = 0; m < nc; m++) a->wflat[k * nc + m] = a->wdft[k];
   for (k = 0; k < nc; k++) a->PB[k] = 0.0;
   for (k = 0; k < nc * nc; k++) a->PG[k] = 0.0;
   for (j = 0; j < N; j++) {
@@ -78,11 +85,35 @@ PetscErrorCode JRAFTDestroy(JRAFT **aft)
   PetscCall(PetscFree(a->PG));
   PetscCall(PetscFree(a->wdft));
   PetscCall(PetscFree5(a->u, a->v, a->g, a->f, a->lam));
-  PetscCall(PetscFree(a->code));
-  PetscCall(PetscFree6(a->S, a->G, a->dXU, a->dXV, a->DU, a->DV));
+  PetscCall(PetscFree2(a->code, a->rc));
+  PetscCall(PetscFree3(a->Lb, a->Ub, a->uc));
+  PetscCall(PetscFree6(a->S, a->wflat, a->dXU, a->dXV, a->DU, a->DV));
+  PetscCall(PetscFree(a->DN));
   PetscCall(PetscFree(a));
   *aft = NULL;
   PetscFunctionReturn(0);
+}
+
+/* sum a_j b_j with 8 independent partial sums, so that it vectorises without reassociation flags */
+static inline PetscReal Dot(PetscInt n, const PetscReal *restrict a, const PetscReal *restrict b)
+{
+  PetscReal acc[8] = {0, 0, 0, 0, 0, 0, 0, 0}, s = 0.0;
+  PetscInt  j = 0;
+  for (; j + 8 <= n; j += 8)
+    for (int l = 0; l < 8; l++) acc[l] += a[j + l] * b[j + l];
+  for (; j < n; j++) s += a[j] * b[j];
+  return s + ((acc[0] + acc[4]) + (acc[1] + acc[5])) + ((acc[2] + acc[6]) + (acc[3] + acc[7]));
+}
+
+/* x_j = X0 + sum_k X_k B_kj: one vectorised pass over the samples per coefficient (x stays in L1) */
+static inline void Synthesis(PetscInt N, PetscInt nc, const PetscReal *restrict Bt, const PetscReal *restrict X, PetscReal *restrict x)
+{
+  for (PetscInt j = 0; j < N; j++) x[j] = X[0];
+  for (PetscInt k = 1; k < nc; k++) {
+    const PetscReal  c   = X[k];
+    const PetscReal *row = Bt + k * N;
+    for (PetscInt j = 0; j < N; j++) x[j] += c * row[j];
+  }
 }
 
 static inline void Zero(PetscInt n, PetscReal *x)
@@ -90,43 +121,42 @@ static inline void Zero(PetscInt n, PetscReal *x)
   for (PetscInt i = 0; i < n; i++) x[i] = 0.0;
 }
 
-/* Sums of B_j (S) and of B_j B_j^T (G) over march positions t0..t1 (inclusive) starting at sample s */
-static inline void Interval(const JRAFT *a, PetscInt s, PetscInt t0, PetscInt t1, PetscBool wantG)
+/* M += alpha * sum of B_j B_j^T over march positions t0..t1 (inclusive) from sample s, from the prefix
+   Gram table (flat nc^2 loops); with wantS also the sum of B_j into a->S */
+static inline void GramAdd(const JRAFT *a, PetscInt s, PetscInt t0, PetscInt t1, PetscReal alpha, PetscReal *restrict M, PetscBool wantS)
 {
-  const PetscInt N = a->N, nc = a->nc, nc2 = nc * nc;
-  PetscInt       p = s + t0, q = s + t1 + 1, k;
+  const PetscInt   N = a->N, nc = a->nc, nc2 = nc * nc;
+  PetscInt         p = s + t0, q = s + t1 + 1, k;
+  const PetscReal *Pp, *Pq;
 
   if (p >= N) {
     p -= N;
     q -= N;
   }
+  Pp = a->PG + (size_t)p * nc2;
   if (q <= N) {
-    for (k = 0; k < nc; k++) a->S[k] = a->PB[q * nc + k] - a->PB[p * nc + k];
-    if (wantG)
-      for (k = 0; k < nc2; k++) a->G[k] = a->PG[(size_t)q * nc2 + k] - a->PG[(size_t)p * nc2 + k];
-  } else {
+    Pq = a->PG + (size_t)q * nc2;
+    for (k = 0; k < nc2; k++) M[k] += alpha * (Pq[k] - Pp[k]);
+    if (wantS)
+      for (k = 0; k < nc; k++) a->S[k] = a->PB[q * nc + k] - a->PB[p * nc + k];
+  } else { /* wraps: [p, N) and [0, q - N) */
+    const PetscReal *PN = a->PG + (size_t)N * nc2;
     q -= N;
-    for (k = 0; k < nc; k++) a->S[k] = a->PB[N * nc + k] - a->PB[p * nc + k] + a->PB[q * nc + k];
-    if (wantG)
-      for (k = 0; k < nc2; k++) a->G[k] = a->PG[(size_t)N * nc2 + k] - a->PG[(size_t)p * nc2 + k] + a->PG[(size_t)q * nc2 + k];
+    Pq = a->PG + (size_t)q * nc2;
+    for (k = 0; k < nc2; k++) M[k] += alpha * (PN[k] - Pp[k] + Pq[k]);
+    if (wantS)
+      for (k = 0; k < nc; k++) a->S[k] = a->PB[N * nc + k] - a->PB[p * nc + k] + a->PB[q * nc + k];
   }
 }
 
-/* D += alpha diag(w) G */
-static inline void AddWG(PetscInt nc, const PetscReal *w, PetscReal alpha, const PetscReal *G, PetscReal *D)
+/* M += alpha S x^T and, if y, P += alpha S y^T */
+static inline void Rank1(PetscInt nc, PetscReal alpha, const PetscReal *restrict S, const PetscReal *restrict x, PetscReal *restrict M, const PetscReal *restrict y, PetscReal *restrict P)
 {
   for (PetscInt k = 0; k < nc; k++) {
-    const PetscReal s = alpha * w[k];
-    for (PetscInt m = 0; m < nc; m++) D[k * nc + m] += s * G[k * nc + m];
-  }
-}
-
-/* D += alpha diag(w) S x^T */
-static inline void AddWSx(PetscInt nc, const PetscReal *w, PetscReal alpha, const PetscReal *S, const PetscReal *x, PetscReal *D)
-{
-  for (PetscInt k = 0; k < nc; k++) {
-    const PetscReal s = alpha * w[k] * S[k];
-    for (PetscInt m = 0; m < nc; m++) D[k * nc + m] += s * x[m];
+    const PetscReal c = alpha * S[k];
+    for (PetscInt m = 0; m < nc; m++) M[k * nc + m] += c * x[m];
+    if (y)
+      for (PetscInt m = 0; m < nc; m++) P[k * nc + m] += c * y[m];
   }
 }
 
@@ -144,8 +174,8 @@ void JRAFTElement(JRAFT *a, PetscReal kt, PetscReal kn, PetscReal mu, PetscReal 
 {
   const PetscInt   N = a->N, nc = a->nc;
   const PetscReal *Bt = a->Bt, *wd = a->wdft;
-  PetscReal       *u = a->u, *v = a->v, *g = a->g, *f = a->f, *lam = a->lam;
-  PetscInt        *code   = a->code;
+  PetscReal       *u = a->u, *v = a->v, *g = a->g, *f = a->f, *lam = a->lam, *Lb = a->Lb, *Ub = a->Ub, *uc = a->uc;
+  PetscInt        *code = a->code, *rc = a->rc;
   const PetscReal  r      = mu / kt;
   const PetscBool  normal = Ve ? PETSC_TRUE : PETSC_FALSE;
   const PetscBool  wantJ  = (out->dFdU || out->dFdV || out->dNdV) ? PETSC_TRUE : PETSC_FALSE;
@@ -154,24 +184,21 @@ void JRAFTElement(JRAFT *a, PetscReal kt, PetscReal kn, PetscReal mu, PetscReal 
   PetscBool        fullstick = PETSC_FALSE, anyslip = PETSC_FALSE;
 
   /* synthesis u_j = B_j . U (and v_j), vectorised over samples */
-  for (j = 0; j < N; j++) u[j] = Ue[0];
-  for (k = 1; k < nc; k++) {
-    const PetscReal  c   = Ue[k];
-    const PetscReal *row = Bt + k * N;
-    for (j = 0; j < N; j++) u[j] += c * row[j];
-  }
+  Synthesis(N, nc, Bt, Ue, u);
   if (normal) {
-    for (j = 0; j < N; j++) v[j] = Ve[0];
-    for (k = 1; k < nc; k++) {
-      const PetscReal  c   = Ve[k];
-      const PetscReal *row = Bt + k * N;
-      for (j = 0; j < N; j++) v[j] += c * row[j];
-    }
+    Synthesis(N, nc, Bt, Ve, v);
     for (j = 0; j < N; j++) g[j] = n0 + kn * v[j];
   } else {
     for (j = 0; j < N; j++) g[j] = n0;
   }
-  for (j = 0; j < N; j++) nsep += (g[j] <= 0.0);
+  /* stick band of the slip, L_j = u_j - r n_j <= w <= U_j = u_j + r n_j, n_j = max(g_j, 0): it
+     collapses to w = u_j (f = 0) on separated samples */
+  for (j = 0; j < N; j++) {
+    const PetscReal nj = PetscMax(g[j], 0.0);
+    Lb[j]              = u[j] - r * nj;
+    Ub[j]              = u[j] + r * nj;
+    nsep += (g[j] <= 0.0);
+  }
 
   if (nsep == N) { /* full separation: no force at all */
     if (out->F) Zero(nc, out->F);
@@ -187,19 +214,25 @@ void JRAFTElement(JRAFT *a, PetscReal kt, PetscReal kn, PetscReal mu, PetscReal 
 
   /* where the periodic march starts, and in which state */
   if (nsep) {
-    for (s = 0; s < N; s++) {
-      PetscInt jp = s ? s - 1 : N - 1;
-      if (g[s] > 0.0 && g[jp] <= 0.0) break;
+    /* first contact samples: the slip restarts from the interpolated contact point u_c */
+    s = -1;
+    for (j = 0; j < N; j++) {
+      const PetscInt jp = j ? j - 1 : N - 1;
+      rc[j]             = g[j] > 0.0 && g[jp] <= 0.0;
+      if (rc[j]) {
+        lam[j] = g[jp] / (g[jp] - g[j]);
+        uc[j]  = u[jp] + lam[j] * (u[j] - u[jp]);
+        if (s < 0) s = j;
+      }
     }
   } else {
     for (j = 0; j < N; j++) {
-      const PetscReal L = u[j] - r * g[j], U = u[j] + r * g[j];
-      if (L > lo) {
-        lo = L;
+      if (Lb[j] > lo) {
+        lo = Lb[j];
         jl = j;
       }
-      if (U < hi) {
-        hi = U;
+      if (Ub[j] < hi) {
+        hi = Ub[j];
         jh = j;
       }
     }
@@ -219,61 +252,37 @@ void JRAFTElement(JRAFT *a, PetscReal kt, PetscReal kn, PetscReal mu, PetscReal 
 
   if (fullstick) {
     for (j = 0; j < N; j++) f[j] = kt * (u[j] - w);
+  } else if (!nsep) {
+    /* branch-free march: w_j = clamp(w_{j-1}, L_j, U_j), from positive slip at s */
+    w = Lb[s];
+    for (t = 0, j = s; t < N; t++, j = j + 1 == N ? 0 : j + 1) {
+      const PetscReal wn = PetscMin(PetscMax(w, Lb[j]), Ub[j]);
+      code[t]            = (w < Lb[j]) | ((w > Ub[j]) << 1);
+      f[j]               = kt * (u[j] - wn);
+      w                  = wn;
+    }
+    code[0] = JR_CODE_SLIPP;
   } else {
-    PetscBool prevsep = nsep ? PETSC_TRUE : PETSC_FALSE; /* the sample before s is separated */
-    for (t = 0; t < N; t++) {
-      PetscReal L, U, gj;
-      j  = s + t;
-      j  = j >= N ? j - N : j;
-      gj = g[j];
-      if (gj <= 0.0) {
-        code[t] = JR_CODE_SEP;
-        w       = u[j];
-        f[j]    = 0.0;
-        prevsep = PETSC_TRUE;
-        continue;
-      }
-      L       = u[j] - r * gj;
-      U       = u[j] + r * gj;
-      code[t] = JR_CODE_STICK;
-      if (prevsep) { /* first contact: slip at the interpolated contact point */
-        PetscInt jp = j ? j - 1 : N - 1;
-        lam[t]      = g[jp] / (g[jp] - gj);
-        w           = u[jp] + lam[t] * (u[j] - u[jp]);
-        code[t] |= JR_CODE_RECONTACT;
-        prevsep = PETSC_FALSE;
-      }
-      if (t == 0 && !nsep) {
-        w = L;
-        code[t] |= JR_CODE_SLIPP;
-      } else if (w < L) {
-        w = L;
-        code[t] |= JR_CODE_SLIPP;
-      } else if (w > U) {
-        w = U;
-        code[t] |= JR_CODE_SLIPN;
-      }
-      f[j] = kt * (u[j] - w);
+    /* the same with separation: at a first contact the slip restarts from u_c */
+    for (t = 0, j = s; t < N; t++, j = j + 1 == N ? 0 : j + 1) {
+      const PetscReal wp = rc[j] ? uc[j] : w;
+      const PetscReal wn = PetscMin(PetscMax(wp, Lb[j]), Ub[j]);
+      code[t]            = g[j] <= 0.0 ? JR_CODE_SEP : ((wp < Lb[j]) | ((wp > Ub[j]) << 1) | (rc[j] ? JR_CODE_RECONTACT : 0));
+      f[j]               = kt * (u[j] - wn);
+      w                  = wn;
     }
   }
 
-  /* DFT of the force (and of the normal load) */
-  if (out->F) {
-    for (k = 0; k < nc; k++) {
-      const PetscReal *row = Bt + k * N;
-      PetscReal        acc = 0.0;
-      for (j = 0; j < N; j++) acc += f[j] * row[j];
-      out->F[k] = wd[k] * acc;
-    }
-  }
+  /* DFT of the force (and of the normal load: without separation n = n0 + kn v exactly) */
+  if (out->F)
+    for (k = 0; k < nc; k++) out->F[k] = wd[k] * Dot(N, f, Bt + k * N);
   if (out->N) {
-    if (normal) {
-      for (k = 0; k < nc; k++) {
-        const PetscReal *row = Bt + k * N;
-        PetscReal        acc = 0.0;
-        for (j = 0; j < N; j++) acc += PetscMax(g[j], 0.0) * row[j];
-        out->N[k] = wd[k] * acc;
-      }
+    if (normal && nsep) {
+      for (j = 0; j < N; j++) v[j] = PetscMax(g[j], 0.0); /* n_j; v is not needed any more */
+      for (k = 0; k < nc; k++) out->N[k] = wd[k] * Dot(N, v, Bt + k * N);
+    } else if (normal) {
+      out->N[0] = n0 + kn * Ve[0];
+      for (k = 1; k < nc; k++) out->N[k] = kn * Ve[k];
     } else {
       Zero(nc, out->N);
       out->N[0] = n0;
@@ -291,28 +300,32 @@ void JRAFTElement(JRAFT *a, PetscReal kt, PetscReal kn, PetscReal mu, PetscReal 
   out->state = nsep ? JR_CONTACT_SEPARATION_STICK_SLIP : (anyslip ? JR_CONTACT_STICK_SLIP : JR_CONTACT_FULL_STICK);
 
   if (!wantJ) return;
+#if defined(JR_COUNT_RUNS)
+  jr_elems++;
+#endif
   {
-    PetscReal *dFdU = out->dFdU, *dFdV = out->dFdV, *dNdV = out->dNdV;
-    if (!dFdU) dFdU = a->DU;
-    if (!dFdV) dFdV = a->DV;
-    Zero(nc * nc, dFdU);
-    Zero(nc * nc, dFdV);
+    const PetscInt nc2 = nc * nc;
+    PetscReal     *MU = a->DU, *MV = a->DV, *MN = a->DN; /* unweighted sums; dX/dY = diag(wdft) M */
+    Zero(nc2, MU);
+    Zero(nc2, MV);
+    Zero(nc2, MN);
     if (fullstick) {
-      /* f_j = kt (u_j - w), w = 0 or an anchor at max L / min U: only the mean row sees the anchor */
-      for (k = 0; k < nc; k++) dFdU[k * nc + k] = kt;
+      /* f_j = kt (u_j - w), w = 0 or an anchor at max L / min U: dF/dU = kt (I - e0 dX^T) */
+      for (k = 0; k < nc; k++) MU[k * nc + k] = kt / wd[k];
       if (anchor) {
         AnchorSlip(a, anchor > 0 ? jl : jh, anchor > 0 ? 1.0 : -1.0, r, kn, normal);
         for (k = 0; k < nc; k++) {
-          dFdU[k] -= kt * a->dXU[k];
-          dFdV[k] -= kt * a->dXV[k];
+          MU[k] -= kt * N * a->dXU[k];
+          MV[k] -= kt * N * a->dXV[k];
         }
       }
     } else {
       PetscInt t0 = 0;
       while (t0 < N) {
         const PetscInt c0 = code[t0] & 3;
-        PetscInt       t1 = t0;
-        while (t1 + 1 < N && (code[t1 + 1] & 3) == c0 && !(code[t1 + 1] & JR_CODE_RECONTACT)) t1++;
+        PetscInt       t1 = t0 + 1;
+        while (t1 < N && code[t1] == c0) t1++; /* a first-contact sample carries a flag: it starts a run */
+        t1--;
         if (c0 == JR_CODE_STICK) {
           /* anchor of this stick run: the sample before it in march order, or the contact point */
           if (code[t0] & JR_CODE_RECONTACT) {
@@ -325,7 +338,7 @@ void JRAFTElement(JRAFT *a, PetscReal kt, PetscReal kn, PetscReal mu, PetscReal 
             den = gp - gc;
             du  = u[jc] - u[jp];
             for (k = 0; k < nc; k++) {
-              a->dXU[k] = (1.0 - lam[t0]) * Bt[k * N + jp] + lam[t0] * Bt[k * N + jc];
+              a->dXU[k] = (1.0 - lam[jc]) * Bt[k * N + jp] + lam[jc] * Bt[k * N + jc];
               a->dXV[k] = normal ? du * kn * (gp * Bt[k * N + jc] - gc * Bt[k * N + jp]) / (den * den) : 0.0;
             }
           } else {
@@ -334,36 +347,28 @@ void JRAFTElement(JRAFT *a, PetscReal kt, PetscReal kn, PetscReal mu, PetscReal 
             ja                = ja >= N ? ja - N : ja;
             AnchorSlip(a, ja, (code[ta] & 3) == JR_CODE_SLIPP ? 1.0 : -1.0, r, kn, normal);
           }
-          Interval(a, s, t0, t1, PETSC_TRUE);
-          AddWG(nc, wd, kt, a->G, dFdU);
-          AddWSx(nc, wd, -kt, a->S, a->dXU, dFdU);
-          if (normal) AddWSx(nc, wd, -kt, a->S, a->dXV, dFdV);
-        } else if (c0 != JR_CODE_SEP && normal) {
-          Interval(a, s, t0, t1, PETSC_TRUE);
-          AddWG(nc, wd, c0 == JR_CODE_SLIPP ? mu * kn : -mu * kn, a->G, dFdV);
+          GramAdd(a, s, t0, t1, kt, MU, PETSC_TRUE);
+          Rank1(nc, -kt, a->S, a->dXU, MU, normal ? a->dXV : NULL, MV);
+        } else if (c0 == JR_CODE_SEP) {
+          if (normal) GramAdd(a, s, t0, t1, -kn, MN, PETSC_FALSE);
+        } else if (normal) {
+          GramAdd(a, s, t0, t1, c0 == JR_CODE_SLIPP ? mu * kn : -mu * kn, MV, PETSC_FALSE);
         }
         t0 = t1 + 1;
+#if defined(JR_COUNT_RUNS)
+        jr_runs++;
+#endif
       }
     }
-    if (dNdV) {
-      Zero(nc * nc, dNdV);
-      if (normal) {
-        for (k = 0; k < nc; k++) dNdV[k * nc + k] = kn;
-        if (nsep) { /* dN/dV = kn W sum_contact B B^T = kn (I - W sum_separated B B^T) */
-          PetscInt t0 = 0;
-          while (t0 < N) {
-            PetscInt t1 = t0;
-            if ((code[t0] & 3) != JR_CODE_SEP) {
-              t0++;
-              continue;
-            }
-            while (t1 + 1 < N && (code[t1 + 1] & 3) == JR_CODE_SEP) t1++;
-            Interval(a, s, t0, t1, PETSC_TRUE);
-            AddWG(nc, wd, -kn, a->G, dNdV);
-            t0 = t1 + 1;
-          }
-        }
-      }
+    /* apply the DFT weights; dN/dV = kn W sum_contact B B^T = kn (I - W sum_separated B B^T) */
+    if (out->dFdU)
+      for (k = 0; k < nc2; k++) out->dFdU[k] = a->wflat[k] * MU[k];
+    if (out->dFdV)
+      for (k = 0; k < nc2; k++) out->dFdV[k] = a->wflat[k] * MV[k];
+    if (out->dNdV) {
+      for (k = 0; k < nc2; k++) out->dNdV[k] = a->wflat[k] * MN[k];
+      if (normal)
+        for (k = 0; k < nc; k++) out->dNdV[k * nc + k] += kn;
     }
   }
 }

@@ -268,6 +268,56 @@ PetscErrorCode JRContactGetSequences(JRContact c, const PetscReal U[], const Pet
   PetscFunctionReturn(0);
 }
 
+#define JR_CHUNK 8
+
+/*
+  JRContactEvaluateChunked - batch evaluation through the type's single-element kernel (ops->element):
+  elements are taken JR_CHUNK at a time, their motions gathered, their dense outputs collected and
+  then written to the SoA arrays row by row, JR_CHUNK consecutive values (a cache line) at a time.
+*/
+PetscErrorCode JRContactEvaluateChunked(JRContact c, PetscInt start, PetscInt end, const PetscReal U[], const PetscReal V[], PetscReal F[], PetscReal N[], PetscReal dFdU[], PetscReal dFdV[], PetscReal dNdV[], JRContactState state[])
+{
+  const PetscInt n = c->n, nc = c->nc, nc2 = nc * nc;
+  PetscReal     *Ue, *Ve, *Fc, *Nc, *DUc, *DVc, *DNc;
+  JRElementOut   out;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc7(nc, &Ue, nc, &Ve, JR_CHUNK * nc, &Fc, JR_CHUNK * nc, &Nc, JR_CHUNK * nc2, &DUc, JR_CHUNK * nc2, &DVc, JR_CHUNK * nc2, &DNc));
+  for (PetscInt e0 = start; e0 < end; e0 += JR_CHUNK) {
+    const PetscInt m = PetscMin(JR_CHUNK, end - e0);
+    for (PetscInt l = 0; l < m; l++) {
+      const PetscInt e = e0 + l;
+      for (PetscInt k = 0; k < nc; k++) Ue[k] = U[k * n + e];
+      if (c->normal)
+        for (PetscInt k = 0; k < nc; k++) Ve[k] = V[k * n + e];
+      out.F    = F ? Fc + l * nc : NULL;
+      out.N    = N ? Nc + l * nc : NULL;
+      out.dFdU = dFdU ? DUc + l * nc2 : NULL;
+      out.dFdV = dFdV ? DVc + l * nc2 : NULL;
+      out.dNdV = dNdV ? DNc + l * nc2 : NULL;
+      PetscCall((*c->ops->element)(c, e, Ue, c->normal ? Ve : NULL, &out));
+      if (state) state[e] = out.state;
+    }
+    if (F)
+      for (PetscInt k = 0; k < nc; k++)
+        for (PetscInt l = 0; l < m; l++) F[k * n + e0 + l] = Fc[l * nc + k];
+    if (N)
+      for (PetscInt k = 0; k < nc; k++)
+        for (PetscInt l = 0; l < m; l++) N[k * n + e0 + l] = Nc[l * nc + k];
+    if (dFdU)
+      for (PetscInt k = 0; k < nc2; k++)
+        for (PetscInt l = 0; l < m; l++) dFdU[k * n + e0 + l] = DUc[l * nc2 + k];
+    if (dFdV)
+      for (PetscInt k = 0; k < nc2; k++)
+        for (PetscInt l = 0; l < m; l++) dFdV[k * n + e0 + l] = DVc[l * nc2 + k];
+    if (dNdV)
+      for (PetscInt k = 0; k < nc2; k++)
+        for (PetscInt l = 0; l < m; l++) dNdV[k * n + e0 + l] = DNc[l * nc2 + k];
+  }
+  PetscCall(PetscFree7(Ue, Ve, Fc, Nc, DUc, DVc, DNc));
+  PetscFunctionReturn(0);
+}
+
 /* Print the type, path, harmonics and the element parameter ranges (collective) */
 PetscErrorCode JRContactView(JRContact c, PetscViewer viewer)
 {

@@ -112,24 +112,8 @@ static PetscErrorCode JRContactEvaluate_Jenkins(JRContact c, PetscInt start, Pet
     }
     PetscCall(PetscLogFlops(60.0 * (end - start)));
   } else {
-    JRAFT       *a = c->aft;
-    JRElementOut out;
-    PetscReal    Ue[JR_MAX_NC], Fe[JR_MAX_NC];
-    for (e = start; e < end; e++) {
-      for (k = 0; k < nc; k++) Ue[k] = U[k * n + e];
-      out.F    = F ? Fe : NULL;
-      out.N    = NULL;
-      out.dFdU = dFdU ? a->DU : NULL;
-      out.dFdV = NULL;
-      out.dNdV = NULL;
-      JRAFTElement(a, kt[e], 0.0, mu[e], n0[e], Ue, NULL, &out, NULL, NULL);
-      if (F)
-        for (k = 0; k < nc; k++) F[k * n + e] = Fe[k];
-      if (dFdU)
-        for (k = 0; k < nc * nc; k++) dFdU[k * n + e] = a->DU[k];
-      if (state) state[e] = out.state;
-    }
-    PetscCall(PetscLogFlops((4.0 * nc * a->N + 6.0 * a->N + 8.0 * nc * nc) * (end - start)));
+    PetscCall(JRContactEvaluateChunked(c, start, end, U, NULL, F, NULL, dFdU, NULL, NULL, state));
+    PetscCall(PetscLogFlops((4.0 * nc * c->N + 6.0 * c->N + 8.0 * nc * nc) * (end - start)));
   }
   /* constant normal load: N = n0, no dependence on v */
   if (N)

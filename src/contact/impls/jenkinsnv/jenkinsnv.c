@@ -354,39 +354,12 @@ static PetscErrorCode JRContactElement_JenkinsNV(JRContact c, PetscInt e, const 
 
 static PetscErrorCode JRContactEvaluate_JenkinsNV(JRContact c, PetscInt start, PetscInt end, const PetscReal U[], const PetscReal V[], PetscReal F[], PetscReal N[], PetscReal dFdU[], PetscReal dFdV[], PetscReal dNdV[], JRContactState state[])
 {
-  const PetscInt n = c->n, nc = c->nc, nc2 = nc * nc;
-  PetscReal      Ue[JR_MAX_NC], Ve[JR_MAX_NC], Fe[JR_MAX_NC], Ne[JR_MAX_NC], *DU = NULL, *DV = NULL, *DN = NULL;
-  JRElementOut   out;
-  PetscInt       e, k;
+  const PetscInt nc = c->nc;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc3(nc2, &DU, nc2, &DV, nc2, &DN));
-  out.F    = F ? Fe : NULL;
-  out.N    = N ? Ne : NULL;
-  out.dFdU = dFdU ? DU : NULL;
-  out.dFdV = dFdV ? DV : NULL;
-  out.dNdV = dNdV ? DN : NULL;
-  for (e = start; e < end; e++) {
-    for (k = 0; k < nc; k++) {
-      Ue[k] = U[k * n + e];
-      Ve[k] = V[k * n + e];
-    }
-    PetscCall(JRContactElement_JenkinsNV(c, e, Ue, Ve, &out));
-    if (F)
-      for (k = 0; k < nc; k++) F[k * n + e] = Fe[k];
-    if (N)
-      for (k = 0; k < nc; k++) N[k * n + e] = Ne[k];
-    if (dFdU)
-      for (k = 0; k < nc2; k++) dFdU[k * n + e] = DU[k];
-    if (dFdV)
-      for (k = 0; k < nc2; k++) dFdV[k * n + e] = DV[k];
-    if (dNdV)
-      for (k = 0; k < nc2; k++) dNdV[k * n + e] = DN[k];
-    if (state) state[e] = out.state;
-  }
-  PetscCall(PetscFree3(DU, DV, DN));
+  PetscCall(JRContactEvaluateChunked(c, start, end, U, V, F, N, dFdU, dFdV, dNdV, state));
   if (c->method == JR_CONTACT_ANALYTIC) PetscCall(PetscLogFlops(600.0 * (end - start)));
-  else PetscCall(PetscLogFlops((6.0 * nc * c->N + 10.0 * c->N + 16.0 * nc2) * (end - start)));
+  else PetscCall(PetscLogFlops((6.0 * nc * c->N + 10.0 * c->N + 16.0 * nc * nc) * (end - start)));
   PetscFunctionReturn(0);
 }
 
