@@ -4,6 +4,7 @@
 #   make run      install missing dependencies, build, run runs/default.opts, write its plots to out/
 #   make test     install missing dependencies, build, run the test suite (ends "N passed, M failed")
 #   make bench    build and print the benchmark figures (1 and 2 MPI ranks)
+#   make install  copy bin/, lib/, include/ and share/ under PREFIX (default /usr/local)
 #   make clean    remove build/, lib/, bin/
 #
 # Variables: PETSC_DIR, SLEPC_DIR (Debian defaults), JR_OPT (optimisation flags),
@@ -40,7 +41,8 @@ TEST_BIN := $(TEST_SRC:tests/%.c=build/tests/%)
 BENCH_SRC := $(wildcard tests/bench/*.c)
 BENCH_BIN := $(BENCH_SRC:tests/bench/%.c=build/bench/%)
 
-.PHONY: all deps run test bench clean jr-run jr-test jr-bench jr-tests-build check-deps
+.PHONY: all deps run test bench clean install jr-run jr-test jr-bench jr-tests-build
+PREFIX ?= /usr/local
 
 ifeq ($(HAVE_SLEPC),yes)
 all: lib/libjointrom.a bin/jointrom
@@ -84,6 +86,15 @@ endif
 
 deps:
 	@bash share/install-deps.sh
+
+install: all
+	install -d $(PREFIX)/bin $(PREFIX)/lib $(PREFIX)/include/jointrom/private $(PREFIX)/share/jointrom
+	install -m 755 bin/jointrom $(PREFIX)/bin/
+	install -m 644 lib/libjointrom.a $(PREFIX)/lib/
+	install -m 644 include/jointrom.h $(PREFIX)/include/
+	install -m 644 include/jointrom/private/*.h $(PREFIX)/include/jointrom/private/
+	install -m 644 share/*.gp $(PREFIX)/share/jointrom/
+	@echo "installed; set JOINTROM_SHARE=$(PREFIX)/share/jointrom so bin/jointrom finds its plot scripts" 
 
 run: deps
 	@$(MAKE) --no-print-directory jr-run

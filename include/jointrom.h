@@ -110,6 +110,10 @@ PETSC_EXTERN PetscErrorCode JRTableDestroy(JRTable *);
 PETSC_EXTERN PetscErrorCode JRFileOpenTemp(MPI_Comm, const char[], FILE **, char[], size_t);
 PETSC_EXTERN PetscErrorCode JRFileCommit(MPI_Comm, FILE **, const char[], const char[]);
 
+/* 64-byte aligned allocations (whole cache lines) for large SoA batches */
+PETSC_EXTERN PetscErrorCode JRMallocAligned(size_t, void *);
+PETSC_EXTERN PetscErrorCode JRFreeAligned(void *);
+
 /* Run a gnuplot script from share/ to make a PNG (temporary name, then rename) */
 PETSC_EXTERN PetscErrorCode JRPlot(MPI_Comm, const char[], const char[], const char[], PetscBool *);
 

@@ -36,10 +36,21 @@ s=$(for row in "1e6 0.12 300" "2e6 0.1 100" "1.5e6 0.2 50"; do set -- $row; $J -
 read -r sfs sfc se <<<"$s"
 check "close $(echo "$j" | field fs) $sfs 1e-9 && close $(echo "$j" | field fc) $sfc 1e-9 && close $(echo "$j" | field energy) $se 1e-9" "element joint of 3 (CSV) = sum of the 3 elements: $j"
 
+# member states of the demo joint: a jenkins member sticks all cycle iff kt U <= mu n0 (3.20), i.e.
+# n0 >= 166.7 N at U = 20 um: 6 of the 8 normal loads in runs/demo_joint.csv; at U = 120 um n0 >= 1000 N: 2
+n6=$(awk -F, -v U=20e-6 '!/^#/ && NR>1 && $1+0>0 {if ($1*U <= $2*$3) n++} END{print n+0}' runs/demo_joint.csv)
+n2=$(awk -F, -v U=120e-6 '!/^#/ && NR>1 && $1+0>0 {if ($1*U <= $2*$3) n++} END{print n+0}' runs/demo_joint.csv)
+o=$($J -task element -element_joint runs/demo_joint.csv -element_u 20e-6,120e-6 2>&1 | grep 'members')
+check "echo \"\$o\" | sed -n 1p | grep -q 'full_stick $n6, stick_slip $((8 - n6)),' && echo \"\$o\" | sed -n 2p | grep -q 'full_stick $n2, stick_slip $((8 - n2)),'" "joint member states: $n6 and $n2 of 8 stick at U = 20 and 120 um (kt U <= mu n0)"
+
 # 1 and 2 ranks give the same output
 a=$($J -options_file runs/element_nv.opts -element_loop '' 2>&1 | grep '^fs')
 b=$(mpiexec -n 2 $J -options_file runs/element_nv.opts -element_loop '' 2>&1 | grep '^fs')
 check "[ -n '$a' ] && [ '$a' = '$b' ]" "element jenkins_nv: 1 and 2 ranks print the same results"
+
+# -contact_view reports the batch
+o=$($J -task element -contact_view -element_joint runs/demo_joint.csv 2>&1)
+check "echo \"\$o\" | grep -q 'JRContact: type jenkins, analytic path, H = 1' && echo \"\$o\" | grep -q 'elements: 8 on 1 rank'" "-contact_view reports type, path and element count"
 
 # outputs: loop CSV (header + closed loop per amplitude) and PNG
 $J -task element -element_u 10e-6,20e-6 -element_loop "$tmp/loop" -element_loop_samples 100 > /dev/null 2>&1
@@ -58,8 +69,8 @@ done
 # -help lists every option
 h=$($J -task element -help 2>&1)
 miss=""
-for o in -task -contact_type -contact_method -element_kt -element_kn -element_mu -element_n0 -element_u -element_v -element_phase -element_harmonics -element_samples -element_joint -element_loop -element_loop_samples; do
-  echo "$h" | grep -q -- "$o " || miss="$miss $o"
+for o in -task -contact_type -contact_method -contact_view -element_kt -element_kn -element_mu -element_n0 -element_u -element_v -element_phase -element_harmonics -element_samples -element_joint -element_loop -element_loop_samples; do
+  echo "$h" | grep -qE -- "^ *$o[ :]" || miss="$miss $o"
 done
 check "[ -z '$miss' ]" "-help lists every option${miss:+ (missing:$miss)}"
 

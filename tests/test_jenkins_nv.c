@@ -155,6 +155,19 @@ int main(int argc, char **argv)
       CHECK(RelDiff(3, Fj, F0, mu * n0) < 1e-12 && RelDiff(9, Jj, J0, k) < 1e-10, "jenkins_nv with kn = 0 equals jenkins at A = %.3g A0: force %.1e, Jacobian %.1e", r, RelDiff(3, Fj, F0, mu * n0), RelDiff(9, Jj, J0, k));
       CHECK(RelDiff(3, Fj, Fs, mu * n0) < 1e-5, "jenkins_nv with kn = 1e-6 kt tends to jenkins at A = %.3g A0: difference %.1e of mu n0", r, RelDiff(3, Fj, Fs, mu * n0));
     }
+    /* full stick with a mean outside the stick band: the slip sits at the band edge (max L or min U) */
+    for (int sgn = -1; sgn <= 1; sgn += 2) {
+      const double U[3] = {sgn * 3.0 * A0, 0.5 * A0 * cos(ph), 0.5 * A0 * sin(ph)}, V[3] = {0.2 * A0, 0.1 * A0, 0.05 * A0};
+      double       Fj[3], F0[3], Fb[3], Nb[3];
+      PetscCall(JRContactEvaluate(jk, U, NULL, Fj, NULL, NULL, NULL, NULL, NULL));
+      PetscCall(JRContactEvaluate(nv0, U, V, F0, NULL, NULL, NULL, NULL, NULL));
+      CHECK(RelDiff(3, Fj, F0, mu * n0) < 1e-12, "jenkins_nv (kn = 0) full stick, mean %+g A0 outside the band: equals jenkins (F0 = %.6g N)", sgn * 3.0, F0[0]);
+      PetscCall(JRContactEvaluate(nvs, U, V, F0, NULL, NULL, NULL, NULL, NULL));
+      BruteForce(k, 1e-6 * k, mu, n0, 3, U, V, 1 << 16, 3, Fb, Nb, NULL, 0);
+      CHECK(RelDiff(3, F0, Fb, mu * n0) < 1e-6, "jenkins_nv full stick, mean %+g A0 outside the band: closed form vs brute-force march, error %.1e", sgn * 3.0, RelDiff(3, F0, Fb, mu * n0));
+      PetscCall(FDCheck(nvs, 3, U, V, 1e-6, e3));
+      CHECK(fmax(e3[0], fmax(e3[1], e3[2])) < 1e-6, "jenkins_nv full stick at the band edge: dF/du %.1e, dF/dv %.1e, dN/dv %.1e vs finite differences", e3[0], e3[1], e3[2]);
+    }
     PetscCall(JRContactDestroy(&jk));
     PetscCall(JRContactDestroy(&nv0));
     PetscCall(JRContactDestroy(&nvs));

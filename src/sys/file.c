@@ -71,3 +71,22 @@ PetscErrorCode JRPlot(MPI_Comm comm, const char script[], const char png[], cons
   if (made) *made = ok ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
+
+/* Allocate n bytes aligned to a 64-byte cache line (free with JRFreeAligned); for large SoA batches */
+PetscErrorCode JRMallocAligned(size_t n, void *ptr)
+{
+  void *p = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCheck(!posix_memalign(&p, 64, n ? n : 64), PETSC_COMM_SELF, PETSC_ERR_MEM, "Cannot allocate %zu bytes", n);
+  *(void **)ptr = p;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRFreeAligned(void *ptr)
+{
+  PetscFunctionBeginUser;
+  free(*(void **)ptr);
+  *(void **)ptr = NULL;
+  PetscFunctionReturn(0);
+}

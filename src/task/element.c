@@ -105,6 +105,27 @@ static void LoopBase(const char *in, char *base, size_t len)
   if (l > 4 && (!strcmp(base + l - 4, ".csv") || !strcmp(base + l - 4, ".png"))) base[l - 4] = 0;
 }
 
+/* Contact state of each member of the joint under the common motion: counts per state */
+static PetscErrorCode MemberStates(JRContact c, PetscInt nel, PetscInt nc, const PetscReal U[], const PetscReal V[], MPI_Comm comm)
+{
+  PetscReal      *Ub, *Vb;
+  JRContactState *st;
+  PetscInt        count[4] = {0, 0, 0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc3(nel * nc, &Ub, nel * nc, &Vb, nel, &st));
+  for (PetscInt k = 0; k < nc; k++)
+    for (PetscInt e = 0; e < nel; e++) {
+      Ub[k * nel + e] = U[k];
+      Vb[k * nel + e] = V ? V[k] : 0.0;
+    }
+  PetscCall(JRContactEvaluate(c, Ub, V ? Vb : NULL, NULL, NULL, NULL, NULL, NULL, st));
+  for (PetscInt e = 0; e < nel; e++) count[st[e]]++;
+  PetscCall(PetscPrintf(comm, "element: members %s %" PetscInt_FMT ", %s %" PetscInt_FMT ", %s %" PetscInt_FMT ", %s %" PetscInt_FMT "\n", JRContactStates[0], count[0], JRContactStates[1], count[1], JRContactStates[2], count[2], JRContactStates[3], count[3]));
+  PetscCall(PetscFree3(Ub, Vb, st));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode JRTaskElement(MPI_Comm comm)
 {
   ElementCtx     ctx;
@@ -169,6 +190,8 @@ PetscErrorCode JRTaskElement(MPI_Comm comm)
       PetscCall(JRContactGetSequences(c, U, V, &seq));
       PetscCall(PetscPrintf(comm, "element: motion sequence %s (thesis 3.3, Table 3.2)\n", JRContactSequences[seq]));
     }
+    if (ctx.U[i] > 0.0) PetscCall(PetscPrintf(comm, "element: equivalent stiffness fs/U %.6g N/m, loss factor fc/fs %.4g\n", (double)(F[1] / ctx.U[i]), (double)(F[1] != 0.0 ? F[2] / F[1] : 0.0)));
+    if (nel > 1) PetscCall(MemberStates(c, nel, nc, U, normal ? V : NULL, comm));
     PetscCall(PetscPrintf(comm, "fs %.10g fc %.10g energy %.10g state %s\n", (double)F[1], (double)F[2], (double)energy, JRContactStates[st]));
     if (ctx.hasloop) {
       PetscCall(JRContactJointLoop(c, 0, NULL, U, normal ? V : NULL, ctx.nloop, lu, lv, lf, ln));

@@ -66,6 +66,7 @@ struct _p_JRContact {
   void                  *data;
   PetscBool              setupcalled;
   PetscBool              normal; /* the type uses the normal motion v */
+  PetscBool              view;   /* -contact_view: view at set-up */
   PetscInt               H, N, nc;
   JRContactMethod        method;
   PetscBool              method_set;

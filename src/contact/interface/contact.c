@@ -177,7 +177,7 @@ PetscErrorCode JRContactGetElements(JRContact c, PetscInt *n, const PetscReal **
   PetscFunctionReturn(0);
 }
 
-/* Options: -contact_type jenkins|jenkins_nv, -contact_method analytic|aft */
+/* Options: -contact_type jenkins|jenkins_nv, -contact_method analytic|aft, -contact_view */
 PetscErrorCode JRContactSetFromOptions(JRContact c)
 {
   char      type[64];
@@ -192,6 +192,7 @@ PetscErrorCode JRContactSetFromOptions(JRContact c)
   else if (!c->type_name[0]) PetscCall(JRContactSetType(c, JRCONTACTJENKINS));
   PetscCall(PetscOptionsEList("-contact_method", "Evaluation path: analytic (closed form, 1 harmonic) or aft (alternating frequency-time)", "JRContactSetMethod", JRContactMethods, 2, JRContactMethods[c->method], &method, &flg));
   if (flg) PetscCall(JRContactSetMethod(c, (JRContactMethod)method));
+  PetscCall(PetscOptionsBool("-contact_view", "Print the element batch (type, path, counts per rank, parameter ranges) at set-up", "JRContactView", c->view, &c->view, NULL));
   if (c->ops->setfromoptions) PetscCall((*c->ops->setfromoptions)(c, PetscOptionsObject));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
@@ -224,6 +225,7 @@ PetscErrorCode JRContactSetUp(JRContact c)
   if (c->ops->setup) PetscCall((*c->ops->setup)(c));
   c->setupcalled = PETSC_TRUE;
   PetscCall(PetscLogEventEnd(JR_ContactSetUp, 0, 0, 0, 0));
+  if (c->view) PetscCall(JRContactView(c, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -270,6 +272,26 @@ PetscErrorCode JRContactGetSequences(JRContact c, const PetscReal U[], const Pet
 
 #define JR_CHUNK 8
 
+#if defined(__SSE2__)
+  #include <emmintrin.h>
+#endif
+
+/* dst[0..m) = src[l*stride], l < m. A full chunk going to a whole cache line (64-byte aligned) is
+   written with non-temporal stores: the SoA rows of a large batch are written once and not read back
+   soon, so streaming them saves reading each line before overwriting it (half the memory traffic).
+   Rows that straddle lines are written normally (partial-line streaming is slower, not faster);
+   allocate large outputs with JRMallocAligned to get the benefit. */
+static inline void WriteRow(PetscReal *restrict dst, const PetscReal *restrict src, PetscInt stride, PetscInt m)
+{
+#if defined(__SSE2__)
+  if (m == JR_CHUNK && !((uintptr_t)dst & 63)) {
+    for (PetscInt l = 0; l < JR_CHUNK; l += 2) _mm_stream_pd(dst + l, _mm_set_pd(src[(l + 1) * stride], src[l * stride]));
+    return;
+  }
+#endif
+  for (PetscInt l = 0; l < m; l++) dst[l] = src[l * stride];
+}
+
 /*
   JRContactEvaluateChunked - batch evaluation through the type's single-element kernel (ops->element):
   elements are taken JR_CHUNK at a time, their motions gathered, their dense outputs collected and
@@ -299,21 +321,19 @@ PetscErrorCode JRContactEvaluateChunked(JRContact c, PetscInt start, PetscInt en
       if (state) state[e] = out.state;
     }
     if (F)
-      for (PetscInt k = 0; k < nc; k++)
-        for (PetscInt l = 0; l < m; l++) F[k * n + e0 + l] = Fc[l * nc + k];
+      for (PetscInt k = 0; k < nc; k++) WriteRow(F + k * n + e0, Fc + k, nc, m);
     if (N)
-      for (PetscInt k = 0; k < nc; k++)
-        for (PetscInt l = 0; l < m; l++) N[k * n + e0 + l] = Nc[l * nc + k];
+      for (PetscInt k = 0; k < nc; k++) WriteRow(N + k * n + e0, Nc + k, nc, m);
     if (dFdU)
-      for (PetscInt k = 0; k < nc2; k++)
-        for (PetscInt l = 0; l < m; l++) dFdU[k * n + e0 + l] = DUc[l * nc2 + k];
+      for (PetscInt k = 0; k < nc2; k++) WriteRow(dFdU + k * n + e0, DUc + k, nc2, m);
     if (dFdV)
-      for (PetscInt k = 0; k < nc2; k++)
-        for (PetscInt l = 0; l < m; l++) dFdV[k * n + e0 + l] = DVc[l * nc2 + k];
+      for (PetscInt k = 0; k < nc2; k++) WriteRow(dFdV + k * n + e0, DVc + k, nc2, m);
     if (dNdV)
-      for (PetscInt k = 0; k < nc2; k++)
-        for (PetscInt l = 0; l < m; l++) dNdV[k * n + e0 + l] = DNc[l * nc2 + k];
+      for (PetscInt k = 0; k < nc2; k++) WriteRow(dNdV + k * n + e0, DNc + k, nc2, m);
   }
+#if defined(__SSE2__)
+  _mm_sfence(); /* order the streamed stores before anyone reads the outputs */
+#endif
   PetscCall(PetscFree7(Ue, Ve, Fc, Nc, DUc, DVc, DNc));
   PetscFunctionReturn(0);
 }

@@ -39,8 +39,9 @@ typedef struct {
 } Sinus;
 
 typedef struct {
-  char      type; /* 'E' stick, 'P' positive slip, 'N' negative slip, 'S' separated */
-  PetscReal a, b; /* angles */
+  char      type;   /* 'E' stick, 'P' positive slip, 'N' negative slip, 'S' separated */
+  PetscReal a, b;   /* angles */
+  PetscReal sa, ca; /* sin(a), cos(a): each transition angle's sine and cosine are computed once */
   PetscReal W, dW[6];
 } Segment;
 
@@ -62,9 +63,10 @@ static inline void SinusSet(Sinus *s, PetscReal a0, PetscReal as, PetscReal ac)
   s->psi = PetscAtan2Real(ac, as);
 }
 
-static inline PetscReal SinusDeriv(const Sinus *s, PetscReal th)
+/* derivative of the sinusoid at an angle given by its sine sn and cosine cs */
+static inline PetscReal SinusDeriv(const Sinus *s, PetscReal sn, PetscReal cs)
 {
-  return s->as * PetscCosReal(th) - s->ac * PetscSinReal(th);
+  return s->as * cs - s->ac * sn;
 }
 
 /* phi + 2 pi k, the first such angle after th */
@@ -95,12 +97,11 @@ static inline PetscReal SinusMinAfter(const Sinus *s, PetscReal th)
   return NextAfter(-0.5 * PETSC_PI - s->psi, th);
 }
 
-/* slip anchored at the extremum of L (sgn = +1) or U (sgn = -1) at angle th:
+/* slip anchored at the extremum of L (sgn = +1) or U (sgn = -1) at the angle with sine s, cosine co:
    W = U0 -+ r n0 -+ c V0 + (Us -+ c Vs) sin + (Uc -+ c Vc) cos; dW over (U0,Us,Uc,V0,Vs,Vc) */
-static inline void AnchorBand(const NVCycle *m, PetscReal sgn, PetscReal th, PetscReal *W, PetscReal dW[6])
+static inline void AnchorBand(const NVCycle *m, PetscReal sgn, PetscReal s, PetscReal co, PetscReal *W, PetscReal dW[6])
 {
-  const PetscReal s = PetscSinReal(th), co = PetscCosReal(th);
-  const Sinus    *b = sgn > 0 ? &m->L : &m->Up;
+  const Sinus *b = sgn > 0 ? &m->L : &m->Up;
   *W                = b->a0 + b->as * s + b->ac * co;
   dW[0]             = 1.0;
   dW[1]             = s;
@@ -111,9 +112,8 @@ static inline void AnchorBand(const NVCycle *m, PetscReal sgn, PetscReal th, Pet
 }
 
 /* slip anchored at the contact point: W = u(theta_c), theta_c moves with v (g(theta_c) = 0) */
-static inline void AnchorContact(const NVCycle *m, PetscReal th, PetscReal *W, PetscReal dW[6])
+static inline void AnchorContact(const NVCycle *m, PetscReal s, PetscReal co, PetscReal *W, PetscReal dW[6])
 {
-  const PetscReal s = PetscSinReal(th), co = PetscCosReal(th);
   const PetscReal up = m->U[1] * co - m->U[2] * s;                /* u'(theta_c) */
   const PetscReal gp = m->kn * (m->V[1] * co - m->V[2] * s);      /* g'(theta_c) > 0 */
   const PetscReal q  = gp > 0.0 ? -up * m->kn / gp : 0.0;         /* u' dtheta_c/dg-part */
@@ -132,19 +132,19 @@ static inline void ZeroDW(PetscReal dW[6])
 }
 
 /* state right after contact at th (3.53)-(3.55) */
-static inline char ContactEntry(const NVCycle *m, PetscReal th, PetscReal *W, PetscReal dW[6])
+static inline char ContactEntry(const NVCycle *m, PetscReal s, PetscReal co, PetscReal *W, PetscReal dW[6])
 {
-  if (SinusDeriv(&m->L, th) > 0.0) return 'P';
-  if (SinusDeriv(&m->Up, th) < 0.0) return 'N';
-  AnchorContact(m, th, W, dW);
+  if (SinusDeriv(&m->L, s, co) > 0.0) return 'P';
+  if (SinusDeriv(&m->Up, s, co) < 0.0) return 'N';
+  AnchorContact(m, s, co, W, dW);
   return 'E';
 }
 
 /* march one cycle from th0 in the given state; returns nonzero if the segment table overflows */
-static int March(NVCycle *m, PetscReal th0, char state, PetscReal W, const PetscReal dW0[6])
+static int March(NVCycle *m, PetscReal th0, PetscReal s0, PetscReal c0, char state, PetscReal W, const PetscReal dW0[6])
 {
   const PetscReal end = th0 + TWO_PI;
-  PetscReal       th = th0, dW[6];
+  PetscReal       th = th0, sth = s0, cth = c0, dW[6];
 
   for (int i = 0; i < 6; i++) dW[i] = dW0[i];
   m->nseg = 0;
@@ -182,11 +182,15 @@ static int March(NVCycle *m, PetscReal th0, char state, PetscReal W, const Petsc
     sg->type = state;
     sg->a    = th;
     sg->b    = t;
+    sg->sa   = sth;
+    sg->ca   = cth;
     sg->W    = W;
     for (int i = 0; i < 6; i++) sg->dW[i] = dW[i];
     if (t == end) break;
-    if (next == 'E') AnchorBand(m, state == 'P' ? 1.0 : -1.0, t, &W, dW);
-    else if (next == 'C') next = ContactEntry(m, t, &W, dW);
+    sth = PetscSinReal(t);
+    cth = PetscCosReal(t);
+    if (next == 'E') AnchorBand(m, state == 'P' ? 1.0 : -1.0, sth, cth, &W, dW);
+    else if (next == 'C') next = ContactEntry(m, sth, cth, &W, dW);
     state = next;
     th    = t;
   }
@@ -202,9 +206,9 @@ static void Integrate(const NVCycle *m, PetscReal F[3], PetscReal Nf[3], PetscRe
   for (int i = 0; i < 3; i++) F[i] = Nf[i] = 0.0;
   for (int i = 0; i < 18; i++) dF[i] = dN[i] = 0.0;
   for (PetscInt k = 0; k < m->nseg; k++) {
-    const Segment  *sg = &m->seg[k];
+    const Segment  *sg = &m->seg[k], *nx = &m->seg[k + 1 < m->nseg ? k + 1 : 0]; /* the cycle closes at a + 2 pi */
     const PetscReal a = sg->a, b = sg->b;
-    const PetscReal sa = PetscSinReal(a), ca = PetscCosReal(a), sb = PetscSinReal(b), cb = PetscCosReal(b);
+    const PetscReal sa = sg->sa, ca = sg->ca, sb = nx->sa, cb = nx->ca;
     const PetscReal I1 = b - a, Is = ca - cb, Ic = sb - sa, s2 = sb * cb - sa * ca;
     const PetscReal Iss = 0.5 * (I1 - s2), Icc = 0.5 * (I1 + s2), Isc = 0.5 * (sb * sb - sa * sa);
     /* integrals of {1, sin, cos} against {mean, sin, cos} with their normalisations */
@@ -294,29 +298,32 @@ int JRJenkinsNVAnalytic(PetscReal kt, PetscReal kn, PetscReal mu, PetscReal n0, 
     out->state = JR_CONTACT_FULL_SEPARATION;
     sq         = JR_SEQ_FULL_SEPARATION;
   } else if (m.sep) { /* separation (3.84): start at the end of separation theta_*^S */
-    const PetscReal th0 = PetscAsinReal(-G0 / m.g.R) - m.g.psi;
-    const char      st  = ContactEntry(&m, th0, &W, dW);
-    overflow = March(&m, th0, st, W, dW);
+    const PetscReal th0 = PetscAsinReal(-G0 / m.g.R) - m.g.psi, s0 = PetscSinReal(th0), c0 = PetscCosReal(th0);
+    const char      st  = ContactEntry(&m, s0, c0, &W, dW);
+    overflow            = March(&m, th0, s0, c0, st, W, dW);
     Integrate(&m, F, Nf, dF, dN);
     out->state = JR_CONTACT_SEPARATION_STICK_SLIP;
   } else {
     const PetscReal lo = m.L.a0 + m.L.R, hi = m.Up.a0 - m.Up.R;
     if (lo <= hi) { /* a stick-only cycle exists: full stick, slip at the band point nearest 0 */
-      if (lo > 0.0) AnchorBand(&m, 1.0, 0.5 * PETSC_PI - m.L.psi, &W, dW);
-      else if (hi < 0.0) AnchorBand(&m, -1.0, -0.5 * PETSC_PI - m.Up.psi, &W, dW);
+      /* the maximum of L is at sin = cos(psi_L), cos = sin(psi_L); the minimum of U at minus those of psi_U */
+      if (lo > 0.0) AnchorBand(&m, 1.0, m.L.as / m.L.R, m.L.ac / m.L.R, &W, dW);
+      else if (hi < 0.0) AnchorBand(&m, -1.0, -m.Up.as / m.Up.R, -m.Up.ac / m.Up.R, &W, dW);
       m.nseg      = 1;
       m.seg[0].type = 'E';
       m.seg[0].a    = 0.0;
       m.seg[0].b    = TWO_PI;
+      m.seg[0].sa   = 0.0;
+      m.seg[0].ca   = 1.0;
       m.seg[0].W    = W;
       for (int i = 0; i < 6; i++) m.seg[0].dW[i] = dW[i];
       Integrate(&m, F, Nf, dF, dN);
       out->state = JR_CONTACT_FULL_STICK;
       sq         = JR_SEQ_FULL_STICK;
     } else { /* slip without separation: start where positive slip ends, theta_E^P (3.59) */
-      const PetscReal th0 = 0.5 * PETSC_PI - m.L.psi;
-      AnchorBand(&m, 1.0, th0, &W, dW);
-      overflow = March(&m, th0, 'E', W, dW);
+      const PetscReal th0 = 0.5 * PETSC_PI - m.L.psi, s0 = m.L.as / m.L.R, c0 = m.L.ac / m.L.R;
+      AnchorBand(&m, 1.0, s0, c0, &W, dW);
+      overflow = March(&m, th0, s0, c0, 'E', W, dW);
       Integrate(&m, F, Nf, dF, dN);
       out->state = JR_CONTACT_STICK_SLIP;
     }
