@@ -59,6 +59,7 @@ if command -v gnuplot > /dev/null; then
   check "[ \"\$(head -c 4 '$tmp/loop.png' | tail -c 3)\" = PNG ]" "element loop PNG written"
 fi
 check "[ -z \"\$(ls '$tmp' | grep tmp)\" ]" "no temporary files left behind"
+check "[ ! -e .csv ] && [ ! -e .png ]" "-element_loop '' writes no loop files"
 
 # run files: every option used, no typo
 for f in runs/*.opts; do

@@ -46,9 +46,10 @@ static PetscErrorCode ElementOptions(MPI_Comm comm, PetscBool normal, ElementCtx
   PetscCall(PetscOptionsInt("-element_harmonics", "Harmonics H: 1 = analytic path, > 1 = alternating frequency-time", "JRContactSetHarmonics", ctx->H, &ctx->H, NULL));
   PetscCall(PetscOptionsInt("-element_samples", "Time samples per cycle N for the AFT path (N >= 2H+1)", "JRContactSetHarmonics", ctx->N, &ctx->N, NULL));
   PetscCall(PetscOptionsString("-element_joint", "CSV file of a joint's elements in parallel, header kt,kn,mu,n0 (kn optional for jenkins)", "JRContactEvaluateJoint", ctx->joint, ctx->joint, sizeof(ctx->joint), &ctx->hasjoint));
-  PetscCall(PetscOptionsString("-element_loop", "Write the hysteresis loop to FILE.csv and FILE.png", "JRContactJointLoop", ctx->loop, ctx->loop, sizeof(ctx->loop), &ctx->hasloop));
+  PetscCall(PetscOptionsString("-element_loop", "Write the hysteresis loop to FILE.csv and FILE.png ('' for none)", "JRContactJointLoop", ctx->loop, ctx->loop, sizeof(ctx->loop), &ctx->hasloop));
   PetscCall(PetscOptionsInt("-element_loop_samples", "Points per cycle in the hysteresis loop", "JRContactJointLoop", ctx->nloop, &ctx->nloop, NULL));
   PetscOptionsEnd();
+  if (!ctx->loop[0]) ctx->hasloop = PETSC_FALSE; /* -element_loop '' turns the loop files off */
 
   /* bad input: say which option, which value, what is allowed */
   PetscCheck(ctx->H >= 1 && ctx->H <= JR_MAX_HARMONICS, comm, PETSC_ERR_ARG_OUTOFRANGE, "-element_harmonics %" PetscInt_FMT ": the number of harmonics must be between 1 and %d", ctx->H, JR_MAX_HARMONICS);
