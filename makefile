@@ -27,6 +27,7 @@ include $(SLEPC_CONF)/slepc_rules
 HAVE_SLEPC := yes
 endif
 .DEFAULT_GOAL := all
+.SECONDARY: # keep object files (no "rm" lines after the test summary)
 
 JR_OPT  ?= -O3 -march=native
 JR_WARN := -Wall -Wextra $(if $(filter 1,$(WERROR)),-Werror)

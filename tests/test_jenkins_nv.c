@@ -178,23 +178,21 @@ int main(int argc, char **argv)
     JRContact    fine, coarse;
     const double mu = 0.5, n0 = 100.0;
     const double U[7] = {0.1 * um, 2.0 * um, 0.5 * um, 0.0, 0.0, 0.6 * um, -0.2 * um};
-    const double V[7] = {0.05 * um, 0.9 * um, 0.8 * um, 0.0, 0.0, 0.3 * um, 0.2 * um};
+    const double Vs[2][7] = {
+      {0.05 * um, 0.9 * um, 0.8 * um, 0.0, 0.0, 0.3 * um, 0.2 * um}, /* separates */
+      {0.0,       0.3 * um, 0.2 * um, 0.0, 0.0, 0.1 * um, 0.0     }  /* stays in contact */
+    };
+    const JRContactState expect[2] = {JR_CONTACT_SEPARATION_STICK_SLIP, JR_CONTACT_STICK_SLIP};
+    const char          *label[2]  = {"with", "without"};
     PetscCall(Make("jenkins_nv", JR_CONTACT_AFT, 3, 2048, k, k, mu, n0, &fine));
     PetscCall(Make("jenkins_nv", JR_CONTACT_AFT, 3, 128, k, k, mu, n0, &coarse));
-    PetscCall(JRContactEvaluate(fine, U, V, F, Nf, NULL, NULL, NULL, &st));
-    BruteForce(k, k, mu, n0, 7, U, V, 1 << 17, 4, Fb, Nb, seq, sizeof(seq));
-    err = fmax(RelDiff(7, F, Fb, MaxAbs(7, Fb)), RelDiff(7, Nf, Nb, MaxAbs(7, Nb)));
-    CHECK(err < 1e-4 && st == JR_CONTACT_SEPARATION_STICK_SLIP, "jenkins_nv H = 3 with separation (march states %s): AFT N = 2048 vs brute-force march, error %.2e", seq, err);
-    PetscCall(FDCheck(coarse, 7, U, V, 1e-6, e3));
-    CHECK(fmax(e3[0], fmax(e3[1], e3[2])) < 1e-6, "jenkins_nv AFT (H = 3, N = 128) dF/du %.1e, dF/dv %.1e, dN/dv %.1e vs finite differences", e3[0], e3[1], e3[2]);
-    {
-      const double V2[7] = {0.0, 0.3 * um, 0.2 * um, 0.0, 0.0, 0.1 * um, 0.0}; /* no separation */
-      PetscCall(JRContactEvaluate(fine, U, V2, F, Nf, NULL, NULL, NULL, &st));
-      BruteForce(k, k, mu, n0, 7, U, V2, 1 << 17, 4, Fb, Nb, seq, sizeof(seq));
+    for (int i = 0; i < 2; i++) {
+      PetscCall(JRContactEvaluate(fine, U, Vs[i], F, Nf, NULL, NULL, NULL, &st));
+      BruteForce(k, k, mu, n0, 7, U, Vs[i], 1 << 17, 4, Fb, Nb, seq, sizeof(seq));
       err = fmax(RelDiff(7, F, Fb, MaxAbs(7, Fb)), RelDiff(7, Nf, Nb, MaxAbs(7, Nb)));
-      CHECK(err < 1e-4 && st == JR_CONTACT_STICK_SLIP, "jenkins_nv H = 3 without separation (march states %s): AFT N = 2048 vs brute-force march, error %.2e", seq, err);
-      PetscCall(FDCheck(coarse, 7, U, V2, 1e-6, e3));
-      CHECK(fmax(e3[0], fmax(e3[1], e3[2])) < 1e-6, "jenkins_nv AFT without separation: dF/du %.1e, dF/dv %.1e, dN/dv %.1e vs finite differences", e3[0], e3[1], e3[2]);
+      CHECK(err < 1e-4 && st == expect[i], "jenkins_nv H = 3 %s separation (march states %s): AFT N = 2048 vs brute-force march, error %.2e", label[i], seq, err);
+      PetscCall(FDCheck(coarse, 7, U, Vs[i], 1e-6, e3));
+      CHECK(fmax(e3[0], fmax(e3[1], e3[2])) < 1e-6, "jenkins_nv AFT (H = 3, N = 128) %s separation: dF/du %.1e, dF/dv %.1e, dN/dv %.1e vs finite differences", label[i], e3[0], e3[1], e3[2]);
     }
     PetscCall(JRContactDestroy(&fine));
     PetscCall(JRContactDestroy(&coarse));
