@@ -4,13 +4,15 @@
 # HDF5), OpenMPI, gnuplot for the PNG plots. Quiet and quick when everything is present.
 # Usage: share/install-deps.sh [--check]   (--check: report only, exit 1 if something is missing)
 set -u
-pkgs="petsc-dev slepc-dev libhdf5-openmpi-dev gnuplot-nox make gcc"
+pkgs="petsc-dev slepc-dev libhdf5-openmpi-dev gnuplot-nox make gcc g++"
 missing=""
 [ -f /usr/lib/petsc/lib/petsc/conf/variables ] || missing="$missing petsc-dev"
 [ -f /usr/lib/slepc/lib/slepc/conf/slepc_common ] || missing="$missing slepc-dev"
 [ -d /usr/include/hdf5/openmpi ] || missing="$missing libhdf5-openmpi-dev"
 command -v mpiexec >/dev/null 2>&1 || missing="$missing petsc-dev"
 command -v gnuplot >/dev/null 2>&1 || missing="$missing gnuplot-nox"
+# PETSc's link line names -lstdc++, which only the C++ compiler package brings
+command -v g++ >/dev/null 2>&1 || missing="$missing g++"
 [ -z "$missing" ] && exit 0
 if [ "${1:-}" = "--check" ]; then
   echo "jointrom: missing Debian packages:$missing (run share/install-deps.sh)" >&2
