@@ -19,6 +19,8 @@
 
 #include <petscsys.h>
 #include <petscviewer.h>
+#include <petscmat.h>
+#include <petscsnes.h>
 
 #define JR_VERSION_MAJOR 0
 #define JR_VERSION_MINOR 1
@@ -27,8 +29,8 @@ PETSC_EXTERN PetscErrorCode JRInitializePackage(void);
 PETSC_EXTERN PetscErrorCode JRFinalizePackage(void);
 
 /* Log events, one per costly phase (see -log_view) */
-PETSC_EXTERN PetscClassId  JR_CONTACT_CLASSID;
-PETSC_EXTERN PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop;
+PETSC_EXTERN PetscClassId  JR_CONTACT_CLASSID, JR_MODEL_CLASSID, JR_HBM_CLASSID;
+PETSC_EXTERN PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep;
 
 /* ------------------------------------------------------------------------------------------ */
 /* JRContact: a batch of friction contact elements of one type (thesis chapter 3)             */
@@ -37,6 +39,7 @@ typedef struct _p_JRContact *JRContact;
 typedef const char          *JRContactType;
 #define JRCONTACTJENKINS   "jenkins"    /* 1D dry friction, constant normal load (3.1-3.30) */
 #define JRCONTACTJENKINSNV "jenkins_nv" /* 1D dry friction, normal load variation (3.31-3.84) */
+#define JRCONTACTCUBIC     "cubic"      /* nonlinear spring f = kt u^3, for Duffing-type checks */
 
 /* Evaluation path: closed-form single harmonic (H = 1 only) or alternating frequency-time */
 typedef enum {
@@ -96,6 +99,113 @@ PETSC_EXTERN PetscErrorCode JRContactJointLoop(JRContact, PetscInt, const PetscI
 PETSC_EXTERN PetscErrorCode JRHarmonicWork(PetscInt, const PetscReal[], const PetscReal[], PetscReal *);
 
 /* ------------------------------------------------------------------------------------------ */
+/* JRModel: the linear structure (K, M, optional C) and its contact elements                   */
+/* ------------------------------------------------------------------------------------------ */
+typedef struct _p_JRModel *JRModel;
+typedef const char        *JRModelType;
+#define JRMODELMATRICES "matrices" /* K, M (C) from files and an element table: models from any FE code */
+
+/* The contact elements of a model, one entry per element (the whole list, on every rank).
+   Tangential relative motion u = x[dof_a] - x[dof_b], normal v = x[ndof_a] - x[ndof_b]; -1 = ground. */
+typedef struct {
+  PetscInt   n;
+  PetscInt   ntypes;
+  char       typename[8][32]; /* element types present; type[e] indexes this list */
+  PetscInt  *type, *dof_a, *dof_b, *ndof_a, *ndof_b;
+  PetscReal *kt, *kn, *mu, *n0;
+} JRElements;
+
+PETSC_EXTERN PetscFunctionList JRModelList;
+PETSC_EXTERN PetscErrorCode JRModelRegister(const char[], PetscErrorCode (*)(JRModel));
+PETSC_EXTERN PetscErrorCode JRModelCreate(MPI_Comm, JRModel *);
+PETSC_EXTERN PetscErrorCode JRModelSetType(JRModel, JRModelType);
+PETSC_EXTERN PetscErrorCode JRModelSetFromOptions(JRModel);
+PETSC_EXTERN PetscErrorCode JRModelSetUp(JRModel);
+PETSC_EXTERN PetscErrorCode JRModelSetMatrices(JRModel, Mat, Mat, Mat);
+PETSC_EXTERN PetscErrorCode JRModelSetElements(JRModel, const JRElements *);
+PETSC_EXTERN PetscErrorCode JRModelGetMatrices(JRModel, Mat *, Mat *, Mat *);
+PETSC_EXTERN PetscErrorCode JRModelGetNumDofs(JRModel, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRModelGetElements(JRModel, const JRElements **);
+PETSC_EXTERN PetscErrorCode JRModelView(JRModel, PetscViewer);
+PETSC_EXTERN PetscErrorCode JRModelDestroy(JRModel *);
+
+/* ------------------------------------------------------------------------------------------ */
+/* JRModes: mass-normalised modes of K phi = omega^2 M phi (SLEPc, prefix modes_)              */
+/* ------------------------------------------------------------------------------------------ */
+typedef struct _p_JRModes *JRModes;
+PETSC_EXTERN PetscErrorCode JRModesCreate(MPI_Comm, JRModes *);
+PETSC_EXTERN PetscErrorCode JRModesSetOperators(JRModes, Mat, Mat);
+PETSC_EXTERN PetscErrorCode JRModesSetNumber(JRModes, PetscInt);
+PETSC_EXTERN PetscErrorCode JRModesSetFromOptions(JRModes);
+PETSC_EXTERN PetscErrorCode JRModesSolve(JRModes);
+PETSC_EXTERN PetscErrorCode JRModesGetNumber(JRModes, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRModesGetEigenvalues(JRModes, const PetscReal **);
+PETSC_EXTERN PetscErrorCode JRModesGetRows(JRModes, PetscInt, const PetscInt[], PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRModesProject(JRModes, Mat, PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRModesView(JRModes, PetscViewer);
+PETSC_EXTERN PetscErrorCode JRModesDestroy(JRModes *);
+
+/* ------------------------------------------------------------------------------------------ */
+/* JRHBM: harmonic balance in modal coordinates (thesis 2.18, H harmonics + mean), SNES hbm_     */
+/* ------------------------------------------------------------------------------------------ */
+typedef struct _p_JRHBM *JRHBM;
+typedef enum {
+  JR_HBM_JACOBIAN_ANALYTIC,
+  JR_HBM_JACOBIAN_FD
+} JRHBMJacobianType;
+PETSC_EXTERN const char *const JRHBMJacobianTypes[];
+
+PETSC_EXTERN PetscErrorCode JRHBMCreate(MPI_Comm, JRHBM *);
+PETSC_EXTERN PetscErrorCode JRHBMSetModel(JRHBM, JRModel);
+PETSC_EXTERN PetscErrorCode JRHBMSetFromOptions(JRHBM);
+PETSC_EXTERN PetscErrorCode JRHBMSetUp(JRHBM);
+PETSC_EXTERN PetscErrorCode JRHBMGetSizes(JRHBM, PetscInt *, PetscInt *, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRHBMSetForceLevel(JRHBM, PetscReal);
+PETSC_EXTERN PetscErrorCode JRHBMGetModalFrequencies(JRHBM, PetscInt *, const PetscReal **);
+PETSC_EXTERN PetscErrorCode JRHBMComputeResidual(JRHBM, PetscReal, Vec, Vec);
+PETSC_EXTERN PetscErrorCode JRHBMComputeJacobian(JRHBM, PetscReal, Vec, Mat, Vec);
+PETSC_EXTERN PetscErrorCode JRHBMCreateVecs(JRHBM, Vec *, Mat *);
+PETSC_EXTERN PetscErrorCode JRHBMSolve(JRHBM, PetscReal, Vec, PetscInt *, PetscBool *);
+PETSC_EXTERN PetscErrorCode JRHBMLinearSolution(JRHBM, PetscReal, Vec);
+PETSC_EXTERN PetscErrorCode JRHBMGetSNES(JRHBM, SNES *);
+PETSC_EXTERN PetscErrorCode JRHBMGetJacobianType(JRHBM, JRHBMJacobianType *);
+PETSC_EXTERN PetscErrorCode JRHBMGetOutputs(JRHBM, PetscInt *, const PetscInt **);
+PETSC_EXTERN PetscErrorCode JRHBMResponse(JRHBM, Vec, PetscReal[], PetscReal[], PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRHBMEnergy(JRHBM, PetscReal, Vec, PetscReal *, PetscReal *, PetscReal *);
+PETSC_EXTERN PetscErrorCode JRHBMContactStates(JRHBM, Vec, PetscInt[4]);
+PETSC_EXTERN PetscErrorCode JRHBMGetDampingDescription(JRHBM, const char **);
+PETSC_EXTERN PetscErrorCode JRHBMView(JRHBM, PetscViewer);
+PETSC_EXTERN PetscErrorCode JRHBMDestroy(JRHBM *);
+
+/* ------------------------------------------------------------------------------------------ */
+/* JRCont: frequency-response curves by continuation (thesis 2.4.2-2.4.3), several force levels */
+/* ------------------------------------------------------------------------------------------ */
+typedef struct _p_JRCont *JRCont;
+typedef enum {
+  JR_CONT_NATURAL,
+  JR_CONT_ARCLENGTH
+} JRContType;
+PETSC_EXTERN const char *const JRContTypes[];
+typedef enum {
+  JR_CONT_PSEUDO,
+  JR_CONT_SPHERE
+} JRContConstraint;
+PETSC_EXTERN const char *const JRContConstraints[];
+
+PETSC_EXTERN PetscErrorCode JRContCreate(MPI_Comm, JRCont *);
+PETSC_EXTERN PetscErrorCode JRContSetHBM(JRCont, JRHBM);
+PETSC_EXTERN PetscErrorCode JRContSetFromOptions(JRCont);
+PETSC_EXTERN PetscErrorCode JRContSetStepBounds(JRCont, PetscReal, PetscReal);
+PETSC_EXTERN PetscErrorCode JRContSetRange(JRCont, PetscReal, PetscReal);
+PETSC_EXTERN PetscErrorCode JRContSetLevels(JRCont, PetscInt, const PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRContSolve(JRCont);
+PETSC_EXTERN PetscErrorCode JRContGetNumLevels(JRCont, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRContGetBranch(JRCont, PetscInt, PetscInt *, const PetscReal **, const PetscReal **, const PetscReal **);
+PETSC_EXTERN PetscErrorCode JRContGetPeak(JRCont, PetscInt, PetscReal *, PetscReal *);
+PETSC_EXTERN PetscErrorCode JRContWrite(JRCont);
+PETSC_EXTERN PetscErrorCode JRContDestroy(JRCont *);
+
+/* ------------------------------------------------------------------------------------------ */
 /* Small utilities                                                                            */
 /* ------------------------------------------------------------------------------------------ */
 /* CSV tables with a header line; columns looked up by name */
@@ -104,7 +214,16 @@ PETSC_EXTERN PetscErrorCode JRTableRead(MPI_Comm, const char[], JRTable *);
 PETSC_EXTERN PetscErrorCode JRTableGetSize(JRTable, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRTableGetColumn(JRTable, const char[], PetscBool, PetscReal, PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRTableHasColumn(JRTable, const char[], PetscBool *);
+PETSC_EXTERN PetscErrorCode JRTableGetString(JRTable, const char[], PetscInt, const char **);
+PETSC_EXTERN PetscErrorCode JRTableGetLine(JRTable, PetscInt, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRTableGetHeader(JRTable, PetscInt, const char **);
+PETSC_EXTERN PetscErrorCode JRTableGetFileName(JRTable, const char **);
 PETSC_EXTERN PetscErrorCode JRTableDestroy(JRTable *);
+
+/* Matrices and vectors from files: .mtx (Matrix Market), .bin (PETSc binary), .h5 (MATLAB v7.3 sparse) */
+PETSC_EXTERN PetscErrorCode JRMatLoadFile(MPI_Comm, const char[], const char[], Mat *);
+PETSC_EXTERN PetscErrorCode JRMatSaveFile(Mat, const char[], const char[]);
+PETSC_EXTERN PetscErrorCode JRVecLoadFile(MPI_Comm, const char[], PetscInt, PetscReal[]);
 
 /* Write a file atomically: open a temporary beside it, rename on close */
 PETSC_EXTERN PetscErrorCode JRFileOpenTemp(MPI_Comm, const char[], FILE **, char[], size_t);
@@ -119,5 +238,6 @@ PETSC_EXTERN PetscErrorCode JRPlot(MPI_Comm, const char[], const char[], const c
 
 /* Driver tasks */
 PETSC_EXTERN PetscErrorCode JRTaskElement(MPI_Comm);
+PETSC_EXTERN PetscErrorCode JRTaskFRF(MPI_Comm);
 
 #endif

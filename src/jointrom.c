@@ -4,17 +4,21 @@
    -task selects what it does; -help lists every option.
 */
 #include <jointrom.h>
+#include <slepcsys.h>
 
 static const char help[] = "jointrom: reduced-order models of bolted joints by harmonic balance with friction contact elements.\n"
                            "Units are SI throughout (N, m, kg, s; angles in degrees where stated).\n"
                            "Tasks (-task):\n"
                            "  element   one friction element or joint (CSV) under a prescribed motion: force harmonics,\n"
-                           "            dissipated energy, contact state, hysteresis loop (CSV + PNG)\n\n";
+                           "            dissipated energy, contact state, hysteresis loop (CSV + PNG)\n"
+                           "  frf       frequency-response curves by harmonic balance and continuation of a structure given by its\n"
+                           "            matrices (-model_type matrices) with contact elements, at several force levels (HDF5, CSV, PNG)\n\n";
 
 typedef enum {
-  TASK_ELEMENT
+  TASK_ELEMENT,
+  TASK_FRF
 } Task;
-static const char *const Tasks[] = {"element", "Task", "TASK_", NULL};
+static const char *const Tasks[] = {"element", "frf", "Task", "TASK_", NULL};
 
 int main(int argc, char **argv)
 {
@@ -22,19 +26,22 @@ int main(int argc, char **argv)
   PetscInt  task = TASK_ELEMENT;
   PetscBool help_given;
 
-  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(SlepcInitialize(&argc, &argv, NULL, help));
   comm = PETSC_COMM_WORLD;
   PetscCall(JRInitializePackage());
   PetscOptionsBegin(comm, NULL, "jointrom driver", "jointrom");
-  PetscCall(PetscOptionsEList("-task", "What to do", "jointrom", Tasks, 1, Tasks[task], &task, NULL));
+  PetscCall(PetscOptionsEList("-task", "What to do", "jointrom", Tasks, 2, Tasks[task], &task, NULL));
   PetscOptionsEnd();
   PetscCall(PetscOptionsHasHelp(NULL, &help_given));
   switch ((Task)task) {
   case TASK_ELEMENT:
     PetscCall(JRTaskElement(comm));
     break;
+  case TASK_FRF:
+    PetscCall(JRTaskFRF(comm));
+    break;
   }
   (void)help_given;
-  PetscCall(PetscFinalize());
+  PetscCall(SlepcFinalize());
   return 0;
 }

@@ -8,15 +8,16 @@ pass=0; fail=0
 log=$(mktemp -d)
 run() { # name, command...
   local name=$1; shift
-  "$@" > "$log/$name.out" 2>&1
+  "$@" > "$log/${name// /_}.out" 2>&1
   local rc=$?
   local p f
-  p=$(grep -c '^ok - ' "$log/$name.out")
-  f=$(grep -c '^not ok - ' "$log/$name.out")
-  grep -E '^(ok|not ok) - ' "$log/$name.out" | sed "s/^/[$name] /"
+  local out="$log/${name// /_}.out"
+  p=$(grep -c '^ok - ' "$out")
+  f=$(grep -c '^not ok - ' "$out")
+  grep -E '^(ok|not ok) - ' "$out" | sed "s/^/[$name] /"
   if [ "$rc" != 0 ] && [ "$f" = 0 ]; then
     echo "not ok - [$name] exited with status $rc without reporting a failure; its output:"
-    tail -20 "$log/$name.out" | sed 's/^/    /'
+    tail -20 "$out" | sed 's/^/    /'
     f=1
   fi
   pass=$((pass + p)); fail=$((fail + f))
@@ -25,7 +26,12 @@ for t in build/tests/test_*; do
   [ -x "$t" ] || continue
   run "$(basename "$t")" "$t"
 done
+# the parallel pieces again on 2 ranks (elements and matrices split across ranks)
+for t in test_hbm test_matio; do
+  [ -x "build/tests/$t" ] && run "$t np2" mpiexec -n 2 "build/tests/$t"
+done
 run cli bash tests/cli.sh
+run cli_frf bash tests/cli_frf.sh
 rm -rf "$log"
 echo "$pass passed, $fail failed"
 [ "$fail" = 0 ]

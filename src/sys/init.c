@@ -1,8 +1,9 @@
 /* Package registration: class id, log events, contact types. Called by every JRXxxCreate. */
 #include <jointrom/private/contactimpl.h>
+#include <jointrom/private/modelimpl.h>
 
-PetscClassId  JR_CONTACT_CLASSID;
-PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop;
+PetscClassId  JR_CONTACT_CLASSID, JR_MODEL_CLASSID, JR_HBM_CLASSID;
+PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep;
 
 static PetscBool JRPackageInitialized = PETSC_FALSE;
 
@@ -16,6 +17,15 @@ PetscErrorCode JRInitializePackage(void)
   PetscCall(PetscLogEventRegister("JR_ContactEval", JR_CONTACT_CLASSID, &JR_ContactEval));
   PetscCall(PetscLogEventRegister("JR_ContactSetUp", JR_CONTACT_CLASSID, &JR_ContactSetUp));
   PetscCall(PetscLogEventRegister("JR_ContactLoop", JR_CONTACT_CLASSID, &JR_ContactLoop));
+  PetscCall(PetscClassIdRegister("JRModel", &JR_MODEL_CLASSID));
+  PetscCall(PetscClassIdRegister("JRHBM", &JR_HBM_CLASSID));
+  PetscCall(PetscLogEventRegister("JR_ModelLoad", JR_MODEL_CLASSID, &JR_ModelLoad));
+  PetscCall(PetscLogEventRegister("JR_ModesSolve", JR_MODEL_CLASSID, &JR_ModesSolve));
+  PetscCall(PetscLogEventRegister("JR_HBMResidual", JR_HBM_CLASSID, &JR_HBMResidual));
+  PetscCall(PetscLogEventRegister("JR_Jacobian", JR_HBM_CLASSID, &JR_HBMJacobian));
+  PetscCall(PetscLogEventRegister("JR_HBMSolve", JR_HBM_CLASSID, &JR_HBMSolve));
+  PetscCall(PetscLogEventRegister("JR_ContStep", JR_HBM_CLASSID, &JR_ContStep));
+  PetscCall(JRModelRegisterAll());
   PetscCall(JRContactRegisterAll());
   PetscCall(PetscRegisterFinalize(JRFinalizePackage));
   PetscFunctionReturn(0);
@@ -25,6 +35,7 @@ PetscErrorCode JRFinalizePackage(void)
 {
   PetscFunctionBeginUser;
   PetscCall(JRContactRegisterAllReset());
+  PetscCall(PetscFunctionListDestroy(&JRModelList));
   JRPackageInitialized = PETSC_FALSE;
   PetscFunctionReturn(0);
 }

@@ -139,6 +139,41 @@ PetscErrorCode JRTableHasColumn(JRTable t, const char name[], PetscBool *has)
   PetscFunctionReturn(0);
 }
 
+/* The trimmed text of a cell (empty string if the column is absent) */
+PetscErrorCode JRTableGetString(JRTable t, const char name[], PetscInt row, const char **str)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(row >= 0 && row < t->nrow, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Row %" PetscInt_FMT " outside the %" PetscInt_FMT " rows of %s", row, t->nrow, t->file);
+  *str = "";
+  for (PetscInt k = 0; k < t->ncol; k++)
+    if (!strcmp(t->head[k], name)) *str = t->cell[row * t->ncol + k];
+  PetscFunctionReturn(0);
+}
+
+/* The name of column k */
+PetscErrorCode JRTableGetHeader(JRTable t, PetscInt k, const char **name)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(k >= 0 && k < t->ncol, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Column %" PetscInt_FMT " outside the %" PetscInt_FMT " columns of %s", k, t->ncol, t->file);
+  *name = t->head[k];
+  PetscFunctionReturn(0);
+}
+
+/* The file line number of a row, for error messages */
+PetscErrorCode JRTableGetLine(JRTable t, PetscInt row, PetscInt *line)
+{
+  PetscFunctionBeginUser;
+  *line = t->line[row];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRTableGetFileName(JRTable t, const char **file)
+{
+  PetscFunctionBeginUser;
+  *file = t->file;
+  PetscFunctionReturn(0);
+}
+
 /* Numeric column by name. required: the column and every cell must be present and numeric;
    otherwise a missing column or an empty cell gives def. */
 PetscErrorCode JRTableGetColumn(JRTable t, const char name[], PetscBool required, PetscReal def, PetscReal vals[])

@@ -66,7 +66,8 @@ struct _p_JRContact {
   void                  *data;
   PetscBool              setupcalled;
   PetscBool              normal; /* the type uses the normal motion v */
-  PetscBool              view;   /* -contact_view: view at set-up */
+  PetscBool              view;      /* -contact_view: view at set-up */
+  PetscBool              signed_kt; /* kt may be negative (cubic: softening) */
   PetscInt               H, N, nc;
   JRContactMethod        method;
   PetscBool              method_set;
@@ -79,5 +80,6 @@ PETSC_INTERN PetscErrorCode JRContactRegisterAllReset(void);
 PETSC_INTERN PetscErrorCode JRContactEvaluateChunked(JRContact, PetscInt, PetscInt, const PetscReal[], const PetscReal[], PetscReal[], PetscReal[], PetscReal[], PetscReal[], PetscReal[], JRContactState[]);
 PETSC_INTERN PetscErrorCode JRContactCreate_Jenkins(JRContact);
 PETSC_INTERN PetscErrorCode JRContactCreate_JenkinsNV(JRContact);
+PETSC_INTERN PetscErrorCode JRContactCreate_Cubic(JRContact);
 
 #endif

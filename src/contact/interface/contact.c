@@ -28,6 +28,7 @@ PetscErrorCode JRContactRegisterAll(void)
   JRContactRegisterAllCalled = PETSC_TRUE;
   PetscCall(JRContactRegister(JRCONTACTJENKINS, JRContactCreate_Jenkins));
   PetscCall(JRContactRegister(JRCONTACTJENKINSNV, JRContactCreate_JenkinsNV));
+  PetscCall(JRContactRegister(JRCONTACTCUBIC, JRContactCreate_Cubic));
   PetscFunctionReturn(0);
 }
 
@@ -75,9 +76,11 @@ PetscErrorCode JRContactSetType(JRContact c, JRContactType type)
   PetscCall(PetscStrcmp(c->type_name, type, &match));
   if (match) PetscFunctionReturn(0);
   PetscCall(PetscFunctionListFind(JRContactList, type, &create));
-  PetscCheck(create, c->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown contact element type '%s' (-contact_type): the types are jenkins (constant normal load) and jenkins_nv (normal load variation)", type);
+  PetscCheck(create, c->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown contact element type '%s' (-contact_type): the types are jenkins (constant normal load), jenkins_nv (normal load variation) and cubic (spring kt u^3)", type);
   if (c->ops->destroy) PetscCall((*c->ops->destroy)(c));
   PetscCall(PetscMemzero(c->ops, sizeof(struct _JRContactOps)));
+  c->data      = NULL;
+  c->signed_kt = PETSC_FALSE;
   PetscCall(JRContactReset(c));
   PetscCall(PetscStrncpy(c->type_name, type, sizeof(c->type_name)));
   PetscCall((*create)(c));
@@ -187,7 +190,7 @@ PetscErrorCode JRContactSetFromOptions(JRContact c)
   PetscFunctionBeginUser;
   PetscCall(JRContactRegisterAll());
   PetscOptionsBegin(c->comm, c->prefix, "Friction contact elements (thesis chapter 3)", "JRContact");
-  PetscCall(PetscOptionsFList("-contact_type", "Contact element type: jenkins (constant normal load) or jenkins_nv (normal load variation)", "JRContactSetType", JRContactList, c->type_name[0] ? c->type_name : JRCONTACTJENKINS, type, sizeof(type), &flg));
+  PetscCall(PetscOptionsFList("-contact_type", "Contact element type: jenkins (constant normal load), jenkins_nv (normal load variation), cubic (spring kt u^3)", "JRContactSetType", JRContactList, c->type_name[0] ? c->type_name : JRCONTACTJENKINS, type, sizeof(type), &flg));
   if (flg) PetscCall(JRContactSetType(c, type));
   else if (!c->type_name[0]) PetscCall(JRContactSetType(c, JRCONTACTJENKINS));
   PetscCall(PetscOptionsEList("-contact_method", "Evaluation path: analytic (closed form, 1 harmonic) or aft (alternating frequency-time)", "JRContactSetMethod", JRContactMethods, 2, JRContactMethods[c->method], &method, &flg));
@@ -202,7 +205,7 @@ static PetscErrorCode JRContactValidate(JRContact c)
 {
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < c->n; e++) {
-    PetscCheck(PetscIsNormalReal(c->kt[e]) && c->kt[e] > 0.0, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "Contact element %" PetscInt_FMT ": tangential stiffness kt = %g N/m must be positive and finite", e, (double)c->kt[e]);
+    PetscCheck(PetscIsNormalReal(c->kt[e]) && (c->kt[e] > 0.0 || c->signed_kt), c->comm, PETSC_ERR_ARG_OUTOFRANGE, "Contact element %" PetscInt_FMT ": tangential stiffness kt = %g N/m must be positive and finite", e, (double)c->kt[e]);
     PetscCheck(!PetscIsInfOrNanReal(c->kn[e]) && c->kn[e] >= 0.0, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "Contact element %" PetscInt_FMT ": normal stiffness kn = %g N/m must be non-negative and finite", e, (double)c->kn[e]);
     PetscCheck(!PetscIsInfOrNanReal(c->mu[e]) && c->mu[e] >= 0.0, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "Contact element %" PetscInt_FMT ": friction coefficient mu = %g must be non-negative and finite", e, (double)c->mu[e]);
     PetscCheck(!PetscIsInfOrNanReal(c->n0[e]), c->comm, PETSC_ERR_ARG_OUTOFRANGE, "Contact element %" PetscInt_FMT ": normal load n0 = %g N must be finite", e, (double)c->n0[e]);

@@ -1,0 +1,44 @@
+/* Private: the JRModel and JRModes structs. */
+#if !defined(JOINTROM_MODELIMPL_H)
+#define JOINTROM_MODELIMPL_H
+
+#include <jointrom.h>
+#include <slepceps.h>
+
+typedef struct _JRModelOps *JRModelOps;
+struct _JRModelOps {
+  PetscErrorCode (*setfromoptions)(JRModel, PetscOptionItems *);
+  PetscErrorCode (*setup)(JRModel);
+  PetscErrorCode (*view)(JRModel, PetscViewer);
+  PetscErrorCode (*destroy)(JRModel);
+};
+
+struct _p_JRModel {
+  MPI_Comm           comm;
+  char               type_name[64];
+  struct _JRModelOps ops[1];
+  void              *data;
+  PetscBool          setupcalled, view, el_given;
+  Mat                K, M, C; /* C may be NULL */
+  PetscInt           ndof;
+  JRElements         el;
+};
+
+PETSC_INTERN PetscErrorCode JRModelRegisterAll(void);
+PETSC_INTERN PetscErrorCode JRModelCreate_Matrices(JRModel);
+PETSC_INTERN PetscErrorCode JRElementsReadCSV(MPI_Comm, const char[], PetscInt, JRElements *);
+PETSC_INTERN PetscErrorCode JRElementsDestroy(JRElements *);
+
+struct _p_JRModes {
+  MPI_Comm   comm;
+  Mat        K, M;
+  PetscInt   nev;        /* requested */
+  PetscInt   nm;         /* computed and kept */
+  PetscReal  target;     /* shift for shift-and-invert [rad^2/s^2] */
+  PetscBool  target_set, view;
+  EPS        eps;
+  PetscReal *lambda;     /* omega_r^2, ascending */
+  Vec       *phi;        /* mass-normalised */
+};
+
+#endif

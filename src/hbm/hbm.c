@@ -1,0 +1,951 @@
+/*
+   JRHBM: the harmonic-balance equations of a linear structure carrying contact elements, in modal
+   coordinates (thesis 2.3, eq 2.18) generalised to H harmonics plus the mean.
+
+   Unknowns: modal harmonic coefficients a, harmonic-major blocks over the nm modes,
+       a = [a_0 | as_1 ac_1 | ... | as_H ac_H]  (n = nm (2H+1)),  x(t) = Phi (a_0 + sum as_h sin + ac_h cos).
+   Residual, per harmonic h >= 1 (and h = 0 without damping and excitation):
+       R_s = (Km - (h w)^2 Mm) as - (gamma Km + h w Cm) ac + Phi^T fN_s - fm_s
+       R_c = (Km - (h w)^2 Mm) ac + (gamma Km + h w Cm) as + Phi^T fN_c
+   with Km = diag(omega_r^2), Mm = I for mass-normalised modes (the full projected matrices in
+   physical coordinates), structural damping gamma (H = gamma K, 2.17), viscous Cm = Phi^T C Phi
+   and/or modal 2 zeta omega_r, excitation F sin(w t): fm_s = F Phi^T f for h = 1.
+   Nonlinear forces: element e with tangential projection row r_e = phi(dof_a) - phi(dof_b) (4.3) sees
+   U_e = A^T r_e (A = a as nm x nc) and gives back r_e F_e; jenkins_nv also s_e (normal DOFs) and its
+   dynamic normal load N_e - max(n0, 0) (the static part is balanced by the preload).
+   Jacobian: element derivatives projected, blocks (k, m): sum_e r_e dF_km/dU r_e^T = R^T diag(d) R
+   (BLAS gemm). The thesis's finite differences (2.23) remain as -hbm_jacobian fd.
+   Parallel: elements are split across the ranks (each type in contiguous chunks); each rank sums its
+   own into the residual and Jacobian; rank 0 adds the contributions and broadcasts them, so every
+   rank holds the same small dense system and runs the same SNES (PETSC_COMM_SELF, prefix hbm_).
+*/
+#include <jointrom/private/contactimpl.h>
+#include <jointrom/private/modelimpl.h>
+#include <petscblaslapack.h>
+
+const char *const JRHBMJacobianTypes[] = {"analytic", "fd", "JRHBMJacobianType", "JR_HBM_JACOBIAN_", NULL};
+
+typedef struct {
+  JRContact  c;
+  PetscBool  normal;
+  PetscInt   nloc;
+  PetscReal *R, *S;                         /* nloc x nm, column-major */
+  PetscReal *U, *V, *F, *N, *DU, *DV, *DN; /* SoA work */
+  PetscReal *W;                             /* nloc x nm scratch */
+  PetscReal *nstatic;                       /* max(n0, 0) */
+  JRContactState *state;
+  /* Jacobian split: stuck elements have dF/du = kt I (and dN/dv = kn I, dF/dv = 0) exactly; their part
+     sum_e kt r_e r_e^T (x) I is assembled once (Kst, Knn) and only the others are projected per iteration */
+  PetscBool  split;
+  PetscReal *Kst, *Knn;    /* nm x nm column-major, this rank's elements */
+  PetscInt  *sel, nsel;    /* elements not in the stuck pattern */
+  PetscReal *Rc, *Sc, *Dc; /* their projection rows (nsel x nm) and one derivative column */
+  PetscReal *kt, *kn;
+} HBMGroup;
+
+struct _p_JRHBM {
+  MPI_Comm          comm;
+  PetscMPIInt       rank, size;
+  JRModel           model;
+  JRModes           modes;
+  PetscBool         setupcalled, physical, view;
+  PetscInt          H, Ns, nm, nc, n, nmodes_opt;
+  PetscReal         gamma, zeta;
+  PetscBool         has_C;
+  PetscReal        *Km, *Mm, *Cm; /* nm x nm row-major */
+  PetscReal        *omega_r;      /* natural frequencies of the modes kept [rad/s] */
+  PetscInt          fdof, nout, *outdof;
+  char              ffile[PETSC_MAX_PATH_LEN];
+  PetscReal        *fm, level;    /* modal force shape (unit level) and the level [N] */
+  PetscReal        *Phiout;       /* nout x nm */
+  JRHBMJacobianType jtype;
+  PetscInt          ngroups;
+  HBMGroup         *g;
+  SNES              snes;
+  Mat               J;
+  Vec               r;
+  PetscReal         omega;        /* frequency seen by the SNES callbacks */
+  PetscReal        *buf;          /* n + n*n reduction buffer */
+  PetscReal        *cache_a;      /* the unknowns of the element derivatives kept in the groups */
+  PetscBool         cache_ok;
+  char              damping[256];
+};
+
+static PetscErrorCode Gemm(const char *ta, const char *tb, PetscInt m, PetscInt n, PetscInt k, PetscReal alpha, const PetscReal *A, PetscInt lda, const PetscReal *B, PetscInt ldb, PetscReal beta, PetscReal *C, PetscInt ldc)
+{
+  PetscBLASInt bm, bn, bk, la, lb, lc;
+
+  PetscFunctionBeginUser;
+  if (!m || !n) PetscFunctionReturn(0);
+  PetscCall(PetscBLASIntCast(m, &bm));
+  PetscCall(PetscBLASIntCast(n, &bn));
+  PetscCall(PetscBLASIntCast(k, &bk));
+  PetscCall(PetscBLASIntCast(PetscMax(lda, 1), &la));
+  PetscCall(PetscBLASIntCast(PetscMax(ldb, 1), &lb));
+  PetscCall(PetscBLASIntCast(PetscMax(ldc, 1), &lc));
+  if (!k) {
+    if (beta != 1.0)
+      for (PetscInt j = 0; j < n; j++)
+        for (PetscInt i = 0; i < m; i++) C[i + j * ldc] *= beta;
+    PetscFunctionReturn(0);
+  }
+  PetscCallBLAS("BLASgemm", BLASgemm_(ta, tb, &bm, &bn, &bk, &alpha, A, &la, B, &lb, &beta, C, &lc));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRHBMCreate(MPI_Comm comm, JRHBM *hbm)
+{
+  JRHBM h;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRInitializePackage());
+  PetscCall(PetscNew(&h));
+  h->comm       = comm;
+  h->H          = 1;
+  h->Ns         = 64;
+  h->fdof       = 0;
+  h->level      = 1.0;
+  h->jtype      = JR_HBM_JACOBIAN_ANALYTIC;
+  h->nmodes_opt = -1;
+  PetscCallMPI(MPI_Comm_rank(comm, &h->rank));
+  PetscCallMPI(MPI_Comm_size(comm, &h->size));
+  *hbm = h;
+  PetscFunctionReturn(0);
+}
+
+/* The structure and its elements (reference kept) */
+PetscErrorCode JRHBMSetModel(JRHBM h, JRModel model)
+{
+  PetscFunctionBeginUser;
+  h->model       = model;
+  h->setupcalled = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/*
+  Options: -hbm_harmonics H, -hbm_samples N, -hbm_modes m (default: all for small models, else 10),
+  -hbm_physical, -hbm_gamma, -hbm_zeta, -hbm_jacobian analytic|fd, -hbm_view; the excitation
+  -frf_dof i or -frf_force_file FILE, the responses -frf_output i,j,...; and -hbm_snes_*, -hbm_ksp_*,
+  -hbm_pc_* on the nonlinear solver.
+*/
+PetscErrorCode JRHBMSetFromOptions(JRHBM h)
+{
+  PetscInt  jt = h->jtype, nout = 64;
+  PetscInt  out[64];
+  PetscBool flg;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(h->comm, NULL, "Harmonic balance (JRHBM)", "JRHBM");
+  PetscCall(PetscOptionsInt("-hbm_harmonics", "Harmonics H (plus the mean) in the response", "JRHBMSetUp", h->H, &h->H, NULL));
+  PetscCall(PetscOptionsInt("-hbm_samples", "Time samples per cycle N for alternating frequency-time (N >= 2H+1)", "JRHBMSetUp", h->Ns, &h->Ns, NULL));
+  PetscCall(PetscOptionsInt("-hbm_modes", "Number of linear modes in the modal superposition (default: all up to 200 DOFs, else 10)", "JRHBMSetUp", h->nmodes_opt, &h->nmodes_opt, NULL));
+  PetscCall(PetscOptionsBool("-hbm_physical", "Physical coordinates instead of modes (small systems: checks modal truncation)", "JRHBMSetUp", h->physical, &h->physical, NULL));
+  PetscCall(PetscOptionsReal("-hbm_gamma", "Structural damping H = gamma K (2.17) [-]", "JRHBMSetUp", h->gamma, &h->gamma, NULL));
+  PetscCall(PetscOptionsReal("-hbm_zeta", "Modal viscous damping ratio, every mode [-]", "JRHBMSetUp", h->zeta, &h->zeta, NULL));
+  PetscCall(PetscOptionsEList("-hbm_jacobian", "Jacobian: analytic (element derivatives projected) or fd (finite differences, thesis 2.23)", "JRHBMSetUp", JRHBMJacobianTypes, 2, JRHBMJacobianTypes[h->jtype], &jt, NULL));
+  h->jtype = (JRHBMJacobianType)jt;
+  PetscCall(PetscOptionsBool("-hbm_view", "Print the harmonic-balance set-up", "JRHBMView", h->view, &h->view, NULL));
+  PetscCall(PetscOptionsInt("-frf_dof", "Excitation F sin(w t) at this DOF (0-based)", "JRHBMSetUp", h->fdof, &h->fdof, NULL));
+  PetscCall(PetscOptionsString("-frf_force_file", "Excitation shape from a file instead (one value per DOF: .csv/.txt, .bin, .h5)", "JRHBMSetUp", h->ffile, h->ffile, sizeof(h->ffile), NULL));
+  PetscCall(PetscOptionsIntArray("-frf_output", "Response DOFs (default: the excitation DOF)", "JRHBMResponse", out, &nout, &flg));
+  PetscOptionsEnd();
+  PetscCall(PetscFree(h->outdof));
+  if (flg) {
+    PetscCheck(nout > 0, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_output needs at least one DOF");
+    h->nout = nout;
+    PetscCall(PetscMalloc1(nout, &h->outdof));
+    PetscCall(PetscArraycpy(h->outdof, out, nout));
+  } else h->nout = 0;
+  PetscCheck(h->H >= 1 && h->H <= JR_MAX_HARMONICS, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_harmonics %" PetscInt_FMT ": between 1 and %d", h->H, JR_MAX_HARMONICS);
+  PetscCheck(h->Ns >= 2 * h->H + 1, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_samples %" PetscInt_FMT " must be at least 2H+1 = %" PetscInt_FMT " for -hbm_harmonics %" PetscInt_FMT, h->Ns, 2 * h->H + 1, h->H);
+  PetscCheck(h->gamma >= 0.0 && !PetscIsInfOrNanReal(h->gamma), h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_gamma %g: the structural damping coefficient must be non-negative", (double)h->gamma);
+  PetscCheck(h->zeta >= 0.0 && !PetscIsInfOrNanReal(h->zeta), h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_zeta %g: the modal damping ratio must be non-negative", (double)h->zeta);
+  h->setupcalled = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode GroupDestroy(HBMGroup *g)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRContactDestroy(&g->c));
+  PetscCall(JRFreeAligned(&g->R));
+  PetscCall(JRFreeAligned(&g->S));
+  PetscCall(JRFreeAligned(&g->U));
+  PetscCall(JRFreeAligned(&g->V));
+  PetscCall(JRFreeAligned(&g->F));
+  PetscCall(JRFreeAligned(&g->N));
+  PetscCall(JRFreeAligned(&g->DU));
+  PetscCall(JRFreeAligned(&g->DV));
+  PetscCall(JRFreeAligned(&g->DN));
+  PetscCall(JRFreeAligned(&g->W));
+  PetscCall(PetscFree(g->nstatic));
+  PetscCall(PetscFree(g->state));
+  PetscCall(PetscFree2(g->Kst, g->Knn));
+  PetscCall(PetscFree(g->sel));
+  PetscCall(JRFreeAligned(&g->Rc));
+  PetscCall(JRFreeAligned(&g->Sc));
+  PetscCall(JRFreeAligned(&g->Dc));
+  PetscCall(PetscFree2(g->kt, g->kn));
+  PetscFunctionReturn(0);
+}
+
+/* Projection rows of a list of DOF pairs: rows[e*nm + i] = phi_i(a_e) - phi_i(b_e), col-major R */
+static PetscErrorCode ProjectionRows(JRHBM h, PetscInt nloc, const PetscInt da[], const PetscInt db[], PetscReal R[])
+{
+  PetscInt  *dofs;
+  PetscReal *rows;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(2 * nloc, &dofs, 2 * nloc * h->nm, &rows));
+  for (PetscInt e = 0; e < nloc; e++) {
+    dofs[2 * e]     = da[e];
+    dofs[2 * e + 1] = db[e];
+  }
+  if (h->physical) {
+    PetscCall(PetscArrayzero(rows, 2 * nloc * h->nm));
+    for (PetscInt k = 0; k < 2 * nloc; k++)
+      if (dofs[k] >= 0) rows[k * h->nm + dofs[k]] = 1.0;
+  } else PetscCall(JRModesGetRows(h->modes, 2 * nloc, dofs, rows));
+  for (PetscInt e = 0; e < nloc; e++)
+    for (PetscInt i = 0; i < h->nm; i++) R[e + i * nloc] = rows[(2 * e) * h->nm + i] - rows[(2 * e + 1) * h->nm + i];
+  PetscCall(PetscFree2(dofs, rows));
+  PetscFunctionReturn(0);
+}
+
+/* Dense copy of a (small) distributed matrix on every rank, row-major */
+static PetscErrorCode DenseAll(Mat A, PetscReal D[])
+{
+  Mat     *sub;
+  IS       all;
+  PetscInt n;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetSize(A, &n, NULL));
+  PetscCall(ISCreateStride(PETSC_COMM_SELF, n, 0, 1, &all));
+  PetscCall(MatCreateSubMatrices(A, 1, &all, &all, MAT_INITIAL_MATRIX, &sub));
+  PetscCall(PetscArrayzero(D, n * n));
+  for (PetscInt i = 0; i < n; i++) {
+    PetscInt           nz;
+    const PetscInt    *cols;
+    const PetscScalar *v;
+    PetscCall(MatGetRow(sub[0], i, &nz, &cols, &v));
+    for (PetscInt k = 0; k < nz; k++) D[i * n + cols[k]] = PetscRealPart(v[k]);
+    PetscCall(MatRestoreRow(sub[0], i, &nz, &cols, &v));
+  }
+  PetscCall(MatDestroySubMatrices(1, &sub));
+  PetscCall(ISDestroy(&all));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FormFunction(SNES, Vec, Vec, void *);
+static PetscErrorCode FormJacobian(SNES, Vec, Mat, Mat, void *);
+
+/* Modes, projections, element partition, linear modal matrices, the SNES; a second call does nothing */
+PetscErrorCode JRHBMSetUp(JRHBM h)
+{
+  Mat               K, M, C;
+  PetscInt          ndof;
+  const JRElements *el;
+
+  PetscFunctionBeginUser;
+  if (h->setupcalled) PetscFunctionReturn(0);
+  PetscCheck(h->model, h->comm, PETSC_ERR_ARG_WRONGSTATE, "JRHBMSetModel() first");
+  PetscCall(JRModelGetMatrices(h->model, &K, &M, &C));
+  PetscCall(JRModelGetNumDofs(h->model, &ndof));
+  PetscCall(JRModelGetElements(h->model, &el));
+  h->nc    = 2 * h->H + 1;
+  h->has_C = C ? PETSC_TRUE : PETSC_FALSE;
+  PetscCheck(h->fdof >= 0 && h->fdof < ndof, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_dof %" PetscInt_FMT " is out of range: DOFs are 0..%" PetscInt_FMT, h->fdof, ndof - 1);
+  if (!h->nout) {
+    h->nout = 1;
+    PetscCall(PetscMalloc1(1, &h->outdof));
+    h->outdof[0] = h->fdof;
+  }
+  for (PetscInt i = 0; i < h->nout; i++) PetscCheck(h->outdof[i] >= 0 && h->outdof[i] < ndof, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_output %" PetscInt_FMT " is out of range: DOFs are 0..%" PetscInt_FMT, h->outdof[i], ndof - 1);
+
+  /* the linear part: modes (or physical coordinates) */
+  PetscCall(PetscFree3(h->Km, h->Mm, h->Cm));
+  PetscCall(PetscFree(h->omega_r));
+  if (h->physical) {
+    PetscCheck(ndof <= 2000, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_physical is for small systems (%" PetscInt_FMT " DOFs here, at most 2000): use modes", ndof);
+    PetscCheck(h->zeta == 0.0, h->comm, PETSC_ERR_ARG_INCOMP, "-hbm_zeta (modal damping) needs modal coordinates, not -hbm_physical: give a damping matrix with -model_damping");
+    h->nm = ndof;
+    PetscCall(PetscCalloc3(h->nm * h->nm, &h->Km, h->nm * h->nm, &h->Mm, h->nm * h->nm, &h->Cm));
+    PetscCall(DenseAll(K, h->Km));
+    PetscCall(DenseAll(M, h->Mm));
+    if (C) PetscCall(DenseAll(C, h->Cm));
+    PetscCall(PetscMalloc1(0, &h->omega_r));
+  } else {
+    const PetscReal *lam;
+    h->nm = h->nmodes_opt > 0 ? h->nmodes_opt : (ndof <= 200 ? ndof : 10);
+    PetscCheck(h->nm <= ndof, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_modes %" PetscInt_FMT ": the model has only %" PetscInt_FMT " DOFs", h->nm, ndof);
+    PetscCall(JRModesDestroy(&h->modes));
+    PetscCall(JRModesCreate(h->comm, &h->modes));
+    PetscCall(JRModesSetOperators(h->modes, K, M));
+    PetscCall(JRModesSetNumber(h->modes, h->nm));
+    PetscCall(JRModesSetFromOptions(h->modes));
+    PetscCall(JRModesSetNumber(h->modes, h->nm)); /* -hbm_modes wins over -modes_nev */
+    PetscCall(JRModesSolve(h->modes));
+    PetscCall(JRModesGetEigenvalues(h->modes, &lam));
+    PetscCall(PetscCalloc3(h->nm * h->nm, &h->Km, h->nm * h->nm, &h->Mm, h->nm * h->nm, &h->Cm));
+    PetscCall(PetscMalloc1(h->nm, &h->omega_r));
+    for (PetscInt i = 0; i < h->nm; i++) {
+      h->Km[i * h->nm + i] = lam[i];
+      h->Mm[i * h->nm + i] = 1.0;
+      h->omega_r[i]        = PetscSqrtReal(PetscMax(lam[i], 0.0));
+    }
+    if (C) PetscCall(JRModesProject(h->modes, C, h->Cm));
+    for (PetscInt i = 0; i < h->nm; i++) h->Cm[i * h->nm + i] += 2.0 * h->zeta * h->omega_r[i];
+  }
+  h->n = h->nm * h->nc;
+  {
+    char *d = h->damping;
+    d[0]    = 0;
+    if (h->gamma > 0) PetscCall(PetscSNPrintf(d + strlen(d), sizeof(h->damping) - strlen(d), "structural gamma = %g (H = gamma K); ", (double)h->gamma));
+    if (h->zeta > 0) PetscCall(PetscSNPrintf(d + strlen(d), sizeof(h->damping) - strlen(d), "modal viscous zeta = %g; ", (double)h->zeta));
+    if (C) PetscCall(PetscSNPrintf(d + strlen(d), sizeof(h->damping) - strlen(d), "viscous matrix C; "));
+    if (!d[0]) PetscCall(PetscSNPrintf(d, sizeof(h->damping), "none (only the contact elements dissipate)"));
+    else d[strlen(d) - 2] = 0;
+  }
+
+  /* excitation shape in modal coordinates, outputs */
+  PetscCall(PetscFree(h->fm));
+  PetscCall(PetscCalloc1(h->nm, &h->fm));
+  PetscCall(PetscFree(h->Phiout));
+  PetscCall(PetscMalloc1(h->nout * h->nm, &h->Phiout));
+  if (h->ffile[0]) {
+    PetscReal *f;
+    PetscCall(PetscMalloc1(ndof, &f));
+    PetscCall(JRVecLoadFile(h->comm, h->ffile, ndof, f));
+    if (h->physical) PetscCall(PetscArraycpy(h->fm, f, ndof));
+    else {
+      Vec          fv;
+      PetscInt     lo, hi;
+      PetscScalar *d;
+      PetscCall(VecDuplicate(h->modes->phi[0], &fv));
+      PetscCall(VecGetOwnershipRange(fv, &lo, &hi));
+      for (PetscInt i = lo; i < hi; i++) PetscCall(VecSetValue(fv, i, f[i], INSERT_VALUES));
+      PetscCall(VecAssemblyBegin(fv));
+      PetscCall(VecAssemblyEnd(fv));
+      PetscCall(PetscMalloc1(h->nm, &d));
+      PetscCall(VecMDot(fv, h->nm, h->modes->phi, d));
+      for (PetscInt i = 0; i < h->nm; i++) h->fm[i] = PetscRealPart(d[i]);
+      PetscCall(PetscFree(d));
+      PetscCall(VecDestroy(&fv));
+    }
+    PetscCall(PetscFree(f));
+  } else if (h->physical) h->fm[h->fdof] = 1.0;
+  else PetscCall(JRModesGetRows(h->modes, 1, &h->fdof, h->fm));
+  if (h->physical) {
+    PetscCall(PetscArrayzero(h->Phiout, h->nout * h->nm));
+    for (PetscInt i = 0; i < h->nout; i++) h->Phiout[i * h->nm + h->outdof[i]] = 1.0;
+  } else PetscCall(JRModesGetRows(h->modes, h->nout, h->outdof, h->Phiout));
+
+  /* element groups, one per type, split across the ranks */
+  for (PetscInt t = 0; t < h->ngroups; t++) PetscCall(GroupDestroy(&h->g[t]));
+  PetscCall(PetscFree(h->g));
+  h->ngroups = el->ntypes;
+  PetscCall(PetscCalloc1(h->ngroups, &h->g));
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    HBMGroup  *g = &h->g[t];
+    PetscInt   ntot = 0, nloc = PETSC_DECIDE, start = 0, k = 0, *ia, *ib;
+    PetscReal *kt, *kn, *mu, *n0;
+    const PetscInt nc = h->nc, nm = h->nm;
+    for (PetscInt e = 0; e < el->n; e++) ntot += el->type[e] == t;
+    PetscCall(PetscSplitOwnership(h->comm, &nloc, &ntot));
+    PetscCallMPI(MPI_Scan(&nloc, &start, 1, MPIU_INT, MPI_SUM, h->comm));
+    start -= nloc;
+    g->nloc = nloc;
+    PetscCall(PetscMalloc4(nloc, &kt, nloc, &kn, nloc, &mu, nloc, &n0));
+    PetscCall(PetscMalloc2(nloc, &ia, nloc, &ib));
+    PetscCall(PetscMalloc1(nloc, &g->nstatic));
+    PetscCall(PetscMalloc1(nloc, &g->state));
+    for (PetscInt e = 0, cnt = 0; e < el->n; e++) {
+      if (el->type[e] != t) continue;
+      if (cnt >= start && cnt < start + nloc) {
+        ia[k]          = el->dof_a[e];
+        ib[k]          = el->dof_b[e];
+        kt[k]          = el->kt[e];
+        kn[k]          = el->kn[e];
+        mu[k]          = el->mu[e];
+        n0[k]          = el->n0[e];
+        g->nstatic[k] = PetscMax(el->n0[e], 0.0);
+        k++;
+      }
+      cnt++;
+    }
+    PetscCall(JRContactCreate(PETSC_COMM_SELF, &g->c));
+    PetscCall(JRContactSetType(g->c, el->typename[t]));
+    PetscCall(JRContactSetHarmonics(g->c, h->H, h->Ns));
+    PetscCall(JRContactSetElements(g->c, nloc, kt, kn, mu, n0));
+    PetscCall(JRContactSetUp(g->c));
+    PetscCall(JRContactUsesNormal(g->c, &g->normal));
+    PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nm, &g->R));
+    PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nm, &g->W));
+    PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc, &g->U));
+    PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc, &g->F));
+    PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc * nc, &g->DU));
+    PetscCall(ProjectionRows(h, nloc, ia, ib, g->R));
+    if (g->normal) {
+      k = 0;
+      for (PetscInt e = 0, cnt = 0; e < el->n; e++) {
+        if (el->type[e] != t) continue;
+        if (cnt >= start && cnt < start + nloc) {
+          ia[k] = el->ndof_a[e];
+          ib[k] = el->ndof_b[e];
+          k++;
+        }
+        cnt++;
+      }
+      PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nm, &g->S));
+      PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc, &g->V));
+      PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc, &g->N));
+      PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc * nc, &g->DV));
+      PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc * nc, &g->DN));
+      PetscCall(ProjectionRows(h, nloc, ia, ib, g->S));
+    }
+    /* friction elements: the stuck part of the Jacobian, once */
+    g->split = (PetscBool)(!strcmp(el->typename[t], JRCONTACTJENKINS) || !strcmp(el->typename[t], JRCONTACTJENKINSNV));
+    PetscCall(PetscCalloc2(nm * nm, &g->Kst, nm * nm, &g->Knn));
+    PetscCall(PetscMalloc2(nloc, &g->kt, nloc, &g->kn));
+    PetscCall(PetscArraycpy(g->kt, kt, nloc));
+    PetscCall(PetscArraycpy(g->kn, kn, nloc));
+    PetscCall(PetscMalloc1(nloc, &g->sel));
+    PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nm, &g->Rc));
+    PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc, &g->Dc));
+    if (g->normal) PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nm, &g->Sc));
+    if (g->split && nloc) {
+      for (PetscInt i = 0; i < nm; i++)
+        for (PetscInt e = 0; e < nloc; e++) g->W[e + i * nloc] = kt[e] * g->R[e + i * nloc];
+      PetscCall(Gemm("T", "N", nm, nm, nloc, 1.0, g->R, nloc, g->W, nloc, 0.0, g->Kst, nm));
+      if (g->normal) {
+        for (PetscInt i = 0; i < nm; i++)
+          for (PetscInt e = 0; e < nloc; e++) g->W[e + i * nloc] = kn[e] * g->S[e + i * nloc];
+        PetscCall(Gemm("T", "N", nm, nm, nloc, 1.0, g->S, nloc, g->W, nloc, 0.0, g->Knn, nm));
+      }
+    }
+    PetscCall(PetscFree4(kt, kn, mu, n0));
+    PetscCall(PetscFree2(ia, ib));
+  }
+
+  /* the nonlinear solver at fixed frequency: SNES on every rank, prefix hbm_ */
+  PetscCall(PetscFree(h->buf));
+  PetscCall(PetscMalloc1(h->n + h->n * h->n, &h->buf));
+  PetscCall(PetscFree(h->cache_a));
+  PetscCall(PetscMalloc1(h->n, &h->cache_a));
+  h->cache_ok = PETSC_FALSE;
+  PetscCall(SNESDestroy(&h->snes));
+  PetscCall(MatDestroy(&h->J));
+  PetscCall(VecDestroy(&h->r));
+  PetscCall(JRHBMCreateVecs(h, &h->r, &h->J));
+  PetscCall(SNESCreate(PETSC_COMM_SELF, &h->snes));
+  PetscCall(SNESSetOptionsPrefix(h->snes, "hbm_"));
+  PetscCall(SNESSetFunction(h->snes, h->r, FormFunction, h));
+  if (h->jtype == JR_HBM_JACOBIAN_FD) PetscCall(SNESSetJacobian(h->snes, h->J, h->J, SNESComputeJacobianDefault, h));
+  else PetscCall(SNESSetJacobian(h->snes, h->J, h->J, FormJacobian, h));
+  {
+    KSP ksp;
+    PC  pc;
+    PetscCall(SNESGetKSP(h->snes, &ksp));
+    PetscCall(KSPSetType(ksp, KSPPREONLY));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCSetType(pc, PCLU));
+  }
+  PetscCall(SNESSetTolerances(h->snes, PETSC_DEFAULT, 1e-10, 1e-12, 40, 10000));
+  PetscCall(SNESSetFromOptions(h->snes));
+  h->setupcalled = PETSC_TRUE;
+  if (h->view) PetscCall(JRHBMView(h, NULL));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRHBMGetSizes(JRHBM h, PetscInt *nm, PetscInt *H, PetscInt *n)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  if (nm) *nm = h->nm;
+  if (H) *H = h->H;
+  if (n) *n = h->n;
+  PetscFunctionReturn(0);
+}
+
+/* Natural frequencies of the modes used [rad/s] (none in physical coordinates) */
+PetscErrorCode JRHBMGetModalFrequencies(JRHBM h, PetscInt *nm, const PetscReal **omega)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  *nm    = h->physical ? 0 : h->nm;
+  *omega = h->omega_r;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRHBMGetDampingDescription(JRHBM h, const char **d)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  *d = h->damping;
+  PetscFunctionReturn(0);
+}
+
+/* The excitation level F [N]: f(t) = F f_shape sin(w t). The SNES absolute tolerance follows the
+   level (1e-12 of the modal force) unless -hbm_snes_atol is given. */
+PetscErrorCode JRHBMSetForceLevel(JRHBM h, PetscReal F)
+{
+  PetscBool set;
+  PetscReal fn = 0.0;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  h->level = F;
+  for (PetscInt i = 0; i < h->nm; i++) fn += h->fm[i] * h->fm[i];
+  PetscCall(PetscOptionsHasName(NULL, "hbm_", "-snes_atol", &set));
+  if (!set) PetscCall(SNESSetTolerances(h->snes, 1e-12 * PetscAbsReal(F) * PetscSqrtReal(fn) + 1e-300, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRHBMCreateVecs(JRHBM h, Vec *x, Mat *J)
+{
+  PetscFunctionBeginUser;
+  if (x) PetscCall(VecCreateSeq(PETSC_COMM_SELF, h->n, x));
+  if (J) {
+    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, h->n, h->n, NULL, J));
+    PetscCall(MatSetOption(*J, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
+  }
+  PetscFunctionReturn(0);
+}
+
+/*
+  Nonlinear part: res (n) and, if jac, the Jacobian (n x n column-major) summed over all elements of
+  all ranks (identical on every rank). a: the unknowns (n).
+*/
+/*
+  Nonlinear part: res (n) and, if jac, the Jacobian (n x n column-major) summed over all elements of
+  all ranks (identical on every rank). a: the unknowns (n). With the analytic Jacobian, every
+  evaluation also computes the element derivatives and keeps them with a copy of a: the Jacobian that
+  Newton asks for next, at the same a, then only assembles them.
+*/
+static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, PetscReal *jac)
+{
+  const PetscInt  nm = h->nm, nc = h->nc, n = h->n, len = jac ? n + n * n : n;
+  PetscReal      *loc    = h->buf;
+  const PetscBool derivs = (PetscBool)(jac || h->jtype == JR_HBM_JACOBIAN_ANALYTIC);
+  PetscBool       reuse  = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  if (jac && h->cache_ok) reuse = (PetscBool)!memcmp(a, h->cache_a, sizeof(PetscReal) * n);
+  PetscCall(PetscArrayzero(loc, len));
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    HBMGroup      *g    = &h->g[t];
+    const PetscInt nloc = g->nloc;
+    if (!nloc) continue;
+    if (!reuse) {
+      PetscCall(Gemm("N", "N", nloc, nc, nm, 1.0, g->R, nloc, a, nm, 0.0, g->U, nloc));
+      if (g->normal) PetscCall(Gemm("N", "N", nloc, nc, nm, 1.0, g->S, nloc, a, nm, 0.0, g->V, nloc));
+      PetscCall(JRContactEvaluate(g->c, g->U, g->V, g->F, g->normal ? g->N : NULL, derivs ? g->DU : NULL, derivs && g->normal ? g->DV : NULL, derivs && g->normal ? g->DN : NULL, NULL));
+      if (g->normal)
+        for (PetscInt e = 0; e < nloc; e++) g->N[e] -= g->nstatic[e]; /* the dynamic normal load */
+    }
+    PetscCall(Gemm("T", "N", nm, nc, nloc, 1.0, g->R, nloc, g->F, nloc, 1.0, loc, nm));
+    if (g->normal) PetscCall(Gemm("T", "N", nm, nc, nloc, 1.0, g->S, nloc, g->N, nloc, 1.0, loc, nm));
+    if (jac) {
+      PetscInt         nsel = nloc;
+      const PetscReal *Rj = g->R, *Sj = g->S;
+      PetscCall(PetscLogEventBegin(JR_HBMJacobian, 0, 0, 0, 0));
+      if (g->split) {
+        /* which elements differ from the stuck pattern dF/du = kt I, dF/dv = 0, dN/dv = kn I */
+        nsel = 0;
+        for (PetscInt e = 0; e < nloc; e++) {
+          const PetscReal tol = 1e-12 * g->kt[e], toln = 1e-12 * PetscMax(g->kn[e], g->kt[e]);
+          PetscBool       stuck = PETSC_TRUE;
+          for (PetscInt q = 0; q < nc * nc && stuck; q++) {
+            const PetscBool diag = (PetscBool)(q / nc == q % nc);
+            if (PetscAbsReal(g->DU[q * nloc + e] - (diag ? g->kt[e] : 0.0)) > tol) stuck = PETSC_FALSE;
+            if (g->normal && (PetscAbsReal(g->DV[q * nloc + e]) > toln || PetscAbsReal(g->DN[q * nloc + e] - (diag ? g->kn[e] : 0.0)) > toln)) stuck = PETSC_FALSE;
+          }
+          if (!stuck) g->sel[nsel++] = e;
+        }
+        g->nsel = nsel;
+        for (PetscInt i = 0; i < nm; i++) {
+          for (PetscInt s = 0; s < nsel; s++) g->Rc[s + i * nsel] = g->R[g->sel[s] + i * nloc];
+          if (g->normal)
+            for (PetscInt s = 0; s < nsel; s++) g->Sc[s + i * nsel] = g->S[g->sel[s] + i * nloc];
+        }
+        Rj = g->Rc;
+        Sj = g->Sc;
+        /* the stuck part: Kst and Knn on the diagonal blocks */
+        for (PetscInt k = 0; k < nc; k++) {
+          PetscReal *blk = loc + n + (k * nm) + (k * nm) * n;
+          for (PetscInt j = 0; j < nm; j++)
+            for (PetscInt i = 0; i < nm; i++) blk[i + j * n] += g->Kst[i + j * nm] + (g->normal ? g->Knn[i + j * nm] : 0.0);
+        }
+      }
+      if (nsel)
+        for (PetscInt k = 0; k < nc; k++)
+          for (PetscInt m = 0; m < nc; m++) {
+            PetscReal     *blk   = loc + n + (k * nm) + (m * nm) * n;
+            const PetscInt which = g->normal ? 3 : 1;
+            for (PetscInt q = 0; q < which; q++) {
+              const PetscReal *dall = (q == 0 ? g->DU : q == 1 ? g->DV : g->DN) + (k * nc + m) * nloc;
+              const PetscReal *left = q == 2 ? Sj : Rj, *right = q == 0 ? Rj : Sj;
+              PetscReal       *d    = g->Dc, dmax = 0.0;
+              /* the selected elements' derivative, less the stuck part already counted */
+              for (PetscInt s = 0; s < nsel; s++) {
+                const PetscInt e = g->split ? g->sel[s] : s;
+                d[s]             = dall[e] - (g->split && k == m ? (q == 0 ? g->kt[e] : q == 2 ? g->kn[e] : 0.0) : 0.0);
+                dmax             = PetscMax(dmax, PetscAbsReal(d[s]));
+              }
+              if (dmax == 0.0) continue;
+              for (PetscInt i = 0; i < nm; i++) {
+                const PetscReal *col = right + i * nsel;
+                PetscReal       *w   = g->W + i * nsel;
+                for (PetscInt s = 0; s < nsel; s++) w[s] = d[s] * col[s];
+              }
+              PetscCall(Gemm("T", "N", nm, nm, nsel, 1.0, left, nsel, g->W, nsel, 1.0, blk, n));
+            }
+          }
+      PetscCall(PetscLogFlops(2.0 * nsel * nm * nm * nc * nc * (g->normal ? 3 : 1)));
+      PetscCall(PetscLogEventEnd(JR_HBMJacobian, 0, 0, 0, 0));
+    }
+    PetscCall(PetscLogFlops(4.0 * nloc * nm * nc * (g->normal ? 2 : 1)));
+  }
+  if (!reuse) {
+    h->cache_ok = derivs;
+    PetscCall(PetscArraycpy(h->cache_a, a, n));
+  }
+  /* sum over the ranks on rank 0, then everyone gets the same numbers */
+  if (h->size > 1) {
+    PetscCallMPI(MPI_Reduce(h->rank ? loc : MPI_IN_PLACE, loc, (PetscMPIInt)len, MPIU_REAL, MPIU_SUM, 0, h->comm));
+    PetscCallMPI(MPI_Bcast(loc, (PetscMPIInt)len, MPIU_REAL, 0, h->comm));
+  }
+  PetscCall(PetscArraycpy(res, loc, n));
+  if (jac) PetscCall(PetscArraycpy(jac, loc + n, n * n));
+  PetscFunctionReturn(0);
+}
+
+/* Linear part of the residual (added to res), of the Jacobian (added to jac, may be NULL) and the
+   frequency derivative dR/dw (set, may be NULL) */
+static PetscErrorCode Linear(JRHBM h, PetscReal w, const PetscReal *a, PetscReal *res, PetscReal *jac, PetscReal *dw)
+{
+  const PetscInt nm = h->nm, n = h->n;
+
+  PetscFunctionBeginUser;
+  if (dw) PetscCall(PetscArrayzero(dw, n));
+  for (PetscInt i = 0; i < nm; i++) { /* mean: K a0 */
+    PetscReal s = 0.0;
+    for (PetscInt j = 0; j < nm; j++) s += h->Km[i * nm + j] * a[j];
+    res[i] += s;
+    if (jac)
+      for (PetscInt j = 0; j < nm; j++) jac[i + j * n] += h->Km[i * nm + j];
+  }
+  for (PetscInt hh = 1; hh <= h->H; hh++) {
+    const PetscInt   os = (2 * hh - 1) * nm, oc = 2 * hh * nm;
+    const PetscReal  hw = hh * w;
+    const PetscReal *as = a + os, *ac = a + oc;
+    for (PetscInt i = 0; i < nm; i++) {
+      PetscReal ds = 0.0, dc = 0.0, bs = 0.0, bc = 0.0, ms = 0.0, mc = 0.0, cs = 0.0, cc = 0.0;
+      for (PetscInt j = 0; j < nm; j++) {
+        const PetscReal kij = h->Km[i * nm + j], mij = h->Mm[i * nm + j], cij = h->Cm[i * nm + j];
+        const PetscReal dij = kij - hw * hw * mij, bij = h->gamma * kij + hw * cij;
+        ds += dij * as[j];
+        dc += dij * ac[j];
+        bs += bij * as[j];
+        bc += bij * ac[j];
+        ms += mij * as[j];
+        mc += mij * ac[j];
+        cs += cij * as[j];
+        cc += cij * ac[j];
+        if (jac) {
+          jac[(os + i) + (os + j) * n] += dij;
+          jac[(os + i) + (oc + j) * n] -= bij;
+          jac[(oc + i) + (os + j) * n] += bij;
+          jac[(oc + i) + (oc + j) * n] += dij;
+        }
+      }
+      res[os + i] += ds - bc - (hh == 1 ? h->level * h->fm[i] : 0.0);
+      res[oc + i] += dc + bs;
+      if (dw) {
+        dw[os + i] = -2.0 * hh * hw * ms - hh * cc;
+        dw[oc + i] = -2.0 * hh * hw * mc + hh * cs;
+      }
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* R(a, w): the harmonic-balance residual (collective) */
+PetscErrorCode JRHBMComputeResidual(JRHBM h, PetscReal w, Vec a, Vec R)
+{
+  const PetscScalar *x;
+  PetscScalar       *r;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(PetscLogEventBegin(JR_HBMResidual, 0, 0, 0, 0));
+  PetscCall(VecGetArrayRead(a, &x));
+  PetscCall(VecGetArray(R, &r));
+  PetscCall(Nonlinear(h, x, r, NULL));
+  PetscCall(Linear(h, w, x, r, NULL, NULL));
+  PetscCall(VecRestoreArray(R, &r));
+  PetscCall(VecRestoreArrayRead(a, &x));
+  PetscCall(PetscLogEventEnd(JR_HBMResidual, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* J = dR/da (analytic) and, if Rw is not NULL, dR/dw (collective) */
+PetscErrorCode JRHBMComputeJacobian(JRHBM h, PetscReal w, Vec a, Mat J, Vec Rw)
+{
+  const PetscScalar *x;
+  PetscScalar       *j, *rw = NULL;
+  PetscReal         *res;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(PetscMalloc1(h->n, &res));
+  PetscCall(VecGetArrayRead(a, &x));
+  PetscCall(MatDenseGetArrayWrite(J, &j));
+  if (Rw) PetscCall(VecGetArray(Rw, &rw));
+  PetscCall(Nonlinear(h, x, res, j));
+  PetscCall(Linear(h, w, x, res, j, rw));
+  if (Rw) PetscCall(VecRestoreArray(Rw, &rw));
+  PetscCall(MatDenseRestoreArrayWrite(J, &j));
+  PetscCall(VecRestoreArrayRead(a, &x));
+  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(PetscFree(res));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FormFunction(SNES snes, Vec a, Vec R, void *ctx)
+{
+  JRHBM h = (JRHBM)ctx;
+
+  PetscFunctionBeginUser;
+  (void)snes;
+  PetscCall(JRHBMComputeResidual(h, h->omega, a, R));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FormJacobian(SNES snes, Vec a, Mat J, Mat P, void *ctx)
+{
+  JRHBM h = (JRHBM)ctx;
+
+  PetscFunctionBeginUser;
+  (void)snes;
+  (void)P;
+  PetscCall(JRHBMComputeJacobian(h, h->omega, a, J, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* Solve R(a, w) = 0 at fixed frequency w from the guess in a; its: Newton iterations */
+PetscErrorCode JRHBMSolve(JRHBM h, PetscReal w, Vec a, PetscInt *its, PetscBool *converged)
+{
+  SNESConvergedReason reason;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(PetscLogEventBegin(JR_HBMSolve, 0, 0, 0, 0));
+  h->omega = w;
+  PetscCall(SNESSolve(h->snes, NULL, a));
+  PetscCall(SNESGetConvergedReason(h->snes, &reason));
+  PetscCall(SNESGetIterationNumber(h->snes, its));
+  *converged = reason > 0 ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PetscLogEventEnd(JR_HBMSolve, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The response of the structure with every element linearised about rest (stuck contacts):
+   one Newton step from a = 0, exact when the elements stay in full stick */
+PetscErrorCode JRHBMLinearSolution(JRHBM h, PetscReal w, Vec a)
+{
+  Vec r;
+  KSP ksp;
+  PC  pc;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(VecDuplicate(a, &r));
+  PetscCall(VecZeroEntries(a));
+  PetscCall(JRHBMComputeJacobian(h, w, a, h->J, NULL));
+  PetscCall(JRHBMComputeResidual(h, w, a, r));
+  PetscCall(KSPCreate(PETSC_COMM_SELF, &ksp));
+  PetscCall(KSPSetOperators(ksp, h->J, h->J));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(KSPSolve(ksp, r, a));
+  PetscCall(VecScale(a, -1.0));
+  PetscCall(KSPDestroy(&ksp));
+  PetscCall(VecDestroy(&r));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRHBMGetSNES(JRHBM h, SNES *snes)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  *snes = h->snes;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRHBMGetJacobianType(JRHBM h, JRHBMJacobianType *jt)
+{
+  PetscFunctionBeginUser;
+  *jt = h->jtype;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRHBMGetOutputs(JRHBM h, PetscInt *nout, const PetscInt **dofs)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  *nout = h->nout;
+  if (dofs) *dofs = h->outdof;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMResponse - at the output DOFs: X[o*nc + k] the harmonics of x_o(t), amp[o] the amplitude of
+  the first harmonic sqrt(Xs1^2 + Xc1^2) [m], pp[o] half the peak-to-peak of x_o(t) over a cycle
+  (sampled at 16 (2H+1) points). Any of X, amp, pp may be NULL.
+*/
+PetscErrorCode JRHBMResponse(JRHBM h, Vec a, PetscReal X[], PetscReal amp[], PetscReal pp[])
+{
+  const PetscScalar *x;
+  const PetscInt     nm = h->nm, nc = h->nc;
+  PetscReal         *Xo;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(nc, &Xo));
+  PetscCall(VecGetArrayRead(a, &x));
+  for (PetscInt o = 0; o < h->nout; o++) {
+    for (PetscInt k = 0; k < nc; k++) {
+      PetscReal s = 0.0;
+      for (PetscInt i = 0; i < nm; i++) s += h->Phiout[o * nm + i] * PetscRealPart(x[k * nm + i]);
+      Xo[k] = s;
+      if (X) X[o * nc + k] = s;
+    }
+    if (amp) amp[o] = PetscSqrtReal(Xo[1] * Xo[1] + Xo[2] * Xo[2]);
+    if (pp) {
+      const PetscInt ns = 16 * nc;
+      PetscReal      lo = PETSC_MAX_REAL, hi = -PETSC_MAX_REAL;
+      for (PetscInt j = 0; j < ns; j++) {
+        const PetscReal th = 2.0 * PETSC_PI * j / ns;
+        PetscReal       v  = Xo[0];
+        for (PetscInt hh = 1; 2 * hh < nc; hh++) v += Xo[2 * hh - 1] * PetscSinReal(hh * th) + Xo[2 * hh] * PetscCosReal(hh * th);
+        lo = PetscMin(lo, v);
+        hi = PetscMax(hi, v);
+      }
+      pp[o] = 0.5 * (hi - lo);
+    }
+  }
+  PetscCall(VecRestoreArrayRead(a, &x));
+  PetscCall(PetscFree(Xo));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMEnergy - energy per cycle [J]: Win put in by the excitation, Edamp dissipated by the linear
+  damping, Enl dissipated by the elements (integral of f du over a cycle, summed; collective).
+  At a solution Win = Edamp + Enl (energy balance).
+*/
+PetscErrorCode JRHBMEnergy(JRHBM h, PetscReal w, Vec a, PetscReal *Win, PetscReal *Edamp, PetscReal *Enl)
+{
+  const PetscScalar *x;
+  const PetscInt     nm = h->nm, nc = h->nc;
+  PetscReal          ein = 0.0, ed = 0.0, enl = 0.0, tot;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(a, &x));
+  /* excitation F fm sin(w t) on the modal coordinates: W = pi (as . Fc - ac . Fs) = -pi F fm . ac_1 */
+  for (PetscInt i = 0; i < nm; i++) ein += -PETSC_PI * h->level * h->fm[i] * PetscRealPart(x[2 * nm + i]);
+  /* linear damping force B_h a with B_h = gamma Km + h w Cm: W = pi h (as.B as + ac.B ac) */
+  for (PetscInt hh = 1; 2 * hh < nc; hh++) {
+    const PetscScalar *as = x + (2 * hh - 1) * nm, *ac = x + 2 * hh * nm;
+    for (PetscInt i = 0; i < nm; i++)
+      for (PetscInt j = 0; j < nm; j++) {
+        const PetscReal b = h->gamma * h->Km[i * nm + j] + hh * w * h->Cm[i * nm + j];
+        ed += PETSC_PI * hh * b * (PetscRealPart(as[i]) * PetscRealPart(as[j]) + PetscRealPart(ac[i]) * PetscRealPart(ac[j]));
+      }
+  }
+  /* elements: sum of the work of f through u (and of the normal load through v) */
+  h->cache_ok = PETSC_FALSE;
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    HBMGroup *g = &h->g[t];
+    if (!g->nloc) continue;
+    PetscCall(Gemm("N", "N", g->nloc, nc, nm, 1.0, g->R, g->nloc, x, nm, 0.0, g->U, g->nloc));
+    if (g->normal) PetscCall(Gemm("N", "N", g->nloc, nc, nm, 1.0, g->S, g->nloc, x, nm, 0.0, g->V, g->nloc));
+    PetscCall(JRContactEvaluate(g->c, g->U, g->V, g->F, g->normal ? g->N : NULL, NULL, NULL, NULL, NULL));
+    for (PetscInt e = 0; e < g->nloc; e++)
+      for (PetscInt hh = 1; 2 * hh < nc; hh++) {
+        enl += PETSC_PI * hh * (g->U[(2 * hh - 1) * g->nloc + e] * g->F[2 * hh * g->nloc + e] - g->U[2 * hh * g->nloc + e] * g->F[(2 * hh - 1) * g->nloc + e]);
+        if (g->normal) enl += PETSC_PI * hh * (g->V[(2 * hh - 1) * g->nloc + e] * g->N[2 * hh * g->nloc + e] - g->V[2 * hh * g->nloc + e] * g->N[(2 * hh - 1) * g->nloc + e]);
+      }
+  }
+  PetscCall(VecRestoreArrayRead(a, &x));
+  PetscCallMPI(MPI_Reduce(&enl, &tot, 1, MPIU_REAL, MPIU_SUM, 0, h->comm));
+  PetscCallMPI(MPI_Bcast(&tot, 1, MPIU_REAL, 0, h->comm));
+  *Win   = ein;
+  *Edamp = ed;
+  *Enl   = tot;
+  PetscFunctionReturn(0);
+}
+
+/* How many elements are in each contact state at the solution a (collective, every rank) */
+PetscErrorCode JRHBMContactStates(JRHBM h, Vec a, PetscInt count[4])
+{
+  const PetscScalar *x;
+  PetscInt           loc[4] = {0, 0, 0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(a, &x));
+  h->cache_ok = PETSC_FALSE;
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    HBMGroup *g = &h->g[t];
+    if (!g->nloc) continue;
+    PetscCall(Gemm("N", "N", g->nloc, h->nc, h->nm, 1.0, g->R, g->nloc, x, h->nm, 0.0, g->U, g->nloc));
+    if (g->normal) PetscCall(Gemm("N", "N", g->nloc, h->nc, h->nm, 1.0, g->S, g->nloc, x, h->nm, 0.0, g->V, g->nloc));
+    PetscCall(JRContactEvaluate(g->c, g->U, g->V, NULL, NULL, NULL, NULL, NULL, g->state));
+    for (PetscInt e = 0; e < g->nloc; e++) loc[g->state[e]]++;
+  }
+  PetscCall(VecRestoreArrayRead(a, &x));
+  PetscCall(MPIU_Allreduce(loc, count, 4, MPIU_INT, MPI_SUM, h->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRHBMView(JRHBM h, PetscViewer viewer)
+{
+  PetscFunctionBeginUser;
+  if (!viewer) PetscCall(PetscViewerASCIIGetStdout(h->comm, &viewer));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "JRHBM: %" PetscInt_FMT " harmonics + mean, %s, %" PetscInt_FMT " unknowns, %s Jacobian, %d rank(s)\n", h->H, h->physical ? "physical coordinates" : "modal coordinates", h->n, JRHBMJacobianTypes[h->jtype], h->size));
+  if (!h->physical) PetscCall(PetscViewerASCIIPrintf(viewer, "  %" PetscInt_FMT " modes, %.6g .. %.6g Hz\n", h->nm, (double)(h->omega_r[0] / (2 * PETSC_PI)), (double)(h->omega_r[h->nm - 1] / (2 * PETSC_PI))));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  damping: %s\n", h->damping));
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    PetscInt nt;
+    PetscCall(MPIU_Allreduce(&h->g[t].nloc, &nt, 1, MPIU_INT, MPI_SUM, h->comm));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  %" PetscInt_FMT " %s elements\n", nt, h->g[t].c->type_name));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRHBMDestroy(JRHBM *hbm)
+{
+  JRHBM h = *hbm;
+
+  PetscFunctionBeginUser;
+  if (!h) PetscFunctionReturn(0);
+  for (PetscInt t = 0; t < h->ngroups; t++) PetscCall(GroupDestroy(&h->g[t]));
+  PetscCall(PetscFree(h->g));
+  PetscCall(JRModesDestroy(&h->modes));
+  PetscCall(PetscFree3(h->Km, h->Mm, h->Cm));
+  PetscCall(PetscFree(h->omega_r));
+  PetscCall(PetscFree(h->outdof));
+  PetscCall(PetscFree(h->fm));
+  PetscCall(PetscFree(h->Phiout));
+  PetscCall(PetscFree(h->buf));
+  PetscCall(PetscFree(h->cache_a));
+  PetscCall(SNESDestroy(&h->snes));
+  PetscCall(MatDestroy(&h->J));
+  PetscCall(VecDestroy(&h->r));
+  PetscCall(PetscFree(h));
+  *hbm = NULL;
+  PetscFunctionReturn(0);
+}

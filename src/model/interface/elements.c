@@ -1,0 +1,103 @@
+/*
+   The element table of a model (CSV, one element per row), header
+     type,dof_a,dof_b,kt,kn,mu,n0,ndof_a,ndof_b
+   type: jenkins, jenkins_nv or cubic; DOFs 0-based, -1 = ground; u = x[dof_a] - x[dof_b],
+   v = x[ndof_a] - x[ndof_b] (jenkins_nv only, empty otherwise). kt [N/m] (cubic: [N/m^3], any sign),
+   kn [N/m], mu [-], n0 [N]. Every error names the file and the line.
+*/
+#include <jointrom/private/modelimpl.h>
+
+static PetscErrorCode ParseDof(MPI_Comm comm, JRTable t, const char *col, PetscInt row, PetscInt ndof, PetscBool required, PetscInt *dof)
+{
+  const char *s, *file;
+  char       *end;
+  long        v;
+  PetscInt    line;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRTableGetString(t, col, row, &s));
+  PetscCall(JRTableGetLine(t, row, &line));
+  PetscCall(JRTableGetFileName(t, &file));
+  if (!*s) {
+    PetscCheck(!required, comm, PETSC_ERR_FILE_UNEXPECTED, "Element file %s line %" PetscInt_FMT ": column '%s' is empty", file, line, col);
+    *dof = -1;
+    PetscFunctionReturn(0);
+  }
+  v = strtol(s, &end, 10);
+  PetscCheck(end != s && !*end, comm, PETSC_ERR_FILE_UNEXPECTED, "Element file %s line %" PetscInt_FMT ": column '%s' is '%s', not a DOF number", file, line, col, s);
+  PetscCheck(v >= -1 && v < ndof, comm, PETSC_ERR_FILE_UNEXPECTED, "Element file %s line %" PetscInt_FMT ": %s = %ld is out of range: DOFs are 0..%" PetscInt_FMT " (-1 = ground)", file, line, col, v, ndof - 1);
+  *dof = (PetscInt)v;
+  PetscFunctionReturn(0);
+}
+
+/* Read and check the element table against a model with ndof DOFs */
+PetscErrorCode JRElementsReadCSV(MPI_Comm comm, const char file[], PetscInt ndof, JRElements *el)
+{
+  JRTable     t;
+  PetscInt    n, line;
+  const char *known[] = {JRCONTACTJENKINS, JRCONTACTJENKINSNV, JRCONTACTCUBIC};
+
+  PetscFunctionBeginUser;
+  PetscCall(JRElementsDestroy(el));
+  PetscCall(JRTableRead(comm, file, &t));
+  PetscCall(JRTableGetSize(t, &n, NULL));
+  {
+    const char *need[] = {"type", "dof_a", "dof_b", "kt", "mu", "n0"};
+    for (size_t i = 0; i < sizeof(need) / sizeof(need[0]); i++) {
+      PetscBool has;
+      PetscCall(JRTableHasColumn(t, need[i], &has));
+      PetscCheck(has, comm, PETSC_ERR_FILE_UNEXPECTED, "Element file %s has no column '%s' (header: type,dof_a,dof_b,kt,kn,mu,n0,ndof_a,ndof_b)", file, need[i]);
+    }
+  }
+  el->n = n;
+  PetscCall(PetscMalloc5(n, &el->type, n, &el->dof_a, n, &el->dof_b, n, &el->ndof_a, n, &el->ndof_b));
+  PetscCall(PetscMalloc4(n, &el->kt, n, &el->kn, n, &el->mu, n, &el->n0));
+  PetscCall(JRTableGetColumn(t, "kt", PETSC_TRUE, 0.0, el->kt));
+  PetscCall(JRTableGetColumn(t, "kn", PETSC_FALSE, 0.0, el->kn));
+  PetscCall(JRTableGetColumn(t, "mu", PETSC_FALSE, 0.0, el->mu));
+  PetscCall(JRTableGetColumn(t, "n0", PETSC_FALSE, 0.0, el->n0));
+  for (PetscInt e = 0; e < n; e++) {
+    const char *ty;
+    PetscInt    k = -1;
+    PetscCall(JRTableGetLine(t, e, &line));
+    PetscCall(JRTableGetString(t, "type", e, &ty));
+    for (size_t i = 0; i < sizeof(known) / sizeof(known[0]); i++)
+      if (!strcmp(ty, known[i])) k = (PetscInt)i;
+    PetscCheck(k >= 0, comm, PETSC_ERR_FILE_UNEXPECTED, "Element file %s line %" PetscInt_FMT ": unknown element type '%s' (jenkins, jenkins_nv or cubic)", file, line, ty);
+    /* index into the list of types present */
+    {
+      PetscInt idx = -1;
+      for (PetscInt i = 0; i < el->ntypes; i++)
+        if (!strcmp(el->typename[i], ty)) idx = i;
+      if (idx < 0) {
+        idx = el->ntypes++;
+        PetscCall(PetscStrncpy(el->typename[idx], ty, sizeof(el->typename[idx])));
+      }
+      el->type[e] = idx;
+    }
+    PetscCall(ParseDof(comm, t, "dof_a", e, ndof, PETSC_TRUE, &el->dof_a[e]));
+    PetscCall(ParseDof(comm, t, "dof_b", e, ndof, PETSC_TRUE, &el->dof_b[e]));
+    PetscCheck(el->dof_a[e] != el->dof_b[e], comm, PETSC_ERR_FILE_UNEXPECTED, "Element file %s line %" PetscInt_FMT ": dof_a and dof_b are both %" PetscInt_FMT " (an element joins two different DOFs, or one DOF to ground -1)", file, line, el->dof_a[e]);
+    PetscCall(ParseDof(comm, t, "ndof_a", e, ndof, PETSC_FALSE, &el->ndof_a[e]));
+    PetscCall(ParseDof(comm, t, "ndof_b", e, ndof, PETSC_FALSE, &el->ndof_b[e]));
+    if (k == 1) PetscCheck(el->ndof_a[e] != el->ndof_b[e], comm, PETSC_ERR_FILE_UNEXPECTED, "Element file %s line %" PetscInt_FMT ": a jenkins_nv element needs normal DOFs ndof_a, ndof_b (two different DOFs, or one and -1 = ground)", file, line);
+    else PetscCheck(el->ndof_a[e] < 0 && el->ndof_b[e] < 0, comm, PETSC_ERR_FILE_UNEXPECTED, "Element file %s line %" PetscInt_FMT ": normal DOFs are only for jenkins_nv elements; leave ndof_a, ndof_b empty for %s", file, line, ty);
+    PetscCheck(PetscIsNormalReal(el->kt[e]) && (el->kt[e] > 0.0 || k == 2), comm, PETSC_ERR_FILE_UNEXPECTED, "Element file %s line %" PetscInt_FMT ": kt = %g must be positive [N/m]", file, line, (double)el->kt[e]);
+    PetscCheck(!PetscIsInfOrNanReal(el->kn[e]) && el->kn[e] >= 0.0, comm, PETSC_ERR_FILE_UNEXPECTED, "Element file %s line %" PetscInt_FMT ": kn = %g must be non-negative [N/m]", file, line, (double)el->kn[e]);
+    PetscCheck(!PetscIsInfOrNanReal(el->mu[e]) && el->mu[e] >= 0.0, comm, PETSC_ERR_FILE_UNEXPECTED, "Element file %s line %" PetscInt_FMT ": mu = %g must be non-negative", file, line, (double)el->mu[e]);
+    PetscCheck(!PetscIsInfOrNanReal(el->n0[e]) && (el->n0[e] >= 0.0 || k == 1), comm, PETSC_ERR_FILE_UNEXPECTED, "Element file %s line %" PetscInt_FMT ": n0 = %g must be finite%s [N]", file, line, (double)el->n0[e], k == 1 ? "" : " and non-negative (initial gaps need jenkins_nv)");
+  }
+  PetscCall(JRTableDestroy(&t));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRElementsDestroy(JRElements *el)
+{
+  PetscFunctionBeginUser;
+  if (el->n || el->type) {
+    PetscCall(PetscFree5(el->type, el->dof_a, el->dof_b, el->ndof_a, el->ndof_b));
+    PetscCall(PetscFree4(el->kt, el->kn, el->mu, el->n0));
+  }
+  PetscCall(PetscMemzero(el, sizeof(*el)));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,199 @@
+/*
+   JRModel: the linear structure (stiffness K, mass M, optional viscous damping C, assembled MPIAIJ)
+   and its contact elements. Types: matrices (files from any FE code); the built-in FE geometries
+   come with later stages.
+*/
+#include <jointrom/private/modelimpl.h>
+
+PetscFunctionList JRModelList = NULL;
+
+PetscErrorCode JRModelRegister(const char name[], PetscErrorCode (*create)(JRModel))
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFunctionListAdd(&JRModelList, name, create));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRModelRegisterAll(void)
+{
+  PetscFunctionBeginUser;
+  if (JRModelList) PetscFunctionReturn(0);
+  PetscCall(JRModelRegister(JRMODELMATRICES, JRModelCreate_Matrices));
+  PetscFunctionReturn(0);
+}
+
+/* Create an empty model */
+PetscErrorCode JRModelCreate(MPI_Comm comm, JRModel *model)
+{
+  JRModel m;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRInitializePackage());
+  PetscCall(PetscNew(&m));
+  m->comm = comm;
+  *model  = m;
+  PetscFunctionReturn(0);
+}
+
+/* Set the model type (-model_type matrices) */
+PetscErrorCode JRModelSetType(JRModel m, JRModelType type)
+{
+  PetscErrorCode (*create)(JRModel) = NULL;
+  PetscBool match;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelRegisterAll());
+  PetscCall(PetscStrcmp(m->type_name, type, &match));
+  if (match) PetscFunctionReturn(0);
+  PetscCall(PetscFunctionListFind(JRModelList, type, &create));
+  PetscCheck(create, m->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown model type '%s' (-model_type): available: matrices", type);
+  if (m->ops->destroy) PetscCall((*m->ops->destroy)(m));
+  PetscCall(PetscMemzero(m->ops, sizeof(struct _JRModelOps)));
+  m->data = NULL;
+  PetscCall(PetscStrncpy(m->type_name, type, sizeof(m->type_name)));
+  PetscCall((*create)(m));
+  m->setupcalled = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* Options: -model_type, -model_view, and the type's own */
+PetscErrorCode JRModelSetFromOptions(JRModel m)
+{
+  char      type[64];
+  PetscBool flg;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelRegisterAll());
+  PetscOptionsBegin(m->comm, NULL, "Structural model", "JRModel");
+  PetscCall(PetscOptionsFList("-model_type", "Model: matrices (K, M, C and elements from files)", "JRModelSetType", JRModelList, m->type_name[0] ? m->type_name : JRMODELMATRICES, type, sizeof(type), &flg));
+  if (flg || !m->type_name[0]) PetscCall(JRModelSetType(m, flg ? type : JRMODELMATRICES));
+  PetscCall(PetscOptionsBool("-model_view", "Print the model (DOFs, matrices, elements) after set-up", "JRModelView", m->view, &m->view, NULL));
+  if (m->ops->setfromoptions) PetscCall((*m->ops->setfromoptions)(m, PetscOptionsObject));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+/* Build or load the model; a second call does nothing */
+PetscErrorCode JRModelSetUp(JRModel m)
+{
+  PetscFunctionBeginUser;
+  if (m->setupcalled) PetscFunctionReturn(0);
+  if (!m->type_name[0]) PetscCall(JRModelSetType(m, JRMODELMATRICES));
+  PetscCall(PetscLogEventBegin(JR_ModelLoad, 0, 0, 0, 0));
+  PetscCall((*m->ops->setup)(m));
+  PetscCall(PetscLogEventEnd(JR_ModelLoad, 0, 0, 0, 0));
+  m->setupcalled = PETSC_TRUE;
+  if (m->view) PetscCall(JRModelView(m, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* Give K, M and optionally C directly (type matrices, instead of files); references are kept */
+PetscErrorCode JRModelSetMatrices(JRModel m, Mat K, Mat M, Mat C)
+{
+  PetscInt nk, nm;
+
+  PetscFunctionBeginUser;
+  if (!m->type_name[0]) PetscCall(JRModelSetType(m, JRMODELMATRICES));
+  PetscCall(MatGetSize(K, &nk, NULL));
+  PetscCall(MatGetSize(M, &nm, NULL));
+  PetscCheck(nk == nm, m->comm, PETSC_ERR_ARG_SIZ, "K is %" PetscInt_FMT " x %" PetscInt_FMT " but M is %" PetscInt_FMT " x %" PetscInt_FMT, nk, nk, nm, nm);
+  PetscCall(PetscObjectReference((PetscObject)K));
+  PetscCall(PetscObjectReference((PetscObject)M));
+  if (C) PetscCall(PetscObjectReference((PetscObject)C));
+  PetscCall(MatDestroy(&m->K));
+  PetscCall(MatDestroy(&m->M));
+  PetscCall(MatDestroy(&m->C));
+  m->K    = K;
+  m->M    = M;
+  m->C    = C;
+  m->ndof = nk;
+  PetscFunctionReturn(0);
+}
+
+/* Copy an element table into the model (the DOFs are checked at set-up) */
+PetscErrorCode JRModelSetElements(JRModel m, const JRElements *el)
+{
+  const PetscInt n = el->n;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRElementsDestroy(&m->el));
+  m->el.n      = n;
+  m->el.ntypes = el->ntypes;
+  for (PetscInt t = 0; t < el->ntypes; t++) PetscCall(PetscStrncpy(m->el.typename[t], el->typename[t], sizeof(m->el.typename[t])));
+  PetscCall(PetscMalloc5(n, &m->el.type, n, &m->el.dof_a, n, &m->el.dof_b, n, &m->el.ndof_a, n, &m->el.ndof_b));
+  PetscCall(PetscMalloc4(n, &m->el.kt, n, &m->el.kn, n, &m->el.mu, n, &m->el.n0));
+  PetscCall(PetscArraycpy(m->el.type, el->type, n));
+  PetscCall(PetscArraycpy(m->el.dof_a, el->dof_a, n));
+  PetscCall(PetscArraycpy(m->el.dof_b, el->dof_b, n));
+  PetscCall(PetscArraycpy(m->el.ndof_a, el->ndof_a, n));
+  PetscCall(PetscArraycpy(m->el.ndof_b, el->ndof_b, n));
+  PetscCall(PetscArraycpy(m->el.kt, el->kt, n));
+  PetscCall(PetscArraycpy(m->el.kn, el->kn, n));
+  PetscCall(PetscArraycpy(m->el.mu, el->mu, n));
+  PetscCall(PetscArraycpy(m->el.n0, el->n0, n));
+  m->el_given = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* Stiffness, mass and damping (NULL if none); borrowed references */
+PetscErrorCode JRModelGetMatrices(JRModel m, Mat *K, Mat *M, Mat *C)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRModelSetUp(m));
+  if (K) *K = m->K;
+  if (M) *M = m->M;
+  if (C) *C = m->C;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRModelGetNumDofs(JRModel m, PetscInt *n)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRModelSetUp(m));
+  *n = m->ndof;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRModelGetElements(JRModel m, const JRElements **el)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRModelSetUp(m));
+  *el = &m->el;
+  PetscFunctionReturn(0);
+}
+
+/* Print DOFs, matrix sizes, the damping given, and the element counts per type */
+PetscErrorCode JRModelView(JRModel m, PetscViewer viewer)
+{
+  PetscBool iascii;
+
+  PetscFunctionBeginUser;
+  if (!viewer) PetscCall(PetscViewerASCIIGetStdout(m->comm, &viewer));
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &iascii));
+  if (!iascii) PetscFunctionReturn(0);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "JRModel: type %s, %" PetscInt_FMT " DOFs, viscous damping matrix %s\n", m->type_name, m->ndof, m->C ? "given" : "none"));
+  for (PetscInt t = 0; t < m->el.ntypes; t++) {
+    PetscInt cnt = 0;
+    for (PetscInt e = 0; e < m->el.n; e++) cnt += m->el.type[e] == t;
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  elements: %" PetscInt_FMT " %s\n", cnt, m->el.typename[t]));
+  }
+  if (!m->el.n) PetscCall(PetscViewerASCIIPrintf(viewer, "  elements: none (linear structure)\n"));
+  if (m->ops->view) PetscCall((*m->ops->view)(m, viewer));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRModelDestroy(JRModel *model)
+{
+  JRModel m = *model;
+
+  PetscFunctionBeginUser;
+  if (!m) PetscFunctionReturn(0);
+  if (m->ops->destroy) PetscCall((*m->ops->destroy)(m));
+  PetscCall(MatDestroy(&m->K));
+  PetscCall(MatDestroy(&m->M));
+  PetscCall(MatDestroy(&m->C));
+  PetscCall(JRElementsDestroy(&m->el));
+  PetscCall(PetscFree(m));
+  *model = NULL;
+  PetscFunctionReturn(0);
+}

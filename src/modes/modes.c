@@ -1,0 +1,249 @@
+/*
+   JRModes: the lowest modes of K phi = omega^2 M phi (generalised Hermitian), mass-normalised
+   (phi^T M phi = 1), ascending. SLEPc EPS with prefix modes_: shift-and-invert about a target just
+   below zero (so that a singular, free-free K is fine) with a direct solver (MUMPS); or every mode by
+   dense LAPACK for small systems (-modes_nev equal to the number of DOFs).
+   Options: -modes_nev n, -modes_target t [rad^2/s^2], -modes_view, and every -modes_eps_*, -modes_st_*.
+*/
+#include <jointrom/private/modelimpl.h>
+
+PetscErrorCode JRModesCreate(MPI_Comm comm, JRModes *modes)
+{
+  JRModes md;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRInitializePackage());
+  PetscCall(PetscNew(&md));
+  md->comm = comm;
+  md->nev  = 10;
+  *modes   = md;
+  PetscFunctionReturn(0);
+}
+
+/* The stiffness and mass matrices (references kept) */
+PetscErrorCode JRModesSetOperators(JRModes md, Mat K, Mat M)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectReference((PetscObject)K));
+  PetscCall(PetscObjectReference((PetscObject)M));
+  PetscCall(MatDestroy(&md->K));
+  PetscCall(MatDestroy(&md->M));
+  md->K = K;
+  md->M = M;
+  PetscFunctionReturn(0);
+}
+
+/* How many modes (the lowest); -modes_nev */
+PetscErrorCode JRModesSetNumber(JRModes md, PetscInt nev)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(nev >= 1, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "Number of modes %" PetscInt_FMT " must be at least 1", nev);
+  md->nev = nev;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRModesSetFromOptions(JRModes md)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(md->comm, "modes_", "Linear modes (SLEPc EPS, prefix modes_)", "JRModes");
+  PetscCall(PetscOptionsInt("-nev", "Number of modes (the lowest)", "JRModesSetNumber", md->nev, &md->nev, NULL));
+  PetscCall(PetscOptionsReal("-target", "Shift for shift-and-invert [rad^2/s^2] (default: slightly below zero)", "JRModesSolve", md->target, &md->target, &md->target_set));
+  PetscCall(PetscOptionsBool("-view", "Print the natural frequencies", "JRModesView", md->view, &md->view, NULL));
+  PetscOptionsEnd();
+  PetscCheck(md->nev >= 1, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_nev %" PetscInt_FMT ": at least one mode", md->nev);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ClearModes(JRModes md)
+{
+  PetscFunctionBeginUser;
+  if (md->phi) PetscCall(VecDestroyVecs(md->nm, &md->phi));
+  PetscCall(PetscFree(md->lambda));
+  md->nm = 0;
+  PetscFunctionReturn(0);
+}
+
+/* Solve for the nev lowest modes; mass-normalise and sort them */
+PetscErrorCode JRModesSolve(JRModes md)
+{
+  PetscInt  n, nconv, *perm;
+  Vec       x, Mx;
+  PetscReal *lam;
+  Vec       *vecs;
+  ST         st;
+  KSP        ksp;
+  PC         pc;
+  PetscBool  dense;
+
+  PetscFunctionBeginUser;
+  PetscCheck(md->K && md->M, md->comm, PETSC_ERR_ARG_WRONGSTATE, "JRModesSetOperators() first");
+  PetscCall(ClearModes(md));
+  PetscCall(MatGetSize(md->K, &n, NULL));
+  PetscCheck(md->nev <= n, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "%" PetscInt_FMT " modes requested (-modes_nev or -hbm_modes), the model has %" PetscInt_FMT " DOFs", md->nev, n);
+  PetscCall(PetscLogEventBegin(JR_ModesSolve, 0, 0, 0, 0));
+  PetscCall(EPSDestroy(&md->eps));
+  PetscCall(EPSCreate(md->comm, &md->eps));
+  PetscCall(EPSSetOptionsPrefix(md->eps, "modes_"));
+  PetscCall(EPSSetOperators(md->eps, md->K, md->M));
+  PetscCall(EPSSetProblemType(md->eps, EPS_GHEP));
+  dense = (PetscBool)(2 * md->nev > n || n <= 64);
+  if (dense) { /* every mode (or most of them) of a small system: dense LAPACK */
+    PetscCall(EPSSetType(md->eps, EPSLAPACK));
+    PetscCall(EPSSetWhichEigenpairs(md->eps, EPS_SMALLEST_REAL));
+    PetscCall(EPSSetDimensions(md->eps, n, PETSC_DEFAULT, PETSC_DEFAULT));
+  } else {
+    if (!md->target_set) { /* a little below zero: free-free structures have a singular K */
+      PetscReal kd, md_;
+      Vec       d;
+      PetscCall(MatCreateVecs(md->K, &d, NULL));
+      PetscCall(MatGetDiagonal(md->K, d));
+      PetscCall(VecNorm(d, NORM_1, &kd));
+      PetscCall(MatGetDiagonal(md->M, d));
+      PetscCall(VecNorm(d, NORM_1, &md_));
+      PetscCall(VecDestroy(&d));
+      md->target = md_ > 0 ? -1e-6 * kd / md_ : -1.0;
+    }
+    PetscCall(EPSSetDimensions(md->eps, md->nev, PETSC_DEFAULT, PETSC_DEFAULT));
+    PetscCall(EPSSetTarget(md->eps, md->target));
+    PetscCall(EPSSetWhichEigenpairs(md->eps, EPS_TARGET_MAGNITUDE));
+    PetscCall(EPSGetST(md->eps, &st));
+    PetscCall(STSetType(st, STSINVERT));
+    PetscCall(STGetKSP(st, &ksp));
+    PetscCall(KSPSetType(ksp, KSPPREONLY));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCSetType(pc, PCLU));
+#if defined(PETSC_HAVE_MUMPS)
+    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+#endif
+  }
+  PetscCall(EPSSetFromOptions(md->eps));
+  PetscCall(EPSSolve(md->eps));
+  PetscCall(EPSGetConverged(md->eps, &nconv));
+  PetscCheck(nconv >= md->nev, md->comm, PETSC_ERR_NOT_CONVERGED, "Only %" PetscInt_FMT " of %" PetscInt_FMT " modes converged (tune -modes_eps_* or -modes_target)", nconv, md->nev);
+  nconv = PetscMin(nconv, dense ? n : nconv);
+  PetscCall(PetscMalloc2(nconv, &lam, nconv, &perm));
+  PetscCall(MatCreateVecs(md->K, &x, &Mx));
+  PetscCall(VecDuplicateVecs(x, nconv, &vecs));
+  for (PetscInt i = 0; i < nconv; i++) {
+    PetscScalar kr;
+    PetscCall(EPSGetEigenpair(md->eps, i, &kr, NULL, vecs[i], NULL));
+    lam[i]  = PetscRealPart(kr);
+    perm[i] = i;
+  }
+  PetscCall(PetscSortRealWithPermutation(nconv, lam, perm));
+  md->nm = md->nev;
+  PetscCall(PetscMalloc1(md->nm, &md->lambda));
+  PetscCall(VecDuplicateVecs(x, md->nm, &md->phi));
+  for (PetscInt i = 0; i < md->nm; i++) {
+    PetscScalar mm;
+    md->lambda[i] = lam[perm[i]];
+    PetscCall(VecCopy(vecs[perm[i]], md->phi[i]));
+    PetscCall(MatMult(md->M, md->phi[i], Mx));
+    PetscCall(VecDot(md->phi[i], Mx, &mm));
+    PetscCheck(PetscRealPart(mm) > 0.0, md->comm, PETSC_ERR_NOT_CONVERGED, "Mode %" PetscInt_FMT " has non-positive modal mass %g: is M positive definite?", i, (double)PetscRealPart(mm));
+    PetscCall(VecScale(md->phi[i], 1.0 / PetscSqrtReal(PetscRealPart(mm))));
+  }
+  PetscCall(VecDestroyVecs(nconv, &vecs));
+  PetscCall(VecDestroy(&x));
+  PetscCall(VecDestroy(&Mx));
+  PetscCall(PetscFree2(lam, perm));
+  PetscCall(PetscLogEventEnd(JR_ModesSolve, 0, 0, 0, 0));
+  if (md->view) PetscCall(JRModesView(md, NULL));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRModesGetNumber(JRModes md, PetscInt *nm)
+{
+  PetscFunctionBeginUser;
+  *nm = md->nm;
+  PetscFunctionReturn(0);
+}
+
+/* omega_r^2 [rad^2/s^2], ascending (borrowed) */
+PetscErrorCode JRModesGetEigenvalues(JRModes md, const PetscReal **lambda)
+{
+  PetscFunctionBeginUser;
+  *lambda = md->lambda;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRModesGetRows - rows[i*nm + r] = phi_r[dofs[i]] for the nrows DOFs asked (0 for dof -1), on
+  every rank for its own list (collective).
+*/
+PetscErrorCode JRModesGetRows(JRModes md, PetscInt nrows, const PetscInt dofs[], PetscReal rows[])
+{
+  PetscInt          *idx, nv = 0, *pos;
+  IS                 is;
+  Vec                loc;
+  VecScatter         sc;
+  const PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(nrows, &idx, nrows, &pos));
+  for (PetscInt i = 0; i < nrows; i++)
+    if (dofs[i] >= 0) {
+      pos[nv]   = i;
+      idx[nv++] = dofs[i];
+    }
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, nv, idx, PETSC_USE_POINTER, &is));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, nv, &loc));
+  PetscCall(VecScatterCreate(md->phi[0], is, loc, NULL, &sc));
+  for (PetscInt i = 0; i < nrows * md->nm; i++) rows[i] = 0.0;
+  for (PetscInt r = 0; r < md->nm; r++) {
+    PetscCall(VecScatterBegin(sc, md->phi[r], loc, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(sc, md->phi[r], loc, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecGetArrayRead(loc, &a));
+    for (PetscInt k = 0; k < nv; k++) rows[pos[k] * md->nm + r] = PetscRealPart(a[k]);
+    PetscCall(VecRestoreArrayRead(loc, &a));
+  }
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecDestroy(&loc));
+  PetscCall(ISDestroy(&is));
+  PetscCall(PetscFree2(idx, pos));
+  PetscFunctionReturn(0);
+}
+
+/* Am = Phi^T A Phi (nm x nm, row-major, on every rank) */
+PetscErrorCode JRModesProject(JRModes md, Mat A, PetscReal Am[])
+{
+  Vec          y;
+  PetscScalar *d;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(md->phi[0], &y));
+  PetscCall(PetscMalloc1(md->nm, &d));
+  for (PetscInt r = 0; r < md->nm; r++) {
+    PetscCall(MatMult(A, md->phi[r], y));
+    PetscCall(VecMDot(y, md->nm, md->phi, d));
+    for (PetscInt s = 0; s < md->nm; s++) Am[s * md->nm + r] = PetscRealPart(d[s]);
+  }
+  PetscCall(PetscFree(d));
+  PetscCall(VecDestroy(&y));
+  PetscFunctionReturn(0);
+}
+
+/* Natural frequencies [Hz] */
+PetscErrorCode JRModesView(JRModes md, PetscViewer viewer)
+{
+  PetscFunctionBeginUser;
+  if (!viewer) PetscCall(PetscViewerASCIIGetStdout(md->comm, &viewer));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "JRModes: %" PetscInt_FMT " modes, natural frequencies [Hz]:\n", md->nm));
+  for (PetscInt r = 0; r < md->nm; r++) PetscCall(PetscViewerASCIIPrintf(viewer, "  mode %3" PetscInt_FMT "  %.6g\n", r + 1, (double)(PetscSqrtReal(PetscMax(md->lambda[r], 0.0)) / (2.0 * PETSC_PI))));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRModesDestroy(JRModes *modes)
+{
+  JRModes md = *modes;
+
+  PetscFunctionBeginUser;
+  if (!md) PetscFunctionReturn(0);
+  PetscCall(ClearModes(md));
+  PetscCall(EPSDestroy(&md->eps));
+  PetscCall(MatDestroy(&md->K));
+  PetscCall(MatDestroy(&md->M));
+  PetscCall(PetscFree(md));
+  *modes = NULL;
+  PetscFunctionReturn(0);
+}

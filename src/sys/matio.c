@@ -1,0 +1,377 @@
+/*
+   Matrices and vectors from files, chosen by extension:
+     .mtx             Matrix Market, coordinate real/integer, general or symmetric (read on rank 0,
+                      broadcast, each rank inserts its rows with exact preallocation)
+     .bin .dat .petsc PETSc binary (MatLoad / VecLoad)
+     .h5  .hdf5       HDF5 in the MATLAB v7.3 sparse layout that PETSc's MatLoad reads: a group with
+                      datasets jc, ir, data and attribute MATLAB_sparse = size, taken as compressed rows
+                      (jc row pointers, ir column indices). MATLAB itself stores compressed columns, so a
+                      matrix saved by MATLAB arrives transposed: the same matrix for the symmetric K, M, C.
+                      "file.h5:/name" picks the group; the default name is given by the caller (K, M, C).
+   Vectors (forces): .bin, .h5 (dataset "f" or file.h5:/name), or text (.csv, .txt): one value per
+   line, '#' comments, an optional header line.
+*/
+#include <jointrom.h>
+#include <petscviewerhdf5.h>
+#include <hdf5.h>
+#include <errno.h>
+#include <ctype.h>
+
+static PetscErrorCode Extension(const char file[], char ext[], size_t len)
+{
+  const char *dot = strrchr(file, '.'), *slash = strrchr(file, '/');
+
+  PetscFunctionBeginUser;
+  ext[0] = 0;
+  if (dot && (!slash || dot > slash)) {
+    PetscCall(PetscStrncpy(ext, dot + 1, len));
+    for (char *c = ext; *c; c++) *c = (char)tolower((unsigned char)*c);
+    {
+      char *colon = strchr(ext, ':'); /* file.h5:/group */
+      if (colon) *colon = 0;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Split "file.h5:/group" into file and group (group default def) */
+static PetscErrorCode SplitGroup(const char spec[], const char def[], char file[], size_t flen, char group[], size_t glen)
+{
+  const char *colon = strstr(spec, ".h5:");
+  size_t      cut;
+
+  PetscFunctionBeginUser;
+  if (!colon) colon = strstr(spec, ".hdf5:");
+  if (colon) {
+    cut = (size_t)(strchr(colon, ':') - spec);
+    PetscCall(PetscStrncpy(file, spec, PetscMin(flen, cut + 1)));
+    PetscCall(PetscStrncpy(group, strchr(colon, ':') + 1, glen));
+    if (group[0] == '/') memmove(group, group + 1, strlen(group));
+  } else {
+    PetscCall(PetscStrncpy(file, spec, flen));
+    PetscCall(PetscStrncpy(group, def, glen));
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FileReadable(MPI_Comm comm, const char file[], const char what[])
+{
+  PetscBool ok;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTestFile(file, 'r', &ok));
+  PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "Cannot open %s file %s", what, file);
+  PetscFunctionReturn(0);
+}
+
+/* Matrix Market coordinate file -> MPIAIJ */
+static PetscErrorCode LoadMtx(MPI_Comm comm, const char file[], Mat *A)
+{
+  PetscMPIInt rank;
+  PetscInt    m = 0, n = 0, nz = 0, sym = 0, err = 0, errline = 0;
+  PetscInt   *ii = NULL, *jj = NULL, rstart, rend, *dnz, *onz, cstart, cend;
+  PetscReal  *vv = NULL;
+  char        msg[256] = "";
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) {
+    FILE *fp = fopen(file, "r");
+    char  line[1024];
+    long  lineno = 0;
+    if (!fp) err = 1;
+    else {
+      if (!fgets(line, sizeof(line), fp)) err = 2;
+      else {
+        lineno = 1;
+        for (char *c = line; *c; c++) *c = (char)tolower((unsigned char)*c);
+        if (strncmp(line, "%%matrixmarket", 14) || !strstr(line, "matrix") || !strstr(line, "coordinate")) err = 3;
+        else if (strstr(line, "complex") || strstr(line, "pattern")) err = 4;
+        else if (strstr(line, "symmetric")) sym = 1;
+        else if (!strstr(line, "general")) err = 4;
+      }
+      while (!err && fgets(line, sizeof(line), fp)) {
+        lineno++;
+        if (line[0] == '%' || line[0] == '\n') continue;
+        if (sscanf(line, "%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT, &m, &n, &nz) != 3 || m < 0 || n < 0 || nz < 0) err = 5;
+        break;
+      }
+      if (!err) {
+        PetscInt k = 0;
+        ii         = (PetscInt *)malloc(sizeof(PetscInt) * (nz ? nz : 1));
+        jj         = (PetscInt *)malloc(sizeof(PetscInt) * (nz ? nz : 1));
+        vv         = (PetscReal *)malloc(sizeof(PetscReal) * (nz ? nz : 1));
+        while (k < nz && fgets(line, sizeof(line), fp)) {
+          long   i, j;
+          double v;
+          char  *end;
+          lineno++;
+          if (line[0] == '%' || line[0] == '\n') continue;
+          errno = 0;
+          i     = strtol(line, &end, 10);
+          j     = strtol(end, &end, 10);
+          v     = strtod(end, &end);
+          if (errno || i < 1 || i > m || j < 1 || j > n || !isfinite(v)) {
+            err     = 6;
+            errline = lineno;
+            snprintf(msg, sizeof(msg), "%.200s", line);
+            break;
+          }
+          ii[k] = i - 1;
+          jj[k] = j - 1;
+          vv[k] = v;
+          k++;
+        }
+        if (!err && k < nz) err = 7;
+      }
+      fclose(fp);
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(&errline, 1, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
+  PetscCheck(err != 1, comm, PETSC_ERR_FILE_OPEN, "Cannot open the Matrix Market file %s", file);
+  PetscCheck(err != 2 && err != 3, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: the first line must be '%%%%MatrixMarket matrix coordinate real general' (or symmetric)", file);
+  PetscCheck(err != 4, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: only real or integer coordinate matrices, general or symmetric, are supported", file);
+  PetscCheck(err != 5, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: bad size line (expected 'rows columns entries')", file);
+  PetscCheck(err != 6, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s line %" PetscInt_FMT ": bad entry '%s' (indices are 1-based within the size, values finite)", file, errline, msg);
+  PetscCheck(err != 7, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: fewer entries than the size line announces", file);
+  PetscCallMPI(MPI_Bcast(&m, 1, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(&nz, 1, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(&sym, 1, MPIU_INT, 0, comm));
+  if (rank) {
+    ii = (PetscInt *)malloc(sizeof(PetscInt) * (nz ? nz : 1));
+    jj = (PetscInt *)malloc(sizeof(PetscInt) * (nz ? nz : 1));
+    vv = (PetscReal *)malloc(sizeof(PetscReal) * (nz ? nz : 1));
+  }
+  PetscCallMPI(MPI_Bcast(ii, (PetscMPIInt)nz, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(jj, (PetscMPIInt)nz, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(vv, (PetscMPIInt)nz, MPIU_REAL, 0, comm));
+  PetscCall(MatCreate(comm, A));
+  PetscCall(MatSetSizes(*A, PETSC_DECIDE, PETSC_DECIDE, m, n));
+  PetscCall(MatSetType(*A, MATAIJ));
+  PetscCall(MatSetUp(*A));
+  PetscCall(MatGetOwnershipRange(*A, &rstart, &rend));
+  PetscCall(MatGetOwnershipRangeColumn(*A, &cstart, &cend));
+  PetscCall(PetscCalloc2(rend - rstart, &dnz, rend - rstart, &onz));
+  for (PetscInt k = 0; k < nz; k++) {
+    for (int t = 0; t < 1 + (sym && ii[k] != jj[k]); t++) {
+      const PetscInt i = t ? jj[k] : ii[k], j = t ? ii[k] : jj[k];
+      if (i >= rstart && i < rend) {
+        if (j >= cstart && j < cend) dnz[i - rstart]++;
+        else onz[i - rstart]++;
+      }
+    }
+  }
+  PetscCall(MatXAIJSetPreallocation(*A, 1, dnz, onz, NULL, NULL));
+  PetscCall(MatSetOption(*A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE)); /* duplicates are summed */
+  for (PetscInt k = 0; k < nz; k++) {
+    if (ii[k] >= rstart && ii[k] < rend) PetscCall(MatSetValue(*A, ii[k], jj[k], vv[k], ADD_VALUES));
+    if (sym && ii[k] != jj[k] && jj[k] >= rstart && jj[k] < rend) PetscCall(MatSetValue(*A, jj[k], ii[k], vv[k], ADD_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(*A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(*A, MAT_FINAL_ASSEMBLY));
+  PetscCall(PetscFree2(dnz, onz));
+  free(ii);
+  free(jj);
+  free(vv);
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRMatLoadFile - load a matrix from file (format by extension, see the top of this file);
+  group: the HDF5 group when the name does not say (file.h5:/group). Errors name the file.
+*/
+PetscErrorCode JRMatLoadFile(MPI_Comm comm, const char spec[], const char group[], Mat *A)
+{
+  char ext[16], file[PETSC_MAX_PATH_LEN], grp[256];
+
+  PetscFunctionBeginUser;
+  PetscCall(Extension(spec, ext, sizeof(ext)));
+  PetscCall(SplitGroup(spec, group, file, sizeof(file), grp, sizeof(grp)));
+  PetscCall(FileReadable(comm, file, "matrix"));
+  if (!strcmp(ext, "mtx")) PetscCall(LoadMtx(comm, file, A));
+  else if (!strcmp(ext, "bin") || !strcmp(ext, "dat") || !strcmp(ext, "petsc")) {
+    PetscViewer v;
+    PetscCall(PetscViewerBinaryOpen(comm, file, FILE_MODE_READ, &v));
+    PetscCall(MatCreate(comm, A));
+    PetscCall(MatSetType(*A, MATAIJ));
+    PetscCall(MatLoad(*A, v));
+    PetscCall(PetscViewerDestroy(&v));
+  } else if (!strcmp(ext, "h5") || !strcmp(ext, "hdf5")) {
+    PetscViewer v;
+    PetscBool   has;
+    PetscCall(PetscViewerHDF5Open(comm, file, FILE_MODE_READ, &v));
+    PetscCall(PetscViewerHDF5HasAttribute(v, grp, "MATLAB_sparse", &has));
+    PetscCheck(has, comm, PETSC_ERR_FILE_UNEXPECTED, "HDF5 file %s: no sparse matrix in group /%s (expected MATLAB v7.3 sparse layout: attribute MATLAB_sparse, datasets jc, ir, data; name another group as %s:/group)", file, grp, file);
+    PetscCall(MatCreate(comm, A));
+    PetscCall(MatSetType(*A, MATAIJ));
+    PetscCall(PetscObjectSetName((PetscObject)*A, grp));
+    PetscCall(MatLoad(*A, v));
+    PetscCall(PetscViewerDestroy(&v));
+  } else SETERRQ(comm, PETSC_ERR_SUP, "Matrix file %s: unknown extension '.%s' (use .mtx Matrix Market, .bin PETSc binary or .h5 HDF5)", file, ext);
+  PetscFunctionReturn(0);
+}
+
+/* Write A in the layout PETSc's MatLoad reads (compressed rows in jc, ir, data) to group grp of an HDF5
+   file (rank 0, via a gather) */
+static PetscErrorCode SaveH5(Mat A, const char file[], const char grp[])
+{
+  MPI_Comm    comm;
+  PetscMPIInt rank;
+  Mat        *sub;
+  IS          rows, cols;
+  PetscInt    m, n;
+  int         ok = 1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetComm((PetscObject)A, &comm));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(MatGetSize(A, &m, &n));
+  PetscCall(ISCreateStride(PETSC_COMM_SELF, rank ? 0 : m, 0, 1, &rows));
+  PetscCall(ISCreateStride(PETSC_COMM_SELF, rank ? 0 : n, 0, 1, &cols));
+  PetscCall(MatCreateSubMatrices(A, 1, &rows, &cols, MAT_INITIAL_MATRIX, &sub));
+  if (rank == 0) {
+    const PetscInt *ia, *ja;
+    PetscInt        nr;
+    PetscBool       done;
+    PetscScalar    *a;
+    hid_t           f, g, s, d, at;
+    hsize_t         dim;
+    long long      *jc, *ir, nnz, N = m;
+    PetscCall(MatGetRowIJ(sub[0], 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done));
+    PetscCall(MatSeqAIJGetArray(sub[0], &a));
+    nnz = ia[nr];
+    PetscCall(PetscMalloc2(nr + 1, &jc, nnz ? nnz : 1, &ir));
+    for (PetscInt i = 0; i <= nr; i++) jc[i] = ia[i];
+    for (long long k = 0; k < nnz; k++) ir[k] = ja[k];
+    f = H5Fcreate(file, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    if (f < 0) ok = 0;
+    else {
+    g   = H5Gcreate2(f, grp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    s   = H5Screate(H5S_SCALAR);
+    at  = H5Acreate2(g, "MATLAB_sparse", H5T_NATIVE_LLONG, s, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(at, H5T_NATIVE_LLONG, &N);
+    H5Aclose(at);
+    H5Sclose(s);
+    dim = (hsize_t)(nr + 1);
+    s   = H5Screate_simple(1, &dim, NULL);
+    d   = H5Dcreate2(g, "jc", H5T_NATIVE_LLONG, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Dwrite(d, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, jc);
+    H5Dclose(d);
+    H5Sclose(s);
+    dim = (hsize_t)nnz;
+    s   = H5Screate_simple(1, &dim, NULL);
+    d   = H5Dcreate2(g, "ir", H5T_NATIVE_LLONG, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Dwrite(d, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, ir);
+    H5Dclose(d);
+    d = H5Dcreate2(g, "data", H5T_NATIVE_DOUBLE, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, a);
+    H5Dclose(d);
+    H5Sclose(s);
+    H5Gclose(g);
+    H5Fclose(f);
+    }
+    PetscCall(PetscFree2(jc, ir));
+    PetscCall(MatSeqAIJRestoreArray(sub[0], &a));
+    PetscCall(MatRestoreRowIJ(sub[0], 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done));
+  }
+  PetscCall(MatDestroySubMatrices(1, &sub));
+  PetscCall(ISDestroy(&rows));
+  PetscCall(ISDestroy(&cols));
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm)); /* the file is complete before anyone reads it */
+  PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "Cannot write the HDF5 file %s", file);
+  PetscFunctionReturn(0);
+}
+
+/* Write a matrix (Matrix Market, PETSc binary or HDF5 by extension; export and tests) */
+PetscErrorCode JRMatSaveFile(Mat A, const char spec[], const char group[])
+{
+  MPI_Comm comm;
+  char     ext[16], file[PETSC_MAX_PATH_LEN], grp[256];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetComm((PetscObject)A, &comm));
+  PetscCall(Extension(spec, ext, sizeof(ext)));
+  PetscCall(SplitGroup(spec, group, file, sizeof(file), grp, sizeof(grp)));
+  if (!strcmp(ext, "mtx")) {
+    PetscViewer v;
+    PetscCall(PetscViewerASCIIOpen(comm, file, &v));
+    PetscCall(PetscViewerPushFormat(v, PETSC_VIEWER_ASCII_MATRIXMARKET));
+    PetscCall(MatView(A, v));
+    PetscCall(PetscViewerPopFormat(v));
+    PetscCall(PetscViewerDestroy(&v));
+  } else if (!strcmp(ext, "bin") || !strcmp(ext, "dat") || !strcmp(ext, "petsc")) {
+    PetscViewer v;
+    PetscCall(PetscViewerBinaryOpen(comm, file, FILE_MODE_WRITE, &v));
+    PetscCall(MatView(A, v));
+    PetscCall(PetscViewerDestroy(&v));
+  } else if (!strcmp(ext, "h5") || !strcmp(ext, "hdf5")) PetscCall(SaveH5(A, file, grp));
+  else SETERRQ(comm, PETSC_ERR_SUP, "Matrix file %s: unknown extension '.%s' (use .mtx, .bin or .h5)", file, ext);
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRVecLoadFile - a vector of length n (DOF order) from .bin, .h5 (dataset "f" or file.h5:/name) or
+  text (.csv/.txt: one value per line, '#' comments, optional header). Returns an array of n values
+  on every rank.
+*/
+PetscErrorCode JRVecLoadFile(MPI_Comm comm, const char spec[], PetscInt n, PetscReal vals[])
+{
+  char ext[16], file[PETSC_MAX_PATH_LEN], grp[256];
+
+  PetscFunctionBeginUser;
+  PetscCall(Extension(spec, ext, sizeof(ext)));
+  PetscCall(SplitGroup(spec, "f", file, sizeof(file), grp, sizeof(grp)));
+  PetscCall(FileReadable(comm, file, "force vector"));
+  if (!strcmp(ext, "bin") || !strcmp(ext, "h5") || !strcmp(ext, "hdf5")) {
+    PetscViewer        v;
+    Vec                x, xs;
+    VecScatter         sc;
+    PetscInt           N;
+    const PetscScalar *a;
+    if (!strcmp(ext, "bin")) PetscCall(PetscViewerBinaryOpen(comm, file, FILE_MODE_READ, &v));
+    else PetscCall(PetscViewerHDF5Open(comm, file, FILE_MODE_READ, &v));
+    PetscCall(VecCreate(comm, &x));
+    PetscCall(PetscObjectSetName((PetscObject)x, grp));
+    PetscCall(VecLoad(x, v));
+    PetscCall(PetscViewerDestroy(&v));
+    PetscCall(VecGetSize(x, &N));
+    PetscCheck(N == n, comm, PETSC_ERR_FILE_UNEXPECTED, "Force vector %s has %" PetscInt_FMT " entries, the model has %" PetscInt_FMT " DOFs", file, N, n);
+    PetscCall(VecScatterCreateToAll(x, &sc, &xs));
+    PetscCall(VecScatterBegin(sc, x, xs, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(sc, x, xs, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecGetArrayRead(xs, &a));
+    for (PetscInt i = 0; i < n; i++) vals[i] = PetscRealPart(a[i]);
+    PetscCall(VecRestoreArrayRead(xs, &a));
+    PetscCall(VecScatterDestroy(&sc));
+    PetscCall(VecDestroy(&xs));
+    PetscCall(VecDestroy(&x));
+  } else {
+    JRTable  t;
+    PetscInt rows, cols;
+    PetscCall(JRTableRead(comm, file, &t));
+    PetscCall(JRTableGetSize(t, &rows, &cols));
+    /* a file of plain numbers has no header: its first line was taken as the column name */
+    PetscCheck(cols == 1, comm, PETSC_ERR_FILE_UNEXPECTED, "Force vector %s: one value per line expected, found %" PetscInt_FMT " columns", file, cols);
+    {
+      /* without a header line the "column name" is the first value */
+      const char *head;
+      char       *end;
+      double      first;
+      PetscInt    off = 0;
+      PetscCall(JRTableGetHeader(t, 0, &head));
+      first = strtod(head, &end);
+      if (end != head && !*end) {
+        off     = 1;
+        vals[0] = first;
+      }
+      PetscCheck(rows + off == n, comm, PETSC_ERR_FILE_UNEXPECTED, "Force vector %s has %" PetscInt_FMT " values, the model has %" PetscInt_FMT " DOFs", file, rows + off, n);
+      PetscCall(JRTableGetColumn(t, head, PETSC_TRUE, 0.0, vals + off));
+    }
+    PetscCall(JRTableDestroy(&t));
+  }
+  for (PetscInt i = 0; i < n; i++) PetscCheck(PetscIsNormalReal(vals[i]) || vals[i] == 0.0, comm, PETSC_ERR_FILE_UNEXPECTED, "Force vector %s: entry %" PetscInt_FMT " is not finite", file, i);
+  PetscFunctionReturn(0);
+}

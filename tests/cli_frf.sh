@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# Command-line checks of bin/jointrom -task frf: the run files, outputs, 1 vs 2 ranks, SNES options
+# reaching the solver (-hbm_snes_test_jacobian), the sphere constraint, -help, and bad input.
+cd "$(dirname "$0")/.."
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 OPENBLAS_NUM_THREADS=1
+J=bin/jointrom
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+ok() { echo "ok - $*"; }
+bad() { echo "not ok - $*"; }
+check() { if eval "$1"; then ok "$2"; else bad "$2"; fi; }
+osc="-task frf -model_stiffness runs/oscillator/K.mtx -model_mass runs/oscillator/M.mtx -model_elements runs/oscillator/elements.csv -hbm_gamma 0.01 -cont_monitor 0"
+
+# the oscillator run file: outputs written, one peak line per level, in the order of the levels
+o=$($J -options_file runs/oscillator_frf.opts -frf_output_file "$tmp/osc" -cont_monitor 0 2>&1)
+check "[ \$(echo \"\$o\" | grep -c '^peak level') = 5 ]" "oscillator_frf.opts: one 'peak level' line per force level"
+check "[ \"\$(head -c 4 '$tmp/osc.h5' | tail -c 3)\" = HDF ] && head -1 '$tmp/osc.csv' | grep -q '^level,F_N,omega_rad_s,freq_hz,amp_0$' && [ \$(wc -l < '$tmp/osc.csv') -gt 100 ]" "frf outputs: HDF5 file, CSV with header and the points"
+if command -v gnuplot > /dev/null; then check "[ \"\$(head -c 4 '$tmp/osc.png' | tail -c 3)\" = PNG ]" "frf plot PNG written"; fi
+# peak frequencies fall from sqrt((k+kt)/m) = 141.4 Hz towards sqrt(k/m) = 100 Hz as the force grows
+f=$(echo "$o" | awk '/^peak level/{print $5}' | tr '\n' ' ')
+check "echo '$f' | awk '{ok = (\$1 > 139 && \$5 < 102); for (i = 2; i <= NF; i++) if (\$i > \$(i-1) + 1e-3) ok = 0; exit !ok}'" "oscillator peaks move down with the force: $f Hz"
+
+# 1 rank and 2 ranks: the same curves (elements split across ranks), to round-off
+bash share/make_chain.sh "$tmp/ch" 30 400 > /dev/null
+args="-task frf -model_stiffness $tmp/ch/K.mtx -model_mass $tmp/ch/M.mtx -model_elements $tmp/ch/elements.csv -hbm_modes 8 -hbm_harmonics 3 -hbm_gamma 0.01 -frf_dof 29 -frf_force 20 -cont_monitor 0 -frf_plot 0"
+$J $args -frf_output_file "$tmp/np1" > /dev/null 2>&1
+mpiexec -n 2 $J $args -frf_output_file "$tmp/np2" > /dev/null 2>&1
+d=$(paste -d, "$tmp/np1.csv" "$tmp/np2.csv" | awk -F, 'NR>1{n=NF/2; for(i=3;i<=n;i++){a=$i; b=$(i+n); e=(a-b)/(a==0?1:a); if(e<0)e=-e; if(e>m)m=e}; c++} END{printf "%.1e %d", m, c}')
+check "[ -s '$tmp/np2.csv' ] && [ \$(wc -l < '$tmp/np1.csv') = \$(wc -l < '$tmp/np2.csv') ] && awk -v d='${d% *}' 'BEGIN{exit !(d < 1e-8)}'" "30-DOF chain, 400 jenkins elements, H = 3: 1 and 2 ranks give the same curve (${d#* } points, max relative difference ${d% *})"
+
+# SNES options reach the solver: the analytic Jacobian against PETSc's finite-difference test
+o=$($J $osc -frf_force 40 -frf_fmin 120 -frf_fmax 121 -cont_type natural -hbm_snes_test_jacobian -frf_output_file '' 2>&1)
+r=$(echo "$o" | grep -o '||J - Jfd||_F/||J||_F = [0-9.e+-]*' | awk '{print $NF}' | sort -g | tail -1)
+check "[ -n '$r' ] && awk -v r='$r' 'BEGIN{exit !(r < 1e-5)}'" "-hbm_snes_test_jacobian: ||J - Jfd||/||J|| <= $r"
+o=$($J $osc -frf_force 40 -frf_fmin 120 -frf_fmax 121 -cont_type natural -hbm_snes_monitor -frf_output_file '' 2>&1)
+check "echo \"\$o\" | grep -q 'SNES Function norm'" "-hbm_snes_monitor reaches the harmonic-balance SNES"
+
+# the thesis's sphere constraint passes the Duffing folds too
+a=$($J -options_file runs/duffing_frf.opts -frf_force 2 -cont_monitor 0 -frf_output_file '' 2>&1 | grep '^peak')
+b=$($J -options_file runs/duffing_frf.opts -frf_force 2 -cont_monitor 0 -frf_output_file '' -cont_constraint sphere 2>&1 | grep '^peak')
+check "[ -n '$b' ] && awk -v a='$(echo $a | awk '{print $7}')' -v b='$(echo $b | awk '{print $7}')' 'BEGIN{d=(a-b)/a; if(d<0)d=-d; exit !(d < 1e-3)}'" "Duffing: sphere constraint (2.28) reaches the same peak as pseudo-arclength ($b)"
+
+# -help lists the options of the frf task
+h=$($J $osc -frf_force 1 -frf_fmin 100 -frf_fmax 101 -frf_output_file '' -help 2>&1)
+miss=""
+for o in -model_type -model_stiffness -model_mass -model_damping -model_elements -model_view -hbm_harmonics -hbm_samples -hbm_modes -hbm_physical -hbm_gamma -hbm_zeta -hbm_jacobian -hbm_view -frf_dof -frf_force_file -frf_output -frf_force -frf_omega_min -frf_omega_max -frf_fmin -frf_fmax -frf_output_file -frf_plot -frf_normalize -cont_type -cont_constraint -cont_step -cont_step_min -cont_step_max -cont_max_points -cont_points -cont_newton_target -cont_predictor -cont_monitor; do
+  echo "$h" | grep -qE -- "^ *$o[ :]" || miss="$miss $o"
+done
+check "[ -z '$miss' ]" "-help lists every frf option${miss:+ (missing:$miss)}"
+
+# bad input: non-zero exit and a message naming the file or option
+expect_error() { # description, pattern, args...
+  local d=$1 p=$2; shift 2
+  local o rc
+  o=$("$@" 2>&1); rc=$?
+  if [ $rc != 0 ] && echo "$o" | grep -q -- "$p"; then ok "bad input, $d: exit $rc, says '$p'"
+  else bad "bad input, $d: exit $rc, expected '$p'; got: $(echo "$o" | grep -m2 'PETSC ERROR: [^-#]' | tail -1)"; fi
+}
+printf '%%%%MatrixMarket matrix coordinate real general\n2 2 3\n1 1 2\n1 2 1\n2 2 2\n' > "$tmp/nonsym.mtx"
+printf '%%%%MatrixMarket matrix coordinate real symmetric\n2 2 2\n1 1 2\n2 2 2\n' > "$tmp/two.mtx"
+printf '%%%%MatrixMarket matrix array real general\n1 1\n1\n' > "$tmp/array.mtx"
+printf '%%%%MatrixMarket matrix coordinate real symmetric\n1 1 1\n1 2 5\n' > "$tmp/badidx.mtx"
+printf 'type,dof_a,dof_b,kt,kn,mu,n0,ndof_a,ndof_b\njenkins,5,-1,1e5,,0.1,10,,\n' > "$tmp/el_range.csv"
+printf 'type,dof_a,dof_b,kt,kn,mu,n0,ndof_a,ndof_b\ncoulomb,0,-1,1e5,,0.1,10,,\n' > "$tmp/el_type.csv"
+printf 'type,dof_a,dof_b,kt,kn,mu,n0,ndof_a,ndof_b\njenkins,0,-1,abc,,0.1,10,,\n' > "$tmp/el_num.csv"
+printf 'type,dof_a,dof_b,kt,kn,mu,n0,ndof_a,ndof_b\njenkins,0,-1,1e5,,0.1,10,0,\n' > "$tmp/el_normal.csv"
+printf 'type,dof_a,dof_b,kt,kn,mu,n0\njenkins_nv,0,-1,1e5,1e5,0.1,10\n' > "$tmp/el_nvdofs.csv"
+printf 'type,dof_a,kt,mu,n0\njenkins,0,1e5,0.1,10\n' > "$tmp/el_col.csv"
+M=runs/oscillator/M.mtx; K=runs/oscillator/K.mtx
+expect_error "no mass matrix" "needs -model_mass FILE" $J -task frf -model_stiffness $K
+expect_error "missing matrix file" "Cannot open matrix file $tmp/none.mtx" $J -task frf -model_stiffness $tmp/none.mtx -model_mass $M
+expect_error "mismatched sizes" "is 1 x 1, the stiffness matrix is 2 x 2" $J -task frf -model_stiffness $tmp/two.mtx -model_mass $M
+expect_error "non-symmetric stiffness" "Stiffness matrix $tmp/nonsym.mtx is not symmetric" $J -task frf -model_stiffness $tmp/nonsym.mtx -model_mass $tmp/two.mtx
+expect_error "dense Matrix Market file" "the first line must be" $J -task frf -model_stiffness $tmp/array.mtx -model_mass $M
+expect_error "Matrix Market index out of range" "line 3: bad entry" $J -task frf -model_stiffness $tmp/badidx.mtx -model_mass $M
+expect_error "unknown matrix extension" "unknown extension '.csv'" $J -task frf -model_stiffness runs/oscillator/elements.csv -model_mass $M
+expect_error "element DOF out of range" "line 2: dof_a = 5 is out of range: DOFs are 0..0" $J -task frf -model_stiffness $K -model_mass $M -model_elements $tmp/el_range.csv
+expect_error "unknown element type" "line 2: unknown element type 'coulomb'" $J -task frf -model_stiffness $K -model_mass $M -model_elements $tmp/el_type.csv
+expect_error "non-numeric element value" "line 2: column 'kt' is 'abc', not a number" $J -task frf -model_stiffness $K -model_mass $M -model_elements $tmp/el_num.csv
+expect_error "normal DOFs on a jenkins element" "normal DOFs are only for jenkins_nv" $J -task frf -model_stiffness $K -model_mass $M -model_elements $tmp/el_normal.csv
+expect_error "jenkins_nv without normal DOFs" "a jenkins_nv element needs normal DOFs" $J -task frf -model_stiffness $K -model_mass $M -model_elements $tmp/el_nvdofs.csv
+expect_error "element table without dof_b" "has no column 'dof_b'" $J -task frf -model_stiffness $K -model_mass $M -model_elements $tmp/el_col.csv
+expect_error "excitation DOF out of range" "-frf_dof 3 is out of range" $J $osc -frf_dof 3
+expect_error "output DOF out of range" "-frf_output 7 is out of range" $J $osc -frf_output 0,7
+expect_error "samples below 2H+1" "-hbm_samples 4 must be at least 2H+1 = 5" $J $osc -hbm_harmonics 2 -hbm_samples 4
+expect_error "reversed frequency range" "need 0 < min < max" $J $osc -frf_fmin 200 -frf_fmax 100
+expect_error "half a frequency range" "Give both ends of the frequency range" $J $osc -frf_fmin 100
+expect_error "negative force level" "-frf_force -1.: excitation levels must be positive" $J $osc -frf_force 1,-1
+expect_error "too many modes" "-hbm_modes 4: the model has only 1 DOFs" $J $osc -hbm_modes 4
+expect_error "modal damping in physical coordinates" "-hbm_zeta (modal damping) needs modal coordinates" $J $osc -hbm_physical -hbm_zeta 0.01

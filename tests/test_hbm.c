@@ -1,0 +1,498 @@
+/*
+   Harmonic balance and continuation (JRHBM, JRCont) against independent truths:
+   - no elements: every FRF point equals the exact complex linear solution (K(1 + i gamma) - w^2 M + i w C) X = F,
+     in all modes and in physical coordinates;
+   - one-DOF oscillator with a jenkins element: full stick equals the linear system with k + kt; the peak
+     moves down towards sqrt(k/m) as the force grows; amplitude / force first drops then rises; energy
+     balance (input = damping + friction) at every point; natural and arclength continuation agree;
+   - Duffing oscillator (cubic element): arclength passes both folds and the single-harmonic
+     amplitude-frequency relation holds at every point;
+   - the analytic Jacobian and dR/dw vs central finite differences (jenkins, jenkins_nv with separation,
+     cubic; H = 1 and 3);
+   - H = 5 vs a long direct time integration of a friction oscillator (independent code below), and
+     H = 1 close to H = 5.
+   Runs on 1 and 2 ranks (elements are split across ranks).
+*/
+#include "jrtest.h"
+#include <slepcsys.h>
+#include <complex.h>
+
+/* n x n MPIAIJ from a dense row-major array */
+static PetscErrorCode DenseToMat(PetscInt n, const double *A, Mat *M)
+{
+  PetscInt lo, hi;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateAIJ(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, n, n, n, NULL, n, NULL, M));
+  PetscCall(MatGetOwnershipRange(*M, &lo, &hi));
+  for (PetscInt i = lo; i < hi; i++)
+    for (PetscInt j = 0; j < n; j++)
+      if (A[i * n + j] != 0.0) PetscCall(MatSetValue(*M, i, j, A[i * n + j], INSERT_VALUES));
+  PetscCall(MatAssemblyBegin(*M, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(*M, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+/* element table from arrays; type names of the elements given per element */
+typedef struct {
+  const char *type;
+  PetscInt    a, b, na, nb;
+  double      kt, kn, mu, n0;
+} El;
+
+static PetscErrorCode MakeElements(PetscInt n, const El *e, JRElements *el)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(el, sizeof(*el)));
+  el->n = n;
+  PetscCall(PetscMalloc5(n, &el->type, n, &el->dof_a, n, &el->dof_b, n, &el->ndof_a, n, &el->ndof_b));
+  PetscCall(PetscMalloc4(n, &el->kt, n, &el->kn, n, &el->mu, n, &el->n0));
+  for (PetscInt i = 0; i < n; i++) {
+    PetscInt t = -1;
+    for (PetscInt k = 0; k < el->ntypes; k++)
+      if (!strcmp(el->typename[k], e[i].type)) t = k;
+    if (t < 0) {
+      t = el->ntypes++;
+      PetscCall(PetscStrncpy(el->typename[t], e[i].type, sizeof(el->typename[t])));
+    }
+    el->type[i]   = t;
+    el->dof_a[i]  = e[i].a;
+    el->dof_b[i]  = e[i].b;
+    el->ndof_a[i] = e[i].na;
+    el->ndof_b[i] = e[i].nb;
+    el->kt[i]     = e[i].kt;
+    el->kn[i]     = e[i].kn;
+    el->mu[i]     = e[i].mu;
+    el->n0[i]     = e[i].n0;
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FreeElements(JRElements *el)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree5(el->type, el->dof_a, el->dof_b, el->ndof_a, el->ndof_b));
+  PetscCall(PetscFree4(el->kt, el->kn, el->mu, el->n0));
+  PetscFunctionReturn(0);
+}
+
+/* a model + HBM (+ continuation) built from dense K, M, C and elements, options set beforehand */
+typedef struct {
+  JRModel model;
+  JRHBM   hbm;
+  JRCont  cont;
+} Problem;
+
+static PetscErrorCode ProblemCreate(PetscInt n, const double *K, const double *M, const double *C, PetscInt ne, const El *e, Problem *p)
+{
+  Mat        Km, Mm, Cm = NULL;
+  JRElements el;
+
+  PetscFunctionBeginUser;
+  PetscCall(DenseToMat(n, K, &Km));
+  PetscCall(DenseToMat(n, M, &Mm));
+  if (C) PetscCall(DenseToMat(n, C, &Cm));
+  PetscCall(JRModelCreate(PETSC_COMM_WORLD, &p->model));
+  PetscCall(JRModelSetType(p->model, JRMODELMATRICES));
+  PetscCall(JRModelSetMatrices(p->model, Km, Mm, Cm));
+  if (ne) {
+    PetscCall(MakeElements(ne, e, &el));
+    PetscCall(JRModelSetElements(p->model, &el));
+    PetscCall(FreeElements(&el));
+  }
+  PetscCall(JRModelSetUp(p->model));
+  PetscCall(JRHBMCreate(PETSC_COMM_WORLD, &p->hbm));
+  PetscCall(JRHBMSetModel(p->hbm, p->model));
+  PetscCall(JRHBMSetFromOptions(p->hbm));
+  PetscCall(JRContCreate(PETSC_COMM_WORLD, &p->cont));
+  PetscCall(JRContSetHBM(p->cont, p->hbm));
+  PetscCall(JRContSetFromOptions(p->cont));
+  PetscCall(JRHBMSetUp(p->hbm));
+  PetscCall(MatDestroy(&Km));
+  PetscCall(MatDestroy(&Mm));
+  PetscCall(MatDestroy(&Cm));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ProblemDestroy(Problem *p)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRContDestroy(&p->cont));
+  PetscCall(JRHBMDestroy(&p->hbm));
+  PetscCall(JRModelDestroy(&p->model));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Options(const char *s)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsClear(NULL));
+  PetscCall(PetscOptionsInsertString(NULL, "-cont_monitor 0 -frf_output_file ''"));
+  PetscCall(PetscOptionsInsertString(NULL, s));
+  PetscFunctionReturn(0);
+}
+
+/* point k of level l as a Vec */
+static PetscErrorCode PointVec(Problem *p, PetscInt l, PetscInt k, Vec a)
+{
+  PetscInt         np, n;
+  const PetscReal *A;
+  PetscScalar     *x;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMGetSizes(p->hbm, NULL, NULL, &n));
+  PetscCall(JRContGetBranch(p->cont, l, &np, NULL, &A, NULL));
+  PetscCall(VecGetArray(a, &x));
+  for (PetscInt i = 0; i < n; i++) x[i] = A[k * n + i];
+  PetscCall(VecRestoreArray(a, &x));
+  PetscFunctionReturn(0);
+}
+
+/* exact linear response at DOF out: (K (1 + i g) - w^2 M + i w C) X = e_fdof (n <= 4) */
+static double complex LinearExact(PetscInt n, const double *K, const double *M, const double *C, double g, double w, PetscInt fdof, PetscInt out)
+{
+  double complex A[4][5];
+  for (PetscInt i = 0; i < n; i++) {
+    for (PetscInt j = 0; j < n; j++) A[i][j] = K[i * n + j] * (1.0 + I * g) - w * w * M[i * n + j] + I * w * (C ? C[i * n + j] : 0.0);
+    A[i][n] = i == fdof ? 1.0 : 0.0;
+  }
+  for (PetscInt c = 0; c < n; c++) { /* Gauss-Jordan with partial pivoting */
+    PetscInt piv = c;
+    for (PetscInt r = c + 1; r < n; r++)
+      if (cabs(A[r][c]) > cabs(A[piv][c])) piv = r;
+    for (PetscInt j = 0; j <= n; j++) {
+      double complex t = A[c][j];
+      A[c][j]          = A[piv][j];
+      A[piv][j]        = t;
+    }
+    for (PetscInt r = 0; r < n; r++)
+      if (r != c) {
+        double complex f = A[r][c] / A[c][c];
+        for (PetscInt j = c; j <= n; j++) A[r][j] -= f * A[c][j];
+      }
+  }
+  return A[out][n] / A[out][out];
+}
+
+/* Time integration of m x'' + c x' + k x + f = F sin(w t), f a jenkins element (kt, mu n0) to ground:
+   RK4 on (x, x') with the slip updated after each step (play operator), dt = T/nstep, ncyc cycles;
+   first and third harmonics of x over the last cycle. Independent of the library. */
+static void TimeIntegrate(double m, double c, double k, double kt, double r, double F, double w, int nstep, int ncyc, double X[7])
+{
+  const double T = 2.0 * M_PI / w, dt = T / nstep;
+  double       x = 0.0, v = 0.0, s = 0.0; /* slip */
+  for (int i = 0; i < 7; i++) X[i] = 0.0;
+  for (int cyc = 0; cyc < ncyc; cyc++) {
+    for (int i = 0; i < nstep; i++) {
+      const double t = (cyc * nstep + i) * dt;
+      double       k1x, k1v, k2x, k2v, k3x, k3v, k4x, k4v, f;
+#define ACC(xx, vv, tt) ((F * sin(w * (tt)) - c * (vv) - k * (xx) - kt * ((xx) - s)) / m)
+      k1x = v;
+      k1v = ACC(x, v, t);
+      k2x = v + 0.5 * dt * k1v;
+      k2v = ACC(x + 0.5 * dt * k1x, v + 0.5 * dt * k1v, t + 0.5 * dt);
+      k3x = v + 0.5 * dt * k2v;
+      k3v = ACC(x + 0.5 * dt * k2x, v + 0.5 * dt * k2v, t + 0.5 * dt);
+      k4x = v + dt * k3v;
+      k4v = ACC(x + dt * k3x, v + dt * k3v, t + dt);
+#undef ACC
+      x += dt / 6.0 * (k1x + 2 * k2x + 2 * k3x + k4x);
+      v += dt / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
+      f = kt * (x - s); /* friction: slip when |f| > r */
+      if (f > r) s = x - r / kt;
+      else if (f < -r) s = x + r / kt;
+      if (cyc == ncyc - 1) {
+        const double th = w * (t + dt);
+        X[0] += x / nstep;
+        for (int h = 1; h <= 3; h++) {
+          X[2 * h - 1] += 2.0 * x * sin(h * th) / nstep;
+          X[2 * h] += 2.0 * x * cos(h * th) / nstep;
+        }
+      }
+    }
+  }
+}
+
+int main(int argc, char **argv)
+{
+  PetscCall(SlepcInitialize(&argc, &argv, NULL, NULL));
+
+  /* ---- linear 3-DOF chain: exact complex solution at every point, modal and physical ---- */
+  {
+    const double K[9] = {3e5, -1e5, 0, -1e5, 2e5, -1e5, 0, -1e5, 1e5}, M[9] = {1.0, 0, 0, 0, 2.0, 0, 0, 0, 1.5};
+    const double C[9] = {4.0, -1.0, 0, -1.0, 3.0, -1.0, 0, -1.0, 2.0}, g = 0.02;
+    const char  *modes[2] = {"-hbm_modes 3", "-hbm_physical"};
+    for (int md = 0; md < 2; md++) {
+      Problem p;
+      char    opts[256];
+      double  err = 0.0;
+      PetscInt np;
+      Vec      a;
+      const PetscReal *om;
+      PetscCall(PetscSNPrintf(opts, sizeof(opts), "%s -hbm_gamma %g -frf_dof 1 -frf_output 2 -frf_force 2.5 -frf_fmin 10 -frf_fmax 80", modes[md], g));
+      PetscCall(Options(opts));
+      PetscCall(ProblemCreate(3, K, M, C, 0, NULL, &p));
+      PetscCall(JRContSolve(p.cont));
+      PetscCall(JRContGetBranch(p.cont, 0, &np, &om, NULL, NULL));
+      PetscCall(JRHBMCreateVecs(p.hbm, &a, NULL));
+      for (PetscInt k = 0; k < np; k++) {
+        double         X[3];
+        double complex Xe = 2.5 * LinearExact(3, K, M, C, g, om[k], 1, 2);
+        PetscCall(PointVec(&p, 0, k, a));
+        PetscCall(JRHBMResponse(p.hbm, a, X, NULL, NULL));
+        err = fmax(err, cabs((X[1] + I * X[2]) - Xe) / cabs(Xe));
+      }
+      CHECK(err < 1e-10 && np > 20, "linear 3-DOF chain (%s, gamma + C damping): %" PetscInt_FMT " FRF points vs the exact complex solution, max relative error %.2e", md ? "physical coordinates" : "all 3 modes", np, err);
+      PetscCall(VecDestroy(&a));
+      PetscCall(ProblemDestroy(&p));
+    }
+  }
+
+  /* ---- one-DOF oscillator with a jenkins element ---- */
+  {
+    const double m = 1.0, k = pow(2 * M_PI * 100, 2), kt = k, mu = 0.1, n0 = 100.0, r = mu * n0, g = 0.01;
+    const double K[1] = {k}, M[1] = {m};
+    const El     e[1] = {
+      {"jenkins", 0, -1, -1, -1, kt, 0, mu, n0}
+    };
+    const double flin = sqrt((k + kt) / m) / (2 * M_PI), fslip = sqrt(k / m) / (2 * M_PI), A0 = r / kt;
+    /* full stick: F such that the stuck peak F / (gamma k) stays below A0 = mu n0 / kt */
+    {
+      Problem          p;
+      const double     F = 0.5 * A0 * g * k;
+      PetscInt         np, kp = 0;
+      const PetscReal *om, *amp;
+      double           err = 0.0;
+      char             opts[256];
+      PetscCall(PetscSNPrintf(opts, sizeof(opts), "-hbm_gamma %g -frf_force %g -frf_fmin %g -frf_fmax %g", g, F, 0.8 * flin, 1.2 * flin));
+      PetscCall(Options(opts));
+      PetscCall(ProblemCreate(1, K, M, NULL, 1, e, &p));
+      PetscCall(JRContSolve(p.cont));
+      PetscCall(JRContGetBranch(p.cont, 0, &np, &om, NULL, &amp));
+      for (PetscInt i = 0; i < np; i++) {
+        const double ex = F / cabs(k + kt - m * om[i] * om[i] + I * g * k);
+        err             = fmax(err, fabs(amp[i] - ex) / ex);
+        if (amp[i] > amp[kp]) kp = i;
+      }
+      CHECK(err < 1e-9, "jenkins oscillator, full stick (F = %.3g N): %" PetscInt_FMT " points equal the linear system with k + kt, max error %.1e", F, np, err);
+      CHECK(fabs(om[kp] / (2 * M_PI) - flin) < 2e-3 * flin && fabs(amp[kp] - F / (g * k)) < 2e-3 * F / (g * k), "jenkins oscillator, full stick: peak %.5g Hz vs sqrt((k+kt)/m) = %.5g Hz, amplitude %.5g vs F/(gamma k) = %.5g m", om[kp] / (2 * M_PI), flin, amp[kp], F / (g * k));
+      PetscCall(ProblemDestroy(&p));
+    }
+    /* levels from microslip to gross slip: the peak moves down, amplitude/force drops then rises; energy balance */
+    {
+      Problem     p;
+      const double Fs[6] = {0.5, 2.0, 5.0, 20.0, 100.0, 2000.0};
+      double       fpk[6], apk[6], ebal = 0.0;
+      char         opts[512];
+      Vec          a;
+      PetscBool    down = PETSC_TRUE;
+      PetscCall(PetscSNPrintf(opts, sizeof(opts), "-hbm_gamma %g -frf_force %g,%g,%g,%g,%g,%g -frf_fmin %g -frf_fmax %g", g, Fs[0] * A0 * g * k, Fs[1] * A0 * g * k, Fs[2] * A0 * g * k, Fs[3] * A0 * g * k, Fs[4] * A0 * g * k, Fs[5] * A0 * g * k, 0.8 * fslip, 1.2 * flin));
+      PetscCall(Options(opts));
+      PetscCall(ProblemCreate(1, K, M, NULL, 1, e, &p));
+      PetscCall(JRContSolve(p.cont));
+      PetscCall(JRHBMCreateVecs(p.hbm, &a, NULL));
+      for (int l = 0; l < 6; l++) {
+        PetscReal        wp, ap;
+        PetscInt         np;
+        const PetscReal *om;
+        PetscCall(JRContGetPeak(p.cont, l, &wp, &ap));
+        fpk[l] = wp / (2 * M_PI);
+        apk[l] = ap / (Fs[l] * A0 * g * k) * (g * k); /* amplitude / force in units of 1/(gamma k) */
+        if (l && fpk[l] > fpk[l - 1] + 1e-6 * flin) down = PETSC_FALSE;
+        PetscCall(JRContGetBranch(p.cont, l, &np, &om, NULL, NULL));
+        for (PetscInt i = 0; i < np; i++) {
+          PetscReal win, ed, enl;
+          PetscCall(PointVec(&p, l, i, a));
+          PetscCall(JRHBMSetForceLevel(p.hbm, Fs[l] * A0 * g * k));
+          PetscCall(JRHBMEnergy(p.hbm, om[i], a, &win, &ed, &enl));
+          ebal = fmax(ebal, fabs(win - ed - enl) / win);
+        }
+      }
+      CHECK(down && fabs(fpk[5] - fslip) < 0.01 * fslip && fabs(fpk[0] - flin) > 0.0, "jenkins oscillator: peak frequency falls with the force, %.4g -> %.4g Hz, towards sqrt(k/m) = %.4g Hz (from sqrt((k+kt)/m) = %.4g Hz)", fpk[0], fpk[5], fslip, flin);
+      CHECK(apk[2] < 0.8 * apk[0] && apk[5] > 1.5 * apk[2], "jenkins oscillator: peak amplitude / force (in units of 1/(gamma k)) %.3f, %.3f, %.3f, %.3f, %.3f, %.3f: drops with friction damping, then rises towards gross slip", apk[0], apk[1], apk[2], apk[3], apk[4], apk[5]);
+      CHECK(ebal < 1e-8, "jenkins oscillator: energy balance (input = structural damping + friction) at every point of 6 levels, max relative error %.1e", ebal);
+      PetscCall(VecDestroy(&a));
+      PetscCall(ProblemDestroy(&p));
+    }
+    /* natural and arclength continuation give the same curve (no folds here) */
+    {
+      Problem      p1, p2;
+      const double F = 5.0 * A0 * g * k;
+      char         opts[256];
+      PetscReal    w1, a1, w2, a2;
+      PetscCall(PetscSNPrintf(opts, sizeof(opts), "-hbm_gamma %g -frf_force %g -frf_fmin %g -frf_fmax %g -cont_type natural -cont_step_max 0.5", g, F, 0.8 * fslip, 1.2 * flin));
+      PetscCall(Options(opts));
+      PetscCall(ProblemCreate(1, K, M, NULL, 1, e, &p1));
+      PetscCall(JRContSolve(p1.cont));
+      PetscCall(PetscSNPrintf(opts, sizeof(opts), "-hbm_gamma %g -frf_force %g -frf_fmin %g -frf_fmax %g -cont_type arclength -cont_step_max 0.005", g, F, 0.8 * fslip, 1.2 * flin));
+      PetscCall(Options(opts));
+      PetscCall(ProblemCreate(1, K, M, NULL, 1, e, &p2));
+      PetscCall(JRContSolve(p2.cont));
+      PetscCall(JRContGetPeak(p1.cont, 0, &w1, &a1));
+      PetscCall(JRContGetPeak(p2.cont, 0, &w2, &a2));
+      CHECK(fabs(w1 - w2) < 2e-3 * w1 && fabs(a1 - a2) < 5e-3 * a1, "jenkins oscillator: natural and arclength continuation agree on the peak, %.5g vs %.5g Hz, %.5g vs %.5g m", w1 / (2 * M_PI), w2 / (2 * M_PI), a1, a2);
+      PetscCall(ProblemDestroy(&p1));
+      PetscCall(ProblemDestroy(&p2));
+    }
+  }
+
+  /* ---- Duffing: arclength through both folds, amplitude-frequency relation at every point ---- */
+  {
+    const double m = 1.0, k = pow(2 * M_PI * 10, 2), k3 = 6e6, c = 0.4, F = 2.0; /* backbone peak near 18 Hz */
+    const double K[1] = {k}, M[1] = {m}, C[1] = {c};
+    const El     e[1] = {
+      {"cubic", 0, -1, -1, -1, k3, 0, 0, 0}
+    };
+    Problem          p;
+    PetscInt         np, turns = 0;
+    const PetscReal *om, *amp;
+    double           err = 0.0;
+    PetscCall(Options("-frf_force 2.0 -frf_fmin 5 -frf_fmax 25 -cont_max_points 3000"));
+    PetscCall(ProblemCreate(1, K, M, C, 1, e, &p));
+    PetscCall(JRContSolve(p.cont));
+    PetscCall(JRContGetBranch(p.cont, 0, &np, &om, NULL, &amp));
+    for (PetscInt i = 0; i < np; i++) {
+      const double A = amp[i], w = om[i], q = k - m * w * w + 0.75 * k3 * A * A;
+      err = fmax(err, fabs((q * q + c * c * w * w) * A * A - F * F) / (F * F));
+      if (i > 0 && i < np - 1 && (om[i] - om[i - 1]) * (om[i + 1] - om[i]) < 0) turns++;
+    }
+    CHECK(turns == 2, "Duffing oscillator: arclength passes %" PetscInt_FMT " turning points (2 expected) in %" PetscInt_FMT " points", turns, np);
+    CHECK(err < 1e-8, "Duffing oscillator: single-harmonic relation ((k - m w^2 + 3/4 k3 A^2)^2 + (c w)^2) A^2 = F^2 at every point, max relative error %.1e", err);
+    {
+      PetscReal wp, ap;
+      PetscCall(JRContGetPeak(p.cont, 0, &wp, &ap));
+      /* the backbone: at the peak, k - m w^2 + 3/4 k3 A^2 = 0 and A = F / (c w) */
+      CHECK(fabs(ap - F / (c * wp)) < 1e-3 * ap, "Duffing oscillator: peak amplitude %.6g m on the backbone F/(c w) = %.6g m", ap, F / (c * wp));
+    }
+    PetscCall(ProblemDestroy(&p));
+  }
+
+  /* ---- Jacobian and dR/dw vs finite differences, every element type, H = 1 and 3 ---- */
+  for (PetscInt H = 1; H <= 3; H += 2) {
+    const double K[16] = {4e6, -1e6, 0, -1e6, -1e6, 3e6, -1e6, 0, 0, -1e6, 2e6, -5e5, -1e6, 0, -5e5, 3e6}, M[16] = {1, 0, 0, 0, 0, 1.2, 0, 0, 0, 0, 0.8, 0, 0, 0, 0, 1.5};
+    const El     e[6] = {
+      {"jenkins",    0, -1, -1, -1, 1e6, 0,   0.1, 10 },
+      {"jenkins",    1, 2,  -1, -1, 2e6, 0,   0.2, 5  },
+      {"jenkins_nv", 2, -1, 3,  -1, 1e6, 1e6, 0.3, 2  },
+      {"jenkins_nv", 3, 1,  0,  2,  5e5, 8e5, 0.2, 4  },
+      {"cubic",      0, 3,  -1, -1, 1e11, 0,  0,   0  },
+      {"jenkins",    3, -1, -1, -1, 1e6, 0,   0.1, 100}
+    };
+    Problem   p;
+    Vec       a, ap, R1, R2, Rw;
+    Mat       J;
+    PetscInt  n;
+    double    ej = 0.0, ew = 0.0, jmax = 0.0, wmax = 0.0, w = 2 * M_PI * 250;
+    char      opts[128];
+    PetscCall(PetscSNPrintf(opts, sizeof(opts), "-hbm_harmonics %" PetscInt_FMT " -hbm_samples 128 -hbm_gamma 0.01 -frf_force 1", H));
+    PetscCall(Options(opts));
+    PetscCall(ProblemCreate(4, K, M, NULL, 6, e, &p));
+    PetscCall(JRHBMSetForceLevel(p.hbm, 3.0));
+    PetscCall(JRHBMCreateVecs(p.hbm, &a, &J));
+    PetscCall(VecDuplicate(a, &ap));
+    PetscCall(VecDuplicate(a, &R1));
+    PetscCall(VecDuplicate(a, &R2));
+    PetscCall(VecDuplicate(a, &Rw));
+    PetscCall(VecGetSize(a, &n));
+    {
+      PetscScalar *x;
+      PetscCall(VecGetArray(a, &x));
+      srand(3);
+      for (PetscInt i = 0; i < n; i++) x[i] = 6e-6 * (2.0 * rand() / RAND_MAX - 1.0) / (1 + i / 4);
+      PetscCall(VecRestoreArray(a, &x));
+    }
+    PetscCall(JRHBMComputeJacobian(p.hbm, w, a, J, Rw));
+    {
+      const PetscScalar *Ja, *rw;
+      const double       h = 1e-6 * 6e-6;
+      PetscCall(MatDenseGetArrayRead(J, &Ja));
+      PetscCall(VecGetArrayRead(Rw, &rw));
+      for (PetscInt j = 0; j < n; j++) {
+        const PetscScalar *r1, *r2;
+        PetscCall(VecCopy(a, ap));
+        PetscCall(VecSetValue(ap, j, h, ADD_VALUES));
+        PetscCall(VecAssemblyBegin(ap));
+        PetscCall(VecAssemblyEnd(ap));
+        PetscCall(JRHBMComputeResidual(p.hbm, w, ap, R1));
+        PetscCall(VecSetValue(ap, j, -2 * h, ADD_VALUES));
+        PetscCall(VecAssemblyBegin(ap));
+        PetscCall(VecAssemblyEnd(ap));
+        PetscCall(JRHBMComputeResidual(p.hbm, w, ap, R2));
+        PetscCall(VecGetArrayRead(R1, &r1));
+        PetscCall(VecGetArrayRead(R2, &r2));
+        for (PetscInt i = 0; i < n; i++) {
+          ej   = fmax(ej, fabs(Ja[i + j * n] - (r1[i] - r2[i]) / (2 * h)));
+          jmax = fmax(jmax, fabs(Ja[i + j * n]));
+        }
+        PetscCall(VecRestoreArrayRead(R1, &r1));
+        PetscCall(VecRestoreArrayRead(R2, &r2));
+      }
+      {
+        const PetscScalar *r1, *r2;
+        const double       hw = 1e-6 * w;
+        PetscCall(JRHBMComputeResidual(p.hbm, w + hw, a, R1));
+        PetscCall(JRHBMComputeResidual(p.hbm, w - hw, a, R2));
+        PetscCall(VecGetArrayRead(R1, &r1));
+        PetscCall(VecGetArrayRead(R2, &r2));
+        for (PetscInt i = 0; i < n; i++) {
+          ew   = fmax(ew, fabs(rw[i] - (r1[i] - r2[i]) / (2 * hw)));
+          wmax = fmax(wmax, fabs(rw[i]));
+        }
+        PetscCall(VecRestoreArrayRead(R1, &r1));
+        PetscCall(VecRestoreArrayRead(R2, &r2));
+      }
+      PetscCall(VecRestoreArrayRead(Rw, &rw));
+      PetscCall(MatDenseRestoreArrayRead(J, &Ja));
+    }
+    {
+      PetscInt cnt[4];
+      PetscCall(JRHBMContactStates(p.hbm, a, cnt));
+      CHECK(ej < 1e-6 * jmax && ew < 1e-6 * wmax, "HBM Jacobian, H = %" PetscInt_FMT ", 4 modes, jenkins + jenkins_nv + cubic (states: %" PetscInt_FMT " stick, %" PetscInt_FMT " slip, %" PetscInt_FMT " separating): dR/da %.1e, dR/dw %.1e relative to finite differences", H, cnt[0], cnt[1], cnt[2] + cnt[3], ej / jmax, ew / wmax);
+    }
+    PetscCall(VecDestroy(&a));
+    PetscCall(VecDestroy(&ap));
+    PetscCall(VecDestroy(&R1));
+    PetscCall(VecDestroy(&R2));
+    PetscCall(VecDestroy(&Rw));
+    PetscCall(MatDestroy(&J));
+    PetscCall(ProblemDestroy(&p));
+  }
+
+  /* ---- H = 5 vs direct time integration; H = 1 vs H = 5 ---- */
+  {
+    const double m = 1.0, k = pow(2 * M_PI * 50, 2), kt = 0.5 * k, r = 20.0, c = 2.0, F = 12.0;
+    const double K[1] = {k}, M[1] = {m}, C[1] = {c};
+    const El     e[1] = {
+      {"jenkins", 0, -1, -1, -1, kt, 0, 0.2, r / 0.2}
+    };
+    const double w = 2 * M_PI * 55.0;
+    double       Xt[7], X5[11], X1[3];
+    for (int H = 1; H <= 5; H += 4) {
+      Problem   p;
+      Vec       a;
+      PetscInt  its;
+      PetscBool conv;
+      char      opts[128];
+      PetscCall(PetscSNPrintf(opts, sizeof(opts), "-hbm_harmonics %d -hbm_samples 512 -frf_force %g", H, F));
+      PetscCall(Options(opts));
+      PetscCall(ProblemCreate(1, K, M, C, 1, e, &p));
+      PetscCall(JRHBMSetForceLevel(p.hbm, F));
+      PetscCall(JRHBMCreateVecs(p.hbm, &a, NULL));
+      PetscCall(JRHBMLinearSolution(p.hbm, w, a));
+      PetscCall(JRHBMSolve(p.hbm, w, a, &its, &conv));
+      PetscCall(JRHBMResponse(p.hbm, a, H == 1 ? X1 : X5, NULL, NULL));
+      CHECK(conv, "friction oscillator at 55 Hz, H = %d: Newton converged in %" PetscInt_FMT " iterations", H, its);
+      PetscCall(VecDestroy(&a));
+      PetscCall(ProblemDestroy(&p));
+    }
+    TimeIntegrate(m, c, k, kt, r, F, w, 20000, 400, Xt);
+    {
+      const double A1 = hypot(Xt[1], Xt[2]), e1 = hypot(X5[1] - Xt[1], X5[2] - Xt[2]) / A1, e3 = hypot(X5[5] - Xt[5], X5[6] - Xt[6]) / A1, e13 = hypot(X1[1] - X5[1], X1[2] - X5[2]) / A1;
+      CHECK(e1 < 2e-3 && e3 < 2e-3, "friction oscillator at 55 Hz: H = 5 vs direct time integration (RK4, 20000 steps/cycle, 400 cycles): 1st harmonic error %.1e, 3rd harmonic (%.2e m, %.1f%% of the 1st) error %.1e, of the amplitude %.4g m", e1, hypot(Xt[5], Xt[6]), 100 * hypot(Xt[5], Xt[6]) / A1, e3, A1);
+      CHECK(e13 < 0.03, "friction oscillator at 55 Hz: H = 1 first harmonic within %.1f%% of H = 5 (mildly nonlinear)", 100 * e13);
+    }
+  }
+
+  PetscCall(SlepcFinalize());
+  return TestSummary("test_hbm");
+}
