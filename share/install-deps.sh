@@ -4,13 +4,16 @@
 # HDF5), OpenMPI, gnuplot for the PNG plots. Quiet and quick when everything is present.
 # Usage: share/install-deps.sh [--check]   (--check: report only, exit 1 if something is missing)
 set -u
-pkgs="petsc-dev slepc-dev libhdf5-openmpi-dev gnuplot-nox make gcc g++"
+pkgs="petsc-dev slepc-dev libhdf5-openmpi-dev gnuplot-nox make gcc g++ libopenblas0-serial"
 missing=""
 [ -f /usr/lib/petsc/lib/petsc/conf/variables ] || missing="$missing petsc-dev"
 [ -f /usr/lib/slepc/lib/slepc/conf/slepc_common ] || missing="$missing slepc-dev"
 [ -d /usr/include/hdf5/openmpi ] || missing="$missing libhdf5-openmpi-dev"
 command -v mpiexec >/dev/null 2>&1 || missing="$missing petsc-dev"
 command -v gnuplot >/dev/null 2>&1 || missing="$missing gnuplot-nox"
+# an optimised BLAS for the dense harmonic-balance Jacobian (GEMM) and LU; the serial build, so that
+# MPI ranks do not oversubscribe the cores with BLAS threads
+[ -e /usr/lib/x86_64-linux-gnu/openblas-serial/libblas.so.3 ] || [ "$(uname -m)" != x86_64 ] || missing="$missing libopenblas0-serial"
 # PETSc's link line names -lstdc++, which only the C++ compiler package brings
 command -v g++ >/dev/null 2>&1 || missing="$missing g++"
 [ -z "$missing" ] && exit 0

@@ -15,6 +15,7 @@
 */
 #include "jrtest.h"
 #include <slepcsys.h>
+#include <petscviewerhdf5.h>
 #include <complex.h>
 
 /* n x n MPIAIJ from a dense row-major array */
@@ -312,6 +313,48 @@ int main(int argc, char **argv)
       CHECK(apk[2] < 0.8 * apk[0] && apk[5] > 1.5 * apk[2], "jenkins oscillator: peak amplitude / force (in units of 1/(gamma k)) %.3f, %.3f, %.3f, %.3f, %.3f, %.3f: drops with friction damping, then rises towards gross slip", apk[0], apk[1], apk[2], apk[3], apk[4], apk[5]);
       CHECK(ebal < 1e-8, "jenkins oscillator: energy balance (input = structural damping + friction) at every point of 6 levels, max relative error %.1e", ebal);
       PetscCall(VecDestroy(&a));
+      PetscCall(ProblemDestroy(&p));
+    }
+    /* the HDF5 output holds the curve: read /level_0/omega back and compare with the branch */
+    {
+      Problem          p;
+      char             opts[512], file[PETSC_MAX_PATH_LEN] = "/tmp/jr_test_hbm_frf";
+      PetscInt         np, n5;
+      const PetscReal *om;
+      PetscViewer      v;
+      Vec              x;
+      PetscReal        F5, diff = 0.0;
+      PetscCall(PetscSNPrintf(opts, sizeof(opts), "-hbm_gamma %g -frf_force %g -frf_fmin %g -frf_fmax %g -frf_plot 0", g, 5.0 * A0 * g * k, 0.8 * fslip, 1.2 * flin));
+      PetscCall(Options(opts));
+      PetscCall(PetscOptionsSetValue(NULL, "-frf_output_file", file));
+      PetscCall(ProblemCreate(1, K, M, NULL, 1, e, &p));
+      PetscCall(JRContSolve(p.cont));
+      PetscCall(JRContWrite(p.cont));
+      PetscCall(JRContGetBranch(p.cont, 0, &np, &om, NULL, NULL));
+      PetscCall(PetscViewerHDF5Open(PETSC_COMM_WORLD, "/tmp/jr_test_hbm_frf.h5", FILE_MODE_READ, &v));
+      PetscCall(PetscViewerHDF5PushGroup(v, "/level_0"));
+      PetscCall(VecCreate(PETSC_COMM_WORLD, &x));
+      PetscCall(PetscObjectSetName((PetscObject)x, "omega"));
+      PetscCall(VecLoad(x, v));
+      PetscCall(VecGetSize(x, &n5));
+      PetscCall(PetscViewerHDF5ReadAttribute(v, "/level_0", "force_N", PETSC_REAL, NULL, &F5));
+      PetscCall(PetscViewerHDF5PopGroup(v));
+      PetscCall(PetscViewerDestroy(&v));
+      {
+        Vec                xs;
+        VecScatter         sc;
+        const PetscScalar *xa;
+        PetscCall(VecScatterCreateToAll(x, &sc, &xs));
+        PetscCall(VecScatterBegin(sc, x, xs, INSERT_VALUES, SCATTER_FORWARD));
+        PetscCall(VecScatterEnd(sc, x, xs, INSERT_VALUES, SCATTER_FORWARD));
+        PetscCall(VecGetArrayRead(xs, &xa));
+        for (PetscInt i = 0; i < PetscMin(np, n5); i++) diff = fmax(diff, fabs(xa[i] - om[i]));
+        PetscCall(VecRestoreArrayRead(xs, &xa));
+        PetscCall(VecScatterDestroy(&sc));
+        PetscCall(VecDestroy(&xs));
+      }
+      CHECK(n5 == np && diff == 0.0 && F5 == 5.0 * A0 * g * k, "HDF5 output: /level_0/omega read back (%" PetscInt_FMT " of %" PetscInt_FMT " points, max difference %g) and its force_N attribute %g N", n5, np, diff, (double)F5);
+      PetscCall(VecDestroy(&x));
       PetscCall(ProblemDestroy(&p));
     }
     /* natural and arclength continuation give the same curve (no folds here) */

@@ -655,6 +655,15 @@ PetscErrorCode JRContSolve(JRCont c)
     }
   }
   PetscCall(VecDestroy(&a));
+  /* summary, one row per level */
+  PetscCall(PetscPrintf(c->comm, "frf summary (%s continuation; peak of the first output DOF; elements at the peak: stick / slip / separating)\n", JRContTypes[c->type]));
+  PetscCall(PetscPrintf(c->comm, "  %10s %12s %13s %13s %7s %7s %7s %9s  %s\n", "F [N]", "peak [Hz]", "amp [m]", "amp/F [m/N]", "points", "newton", "retries", "time [s]", "states"));
+  for (PetscInt lev = 0; lev < c->nlev; lev++) {
+    Branch   *b = &c->br[lev];
+    PetscReal wp, ap;
+    PetscCall(JRContGetPeak(c, lev, &wp, &ap));
+    PetscCall(PetscPrintf(c->comm, "  %10.4g %12.6g %13.5e %13.5e %7" PetscInt_FMT " %7" PetscInt_FMT " %7" PetscInt_FMT " %9.3g  %" PetscInt_FMT " / %" PetscInt_FMT " / %" PetscInt_FMT "%s\n", (double)b->F, (double)(wp / (2 * PETSC_PI)), (double)ap, (double)(ap / b->F), b->np, b->newton, b->retries, (double)b->seconds, b->states[0], b->states[1], b->states[2] + b->states[3], b->complete ? "" : "  (incomplete)"));
+  }
   PetscFunctionReturn(0);
 }
 

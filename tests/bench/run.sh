@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# make bench: element evaluation rates on 1 and 2 ranks (10^6 elements, with derivatives).
+# make bench: element evaluation rates on 1 and 2 ranks (10^6 elements, with derivatives), then the
+# harmonic-balance FRF rates (tests/bench/bench_hbm.sh).
 # Targets (issue 2): analytic jenkins >= 1e7/s per core, analytic jenkins_nv >= 2e6/s, AFT (H=3, N=64) >= 1e6/s.
 cd "$(dirname "$0")/../.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
@@ -7,3 +8,5 @@ echo "== contact element evaluation, 10^6 elements with derivatives =="
 for np in 1 2; do
   mpiexec -n $np build/bench/bench_contact -elements 1000000 -repeat 3
 done
+echo
+bash tests/bench/bench_hbm.sh
