@@ -2,14 +2,8 @@
 # Command-line checks of bin/jointrom -task element: numbers against closed forms computed here,
 # joints from CSV, 1 vs 2 ranks, -help, output files, and bad input (clear error, non-zero exit).
 cd "$(dirname "$0")/.."
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
-J=bin/jointrom
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-ok() { echo "ok - $*"; }
-bad() { echo "not ok - $*"; }
-check() { if eval "$1"; then ok "$2"; else bad "$2"; fi; }
+. tests/cli_lib.sh
 field() { awk -v k="$1" '/^fs /{for(i=1;i<NF;i++) if($i==k) print $(i+1)}' ; }
-close() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN{d=a-b; if(d<0)d=-d; s=(b<0?-b:b); if(s<1e-300)s=1; exit !(d<=t*s)}'; }
 
 # jenkins, stick-slip: kt = 1e6 N/m, mu = 0.12, n0 = 100 N, U = 30 um. Closed forms evaluated by awk:
 # energy 4 r (A - r/kt), fc = energy/(pi A) (the loop area), fs = (kt A/pi)(beta - cos(beta) sin(beta))
@@ -77,13 +71,6 @@ done
 check "[ -z '$miss' ]" "-help lists every option${miss:+ (missing:$miss)}"
 
 # bad input: non-zero exit and a message naming the option or file
-expect_error() { # description, pattern, args...
-  local d=$1 p=$2; shift 2
-  local o rc
-  o=$("$@" 2>&1); rc=$?
-  if [ $rc != 0 ] && echo "$o" | grep -q -- "$p"; then ok "bad input, $d: exit $rc, says '$p'"
-  else bad "bad input, $d: exit $rc, expected a message with '$p'; got: $(echo "$o" | grep -m1 -i error)"; fi
-}
 expect_error "negative stiffness" "-element_kt -1.: the tangential stiffness must be positive" $J -task element -element_kt -1
 expect_error "negative friction coefficient" "-element_mu -0.1: the friction coefficient must be non-negative" $J -task element -element_mu -0.1
 expect_error "negative normal stiffness" "-element_kn -5.: the normal stiffness must be non-negative" $J -task element -contact_type jenkins_nv -element_kn -5

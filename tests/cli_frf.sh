@@ -2,12 +2,7 @@
 # Command-line checks of bin/jointrom -task frf: the run files, outputs, 1 vs 2 ranks, SNES options
 # reaching the solver (-hbm_snes_test_jacobian), the sphere constraint, -help, and bad input.
 cd "$(dirname "$0")/.."
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 OPENBLAS_NUM_THREADS=1
-J=bin/jointrom
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-ok() { echo "ok - $*"; }
-bad() { echo "not ok - $*"; }
-check() { if eval "$1"; then ok "$2"; else bad "$2"; fi; }
+. tests/cli_lib.sh
 osc="-task frf -model_stiffness runs/oscillator/K.mtx -model_mass runs/oscillator/M.mtx -model_elements runs/oscillator/elements.csv -hbm_gamma 0.01 -cont_monitor 0"
 
 # the oscillator run file: outputs written, one peak line per level, in the order of the levels
@@ -48,13 +43,6 @@ done
 check "[ -z '$miss' ]" "-help lists every frf option${miss:+ (missing:$miss)}"
 
 # bad input: non-zero exit and a message naming the file or option
-expect_error() { # description, pattern, args...
-  local d=$1 p=$2; shift 2
-  local o rc
-  o=$("$@" 2>&1); rc=$?
-  if [ $rc != 0 ] && echo "$o" | grep -q -- "$p"; then ok "bad input, $d: exit $rc, says '$p'"
-  else bad "bad input, $d: exit $rc, expected '$p'; got: $(echo "$o" | grep -m2 'PETSC ERROR: [^-#]' | tail -1)"; fi
-}
 printf '%%%%MatrixMarket matrix coordinate real general\n2 2 3\n1 1 2\n1 2 1\n2 2 2\n' > "$tmp/nonsym.mtx"
 printf '%%%%MatrixMarket matrix coordinate real symmetric\n2 2 2\n1 1 2\n2 2 2\n' > "$tmp/two.mtx"
 printf '%%%%MatrixMarket matrix array real general\n1 1\n1\n' > "$tmp/array.mtx"
