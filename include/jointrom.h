@@ -21,6 +21,7 @@
 #include <petscviewer.h>
 #include <petscmat.h>
 #include <petscsnes.h>
+#include <petscdm.h>
 
 #define JR_VERSION_MAJOR 0
 #define JR_VERSION_MINOR 1
@@ -104,6 +105,22 @@ PETSC_EXTERN PetscErrorCode JRHarmonicWork(PetscInt, const PetscReal[], const Pe
 typedef struct _p_JRModel *JRModel;
 typedef const char        *JRModelType;
 #define JRMODELMATRICES "matrices" /* K, M (C) from files and an element table: models from any FE code */
+#define JRMODELBEAM     "beam"     /* a straight prismatic beam (checks the elements) */
+#define JRMODELLAP      "lap"      /* a lap-joint assembly of two beams and N bolts, every dimension an option */
+#define JRMODELBRB      "brb"      /* the Brake-Reuss beam preset of the lap model (thesis ch. 4) */
+#define JRMODELLAP1     "lap1"     /* the single-bolt specimen preset (thesis 5.2) */
+#define JRMODELLAP3     "lap3"     /* the three-bolt specimen preset (thesis 5.3) */
+#define JRMODELGMSH     "gmsh"     /* a Gmsh .msh file with physical groups for contacts and bolts */
+
+/* Facing node pairs of the two contact surfaces (node-to-node interface), on every rank:
+   coordinates x[3i..], global DOFs of the x, y, z displacements of the node on surface A (dofA[3i..]) and
+   on surface B (dofB[3i..]), the tangential direction t (the beam axis projected on the surface) and the
+   normal nrm pointing from A into B, so that pressing the surfaces together is (uA - uB) . nrm > 0. */
+typedef struct {
+  PetscInt   n;
+  PetscReal *x, *t, *nrm;
+  PetscInt  *dofA, *dofB;
+} JRPairs;
 
 /* The contact elements of a model, one entry per element (the whole list, on every rank).
    Tangential relative motion u = x[dof_a] - x[dof_b], normal v = x[ndof_a] - x[ndof_b]; -1 = ground. */
@@ -126,6 +143,10 @@ PETSC_EXTERN PetscErrorCode JRModelSetElements(JRModel, const JRElements *);
 PETSC_EXTERN PetscErrorCode JRModelGetMatrices(JRModel, Mat *, Mat *, Mat *);
 PETSC_EXTERN PetscErrorCode JRModelGetNumDofs(JRModel, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRModelGetElements(JRModel, const JRElements **);
+PETSC_EXTERN PetscErrorCode JRModelGetPairs(JRModel, const JRPairs **);
+PETSC_EXTERN PetscErrorCode JRModelGetDM(JRModel, DM *);
+PETSC_EXTERN PetscErrorCode JRModelGetRigidBasis(JRModel, PetscInt *, Vec[6]);
+PETSC_EXTERN PetscErrorCode JRModelGetMass(JRModel, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRModelView(JRModel, PetscViewer);
 PETSC_EXTERN PetscErrorCode JRModelDestroy(JRModel *);
 
@@ -136,6 +157,8 @@ typedef struct _p_JRModes *JRModes;
 PETSC_EXTERN PetscErrorCode JRModesCreate(MPI_Comm, JRModes *);
 PETSC_EXTERN PetscErrorCode JRModesSetOperators(JRModes, Mat, Mat);
 PETSC_EXTERN PetscErrorCode JRModesSetNumber(JRModes, PetscInt);
+PETSC_EXTERN PetscErrorCode JRModesSetRigidBasis(JRModes, PetscInt, Vec[]);
+PETSC_EXTERN PetscErrorCode JRModesGetVecs(JRModes, Vec **);
 PETSC_EXTERN PetscErrorCode JRModesSetFromOptions(JRModes);
 PETSC_EXTERN PetscErrorCode JRModesSolve(JRModes);
 PETSC_EXTERN PetscErrorCode JRModesGetNumber(JRModes, PetscInt *);
@@ -239,5 +262,6 @@ PETSC_EXTERN PetscErrorCode JRPlot(MPI_Comm, const char[], const char[], const c
 /* Driver tasks */
 PETSC_EXTERN PetscErrorCode JRTaskElement(MPI_Comm);
 PETSC_EXTERN PetscErrorCode JRTaskFRF(MPI_Comm);
+PETSC_EXTERN PetscErrorCode JRTaskModes(MPI_Comm);
 
 #endif

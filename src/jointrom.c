@@ -12,13 +12,16 @@ static const char help[] = "jointrom: reduced-order models of bolted joints by h
                            "  element   one friction element or joint (CSV) under a prescribed motion: force harmonics,\n"
                            "            dissipated energy, contact state, hysteresis loop (CSV + PNG)\n"
                            "  frf       frequency-response curves by harmonic balance and continuation of a structure given by its\n"
-                           "            matrices (-model_type matrices) with contact elements, at several force levels (HDF5, CSV, PNG)\n\n";
+                           "            matrices (-model_type matrices) with contact elements, at several force levels (HDF5, CSV, PNG)\n"
+                           "  modes     a finite-element model (-model_type beam, lap, brb, lap1, lap3, gmsh) and its modes (SLEPc):\n"
+                           "            'mode <i> <Hz>' lines, HDF5 + XDMF for ParaView, PNG of the mode shapes\n\n";
 
 typedef enum {
   TASK_ELEMENT,
-  TASK_FRF
+  TASK_FRF,
+  TASK_MODES
 } Task;
-static const char *const Tasks[] = {"element", "frf", "Task", "TASK_", NULL};
+static const char *const Tasks[] = {"element", "frf", "modes", "Task", "TASK_", NULL};
 
 int main(int argc, char **argv)
 {
@@ -30,7 +33,7 @@ int main(int argc, char **argv)
   comm = PETSC_COMM_WORLD;
   PetscCall(JRInitializePackage());
   PetscOptionsBegin(comm, NULL, "jointrom driver", "jointrom");
-  PetscCall(PetscOptionsEList("-task", "What to do", "jointrom", Tasks, 2, Tasks[task], &task, NULL));
+  PetscCall(PetscOptionsEList("-task", "What to do", "jointrom", Tasks, 3, Tasks[task], &task, NULL));
   PetscOptionsEnd();
   PetscCall(PetscOptionsHasHelp(NULL, &help_given));
   switch ((Task)task) {
@@ -39,6 +42,9 @@ int main(int argc, char **argv)
     break;
   case TASK_FRF:
     PetscCall(JRTaskFRF(comm));
+    break;
+  case TASK_MODES:
+    PetscCall(JRTaskModes(comm));
     break;
   }
   (void)help_given;

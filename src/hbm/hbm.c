@@ -285,6 +285,13 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     PetscCall(JRModesSetNumber(h->modes, h->nm));
     PetscCall(JRModesSetFromOptions(h->modes));
     PetscCall(JRModesSetNumber(h->modes, h->nm)); /* -hbm_modes wins over -modes_nev */
+    {
+      PetscInt nrb;
+      Vec      rb[6];
+      PetscCall(JRModelGetRigidBasis(h->model, &nrb, rb));
+      PetscCall(JRModesSetRigidBasis(h->modes, nrb, rb));
+      for (PetscInt i = 0; i < nrb; i++) PetscCall(VecDestroy(&rb[i]));
+    }
     PetscCall(JRModesSolve(h->modes));
     PetscCall(JRModesGetEigenvalues(h->modes, &lam));
     PetscCall(PetscCalloc3(h->nm * h->nm, &h->Km, h->nm * h->nm, &h->Mm, h->nm * h->nm, &h->Cm));

@@ -15,8 +15,9 @@ PetscErrorCode JRModesCreate(MPI_Comm comm, JRModes *modes)
   PetscCall(JRInitializePackage());
   PetscCall(PetscNew(&md));
   md->comm = comm;
-  md->nev  = 10;
-  *modes   = md;
+  md->nev    = 10;
+  md->use_rb = PETSC_TRUE;
+  *modes     = md;
   PetscFunctionReturn(0);
 }
 
@@ -30,6 +31,44 @@ PetscErrorCode JRModesSetOperators(JRModes md, Mat K, Mat M)
   PetscCall(MatDestroy(&md->M));
   md->K = K;
   md->M = M;
+  PetscFunctionReturn(0);
+}
+
+/* An exact rigid-body basis (free-free structures): M-orthonormalised here, deflated from the
+   eigensolve, and returned as the first modes with omega = 0 (-modes_rigid_basis, default on) */
+PetscErrorCode JRModesSetRigidBasis(JRModes md, PetscInt n, Vec rb[])
+{
+  Vec Mv;
+
+  PetscFunctionBeginUser;
+  PetscCheck(md->M, md->comm, PETSC_ERR_ARG_WRONGSTATE, "JRModesSetOperators() first");
+  if (md->rb) PetscCall(VecDestroyVecs(md->nrb, &md->rb));
+  md->nrb = n;
+  if (!n) PetscFunctionReturn(0);
+  PetscCall(VecDuplicateVecs(rb[0], n, &md->rb));
+  PetscCall(VecDuplicate(rb[0], &Mv));
+  for (PetscInt i = 0; i < n; i++) { /* modified Gram-Schmidt in the M inner product */
+    PetscScalar d;
+    PetscCall(VecCopy(rb[i], md->rb[i]));
+    for (PetscInt j = 0; j < i; j++) {
+      PetscCall(MatMult(md->M, md->rb[j], Mv));
+      PetscCall(VecDot(md->rb[i], Mv, &d));
+      PetscCall(VecAXPY(md->rb[i], -d, md->rb[j]));
+    }
+    PetscCall(MatMult(md->M, md->rb[i], Mv));
+    PetscCall(VecDot(md->rb[i], Mv, &d));
+    PetscCheck(PetscRealPart(d) > 0, md->comm, PETSC_ERR_ARG_WRONG, "Rigid-body vector %" PetscInt_FMT " is dependent on the others", i);
+    PetscCall(VecScale(md->rb[i], 1.0 / PetscSqrtReal(PetscRealPart(d))));
+  }
+  PetscCall(VecDestroy(&Mv));
+  PetscFunctionReturn(0);
+}
+
+/* The mode vectors (borrowed, nm of them) */
+PetscErrorCode JRModesGetVecs(JRModes md, Vec **phi)
+{
+  PetscFunctionBeginUser;
+  *phi = md->phi;
   PetscFunctionReturn(0);
 }
 
@@ -49,6 +88,7 @@ PetscErrorCode JRModesSetFromOptions(JRModes md)
   PetscCall(PetscOptionsInt("-nev", "Number of modes (the lowest)", "JRModesSetNumber", md->nev, &md->nev, NULL));
   PetscCall(PetscOptionsReal("-target", "Shift for shift-and-invert [rad^2/s^2] (default: slightly below zero)", "JRModesSolve", md->target, &md->target, &md->target_set));
   PetscCall(PetscOptionsBool("-view", "Print the natural frequencies", "JRModesView", md->view, &md->view, NULL));
+  PetscCall(PetscOptionsBool("-rigid_basis", "Free-free FE models: deflate the exact rigid-body modes and solve for the elastic ones", "JRModesSetRigidBasis", md->use_rb, &md->use_rb, NULL));
   PetscOptionsEnd();
   PetscCheck(md->nev >= 1, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_nev %" PetscInt_FMT ": at least one mode", md->nev);
   PetscFunctionReturn(0);
@@ -66,7 +106,7 @@ static PetscErrorCode ClearModes(JRModes md)
 /* Solve for the nev lowest modes; mass-normalise and sort them */
 PetscErrorCode JRModesSolve(JRModes md)
 {
-  PetscInt  n, nconv, *perm;
+  PetscInt  n, nconv, *perm, nrb, nel;
   Vec       x, Mx;
   PetscReal *lam;
   Vec       *vecs;
@@ -80,13 +120,17 @@ PetscErrorCode JRModesSolve(JRModes md)
   PetscCall(ClearModes(md));
   PetscCall(MatGetSize(md->K, &n, NULL));
   PetscCheck(md->nev <= n, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "%" PetscInt_FMT " modes requested (-modes_nev or -hbm_modes), the model has %" PetscInt_FMT " DOFs", md->nev, n);
+  nrb = md->use_rb ? md->nrb : 0;
+  PetscCheck(md->nev > nrb, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "%" PetscInt_FMT " modes requested: more than the %" PetscInt_FMT " rigid-body modes are needed", md->nev, nrb);
   PetscCall(PetscLogEventBegin(JR_ModesSolve, 0, 0, 0, 0));
   PetscCall(EPSDestroy(&md->eps));
   PetscCall(EPSCreate(md->comm, &md->eps));
   PetscCall(EPSSetOptionsPrefix(md->eps, "modes_"));
   PetscCall(EPSSetOperators(md->eps, md->K, md->M));
   PetscCall(EPSSetProblemType(md->eps, EPS_GHEP));
+  nel   = md->nev - nrb; /* elastic modes to compute */
   dense = (PetscBool)(2 * md->nev > n || n <= 64);
+  if (nrb) PetscCall(EPSSetDeflationSpace(md->eps, nrb, md->rb));
   if (dense) { /* every mode (or most of them) of a small system: dense LAPACK */
     PetscCall(EPSSetType(md->eps, EPSLAPACK));
     PetscCall(EPSSetWhichEigenpairs(md->eps, EPS_SMALLEST_REAL));
@@ -103,7 +147,7 @@ PetscErrorCode JRModesSolve(JRModes md)
       PetscCall(VecDestroy(&d));
       md->target = md_ > 0 ? -1e-6 * kd / md_ : -1.0;
     }
-    PetscCall(EPSSetDimensions(md->eps, md->nev, PETSC_DEFAULT, PETSC_DEFAULT));
+    PetscCall(EPSSetDimensions(md->eps, nel, PetscMax(2 * nel + 10, nel + 32), PETSC_DEFAULT));
     PetscCall(EPSSetTarget(md->eps, md->target));
     PetscCall(EPSSetWhichEigenpairs(md->eps, EPS_TARGET_MAGNITUDE));
     PetscCall(EPSGetST(md->eps, &st));
@@ -119,7 +163,7 @@ PetscErrorCode JRModesSolve(JRModes md)
   PetscCall(EPSSetFromOptions(md->eps));
   PetscCall(EPSSolve(md->eps));
   PetscCall(EPSGetConverged(md->eps, &nconv));
-  PetscCheck(nconv >= md->nev, md->comm, PETSC_ERR_NOT_CONVERGED, "Only %" PetscInt_FMT " of %" PetscInt_FMT " modes converged (tune -modes_eps_* or -modes_target)", nconv, md->nev);
+  PetscCheck(nconv >= nel, md->comm, PETSC_ERR_NOT_CONVERGED, "Only %" PetscInt_FMT " of %" PetscInt_FMT " modes converged (tune -modes_eps_* or -modes_target)", nconv, nel);
   nconv = PetscMin(nconv, dense ? n : nconv);
   PetscCall(PetscMalloc2(nconv, &lam, nconv, &perm));
   PetscCall(MatCreateVecs(md->K, &x, &Mx));
@@ -136,8 +180,13 @@ PetscErrorCode JRModesSolve(JRModes md)
   PetscCall(VecDuplicateVecs(x, md->nm, &md->phi));
   for (PetscInt i = 0; i < md->nm; i++) {
     PetscScalar mm;
-    md->lambda[i] = lam[perm[i]];
-    PetscCall(VecCopy(vecs[perm[i]], md->phi[i]));
+    if (i < nrb) { /* the supplied rigid-body modes first, omega = 0 */
+      md->lambda[i] = 0.0;
+      PetscCall(VecCopy(md->rb[i], md->phi[i]));
+      continue;
+    }
+    md->lambda[i] = lam[perm[i - nrb]];
+    PetscCall(VecCopy(vecs[perm[i - nrb]], md->phi[i]));
     PetscCall(MatMult(md->M, md->phi[i], Mx));
     PetscCall(VecDot(md->phi[i], Mx, &mm));
     PetscCheck(PetscRealPart(mm) > 0.0, md->comm, PETSC_ERR_NOT_CONVERGED, "Mode %" PetscInt_FMT " has non-positive modal mass %g: is M positive definite?", i, (double)PetscRealPart(mm));
@@ -240,6 +289,7 @@ PetscErrorCode JRModesDestroy(JRModes *modes)
   PetscFunctionBeginUser;
   if (!md) PetscFunctionReturn(0);
   PetscCall(ClearModes(md));
+  if (md->rb) PetscCall(VecDestroyVecs(md->nrb, &md->rb));
   PetscCall(EPSDestroy(&md->eps));
   PetscCall(MatDestroy(&md->K));
   PetscCall(MatDestroy(&md->M));

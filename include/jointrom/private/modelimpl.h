@@ -9,6 +9,7 @@ typedef struct _JRModelOps *JRModelOps;
 struct _JRModelOps {
   PetscErrorCode (*setfromoptions)(JRModel, PetscOptionItems *);
   PetscErrorCode (*setup)(JRModel);
+  PetscErrorCode (*rigidbasis)(JRModel, PetscInt *, Vec[6]);
   PetscErrorCode (*view)(JRModel, PetscViewer);
   PetscErrorCode (*destroy)(JRModel);
 };
@@ -22,10 +23,20 @@ struct _p_JRModel {
   Mat                K, M, C; /* C may be NULL */
   PetscInt           ndof;
   JRElements         el;
+  JRPairs            pairs;
+  DM                 dm;         /* the FE mesh and discretisation (NULL for matrices) */
+  PetscReal          mass, volume_mass; /* total mass from M, and density x volume */
 };
 
 PETSC_INTERN PetscErrorCode JRModelRegisterAll(void);
 PETSC_INTERN PetscErrorCode JRModelCreate_Matrices(JRModel);
+PETSC_INTERN PetscErrorCode JRModelCreate_Beam(JRModel);
+PETSC_INTERN PetscErrorCode JRModelCreate_Lap(JRModel);
+PETSC_INTERN PetscErrorCode JRModelCreate_BRB(JRModel);
+PETSC_INTERN PetscErrorCode JRModelCreate_Lap1(JRModel);
+PETSC_INTERN PetscErrorCode JRModelCreate_Lap3(JRModel);
+PETSC_INTERN PetscErrorCode JRModelCreate_Gmsh(JRModel);
+PETSC_INTERN PetscErrorCode JRPairsDestroy(JRPairs *);
 PETSC_INTERN PetscErrorCode JRElementsReadCSV(MPI_Comm, const char[], PetscInt, JRElements *);
 PETSC_INTERN PetscErrorCode JRElementsDestroy(JRElements *);
 
@@ -39,6 +50,9 @@ struct _p_JRModes {
   EPS        eps;
   PetscReal *lambda;     /* omega_r^2, ascending */
   Vec       *phi;        /* mass-normalised */
+  PetscInt   nrb;        /* exact rigid-body basis supplied (deflated; kept as the first modes) */
+  Vec       *rb;
+  PetscBool  use_rb;     /* -modes_rigid_basis */
 };
 
 #endif

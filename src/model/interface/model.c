@@ -19,6 +19,12 @@ PetscErrorCode JRModelRegisterAll(void)
   PetscFunctionBeginUser;
   if (JRModelList) PetscFunctionReturn(0);
   PetscCall(JRModelRegister(JRMODELMATRICES, JRModelCreate_Matrices));
+  PetscCall(JRModelRegister(JRMODELBEAM, JRModelCreate_Beam));
+  PetscCall(JRModelRegister(JRMODELLAP, JRModelCreate_Lap));
+  PetscCall(JRModelRegister(JRMODELBRB, JRModelCreate_BRB));
+  PetscCall(JRModelRegister(JRMODELLAP1, JRModelCreate_Lap1));
+  PetscCall(JRModelRegister(JRMODELLAP3, JRModelCreate_Lap3));
+  PetscCall(JRModelRegister(JRMODELGMSH, JRModelCreate_Gmsh));
   PetscFunctionReturn(0);
 }
 
@@ -46,7 +52,7 @@ PetscErrorCode JRModelSetType(JRModel m, JRModelType type)
   PetscCall(PetscStrcmp(m->type_name, type, &match));
   if (match) PetscFunctionReturn(0);
   PetscCall(PetscFunctionListFind(JRModelList, type, &create));
-  PetscCheck(create, m->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown model type '%s' (-model_type): available: matrices", type);
+  PetscCheck(create, m->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown model type '%s' (-model_type): available: matrices, beam, lap, brb, lap1, lap3, gmsh", type);
   if (m->ops->destroy) PetscCall((*m->ops->destroy)(m));
   PetscCall(PetscMemzero(m->ops, sizeof(struct _JRModelOps)));
   m->data = NULL;
@@ -65,7 +71,7 @@ PetscErrorCode JRModelSetFromOptions(JRModel m)
   PetscFunctionBeginUser;
   PetscCall(JRModelRegisterAll());
   PetscOptionsBegin(m->comm, NULL, "Structural model", "JRModel");
-  PetscCall(PetscOptionsFList("-model_type", "Model: matrices (K, M, C and elements from files)", "JRModelSetType", JRModelList, m->type_name[0] ? m->type_name : JRMODELMATRICES, type, sizeof(type), &flg));
+  PetscCall(PetscOptionsFList("-model_type", "Model: matrices (files), beam, lap, brb, lap1, lap3 (built-in FE geometries), gmsh (a .msh file)", "JRModelSetType", JRModelList, m->type_name[0] ? m->type_name : JRMODELMATRICES, type, sizeof(type), &flg));
   if (flg || !m->type_name[0]) PetscCall(JRModelSetType(m, flg ? type : JRMODELMATRICES));
   PetscCall(PetscOptionsBool("-model_view", "Print the model (DOFs, matrices, elements) after set-up", "JRModelView", m->view, &m->view, NULL));
   if (m->ops->setfromoptions) PetscCall((*m->ops->setfromoptions)(m, PetscOptionsObject));
@@ -146,6 +152,46 @@ PetscErrorCode JRModelGetMatrices(JRModel m, Mat *K, Mat *M, Mat *C)
   PetscFunctionReturn(0);
 }
 
+/* The facing node pairs of the contact surfaces (FE models; none for matrices) */
+PetscErrorCode JRModelGetPairs(JRModel m, const JRPairs **pairs)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRModelSetUp(m));
+  *pairs = &m->pairs;
+  PetscFunctionReturn(0);
+}
+
+/* The DMPlex of an FE model (NULL for matrices) */
+PetscErrorCode JRModelGetDM(JRModel m, DM *dm)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRModelSetUp(m));
+  *dm = m->dm;
+  PetscFunctionReturn(0);
+}
+
+/* Total mass from M [kg] and density x volume [kg] (equal for an FE model; mass twice for matrices) */
+PetscErrorCode JRModelGetMass(JRModel m, PetscReal *mass, PetscReal *rhov)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRModelSetUp(m));
+  if (mass) *mass = m->mass;
+  if (rhov) *rhov = m->volume_mass;
+  PetscFunctionReturn(0);
+}
+
+/* The rigid-body motions of a free (unsupported) FE model: n = 6 vectors (translations x, y, z, rotations
+   about x, y, z through the centroid) created here; n = 0 when the model has none (supported, or no node
+   coordinates: matrices) */
+PetscErrorCode JRModelGetRigidBasis(JRModel m, PetscInt *n, Vec rb[6])
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRModelSetUp(m));
+  *n = 0;
+  if (m->ops->rigidbasis) PetscCall((*m->ops->rigidbasis)(m, n, rb));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode JRModelGetNumDofs(JRModel m, PetscInt *n)
 {
   PetscFunctionBeginUser;
@@ -193,6 +239,8 @@ PetscErrorCode JRModelDestroy(JRModel *model)
   PetscCall(MatDestroy(&m->M));
   PetscCall(MatDestroy(&m->C));
   PetscCall(JRElementsDestroy(&m->el));
+  PetscCall(JRPairsDestroy(&m->pairs));
+  PetscCall(DMDestroy(&m->dm));
   PetscCall(PetscFree(m));
   *model = NULL;
   PetscFunctionReturn(0);

@@ -1,0 +1,50 @@
+/* Private: the finite-element models (beam, lap-joint presets, Gmsh import) built on DMPlex + PetscFE. */
+#if !defined(JOINTROM_FEIMPL_H)
+#define JOINTROM_FEIMPL_H
+
+#include <jointrom/private/modelimpl.h>
+#include <petscdmplex.h>
+#include <petscds.h>
+
+/* label names and values used on the DMPlex */
+#define JR_LABEL_BODY    "jr_body"    /* cells: 1 = beam A (or the only beam), 2 = beam B */
+#define JR_LABEL_CONTACT "jr_contact" /* faces: 1 = contact surface of A, 2 = of B */
+#define JR_LABEL_BOLT    "jr_bolt"    /* faces: 2i+1 = head footprint of bolt i, 2i+2 = nut footprint */
+#define JR_LABEL_CLAMP   "jr_clamp"   /* faces: 1 = the end x = 0 (clamped with -model_clamp) */
+
+typedef struct {
+  PetscReal x[3];  /* centre of the shank at the head-side face */
+  PetscReal axis;  /* shank length along -z from the head face to the nut face [m] */
+  PetscReal d;     /* shank diameter [m] */
+  PetscInt  nhead, nnut; /* footprint nodes (all ranks) */
+} JRBolt;
+
+typedef struct {
+  /* geometry and mesh parameters (SI) */
+  PetscReal  L1, L2, W, H, Llap, pitch, dbolt, dhole, dwasher, h, grade;
+  PetscInt   nbolts, order;
+  PetscReal  E, nu, rho, pairtol;
+  PetscBool  clamp, lap;        /* clamp x = 0; the geometry has a lap joint */
+  PetscBool  petscfe;           /* assemble with PETSc's generic PetscFE integration instead of the Q2 kernel */
+  char       file[PETSC_MAX_PATH_LEN];
+  char       tangent[8];
+  /* the discretisation */
+  DM         dm;
+  PetscReal  volume, mass;
+  PetscInt   nnodes;            /* DOF points (nodes) over all ranks */
+  PetscInt   nbolt_alloc;
+  JRBolt    *bolt;
+  PetscInt   ncontact[2];       /* nodes on each contact surface */
+} Model_FE;
+
+PETSC_INTERN PetscErrorCode JRFEGeometryBeam(MPI_Comm, Model_FE *, DM *);
+PETSC_INTERN PetscErrorCode JRFEGeometryLap(MPI_Comm, Model_FE *, DM *);
+PETSC_INTERN PetscErrorCode JRFEGeometryGmsh(MPI_Comm, Model_FE *, DM *);
+PETSC_INTERN PetscErrorCode JRFESetUp(JRModel, Model_FE *);
+PETSC_INTERN PetscErrorCode JRFERigidBasis(DM, Vec[6]);
+
+/* nodes (DOF points) on a labelled face set: coordinates (3 each) and global DOF indices (3 each),
+   gathered on every rank, duplicates removed, sorted by global DOF */
+PETSC_INTERN PetscErrorCode JRFEFaceNodes(DM, const char *, PetscInt, PetscInt *, PetscReal **, PetscInt **);
+
+#endif

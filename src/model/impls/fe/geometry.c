@@ -1,0 +1,197 @@
+/*
+   Structured hexahedral meshes of a straight beam and of lap-joint assemblies, built on rank 0 as a cell
+   list and distributed by DMPlex.
+
+   Lap joint (Brake-Reuss beam and the single- and three-bolt specimens of thesis ch. 4-5): beam A on
+   x in [0, L1], beam B on x in [L1 - Llap, L1 - Llap + L2]; width W along y, height H along z; over the
+   lap x in [L1 - Llap, L1] A keeps the upper half z in [H/2, H] and B the lower half z in [0, H/2], so
+   they meet on the plane z = H/2. The two beams are separate bodies: each has its own vertices, so the
+   lap faces coincide without being joined, and every node of one contact surface faces a node of the
+   other (one grid in x and y for both). Bolt holes are the cells whose centre lies inside the hole
+   (a stair-step hole); the washer footprints are the outer faces (A's top, B's bottom) whose centre
+   lies in the washer annulus. Grid: spacing h over the lap, h * grade outside it, at least two cells
+   through each half height.
+*/
+#include <jointrom/private/feimpl.h>
+
+/* grid lines: n cells of equal size over each segment [b_i, b_{i+1}] of size at most hs[i] */
+static PetscErrorCode GridLines(PetscInt nseg, const PetscReal b[], const PetscReal hs[], PetscInt minc, PetscInt *n, PetscReal **x)
+{
+  PetscInt tot = 0, k = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt s = 0; s < nseg; s++) tot += PetscMax(minc, (PetscInt)PetscCeilReal((b[s + 1] - b[s]) / hs[s] - 1e-9));
+  PetscCall(PetscMalloc1(tot + 1, x));
+  for (PetscInt s = 0; s < nseg; s++) {
+    const PetscInt m = PetscMax(minc, (PetscInt)PetscCeilReal((b[s + 1] - b[s]) / hs[s] - 1e-9));
+    for (PetscInt i = 0; i < m; i++) (*x)[k++] = b[s] + (b[s + 1] - b[s]) * i / m;
+  }
+  (*x)[k] = b[nseg];
+  *n      = tot;
+  PetscFunctionReturn(0);
+}
+
+typedef struct {
+  const Model_FE *fe;
+  PetscReal       xl, xr; /* lap */
+} LapCtx;
+
+/* which body holds cell (i, j, k) with centre c: 0 = A, 1 = B, -1 = none (outside, or in a hole) */
+static PetscInt LapBody(const LapCtx *lc, const PetscReal c[3])
+{
+  const Model_FE *fe = lc->fe;
+  PetscInt        b  = -1;
+  if (!fe->lap) return 0;
+  if (c[0] < lc->xl) b = 0;
+  else if (c[0] > lc->xr) b = 1;
+  else b = c[2] > 0.5 * fe->H ? 0 : 1;
+  for (PetscInt i = 0; i < fe->nbolts; i++) {
+    const PetscReal dx = c[0] - fe->bolt[i].x[0], dy = c[1] - fe->bolt[i].x[1];
+    if (dx * dx + dy * dy < 0.25 * fe->dhole * fe->dhole) b = -1;
+  }
+  return b;
+}
+
+/* Build the DMPlex of the bodies on the grid; cells labelled by body, faces by contact, footprint, clamp */
+static PetscErrorCode BuildMesh(MPI_Comm comm, Model_FE *fe, const LapCtx *lc, PetscInt nx, const PetscReal *X, PetscInt ny, const PetscReal *Y, PetscInt nz, const PetscReal *Z, DM *dm)
+{
+  PetscMPIInt rank;
+  PetscInt    ncell = 0, nvert = 0, *cells = NULL, *body = NULL;
+  PetscReal  *coords = NULL;
+  DM          dist   = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) {
+    const PetscInt nv = (nx + 1) * (ny + 1) * (nz + 1);
+    PetscInt      *vid, cap = 0;
+    PetscCall(PetscMalloc1(nv, &vid));
+    for (PetscInt pass = 0; pass < 2; pass++) { /* pass 0 counts, pass 1 fills */
+      ncell = nvert = 0;
+      for (PetscInt b = 0; b < (fe->lap ? 2 : 1); b++) {
+        for (PetscInt v = 0; v < nv; v++) vid[v] = -1;
+        for (PetscInt k = 0; k < nz; k++)
+          for (PetscInt j = 0; j < ny; j++)
+            for (PetscInt i = 0; i < nx; i++) {
+              const PetscReal c[3]   = {0.5 * (X[i] + X[i + 1]), 0.5 * (Y[j] + Y[j + 1]), 0.5 * (Z[k] + Z[k + 1])};
+              /* DMPlex hexahedron: bottom face (i,j),(i,j+1),(i+1,j+1),(i+1,j), top face (i,j),(i+1,j),(i+1,j+1),(i,j+1) */
+              const PetscInt  di[8] = {0, 0, 1, 1, 0, 1, 1, 0}, dj[8] = {0, 1, 1, 0, 0, 0, 1, 1}, dk[8] = {0, 0, 0, 0, 1, 1, 1, 1};
+              if (LapBody(lc, c) != b) continue;
+              for (PetscInt q = 0; q < 8; q++) {
+                const PetscInt g = ((k + dk[q]) * (ny + 1) + (j + dj[q])) * (nx + 1) + (i + di[q]);
+                if (vid[g] < 0) {
+                  if (pass) {
+                    coords[3 * nvert + 0] = X[i + di[q]];
+                    coords[3 * nvert + 1] = Y[j + dj[q]];
+                    coords[3 * nvert + 2] = Z[k + dk[q]];
+                  }
+                  vid[g] = nvert++;
+                }
+                if (pass) cells[8 * ncell + q] = vid[g];
+              }
+              if (pass) body[ncell] = b;
+              ncell++;
+            }
+      }
+      if (!pass) {
+        cap = ncell;
+        PetscCall(PetscMalloc3(8 * cap, &cells, 3 * nvert, &coords, cap, &body));
+      }
+    }
+    PetscCall(PetscFree(vid));
+  }
+  PetscCall(DMPlexCreateFromCellListPetsc(comm, 3, ncell, nvert, 8, PETSC_TRUE, cells, 3, coords, dm));
+  PetscCall(DMCreateLabel(*dm, JR_LABEL_BODY));
+  PetscCall(DMCreateLabel(*dm, JR_LABEL_CONTACT));
+  PetscCall(DMCreateLabel(*dm, JR_LABEL_BOLT));
+  PetscCall(DMCreateLabel(*dm, JR_LABEL_CLAMP));
+  if (rank == 0) {
+    PetscInt fs, fe_;
+    for (PetscInt c = 0; c < ncell; c++) PetscCall(DMSetLabelValue(*dm, JR_LABEL_BODY, c, body[c] + 1));
+    PetscCall(DMPlexGetHeightStratum(*dm, 1, &fs, &fe_));
+    for (PetscInt f = fs; f < fe_; f++) {
+      PetscInt        ns, bd;
+      const PetscInt *supp;
+      PetscReal       area, cen[3], nrm[3];
+      const PetscReal tol = 1e-9 * PetscMax(fe->H, fe->W);
+      PetscCall(DMPlexGetSupportSize(*dm, f, &ns));
+      if (ns != 1) continue; /* interior face */
+      PetscCall(DMPlexGetSupport(*dm, f, &supp));
+      bd = body[supp[0]];
+      PetscCall(DMPlexComputeCellGeometryFVM(*dm, f, &area, cen, nrm));
+      if (PetscAbsReal(cen[0]) < tol) PetscCall(DMSetLabelValue(*dm, JR_LABEL_CLAMP, f, 1));
+      if (!fe->lap) continue;
+      if (PetscAbsReal(cen[2] - 0.5 * fe->H) < tol && cen[0] > lc->xl && cen[0] < lc->xr) PetscCall(DMSetLabelValue(*dm, JR_LABEL_CONTACT, f, bd + 1));
+      for (PetscInt i = 0; i < fe->nbolts; i++) {
+        const PetscReal dx = cen[0] - fe->bolt[i].x[0], dy = cen[1] - fe->bolt[i].x[1], r = PetscSqrtReal(dx * dx + dy * dy);
+        if (r < 0.5 * fe->dhole || r > 0.5 * fe->dwasher) continue;
+        if (bd == 0 && PetscAbsReal(cen[2] - fe->H) < tol) PetscCall(DMSetLabelValue(*dm, JR_LABEL_BOLT, f, 2 * i + 1));
+        if (bd == 1 && PetscAbsReal(cen[2]) < tol) PetscCall(DMSetLabelValue(*dm, JR_LABEL_BOLT, f, 2 * i + 2));
+      }
+    }
+    PetscCall(PetscFree3(cells, coords, body));
+  }
+  PetscCall(DMPlexDistribute(*dm, 0, NULL, &dist));
+  if (dist) {
+    PetscCall(DMDestroy(dm));
+    *dm = dist;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* A straight prismatic beam along x: -model_length, -model_width (y), -model_height (z) */
+PetscErrorCode JRFEGeometryBeam(MPI_Comm comm, Model_FE *fe, DM *dm)
+{
+  PetscInt   nx = 0, ny = 0, nz = 0;
+  PetscReal *X, *Y, *Z;
+  LapCtx     lc = {fe, 0.0, 0.0};
+  PetscReal  bx[2] = {0, fe->L1}, by[2] = {0, fe->W}, bz[2] = {0, fe->H}, h[1] = {fe->h};
+
+  PetscFunctionBeginUser;
+  fe->lap    = PETSC_FALSE;
+  fe->nbolts = 0;
+  PetscCall(GridLines(1, bx, h, 1, &nx, &X));
+  PetscCall(GridLines(1, by, h, 1, &ny, &Y));
+  PetscCall(GridLines(1, bz, h, 1, &nz, &Z));
+  PetscCall(BuildMesh(comm, fe, &lc, nx, X, ny, Y, nz, Z, dm));
+  PetscCall(PetscFree(X));
+  PetscCall(PetscFree(Y));
+  PetscCall(PetscFree(Z));
+  PetscFunctionReturn(0);
+}
+
+/* The lap-joint assembly (see the top of this file) */
+PetscErrorCode JRFEGeometryLap(MPI_Comm comm, Model_FE *fe, DM *dm)
+{
+  const PetscReal xl = fe->L1 - fe->Llap, xr = fe->L1, xe = fe->L1 - fe->Llap + fe->L2;
+  PetscInt        nx = 0, ny = 0, nz = 0;
+  PetscReal      *X, *Y, *Z;
+  LapCtx          lc    = {fe, xl, xr};
+  const PetscReal bx[4] = {0, xl, xr, xe}, hx[3] = {fe->h * fe->grade, fe->h, fe->h * fe->grade};
+  const PetscReal by[2] = {0, fe->W}, hy[1] = {fe->h}, bz[3] = {0, 0.5 * fe->H, fe->H}, hz[2] = {fe->h, fe->h};
+
+  PetscFunctionBeginUser;
+  fe->lap = PETSC_TRUE;
+  PetscCheck(fe->L1 > fe->Llap && fe->L2 > fe->Llap, comm, PETSC_ERR_ARG_OUTOFRANGE, "-model_lap_length %g m must be shorter than both beams (-model_length_a %g, -model_length_b %g m)", (double)fe->Llap, (double)fe->L1, (double)fe->L2);
+  PetscCheck(fe->dwasher > fe->dhole && fe->dhole >= fe->dbolt, comm, PETSC_ERR_ARG_OUTOFRANGE, "Bolt %g m, hole %g m, washer %g m: need bolt <= hole < washer diameter (-model_bolt_diameter, -model_hole_diameter, -model_washer_diameter)", (double)fe->dbolt, (double)fe->dhole, (double)fe->dwasher);
+  PetscCall(PetscFree(fe->bolt));
+  PetscCall(PetscCalloc1(PetscMax(fe->nbolts, 1), &fe->bolt));
+  for (PetscInt i = 0; i < fe->nbolts; i++) { /* centred in the lap at the pitch, on the width's midline */
+    JRBolt *b = &fe->bolt[i];
+    b->x[0]   = 0.5 * (xl + xr) + (i - 0.5 * (fe->nbolts - 1)) * fe->pitch;
+    b->x[1]   = 0.5 * fe->W;
+    b->x[2]   = fe->H;
+    b->axis   = fe->H;
+    b->d      = fe->dbolt;
+    PetscCheck(b->x[0] - 0.5 * fe->dwasher > xl - 1e-12 && b->x[0] + 0.5 * fe->dwasher < xr + 1e-12, comm, PETSC_ERR_ARG_OUTOFRANGE, "Bolt %" PetscInt_FMT " at x = %g m: its washer (diameter %g m) reaches outside the lap [%g, %g] m (check -model_nbolts, -model_bolt_pitch, -model_lap_length)", i + 1, (double)b->x[0], (double)fe->dwasher, (double)xl, (double)xr);
+    PetscCheck(0.5 * fe->dwasher < 0.5 * fe->W + 1e-12, comm, PETSC_ERR_ARG_OUTOFRANGE, "Washer diameter %g m is wider than the beam (-model_width %g m)", (double)fe->dwasher, (double)fe->W);
+  }
+  PetscCall(GridLines(3, bx, hx, 1, &nx, &X));
+  PetscCall(GridLines(1, by, hy, 2, &ny, &Y));
+  PetscCall(GridLines(2, bz, hz, 2, &nz, &Z));
+  PetscCall(BuildMesh(comm, fe, &lc, nx, X, ny, Y, nz, Z, dm));
+  PetscCall(PetscFree(X));
+  PetscCall(PetscFree(Y));
+  PetscCall(PetscFree(Z));
+  PetscFunctionReturn(0);
+}
