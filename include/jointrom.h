@@ -159,6 +159,7 @@ PETSC_EXTERN PetscErrorCode JRModesSetOperators(JRModes, Mat, Mat);
 PETSC_EXTERN PetscErrorCode JRModesSetNumber(JRModes, PetscInt);
 PETSC_EXTERN PetscErrorCode JRModesSetRigidBasis(JRModes, PetscInt, Vec[]);
 PETSC_EXTERN PetscErrorCode JRModesGetVecs(JRModes, Vec **);
+PETSC_EXTERN PetscErrorCode JRModesGetNumRigid(JRModes, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRModesSetFromOptions(JRModes);
 PETSC_EXTERN PetscErrorCode JRModesSolve(JRModes);
 PETSC_EXTERN PetscErrorCode JRModesGetNumber(JRModes, PetscInt *);

@@ -1,16 +1,18 @@
 #!/usr/bin/env bash
 # jointrom dependency installer (Debian 12).
 # Installs what jointrom needs when it is missing: PETSc and SLEPc 3.18 (with MUMPS and parallel
-# HDF5), OpenMPI, gnuplot for the PNG plots. Quiet and quick when everything is present.
+# HDF5), OpenMPI, gnuplot for the PNG plots, the HDF5 tools (h5ls, h5dump) to look into results. Quiet and quick when everything is present.
 # Usage: share/install-deps.sh [--check]   (--check: report only, exit 1 if something is missing)
 set -u
-pkgs="petsc-dev slepc-dev libhdf5-openmpi-dev gnuplot-nox make gcc g++ libopenblas0-serial"
+pkgs="petsc-dev slepc-dev libhdf5-openmpi-dev hdf5-tools gnuplot-nox make gcc g++ libopenblas0-serial"
 missing=""
 [ -f /usr/lib/petsc/lib/petsc/conf/variables ] || missing="$missing petsc-dev"
 [ -f /usr/lib/slepc/lib/slepc/conf/slepc_common ] || missing="$missing slepc-dev"
 [ -d /usr/include/hdf5/openmpi ] || missing="$missing libhdf5-openmpi-dev"
 command -v mpiexec >/dev/null 2>&1 || missing="$missing petsc-dev"
 command -v gnuplot >/dev/null 2>&1 || missing="$missing gnuplot-nox"
+# h5ls / h5dump: look into the result files (the tests read them back with h5dump)
+command -v h5dump >/dev/null 2>&1 || missing="$missing hdf5-tools"
 # an optimised BLAS for the dense harmonic-balance Jacobian (GEMM) and LU; the serial build, so that
 # MPI ranks do not oversubscribe the cores with BLAS threads
 [ -e /usr/lib/x86_64-linux-gnu/openblas-serial/libblas.so.3 ] || [ "$(uname -m)" != x86_64 ] || missing="$missing libopenblas0-serial"

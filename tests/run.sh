@@ -27,11 +27,12 @@ for t in build/tests/test_*; do
   run "$(basename "$t")" "$t"
 done
 # the parallel pieces again on 2 ranks (elements and matrices split across ranks)
-for t in test_hbm test_matio; do
+for t in test_hbm test_matio test_fe; do
   [ -x "build/tests/$t" ] && run "$t np2" mpiexec -n 2 "build/tests/$t"
 done
 run cli bash tests/cli.sh
 run cli_frf bash tests/cli_frf.sh
+run cli_modes bash tests/cli_modes.sh
 rm -rf "$log"
 echo "$pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -72,6 +72,14 @@ PetscErrorCode JRModesGetVecs(JRModes md, Vec **phi)
   PetscFunctionReturn(0);
 }
 
+/* How many of the modes are the supplied rigid-body modes (0 with -modes_rigid_basis 0) */
+PetscErrorCode JRModesGetNumRigid(JRModes md, PetscInt *n)
+{
+  PetscFunctionBeginUser;
+  *n = md->use_rb ? md->nrb : 0;
+  PetscFunctionReturn(0);
+}
+
 /* How many modes (the lowest); -modes_nev */
 PetscErrorCode JRModesSetNumber(JRModes md, PetscInt nev)
 {

@@ -110,6 +110,7 @@ PetscErrorCode JRTaskModes(MPI_Comm comm)
   PetscCall(JRModesGetNumber(modes, &nm));
   PetscCall(JRModesGetEigenvalues(modes, &lam));
   PetscCall(JRModesGetVecs(modes, &phi));
+  PetscCall(JRModesGetNumRigid(modes, &nrb));
   PetscCall(PetscPrintf(comm, "modes: %" PetscInt_FMT " DOFs; model %.3g s, eigensolve %.3g s; %" PetscInt_FMT " modes%s\n", ndof, (double)(t1 - t0), (double)(t2 - t1), nm, nrb ? " (the 6 rigid-body modes supplied exactly, -modes_rigid_basis)" : ""));
   for (PetscInt i = 0; i < nm; i++) PetscCall(PetscPrintf(comm, "mode %" PetscInt_FMT " %.10g\n", i + 1, (double)(PetscSqrtReal(PetscMax(lam[i], 0.0)) / (2.0 * PETSC_PI))));
 
@@ -136,20 +137,20 @@ PetscErrorCode JRTaskModes(MPI_Comm comm)
       PetscCall(DMRestoreGlobalVector(dm, &g));
     }
     PetscCall(PetscViewerPopFormat(v));
-    {
+    for (int k = 0; k < 2; k++) { /* /modes/omega_rad_s and /modes/frequency_hz */
       Vec          f;
       PetscScalar *fa;
       PetscCall(VecCreateMPI(comm, rank ? 0 : nm, PETSC_DETERMINE, &f));
-      PetscCall(PetscObjectSetName((PetscObject)f, "frequency_hz"));
+      PetscCall(PetscObjectSetName((PetscObject)f, k ? "frequency_hz" : "omega_rad_s"));
       PetscCall(VecGetArray(f, &fa));
-      for (PetscInt i = 0; i < (rank ? 0 : nm); i++) fa[i] = PetscSqrtReal(PetscMax(lam[i], 0.0)) / (2.0 * PETSC_PI);
+      for (PetscInt i = 0; i < (rank ? 0 : nm); i++) fa[i] = PetscSqrtReal(PetscMax(lam[i], 0.0)) / (k ? 2.0 * PETSC_PI : 1.0);
       PetscCall(VecRestoreArray(f, &fa));
       PetscCall(PetscViewerHDF5PushGroup(v, "/modes"));
       PetscCall(VecView(f, v));
       PetscCall(PetscViewerHDF5PopGroup(v));
       PetscCall(VecDestroy(&f));
     }
-    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "units", PETSC_STRING, "SI: coordinates m; modes mass-normalised (kg^-1/2); frequency_hz Hz"));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "units", PETSC_STRING, "SI: coordinates m; /fields/mode_i: every DOF of mode i (x, y, z per node), /vertex_fields: at the vertices, mass-normalised (kg^-1/2); omega_rad_s rad/s; frequency_hz Hz"));
     PetscCall(PetscViewerDestroy(&v));
     if (rank == 0) PetscCheck(!rename(tmp, h5), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write the file %s", h5);
     /* XDMF for ParaView: the hexahedra and every mode as a nodal vector */
@@ -189,10 +190,12 @@ PetscErrorCode JRTaskModes(MPI_Comm comm)
     }
     /* PNG: side view of the first elastic modes (front face, deformed) */
     if (plot) {
-      PetscInt   nf, *fd, first = nrb, np = PetscMin(nplot, nm - first);
+      PetscInt   nf, *fd, first = 0, np;
       PetscReal *fx, *rows, L = 0.0;
       char       csv[PETSC_MAX_PATH_LEN + 8], png[PETSC_MAX_PATH_LEN + 8], tc[PETSC_MAX_PATH_LEN + 32];
       FILE      *fp;
+      while (first < nm && lam[first] < 1e-8 * lam[nm - 1]) first++; /* skip the rigid-body modes (supplied or computed) */
+      np = PetscMin(nplot, nm - first);
       PetscCall(FrontFace(dm, &nf, &fx, &fd));
       PetscCall(PetscMalloc1(PetscMax(nf, 1) * 3 * nm, &rows));
       {

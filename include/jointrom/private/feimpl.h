@@ -25,6 +25,8 @@ typedef struct {
   PetscInt   nbolts, order;
   PetscReal  E, nu, rho, pairtol;
   PetscBool  clamp, lap;        /* clamp x = 0; the geometry has a lap joint */
+  PetscBool  rigidtie;          /* bolt ends tie their footprints rigidly (else: distributing, RBE3-like) */
+  PetscBool  tied;              /* the interface pairs tied (a stuck interface) instead of free */
   PetscBool  petscfe;           /* assemble with PETSc's generic PetscFE integration instead of the Q2 kernel */
   char       file[PETSC_MAX_PATH_LEN];
   char       tangent[8];
@@ -35,6 +37,8 @@ typedef struct {
   PetscInt   nbolt_alloc;
   JRBolt    *bolt;
   PetscInt   ncontact[2];       /* nodes on each contact surface */
+  PetscReal  pairgap;           /* largest distance between the two nodes of a pair [m] */
+  PetscReal  contact_area;      /* area of contact surface A [m^2] */
 } Model_FE;
 
 PETSC_INTERN PetscErrorCode JRFEGeometryBeam(MPI_Comm, Model_FE *, DM *);

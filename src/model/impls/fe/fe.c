@@ -2,9 +2,14 @@
    Finite-element models of beams and bolted lap joints on DMPlex + PetscFE.
 
    Discretisation: isotropic linear elasticity on hexahedra with Lagrange elements of order
-   -model_fe_order (default 2: 27-node quadratic hexahedra, which do not lock in bending), assembled by
-   PETSc (DMPlexSNESComputeJacobianFEM with the pointwise elasticity tensor; DMCreateMassMatrix times
-   the density for the consistent mass). Units SI.
+   -model_fe_order (default 2: 27-node quadratic hexahedra, which do not lock in bending); the mesh, its
+   distribution, the DOF layout (PetscFE on DMPlex), assembly into the parallel matrices and the output are
+   PETSc's. The order-2 element matrices (stiffness and consistent mass, 3x3x3 Gauss points on the trilinear
+   geometry) come from a kernel in this file rather than from PETSc's generic PetscFE integration, which is
+   two orders of magnitude slower on 81-DOF cells (15 ms a cell in PETSc 3.18: 10 minutes for the Brake-Reuss
+   beam instead of a second); equal element shapes are computed once. -model_fe_assembly petscfe selects
+   PETSc's integration (DMPlexSNESComputeJacobianFEM, DMCreateMassMatrix) instead; the two agree to
+   round-off (tests/test_fe.c). Units SI.
 
    Bolts: each bolt is an Euler-Bernoulli beam (the shank: diameter d, steel of the beams' modulus) from
    the head footprint to the nut footprint. Each end is tied to its footprint (the washer's contact
@@ -17,6 +22,10 @@
 */
 #include <jointrom/private/feimpl.h>
 #include <petscblaslapack.h>
+
+/* -model_bolt_tie rigid: penalty on a footprint's non-rigid motion, times E and the footprint's radius (about
+   100 times a node's stiffness: frequencies within 1e-4 of a perfectly rigid tie, K's conditioning spared) */
+#define JR_TIE_PENALTY 1e2
 
 /* ---- pointwise functions (PetscDS and DMProjectFunction signatures: most arguments unused) ---- */
 #pragma GCC diagnostic push
@@ -69,7 +78,27 @@ static PetscErrorCode NodalCoordinates(DM dm, Vec X)
   PetscFunctionReturn(0);
 }
 
-/* the six rigid-body motions (translations x, y, z, rotations about x, y, z through the centroid) */
+/* the mean of a cell's vertex coordinates (independent of the closure order, which the Q2 kernel permutes
+   to tensor order on the coordinate DM: DMPlexComputeCellGeometryFVM expects DMPlex's own order) */
+static PetscErrorCode CellCentre(DM dm, PetscInt c, PetscReal x[3])
+{
+  DM           cdm;
+  Vec          coords;
+  PetscScalar *a = NULL;
+  PetscInt     n;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetCoordinateDM(dm, &cdm));
+  PetscCall(DMGetCoordinatesLocal(dm, &coords));
+  PetscCall(DMPlexVecGetClosure(cdm, NULL, coords, c, &n, &a));
+  x[0] = x[1] = x[2] = 0.0;
+  for (PetscInt i = 0; i < n; i++) x[i % 3] += 3.0 * PetscRealPart(a[i]) / n;
+  PetscCall(DMPlexVecRestoreClosure(cdm, NULL, coords, c, &n, &a));
+  PetscFunctionReturn(0);
+}
+
+/* the six rigid-body motions (translations x, y, z, rotations about x, y, z through the mean of the cell
+   centres; JRModes M-orthonormalises them) */
 PetscErrorCode JRFERigidBasis(DM dm, Vec rb[6])
 {
   PetscReal          c[4] = {0, 0, 0, 0};
@@ -82,10 +111,10 @@ PetscErrorCode JRFERigidBasis(DM dm, Vec rb[6])
   PetscCall(PetscObjectGetComm((PetscObject)dm, &comm));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cs, &ce));
   for (PetscInt e = cs; e < ce; e++) {
-    PetscReal v, xc[3];
-    PetscCall(DMPlexComputeCellGeometryFVM(dm, e, &v, xc, NULL));
-    for (int d = 0; d < 3; d++) c[d] += v * xc[d];
-    c[3] += v;
+    PetscReal xc[3];
+    PetscCall(CellCentre(dm, e, xc));
+    for (int d = 0; d < 3; d++) c[d] += xc[d];
+    c[3] += 1.0;
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, c, 4, MPIU_REAL, MPIU_SUM, comm));
   PetscCall(DMCreateGlobalVector(dm, &X));
@@ -512,24 +541,66 @@ static void BeamStiffness(const PetscReal p1[3], const PetscReal p2[3], PetscRea
     }
 }
 
-/* add the bolts' stiffness to K: sum_b T_b^T K_beam T_b over the footprint DOFs */
-static PetscErrorCode AddBolts(JRModel m, Model_FE *fe)
+/* dense stiffness blocks over arbitrary global DOFs (every rank holds all blocks; each adds its own rows) */
+typedef struct {
+  PetscInt   n, *dof;
+  PetscReal *Kf; /* n x n, row-major */
+} DenseBlock;
+
+/* K += sum of the blocks, through a matrix of their own pattern (K's pattern does not couple them);
+   frees the blocks' arrays */
+static PetscErrorCode AddDenseBlocks(JRModel m, PetscInt nb, DenseBlock *bd)
 {
   Mat      Kb;
   PetscInt rs, re, cs, ce, nloc, *dnz, *onz;
-  typedef struct {
-    PetscInt   n, *dof;
-    PetscReal *T, *Kf; /* 6 x 3n each end; (3n x 3n) footprint stiffness */
-  } BoltData;
-  BoltData *bd;
 
   PetscFunctionBeginUser;
-  if (!fe->nbolts) PetscFunctionReturn(0);
-  PetscCall(PetscCalloc1(fe->nbolts, &bd));
   PetscCall(MatGetOwnershipRange(m->K, &rs, &re));
   PetscCall(MatGetOwnershipRangeColumn(m->K, &cs, &ce));
   nloc = re - rs;
   PetscCall(PetscCalloc2(nloc, &dnz, nloc, &onz));
+  for (PetscInt i = 0; i < nb; i++)
+    for (PetscInt r = 0; r < bd[i].n; r++) {
+      const PetscInt row = bd[i].dof[r];
+      if (row < rs || row >= re) continue;
+      for (PetscInt c = 0; c < bd[i].n; c++) {
+        if (bd[i].dof[c] >= cs && bd[i].dof[c] < ce) dnz[row - rs]++;
+        else onz[row - rs]++;
+      }
+    }
+  for (PetscInt r = 0; r < nloc; r++) { /* blocks sharing a DOF overcount: clip to the row length */
+    dnz[r] = PetscMin(dnz[r], ce - cs);
+    onz[r] = PetscMin(onz[r], m->ndof - (ce - cs));
+  }
+  PetscCall(MatCreate(m->comm, &Kb));
+  PetscCall(MatSetSizes(Kb, nloc, ce - cs, m->ndof, m->ndof));
+  PetscCall(MatSetType(Kb, MATAIJ));
+  PetscCall(MatXAIJSetPreallocation(Kb, 1, dnz, onz, NULL, NULL));
+  PetscCall(MatSetOption(Kb, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  for (PetscInt i = 0; i < nb; i++) {
+    for (PetscInt r = 0; r < bd[i].n; r++) {
+      const PetscInt row = bd[i].dof[r];
+      if (row < rs || row >= re) continue;
+      PetscCall(MatSetValues(Kb, 1, &row, bd[i].n, bd[i].dof, bd[i].Kf + r * bd[i].n, ADD_VALUES));
+    }
+    PetscCall(PetscFree2(bd[i].dof, bd[i].Kf));
+  }
+  PetscCall(MatAssemblyBegin(Kb, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Kb, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAXPY(m->K, 1.0, Kb, DIFFERENT_NONZERO_PATTERN));
+  PetscCall(MatDestroy(&Kb));
+  PetscCall(PetscFree2(dnz, onz));
+  PetscFunctionReturn(0);
+}
+
+/* add the bolts' stiffness to K: sum_b T_b^T K_beam T_b over the footprint DOFs */
+static PetscErrorCode AddBolts(JRModel m, Model_FE *fe)
+{
+  DenseBlock *bd;
+
+  PetscFunctionBeginUser;
+  if (!fe->nbolts) PetscFunctionReturn(0);
+  PetscCall(PetscCalloc1(fe->nbolts, &bd));
   for (PetscInt i = 0; i < fe->nbolts; i++) {
     PetscInt   nh, nn, *dh, *dn;
     PetscReal *xh, *xn, ch[3] = {0, 0, 0}, cn[3] = {0, 0, 0}, Kbeam[144], *Th, *Tn, *T;
@@ -577,113 +648,195 @@ static PetscErrorCode AddBolts(JRModel m, Model_FE *fe)
           bd[i].Kf[r * nf + c] = s;
         }
       PetscCall(PetscFree(KT));
-    }
-    for (PetscInt r = 0; r < bd[i].n; r++) {
-      const PetscInt row = bd[i].dof[r];
-      if (row < rs || row >= re) continue;
-      for (PetscInt c = 0; c < bd[i].n; c++) {
-        if (bd[i].dof[c] >= cs && bd[i].dof[c] < ce) dnz[row - rs]++;
-        else onz[row - rs]++;
+      if (fe->rigidtie) { /* penalise the footprints' deviation from their rigid fit: kappa (I - B T) per end */
+        for (int end = 0; end < 2; end++) {
+          const PetscInt   o = end ? 3 * nh : 0, n = end ? nn : nh;
+          const PetscReal *xe = end ? xn : xh, *ce = end ? cn : ch, *Te = end ? Tn : Th;
+          PetscReal        rho2 = 0.0, kappa;
+          for (PetscInt k = 0; k < n; k++) rho2 += (PetscSqr(xe[3 * k] - ce[0]) + PetscSqr(xe[3 * k + 1] - ce[1]) + PetscSqr(xe[3 * k + 2] - ce[2])) / n;
+          kappa = JR_TIE_PENALTY * fe->E * PetscSqrtReal(rho2);
+          for (PetscInt k = 0; k < n; k++) {
+            const PetscReal r[3]    = {xe[3 * k] - ce[0], xe[3 * k + 1] - ce[1], xe[3 * k + 2] - ce[2]};
+            const PetscReal B[3][6] = {
+              {1, 0, 0, 0,     r[2],  -r[1]},
+              {0, 1, 0, -r[2], 0,     r[0] },
+              {0, 0, 1, r[1],  -r[0], 0    }
+            };
+            for (int d = 0; d < 3; d++)
+              for (PetscInt c = 0; c < 3 * n; c++) {
+                PetscReal bt = 0.0;
+                for (int a = 0; a < 6; a++) bt += B[d][a] * Te[a * 3 * n + c];
+                bd[i].Kf[(o + 3 * k + d) * nf + o + c] += kappa * ((3 * k + d == c ? 1.0 : 0.0) - bt);
+              }
+          }
+        }
       }
     }
     PetscCall(PetscFree3(Th, Tn, T));
     PetscCall(PetscFree2(xh, dh));
     PetscCall(PetscFree2(xn, dn));
   }
-  for (PetscInt r = 0; r < nloc; r++) { /* bolts sharing a DOF overcount: clip to the row length */
-    dnz[r] = PetscMin(dnz[r], ce - cs);
-    onz[r] = PetscMin(onz[r], m->ndof - (ce - cs));
-  }
-  PetscCall(MatCreate(m->comm, &Kb));
-  PetscCall(MatSetSizes(Kb, nloc, ce - cs, m->ndof, m->ndof));
-  PetscCall(MatSetType(Kb, MATAIJ));
-  PetscCall(MatXAIJSetPreallocation(Kb, 1, dnz, onz, NULL, NULL));
-  PetscCall(MatSetOption(Kb, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
-  for (PetscInt i = 0; i < fe->nbolts; i++) {
-    for (PetscInt r = 0; r < bd[i].n; r++) {
-      const PetscInt row = bd[i].dof[r];
-      if (row < rs || row >= re) continue;
-      PetscCall(MatSetValues(Kb, 1, &row, bd[i].n, bd[i].dof, bd[i].Kf + r * bd[i].n, ADD_VALUES));
-    }
-    PetscCall(PetscFree2(bd[i].dof, bd[i].Kf));
-  }
-  PetscCall(MatAssemblyBegin(Kb, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(Kb, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAXPY(m->K, 1.0, Kb, DIFFERENT_NONZERO_PATTERN));
-  PetscCall(MatDestroy(&Kb));
-  PetscCall(PetscFree2(dnz, onz));
+  PetscCall(AddDenseBlocks(m, fe->nbolts, bd));
   PetscCall(PetscFree(bd));
   PetscFunctionReturn(0);
 }
 
 /* ---- interface pairs ---- */
-typedef struct {
-  long long key[3];
-  PetscInt  i;
-} Key;
-
-static int CompareKey(const void *a, const void *b)
+/* The outward unit normal of the faces labelled val (area-weighted mean over all ranks) and the largest
+   angle [rad] between a face's normal and the mean: the node-to-node model needs a plane interface. */
+static PetscErrorCode SurfaceNormal(DM dm, const char *label, PetscInt val, PetscReal nrm[3], PetscReal *dev, PetscReal *area_tot)
 {
-  const Key *p = (const Key *)a, *q = (const Key *)b;
-  for (int d = 0; d < 3; d++)
-    if (p->key[d] != q->key[d]) return p->key[d] < q->key[d] ? -1 : 1;
-  return 0;
+  IS              is;
+  PetscInt        nf = 0;
+  const PetscInt *faces = NULL;
+  PetscReal       s[4] = {0, 0, 0, 0}, len, cmin = 1.0;
+  MPI_Comm        comm;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetComm((PetscObject)dm, &comm));
+  PetscCall(DMGetStratumIS(dm, label, val, &is));
+  if (is) {
+    PetscCall(ISGetLocalSize(is, &nf));
+    PetscCall(ISGetIndices(is, &faces));
+  }
+  for (PetscInt pass = 0; pass < 2; pass++) {
+    for (PetscInt i = 0; i < nf; i++) {
+      const PetscInt *supp;
+      PetscInt        ns;
+      PetscReal       area, cf[3], n[3], cc[3], dot = 0.0;
+      PetscCall(DMPlexComputeCellGeometryFVM(dm, faces[i], &area, cf, n));
+      PetscCall(DMPlexGetSupportSize(dm, faces[i], &ns));
+      PetscCall(DMPlexGetSupport(dm, faces[i], &supp));
+      if (ns == 1) { /* point away from the cell */
+        PetscCall(CellCentre(dm, supp[0], cc));
+        if ((cf[0] - cc[0]) * n[0] + (cf[1] - cc[1]) * n[1] + (cf[2] - cc[2]) * n[2] < 0) area = -area;
+      }
+      len = PetscSqrtReal(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (pass == 0) {
+        for (int d = 0; d < 3; d++) s[d] += area * n[d] / len;
+        s[3] += PetscAbsReal(area);
+      }
+      else {
+        for (int d = 0; d < 3; d++) dot += (area > 0 ? 1 : -1) * n[d] / len * nrm[d];
+        cmin = PetscMin(cmin, dot);
+      }
+    }
+    if (pass == 0) {
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 4, MPIU_REAL, MPIU_SUM, comm));
+      *area_tot = s[3];
+      len = PetscSqrtReal(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+      for (int d = 0; d < 3; d++) nrm[d] = len > 0 ? s[d] / len : 0.0;
+    }
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &cmin, 1, MPIU_REAL, MPIU_MIN, comm));
+  *dev = PetscAcosReal(PetscMax(-1.0, PetscMin(1.0, cmin)));
+  if (is) PetscCall(ISRestoreIndices(is, &faces));
+  PetscCall(ISDestroy(&is));
+  PetscFunctionReturn(0);
 }
 
+typedef struct {
+  PetscReal x;
+  PetscInt  i;
+} XKey;
+
+static int CompareXKey(const void *a, const void *b)
+{
+  const XKey *p = (const XKey *)a, *q = (const XKey *)b;
+  return (p->x > q->x) - (p->x < q->x);
+}
+
+/* Pair every node of contact surface A with the nearest node of B within -model_pair_tol (B sorted by x,
+   a window search); the normal is surface A's outward normal (from A into B), the tangent the beam axis x
+   (or y) projected on the interface plane. */
 static PetscErrorCode FindPairs(JRModel m, Model_FE *fe)
 {
-  PetscInt   na, nb, *da, *db, np = 0;
-  PetscReal *xa, *xb, tol = fe->pairtol;
-  Key       *ka, *kb;
+  PetscInt   na, nb, *da, *db, np = 0, *usedB;
+  PetscReal *xa, *xb, tol = fe->pairtol, nrm[3], dev, t[3] = {0, 0, 0}, tn = 0.0, dmax = 0.0;
+  XKey      *kb;
   JRPairs   *P = &m->pairs;
 
   PetscFunctionBeginUser;
+  PetscCheck(tol > 0 && PetscIsNormalReal(tol), m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-model_pair_tol %g: must be a positive distance [m]", (double)tol);
   PetscCall(JRPairsDestroy(P));
   PetscCall(JRFEFaceNodes(fe->dm, JR_LABEL_CONTACT, 1, &na, &xa, &da));
   PetscCall(JRFEFaceNodes(fe->dm, JR_LABEL_CONTACT, 2, &nb, &xb, &db));
   fe->ncontact[0] = na;
   fe->ncontact[1] = nb;
-  PetscCall(PetscMalloc2(PetscMax(na, 1), &ka, PetscMax(nb, 1), &kb));
-  for (PetscInt i = 0; i < na; i++) {
-    for (int d = 0; d < 3; d++) ka[i].key[d] = (long long)PetscFloorReal(xa[3 * i + d] / tol + 0.5);
-    ka[i].i = i;
-  }
+  PetscCall(SurfaceNormal(fe->dm, JR_LABEL_CONTACT, 1, nrm, &dev, &fe->contact_area));
+  PetscCheck(dev < 1e-6, m->comm, PETSC_ERR_SUP, "The contact surface is not plane (its face normals differ by up to %g degrees): node-to-node pairs need a plane interface", (double)(dev * 180 / PETSC_PI));
+  t[fe->tangent[0] == 'y' ? 1 : 0] = 1.0;
+  for (int d = 0; d < 3; d++) tn += t[d] * nrm[d];
+  for (int d = 0; d < 3; d++) t[d] -= tn * nrm[d];
+  tn = PetscSqrtReal(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+  PetscCheck(tn > 1e-6, m->comm, PETSC_ERR_ARG_WRONG, "-model_tangent %s is normal to the contact surface (normal %g %g %g)", fe->tangent, (double)nrm[0], (double)nrm[1], (double)nrm[2]);
+  for (int d = 0; d < 3; d++) t[d] /= tn;
+  PetscCall(PetscMalloc1(PetscMax(nb, 1), &kb));
+  PetscCall(PetscCalloc1(PetscMax(nb, 1), &usedB));
   for (PetscInt i = 0; i < nb; i++) {
-    for (int d = 0; d < 3; d++) kb[i].key[d] = (long long)PetscFloorReal(xb[3 * i + d] / tol + 0.5);
+    kb[i].x = xb[3 * i];
     kb[i].i = i;
   }
-  qsort(ka, (size_t)na, sizeof(Key), CompareKey);
-  qsort(kb, (size_t)nb, sizeof(Key), CompareKey);
-  P->n = PetscMin(na, nb);
-  PetscCall(PetscMalloc5(3 * PetscMax(P->n, 1), &P->x, 3 * PetscMax(P->n, 1), &P->t, 3 * PetscMax(P->n, 1), &P->nrm, 3 * PetscMax(P->n, 1), &P->dofA, 3 * PetscMax(P->n, 1), &P->dofB));
-  for (PetscInt i = 0, j = 0; i < na && j < nb;) {
-    const int c = CompareKey(&ka[i], &kb[j]);
-    if (c < 0) i++;
-    else if (c > 0) j++;
-    else {
-      const PetscInt a = ka[i].i, b = kb[j].i;
-      for (int d = 0; d < 3; d++) {
-        P->x[3 * np + d]    = xa[3 * a + d];
-        P->dofA[3 * np + d] = da[a] + d;
-        P->dofB[3 * np + d] = db[b] + d;
-      }
-      /* the lap surfaces: A above, B below; tangent along the beam axis (or y) */
-      P->nrm[3 * np + 0] = 0.0;
-      P->nrm[3 * np + 1] = 0.0;
-      P->nrm[3 * np + 2] = -1.0;
-      P->t[3 * np + 0]   = fe->tangent[0] == 'y' ? 0.0 : 1.0;
-      P->t[3 * np + 1]   = fe->tangent[0] == 'y' ? 1.0 : 0.0;
-      P->t[3 * np + 2]   = 0.0;
-      np++;
-      i++;
-      j++;
+  qsort(kb, (size_t)nb, sizeof(XKey), CompareXKey);
+  PetscCall(PetscMalloc5(3 * PetscMax(na, 1), &P->x, 3 * PetscMax(na, 1), &P->t, 3 * PetscMax(na, 1), &P->nrm, 3 * PetscMax(na, 1), &P->dofA, 3 * PetscMax(na, 1), &P->dofB));
+  for (PetscInt a = 0; a < na; a++) {
+    PetscInt  lo = 0, hi = nb, best = -1;
+    PetscReal bd = tol;
+    while (lo < hi) { /* first B node with x >= xa - tol */
+      const PetscInt mid = (lo + hi) / 2;
+      if (kb[mid].x < xa[3 * a] - tol) lo = mid + 1;
+      else hi = mid;
     }
+    for (PetscInt j = lo; j < nb && kb[j].x <= xa[3 * a] + tol; j++) {
+      const PetscInt  b = kb[j].i;
+      const PetscReal r = PetscSqrtReal(PetscSqr(xa[3 * a] - xb[3 * b]) + PetscSqr(xa[3 * a + 1] - xb[3 * b + 1]) + PetscSqr(xa[3 * a + 2] - xb[3 * b + 2]));
+      if (r <= bd) {
+        bd   = r;
+        best = b;
+      }
+    }
+    if (best < 0 || usedB[best]) continue;
+    usedB[best] = 1;
+    dmax        = PetscMax(dmax, bd);
+    for (int d = 0; d < 3; d++) {
+      P->x[3 * np + d]    = xa[3 * a + d];
+      P->dofA[3 * np + d] = da[a] + d;
+      P->dofB[3 * np + d] = db[best] + d;
+      P->nrm[3 * np + d]  = nrm[d];
+      P->t[3 * np + d]    = t[d];
+    }
+    np++;
   }
-  P->n = np;
+  P->n        = np;
+  fe->pairgap = dmax;
   PetscCheck(np == na && np == nb, m->comm, PETSC_ERR_ARG_WRONG, "Contact surfaces do not face each other node to node: %" PetscInt_FMT " nodes on surface A, %" PetscInt_FMT " on B, %" PetscInt_FMT " pairs within %g m (-model_pair_tol)", na, nb, np, (double)tol);
-  PetscCall(PetscFree2(ka, kb));
+  PetscCall(PetscFree(kb));
+  PetscCall(PetscFree(usedB));
   PetscCall(PetscFree2(xa, da));
   PetscCall(PetscFree2(xb, db));
+  PetscFunctionReturn(0);
+}
+
+/* -model_interface tied: every pair joined in all three directions by a penalty spring (the stuck interface
+   of a linear joint model), kappa = JR_TIE_PENALTY E sqrt(area per pair) */
+static PetscErrorCode TieInterface(JRModel m, Model_FE *fe)
+{
+  const JRPairs  *P = &m->pairs;
+  const PetscReal kappa = P->n ? JR_TIE_PENALTY * fe->E * PetscSqrtReal(fe->contact_area / P->n) : 0.0;
+  DenseBlock     *bd;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(P->n * 3 + 1, &bd));
+  for (PetscInt i = 0; i < 3 * P->n; i++) {
+    bd[i].n = 2;
+    PetscCall(PetscMalloc2(2, &bd[i].dof, 4, &bd[i].Kf));
+    bd[i].dof[0] = P->dofA[i];
+    bd[i].dof[1] = P->dofB[i];
+    bd[i].Kf[0] = bd[i].Kf[3] = kappa;
+    bd[i].Kf[1] = bd[i].Kf[2] = -kappa;
+  }
+  PetscCall(AddDenseBlocks(m, 3 * P->n, bd));
+  PetscCall(PetscFree(bd));
   PetscFunctionReturn(0);
 }
 
@@ -726,6 +879,17 @@ PetscErrorCode JRFESetUp(JRModel m, Model_FE *fe)
     PetscCall(PetscDSSetConstants(ds, 2, (PetscScalar *)cst));
   }
   PetscCall(PetscDSSetJacobian(ds, 0, 0, NULL, NULL, NULL, g3_elasticity));
+  { /* the volume from PETSc's cell geometry (independent of the element kernel; before the closure permutation) */
+    PetscInt cs, ce;
+    PetscCall(DMPlexGetHeightStratum(fe->dm, 0, &cs, &ce));
+    for (PetscInt c = cs; c < ce; c++) {
+      PetscReal v, cen[3]; /* no overlap: every cell is owned */
+      PetscCall(DMPlexComputeCellGeometryFVM(fe->dm, c, &v, cen, NULL));
+      vol += v;
+    }
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &vol, 1, MPIU_REAL, MPIU_SUM, m->comm));
+    fe->volume = vol;
+  }
   PetscCall(DMSetUp(fe->dm));
   PetscCall(DMCreateMatrix(fe->dm, &m->K));
   PetscCall(DMCreateGlobalVector(fe->dm, &u));
@@ -746,18 +910,7 @@ PetscErrorCode JRFESetUp(JRModel m, Model_FE *fe)
   PetscCall(PetscObjectSetName((PetscObject)m->K, "K"));
   PetscCall(PetscObjectSetName((PetscObject)m->M, "M"));
   PetscCall(AddBolts(m, fe));
-  /* volume and mass: a unit translation u_x = 1 gives u^T M u = total mass */
-  {
-    PetscInt cs, ce;
-    PetscCall(DMPlexGetHeightStratum(fe->dm, 0, &cs, &ce));
-    for (PetscInt c = cs; c < ce; c++) {
-      PetscReal v, cen[3]; /* no overlap: every cell is owned */
-      PetscCall(DMPlexComputeCellGeometryFVM(fe->dm, c, &v, cen, NULL));
-      vol += v;
-    }
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &vol, 1, MPIU_REAL, MPIU_SUM, m->comm));
-    fe->volume = vol;
-  }
+  /* mass: a unit translation u_x = 1 gives u^T M u = total mass */
   if (!fe->clamp) { /* the x translation through M */
     PetscScalar *a;
     PetscInt     n;
@@ -775,6 +928,7 @@ PetscErrorCode JRFESetUp(JRModel m, Model_FE *fe)
   fe->nnodes     = m->ndof / 3;
   PetscCall(VecDestroy(&u));
   if (fe->lap) PetscCall(FindPairs(m, fe));
+  if (fe->lap && fe->tied) PetscCall(TieInterface(m, fe));
   m->dm = fe->dm;
   PetscCall(PetscObjectReference((PetscObject)fe->dm));
   PetscFunctionReturn(0);

@@ -60,6 +60,18 @@ static PetscErrorCode JRModelSetFromOptions_FE(JRModel m, PetscOptionItems *Pets
     PetscCall(PetscOptionsReal("-model_mesh_grade", "Element size outside the lap / inside", "JRModelSetUp", fe->grade, &fe->grade, NULL));
   }
   if (ft->kind != KIND_BEAM) {
+    {
+      const char *ties[] = {"distributing", "rigid"};
+      PetscInt    t      = fe->rigidtie ? 1 : 0;
+      PetscCall(PetscOptionsEList("-model_bolt_tie", "How a bolt end holds its washer footprint: distributing (RBE3-like least-squares fit, the footprint deforms freely) or rigid (the footprint moves as a rigid washer)", "JRModelSetUp", ties, 2, ties[t], &t, NULL));
+      fe->rigidtie = t == 1 ? PETSC_TRUE : PETSC_FALSE;
+    }
+    {
+      const char *itf[] = {"free", "tied"};
+      PetscInt    t     = fe->tied ? 1 : 0;
+      PetscCall(PetscOptionsEList("-model_interface", "The contact interface for the linear model: free (only the bolts hold the parts together, as in the thesis's modal analysis) or tied (every facing pair joined: a stuck interface)", "JRModelSetUp", itf, 2, itf[t], &t, NULL));
+      fe->tied = t == 1 ? PETSC_TRUE : PETSC_FALSE;
+    }
     PetscCall(PetscOptionsReal("-model_bolt_diameter", "Bolt shank diameter [m]", "JRModelSetUp", fe->dbolt, &fe->dbolt, NULL));
     PetscCall(PetscOptionsReal("-model_pair_tol", "Distance within which two contact nodes face each other [m]", "JRModelSetUp", fe->pairtol, &fe->pairtol, NULL));
     PetscCall(PetscOptionsString("-model_tangent", "Tangential direction of the contact pairs: x (beam axis) or y", "JRModelSetUp", fe->tangent, fe->tangent, sizeof(fe->tangent), NULL));
@@ -122,8 +134,10 @@ static PetscErrorCode JRModelView_FE(JRModel m, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "  material: E %g Pa, nu %g, rho %g kg/m^3; volume %.6g m^3\n", (double)fe->E, (double)fe->nu, (double)fe->rho, (double)fe->volume));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  mass %.9g kg from M, density x volume %.9g kg (relative difference %.1e)\n", (double)m->mass, (double)m->volume_mass, (double)PetscAbsReal(m->mass / m->volume_mass - 1.0)));
   if (fe->lap || ft->kind == KIND_GMSH) {
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  contact: %" PetscInt_FMT " nodes on surface A, %" PetscInt_FMT " on B, %" PetscInt_FMT " facing pairs (tangent %s, normal from A to B)\n", fe->ncontact[0], fe->ncontact[1], m->pairs.n, fe->tangent));
-    for (PetscInt i = 0; i < fe->nbolts; i++) PetscCall(PetscViewerASCIIPrintf(viewer, "  bolt %" PetscInt_FMT ": at (%g, %g, %g) m, shank %g m long, diameter %g m, tied to %" PetscInt_FMT " head and %" PetscInt_FMT " nut footprint nodes\n", i + 1, (double)fe->bolt[i].x[0], (double)fe->bolt[i].x[1], (double)fe->bolt[i].x[2], (double)fe->bolt[i].axis, (double)fe->bolt[i].d, fe->bolt[i].nhead, fe->bolt[i].nnut));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  contact: %" PetscInt_FMT " nodes on surface A, %" PetscInt_FMT " on B, %" PetscInt_FMT " facing pairs (largest pair distance %.2g m; tangent %s, normal from A to B)\n", fe->ncontact[0], fe->ncontact[1], m->pairs.n, (double)fe->pairgap, fe->tangent));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  interface %s, area %g m^2\n", fe->tied ? "tied (every pair joined by a stiff spring)" : "free (no contact: the bolts hold the parts)", (double)fe->contact_area));
+    if (m->pairs.n) PetscCall(PetscViewerASCIIPrintf(viewer, "  interface normal (%g, %g, %g), tangent (%g, %g, %g)\n", (double)m->pairs.nrm[0], (double)m->pairs.nrm[1], (double)m->pairs.nrm[2], (double)m->pairs.t[0], (double)m->pairs.t[1], (double)m->pairs.t[2]));
+    for (PetscInt i = 0; i < fe->nbolts; i++) PetscCall(PetscViewerASCIIPrintf(viewer, "  bolt %" PetscInt_FMT ": at (%g, %g, %g) m, shank %g m long, diameter %g m, tied to %" PetscInt_FMT " head and %" PetscInt_FMT " nut footprint nodes (%s tie)\n", i + 1, (double)fe->bolt[i].x[0], (double)fe->bolt[i].x[1], (double)fe->bolt[i].x[2], (double)fe->bolt[i].axis, (double)fe->bolt[i].d, fe->bolt[i].nhead, fe->bolt[i].nnut, fe->rigidtie ? "rigid" : "distributing"));
   }
   PetscFunctionReturn(0);
 }
