@@ -57,7 +57,11 @@ check "[ ! -e .csv ] && [ ! -e .png ]" "-element_loop '' writes no loop files"
 
 # run files: every option used, no typo
 for f in runs/*.opts; do
-  if grep -q '^-task frf' "$f"; then extra="-frf_output_file $tmp/runfile -frf_plot 0 -cont_monitor 0"; else extra="-element_loop ''"; fi
+  case $(grep -m1 '^-task' "$f") in
+    "-task frf") extra="-frf_output_file $tmp/runfile -frf_plot 0 -cont_monitor 0" ;;
+    "-task modes") extra="-modes_output_file '' -model_mesh_h 0.01" ;; # a coarse mesh: the options are what is checked
+    *) extra="-element_loop ''" ;;
+  esac
   o=$(eval $J -options_file "$f" -options_left $extra 2>&1); rc=$?
   check "[ $rc = 0 ] && echo \"\$o\" | grep -q 'There are no unused options'" "run file $f runs (exit $rc) and uses every option"
 done
