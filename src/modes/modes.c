@@ -1,7 +1,7 @@
 /*
    JRModes: the lowest modes of K phi = omega^2 M phi (generalised Hermitian), mass-normalised
    (phi^T M phi = 1), ascending. SLEPc EPS with prefix modes_: shift-and-invert about a target just
-   below zero (so that a singular, free-free K is fine) with a direct solver (MUMPS); or every mode by
+   below zero (so that a singular, free-free K is fine) with a sparse LDL^T factorisation (MUMPS); or every mode by
    dense LAPACK for small systems (-modes_nev equal to the number of DOFs).
    Options: -modes_nev n, -modes_target t [rad^2/s^2], -modes_view, and every -modes_eps_*, -modes_st_*.
 */
@@ -163,12 +163,21 @@ PetscErrorCode JRModesSolve(JRModes md)
     PetscCall(STGetKSP(st, &ksp));
     PetscCall(KSPSetType(ksp, KSPPREONLY));
     PetscCall(KSPGetPC(ksp, &pc));
-    PetscCall(PCSetType(pc, PCLU));
-#if defined(PETSC_HAVE_MUMPS)
-    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-#endif
+    PetscCall(PCSetType(pc, PCCHOLESKY)); /* K - sigma M is symmetric: LDL^T, half the memory of LU */
   }
   PetscCall(EPSSetFromOptions(md->eps));
+#if defined(PETSC_HAVE_MUMPS)
+  if (!dense) { /* MUMPS for the factorisation unless -modes_st_pc_factor_mat_solver_type says otherwise
+                   (also after -modes_st_pc_type lu: PETSc's own sparse factorisation is sequential and slow) */
+    PetscBool set, factor;
+    PetscCall(EPSGetST(md->eps, &st));
+    PetscCall(STGetKSP(st, &ksp));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, ""));
+    PetscCall(PetscOptionsHasName(NULL, "modes_st_", "-pc_factor_mat_solver_type", &set));
+    if (factor && !set) PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  }
+#endif
   PetscCall(EPSSolve(md->eps));
   PetscCall(EPSGetConverged(md->eps, &nconv));
   PetscCheck(nconv >= nel, md->comm, PETSC_ERR_NOT_CONVERGED, "Only %" PetscInt_FMT " of %" PetscInt_FMT " modes converged (tune -modes_eps_* or -modes_target)", nconv, nel);

@@ -7,6 +7,7 @@
 #include <jointrom/private/feimpl.h>
 #include <petscviewerhdf5.h>
 #include <unistd.h>
+#include <sys/resource.h>
 
 /* the vertices on the front face y = ymin: coordinates and first global DOF, on every rank */
 static PetscErrorCode FrontFace(DM dm, PetscInt *n, PetscReal **x, PetscInt **dof)
@@ -112,6 +113,15 @@ PetscErrorCode JRTaskModes(MPI_Comm comm)
   PetscCall(JRModesGetVecs(modes, &phi));
   PetscCall(JRModesGetNumRigid(modes, &nrb));
   PetscCall(PetscPrintf(comm, "modes: %" PetscInt_FMT " DOFs; model %.3g s, eigensolve %.3g s; %" PetscInt_FMT " modes%s\n", ndof, (double)(t1 - t0), (double)(t2 - t1), nm, nrb ? " (the 6 rigid-body modes supplied exactly, -modes_rigid_basis)" : ""));
+  { /* peak resident memory of the processes (the factorisation dominates) */
+    struct rusage ru;
+    double        mb[2];
+    getrusage(RUSAGE_SELF, &ru);
+    mb[0] = mb[1] = ru.ru_maxrss / 1024.0;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mb[0], 1, MPI_DOUBLE, MPI_MAX, comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mb[1], 1, MPI_DOUBLE, MPI_SUM, comm));
+    PetscCall(PetscPrintf(comm, "modes: peak memory %.0f MB per process (largest), %.0f MB in all\n", mb[0], mb[1]));
+  }
   for (PetscInt i = 0; i < nm; i++) PetscCall(PetscPrintf(comm, "mode %" PetscInt_FMT " %.10g\n", i + 1, (double)(PetscSqrtReal(PetscMax(lam[i], 0.0)) / (2.0 * PETSC_PI))));
 
   PetscCall(JRModelGetDM(model, &dm));

@@ -899,7 +899,7 @@ PetscErrorCode JRFESetUp(JRModel m, Model_FE *fe)
     PetscCall(DMPlexSetClosurePermutationTensor(fe->dm, PETSC_DETERMINE, NULL));
     PetscCall(DMGetCoordinateDM(fe->dm, &cdm));
     PetscCall(DMPlexSetClosurePermutationTensor(cdm, PETSC_DETERMINE, NULL));
-    PetscCall(DMCreateMatrix(fe->dm, &m->M));
+    PetscCall(MatDuplicate(m->K, MAT_DO_NOT_COPY_VALUES, &m->M)); /* K's pattern: half the preallocation time */
     PetscCall(AssembleHexQ2(fe->dm, fe->E, fe->nu, fe->rho, m->K, m->M));
   } else {
     PetscCall(DMPlexSNESComputeJacobianFEM(fe->dm, u, m->K, m->K, NULL));
@@ -929,6 +929,22 @@ PetscErrorCode JRFESetUp(JRModel m, Model_FE *fe)
   PetscCall(VecDestroy(&u));
   if (fe->lap) PetscCall(FindPairs(m, fe));
   if (fe->lap && fe->tied) PetscCall(TieInterface(m, fe));
+  { /* the rigid-body modes as K's near null space: algebraic multigrid (-modes_st_pc_type gamg) needs them */
+    Vec          X, Xb;
+    MatNullSpace nsp;
+    PetscInt     n;
+    PetscCall(DMCreateGlobalVector(fe->dm, &X));
+    PetscCall(NodalCoordinates(fe->dm, X));
+    PetscCall(VecGetLocalSize(X, &n));
+    PetscCall(VecCreateMPI(m->comm, n, PETSC_DETERMINE, &Xb));
+    PetscCall(VecSetBlockSize(Xb, 3));
+    PetscCall(VecCopy(X, Xb));
+    PetscCall(MatNullSpaceCreateRigidBody(Xb, &nsp));
+    PetscCall(MatSetNearNullSpace(m->K, nsp));
+    PetscCall(MatNullSpaceDestroy(&nsp));
+    PetscCall(VecDestroy(&Xb));
+    PetscCall(VecDestroy(&X));
+  }
   m->dm = fe->dm;
   PetscCall(PetscObjectReference((PetscObject)fe->dm));
   PetscFunctionReturn(0);
