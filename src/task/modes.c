@@ -123,6 +123,20 @@ PetscErrorCode JRTaskModes(MPI_Comm comm)
     PetscCall(PetscPrintf(comm, "modes: peak memory %.0f MB per process (largest), %.0f MB in all\n", mb[0], mb[1]));
   }
   for (PetscInt i = 0; i < nm; i++) PetscCall(PetscPrintf(comm, "mode %" PetscInt_FMT " %.10g\n", i + 1, (double)(PetscSqrtReal(PetscMax(lam[i], 0.0)) / (2.0 * PETSC_PI))));
+  /* the table: which direction each mode moves in (share of sum phi_d^2 over the nodes) */
+  PetscCall(PetscPrintf(comm, "modes table (share: the part of the mode shape's squared displacements along x, y, z)\n  mode      f [Hz]   omega [rad/s]  share x     y     z\n"));
+  for (PetscInt i = 0; i < nm; i++) {
+    const PetscScalar *a;
+    PetscInt           n;
+    PetscReal          sh[3] = {0, 0, 0}, tot;
+    PetscCall(VecGetLocalSize(phi[i], &n));
+    PetscCall(VecGetArrayRead(phi[i], &a));
+    for (PetscInt k = 0; k < n; k++) sh[k % 3] += PetscSqr(PetscRealPart(a[k]));
+    PetscCall(VecRestoreArrayRead(phi[i], &a));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sh, 3, MPIU_REAL, MPIU_SUM, comm));
+    tot = sh[0] + sh[1] + sh[2];
+    PetscCall(PetscPrintf(comm, "  %4" PetscInt_FMT " %11.4f %15.4f  %5.2f %5.2f %5.2f%s\n", i + 1, (double)(PetscSqrtReal(PetscMax(lam[i], 0.0)) / (2.0 * PETSC_PI)), (double)PetscSqrtReal(PetscMax(lam[i], 0.0)), (double)(sh[0] / tot), (double)(sh[1] / tot), (double)(sh[2] / tot), i < nrb ? "  rigid" : ""));
+  }
 
   PetscCall(JRModelGetDM(model, &dm));
   if (base[0] && dm) {
