@@ -115,12 +115,25 @@ typedef const char        *JRModelType;
 /* Facing node pairs of the two contact surfaces (node-to-node interface), on every rank:
    coordinates x[3i..], global DOFs of the x, y, z displacements of the node on surface A (dofA[3i..]) and
    on surface B (dofB[3i..]), the tangential direction t (the beam axis projected on the surface) and the
-   normal nrm pointing from A into B, so that pressing the surfaces together is (uA - uB) . nrm > 0. */
+   normal nrm pointing from A into B, so that pressing the surfaces together is (uA - uB) . nrm > 0;
+   area: the node's share of surface A [m^2] (its shape function integrated over the faces: a uniform
+   pressure p is carried by the forces p area); gap0: the initial gap (xB - xA) . nrm [m] (0 when the nodes
+   coincide). */
 typedef struct {
   PetscInt   n;
-  PetscReal *x, *t, *nrm;
+  PetscReal *x, *t, *nrm, *area, *gap0;
   PetscInt  *dofA, *dofB;
 } JRPairs;
+
+/* The bolts of an FE model (on every rank), for the pretension: bolt b acts on the footprint DOFs
+   dof[off[b]] .. dof[off[b+1]-1]; its shank elongation is sum_k g[k] u[dof[k]] (the rigid fits of its
+   two ends, along the shank from head to nut), its axial stiffness ka[b] = E A / L [N/m], its head-side
+   centre x[3b..] [m]. A tension P in the shank loads the structure with -P g. */
+typedef struct {
+  PetscInt   n;
+  PetscInt  *off, *dof;
+  PetscReal *g, *ka, *x;
+} JRBolts;
 
 /* The contact elements of a model, one entry per element (the whole list, on every rank).
    Tangential relative motion u = x[dof_a] - x[dof_b], normal v = x[ndof_a] - x[ndof_b]; -1 = ground. */
@@ -144,11 +157,51 @@ PETSC_EXTERN PetscErrorCode JRModelGetMatrices(JRModel, Mat *, Mat *, Mat *);
 PETSC_EXTERN PetscErrorCode JRModelGetNumDofs(JRModel, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRModelGetElements(JRModel, const JRElements **);
 PETSC_EXTERN PetscErrorCode JRModelGetPairs(JRModel, const JRPairs **);
+PETSC_EXTERN PetscErrorCode JRModelGetBolts(JRModel, const JRBolts **);
+PETSC_EXTERN PetscErrorCode JRModelGetCoordinates(JRModel, Vec *);
 PETSC_EXTERN PetscErrorCode JRModelGetDM(JRModel, DM *);
 PETSC_EXTERN PetscErrorCode JRModelGetRigidBasis(JRModel, PetscInt *, Vec[6]);
 PETSC_EXTERN PetscErrorCode JRModelGetMass(JRModel, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRModelView(JRModel, PetscViewer);
 PETSC_EXTERN PetscErrorCode JRModelDestroy(JRModel *);
+
+/* ------------------------------------------------------------------------------------------ */
+/* JRPreload: bolt preload, static frictionless contact analysis (prefix preload_)              */
+/* ------------------------------------------------------------------------------------------ */
+typedef struct _p_JRPreload *JRPreload;
+typedef enum {
+  JR_PRELOAD_PENALTY,
+  JR_PRELOAD_AUGMENTED
+} JRPreloadMethod;
+PETSC_EXTERN const char *const JRPreloadMethods[];
+typedef enum {
+  JR_PRELOAD_SUPPORT_MINIMAL, /* 3-2-1: statically determinate */
+  JR_PRELOAD_SUPPORT_CLAMP,   /* the end face x = 0 fixed ("fix-free") */
+  JR_PRELOAD_SUPPORT_NONE     /* only JRPreloadAddSupport() */
+} JRPreloadSupport;
+PETSC_EXTERN const char *const JRPreloadSupports[];
+typedef struct {
+  PetscInt  pairs, in_contact, bolts, newton, updates, factorisations;
+  PetscReal total_force, bolt_force_sum;        /* sum of the pairs' normal loads, of the pretensions [N] */
+  PetscReal contact_area, interface_area;       /* [m^2] */
+  PetscReal peak_pressure, peak_force, gap_max; /* [Pa], [N], [m] */
+  PetscReal penalty, max_penetration, time;     /* [N/m^3], [m], [s] */
+  PetscBool loaded;                             /* read with -preload_load instead of solved */
+} JRPreloadSummary;
+PETSC_EXTERN PetscErrorCode JRPreloadCreate(MPI_Comm, JRPreload *);
+PETSC_EXTERN PetscErrorCode JRPreloadSetModel(JRPreload, JRModel);
+PETSC_EXTERN PetscErrorCode JRPreloadSetForces(JRPreload, PetscInt, const PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRPreloadSetExternalForce(JRPreload, Vec);
+PETSC_EXTERN PetscErrorCode JRPreloadAddSupport(JRPreload, PetscInt, const PetscReal[3]);
+PETSC_EXTERN PetscErrorCode JRPreloadSetFromOptions(JRPreload);
+PETSC_EXTERN PetscErrorCode JRPreloadSolve(JRPreload);
+PETSC_EXTERN PetscErrorCode JRPreloadGetResults(JRPreload, PetscInt *, const PetscReal **, const PetscReal **);
+PETSC_EXTERN PetscErrorCode JRPreloadGetN0(JRPreload, PetscReal, PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRPreloadGetSolution(JRPreload, Vec *);
+PETSC_EXTERN PetscErrorCode JRPreloadGetSummary(JRPreload, JRPreloadSummary *);
+PETSC_EXTERN PetscErrorCode JRPreloadWrite(JRPreload, const char[], PetscBool);
+PETSC_EXTERN PetscErrorCode JRPreloadView(JRPreload, PetscViewer);
+PETSC_EXTERN PetscErrorCode JRPreloadDestroy(JRPreload *);
 
 /* ------------------------------------------------------------------------------------------ */
 /* JRModes: mass-normalised modes of K phi = omega^2 M phi (SLEPc, prefix modes_)              */
@@ -264,5 +317,6 @@ PETSC_EXTERN PetscErrorCode JRPlot(MPI_Comm, const char[], const char[], const c
 PETSC_EXTERN PetscErrorCode JRTaskElement(MPI_Comm);
 PETSC_EXTERN PetscErrorCode JRTaskFRF(MPI_Comm);
 PETSC_EXTERN PetscErrorCode JRTaskModes(MPI_Comm);
+PETSC_EXTERN PetscErrorCode JRTaskPreload(MPI_Comm);
 
 #endif

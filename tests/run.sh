@@ -27,7 +27,7 @@ for t in build/tests/test_*; do
   run "$(basename "$t")" "$t"
 done
 # the parallel pieces again on 2 ranks (elements and matrices split across ranks)
-for t in test_hbm test_matio test_fe; do
+for t in test_hbm test_matio test_fe test_preload; do
   [ -x "build/tests/$t" ] && run "$t np2" mpiexec -n 2 "build/tests/$t"
 done
 run cli bash tests/cli.sh

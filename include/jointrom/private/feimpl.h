@@ -50,5 +50,8 @@ PETSC_INTERN PetscErrorCode JRFERigidBasis(DM, Vec[6]);
 /* nodes (DOF points) on a labelled face set: coordinates (3 each) and global DOF indices (3 each),
    gathered on every rank, duplicates removed, sorted by global DOF */
 PETSC_INTERN PetscErrorCode JRFEFaceNodes(DM, const char *, PetscInt, PetscInt *, PetscReal **, PetscInt **);
+/* the same with each node's area weight (free x, dof with PetscFree2, w with PetscFree) */
+PETSC_INTERN PetscErrorCode JRFEFaceNodeAreas(DM, const char *, PetscInt, PetscInt *, PetscReal **, PetscInt **, PetscReal **);
+PETSC_INTERN PetscErrorCode JRFENodalCoordinates(DM, Vec);
 
 #endif

@@ -10,6 +10,7 @@ struct _JRModelOps {
   PetscErrorCode (*setfromoptions)(JRModel, PetscOptionItems *);
   PetscErrorCode (*setup)(JRModel);
   PetscErrorCode (*rigidbasis)(JRModel, PetscInt *, Vec[6]);
+  PetscErrorCode (*coordinates)(JRModel, Vec *);
   PetscErrorCode (*view)(JRModel, PetscViewer);
   PetscErrorCode (*destroy)(JRModel);
 };
@@ -20,10 +21,12 @@ struct _p_JRModel {
   struct _JRModelOps ops[1];
   void              *data;
   PetscBool          setupcalled, view, el_given;
+  PetscBool          tied;       /* FE: the interface pairs are tied (-model_interface tied) */
   Mat                K, M, C; /* C may be NULL */
   PetscInt           ndof;
   JRElements         el;
   JRPairs            pairs;
+  JRBolts            bolts;
   DM                 dm;         /* the FE mesh and discretisation (NULL for matrices) */
   PetscReal          mass, volume_mass; /* total mass from M, and density x volume */
 };
@@ -37,6 +40,7 @@ PETSC_INTERN PetscErrorCode JRModelCreate_Lap1(JRModel);
 PETSC_INTERN PetscErrorCode JRModelCreate_Lap3(JRModel);
 PETSC_INTERN PetscErrorCode JRModelCreate_Gmsh(JRModel);
 PETSC_INTERN PetscErrorCode JRPairsDestroy(JRPairs *);
+PETSC_INTERN PetscErrorCode JRBoltsDestroy(JRBolts *);
 PETSC_INTERN PetscErrorCode JRElementsReadCSV(MPI_Comm, const char[], PetscInt, JRElements *);
 PETSC_INTERN PetscErrorCode JRElementsDestroy(JRElements *);
 

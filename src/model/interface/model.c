@@ -161,6 +161,25 @@ PetscErrorCode JRModelGetPairs(JRModel m, const JRPairs **pairs)
   PetscFunctionReturn(0);
 }
 
+/* The bolts of an FE model (none for matrices) */
+PetscErrorCode JRModelGetBolts(JRModel m, const JRBolts **bolts)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRModelSetUp(m));
+  *bolts = &m->bolts;
+  PetscFunctionReturn(0);
+}
+
+/* A new vector with the coordinates [m] of each DOF's node, laid out like the displacements (FE models) */
+PetscErrorCode JRModelGetCoordinates(JRModel m, Vec *X)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRModelSetUp(m));
+  PetscCheck(m->ops->coordinates, m->comm, PETSC_ERR_SUP, "Model type %s has no node coordinates (an FE model has)", m->type_name);
+  PetscCall((*m->ops->coordinates)(m, X));
+  PetscFunctionReturn(0);
+}
+
 /* The DMPlex of an FE model (NULL for matrices) */
 PetscErrorCode JRModelGetDM(JRModel m, DM *dm)
 {
@@ -240,6 +259,7 @@ PetscErrorCode JRModelDestroy(JRModel *model)
   PetscCall(MatDestroy(&m->C));
   PetscCall(JRElementsDestroy(&m->el));
   PetscCall(JRPairsDestroy(&m->pairs));
+  PetscCall(JRBoltsDestroy(&m->bolts));
   PetscCall(DMDestroy(&m->dm));
   PetscCall(PetscFree(m));
   *model = NULL;

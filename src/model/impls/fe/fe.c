@@ -51,7 +51,7 @@ static PetscErrorCode zero_vector(PetscInt dim, PetscReal time, const PetscReal 
 static PetscErrorCode PointCoordinates(DM, PetscInt, PetscReal[3]);
 
 /* the nodal coordinates as a global vector (3 per node): every owned, unconstrained node */
-static PetscErrorCode NodalCoordinates(DM dm, Vec X)
+PetscErrorCode JRFENodalCoordinates(DM dm, Vec X)
 {
   PetscSection ls, gs;
   PetscInt     ps, pe, rs;
@@ -118,7 +118,7 @@ PetscErrorCode JRFERigidBasis(DM dm, Vec rb[6])
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, c, 4, MPIU_REAL, MPIU_SUM, comm));
   PetscCall(DMCreateGlobalVector(dm, &X));
-  PetscCall(NodalCoordinates(dm, X));
+  PetscCall(JRFENodalCoordinates(dm, X));
   PetscCall(VecGetLocalSize(X, &n));
   PetscCall(VecGetArrayRead(X, &x));
   for (PetscInt k = 0; k < 6; k++) {
@@ -147,6 +147,7 @@ PetscErrorCode JRFERigidBasis(DM dm, Vec rb[6])
 typedef struct {
   PetscInt  dof;
   PetscReal x[3];
+  PetscReal w; /* the node's share of the faces' area (JRFEFaceNodeAreas) */
 } Node;
 
 static int CompareNodeDof(const void *a, const void *b)
@@ -185,12 +186,108 @@ static PetscErrorCode PointCoordinates(DM dm, PetscInt p, PetscReal x[3])
   PetscFunctionReturn(0);
 }
 
+/* The area weights of the nodes of one quadrilateral face (bilinear geometry, 3 x 3 Gauss): the integral of
+   each node's shape function over the face, so that a uniform pressure p gives the consistent nodal forces
+   p w and sum w = the face's area. cl: the face's closure (points, orientations); order 1 (nodes at the
+   vertices) or 2 (vertices, edge midpoints, the face centre: the tensor Q2 weights 1/36, 4/36, 16/36 on a
+   parallelogram). w[k] is set for the closure's k-th point (0 for points without a node). */
+static PetscErrorCode QuadNodeWeights(DM dm, PetscInt order, PetscInt np, const PetscInt *cl, PetscReal *w)
+{
+  PetscInt  vs, ve, es, ee, corner[4] = {-1, -1, -1, -1}, nv = 0, vidx[4];
+  PetscReal X[4][3], ref[9][2], xi[3] = {-0.774596669241483377, 0.0, 0.774596669241483377}, gw[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vs, &ve));
+  PetscCall(DMPlexGetDepthStratum(dm, 1, &es, &ee));
+  for (PetscInt k = 0; k < np; k++)
+    if (cl[2 * k] >= vs && cl[2 * k] < ve) {
+      PetscCheck(nv < 4, PETSC_COMM_SELF, PETSC_ERR_SUP, "Contact faces must be quadrilaterals (hexahedral meshes)");
+      vidx[nv++] = k;
+    }
+  PetscCheck(nv == 4, PETSC_COMM_SELF, PETSC_ERR_SUP, "Contact faces must be quadrilaterals (hexahedral meshes)");
+  /* cyclic corner order: vertex 0, its two edge neighbours, the opposite vertex */
+  {
+    PetscInt nb[2], nn = 0;
+    for (PetscInt k = 0; k < np; k++) {
+      const PetscInt *cone, e = cl[2 * k];
+      if (e < es || e >= ee) continue;
+      PetscCall(DMPlexGetCone(dm, e, &cone));
+      if (cone[0] == cl[2 * vidx[0]] && nn < 2) nb[nn++] = cone[1];
+      else if (cone[1] == cl[2 * vidx[0]] && nn < 2) nb[nn++] = cone[0];
+    }
+    PetscCheck(nn == 2, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Face vertex without two edges");
+    corner[0] = vidx[0];
+    for (PetscInt j = 1; j < 4; j++) {
+      const PetscInt p = cl[2 * vidx[j]];
+      if (p == nb[0]) corner[1] = vidx[j];
+      else if (p == nb[1]) corner[3] = vidx[j];
+      else corner[2] = vidx[j];
+    }
+  }
+  for (int c = 0; c < 4; c++) PetscCall(PointCoordinates(dm, cl[2 * corner[c]], X[c]));
+  { /* reference position of every closure point with a node */
+    const PetscReal rc[4][2] = {
+      {-1, -1},
+      {1,  -1},
+      {1,  1 },
+      {-1, 1 }
+    };
+    PetscCheck(np == 9, PETSC_COMM_SELF, PETSC_ERR_SUP, "Contact faces must be quadrilaterals");
+    for (PetscInt k = 0; k < np; k++) w[k] = ref[k][0] = ref[k][1] = 0.0;
+    for (PetscInt k = 0; k < np; k++) {
+      const PetscInt p = cl[2 * k];
+      if (p >= vs && p < ve) {
+        for (int c = 0; c < 4; c++)
+          if (corner[c] == k) {
+            ref[k][0] = rc[c][0];
+            ref[k][1] = rc[c][1];
+          }
+      } else if (p >= es && p < ee) {
+        const PetscInt *cone;
+        PetscCall(DMPlexGetCone(dm, p, &cone));
+        for (int c = 0; c < 4; c++)
+          if (cl[2 * corner[c]] == cone[0] || cl[2 * corner[c]] == cone[1]) {
+            ref[k][0] += 0.5 * rc[c][0];
+            ref[k][1] += 0.5 * rc[c][1];
+          }
+      } /* the face itself: (0, 0) */
+    }
+  }
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++) {
+      const PetscReal s = xi[a], t = xi[b];
+      PetscReal       dxs[3], dxt[3], cr[3], J;
+      for (int d = 0; d < 3; d++) {
+        dxs[d] = 0.25 * (-(1 - t) * X[0][d] + (1 - t) * X[1][d] + (1 + t) * X[2][d] - (1 + t) * X[3][d]);
+        dxt[d] = 0.25 * (-(1 - s) * X[0][d] - (1 + s) * X[1][d] + (1 + s) * X[2][d] + (1 - s) * X[3][d]);
+      }
+      cr[0] = dxs[1] * dxt[2] - dxs[2] * dxt[1];
+      cr[1] = dxs[2] * dxt[0] - dxs[0] * dxt[2];
+      cr[2] = dxs[0] * dxt[1] - dxs[1] * dxt[0];
+      J     = PetscSqrtReal(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]) * gw[a] * gw[b];
+      for (PetscInt k = 0; k < np; k++) {
+        PetscReal Ns, Nt;
+        if (order == 2) { /* 1D quadratic Lagrange factors of the nodes at -1, 0, 1 */
+          Ns = ref[k][0] < -0.5 ? 0.5 * s * (s - 1) : ref[k][0] > 0.5 ? 0.5 * s * (s + 1) : 1 - s * s;
+          Nt = ref[k][1] < -0.5 ? 0.5 * t * (t - 1) : ref[k][1] > 0.5 ? 0.5 * t * (t + 1) : 1 - t * t;
+        } else { /* bilinear, corners only */
+          Ns = PetscAbsReal(ref[k][0]) == 1.0 && PetscAbsReal(ref[k][1]) == 1.0 ? 0.5 * (1 + ref[k][0] * s) : 0.0;
+          Nt = 0.5 * (1 + ref[k][1] * t);
+        }
+        w[k] += Ns * Nt * J;
+      }
+    }
+  PetscFunctionReturn(0);
+}
+
 /*
   JRFEFaceNodes - the nodes (mesh points carrying displacement DOFs) in the closure of the faces with
   label value val: n nodes, coordinates x[3n], first global DOF dof[n] (x, y, z at dof, dof+1, dof+2),
   gathered on every rank, one entry per node, sorted by DOF. Constrained nodes are left out.
+  JRFEFaceNodeAreas also gives each node's area weight w[n] (its shape function integrated over the faces,
+  quadrilateral faces of order-2 or order-1 elements): a uniform pressure p has the nodal forces p w.
 */
-PetscErrorCode JRFEFaceNodes(DM dm, const char *label, PetscInt val, PetscInt *n, PetscReal **x, PetscInt **dof)
+static PetscErrorCode FaceNodes(DM dm, const char *label, PetscInt val, PetscInt *n, PetscReal **x, PetscInt **dof, PetscReal **wout)
 {
   MPI_Comm     comm;
   PetscSection ls, gs;
@@ -211,8 +308,16 @@ PetscErrorCode JRFEFaceNodes(DM dm, const char *label, PetscInt val, PetscInt *n
     const PetscInt *faces;
     PetscCall(ISGetIndices(is, &faces));
     for (PetscInt i = 0; i < nf; i++) {
-      PetscInt np, *cl = NULL;
+      PetscInt  np, *cl = NULL;
+      PetscReal wf[9];
       PetscCall(DMPlexGetTransitiveClosure(dm, faces[i], PETSC_TRUE, &np, &cl));
+      if (wout) { /* the order from the DOFs of the face's own point: 3 (one node) for order 2, none for order 1 */
+        PetscInt d0;
+        PetscCheck(np == 9, comm, PETSC_ERR_SUP, "Node areas need quadrilateral faces (hexahedral meshes)");
+        PetscCall(PetscSectionGetDof(ls, cl[0], &d0));
+        PetscCheck(d0 == 0 || d0 == 3, comm, PETSC_ERR_SUP, "Node areas need elements of order 1 or 2 (-model_fe_order)");
+        PetscCall(QuadNodeWeights(dm, d0 ? 2 : 1, np, cl, wf));
+      }
       for (PetscInt k = 0; k < np; k++) {
         const PetscInt p = cl[2 * k];
         PetscInt       d, cd, off;
@@ -230,6 +335,7 @@ PetscErrorCode JRFEFaceNodes(DM dm, const char *label, PetscInt val, PetscInt *n
           loc = nn;
         }
         loc[cnt].dof = off;
+        loc[cnt].w   = wout ? wf[k] : 0.0;
         PetscCall(PointCoordinates(dm, p, loc[cnt].x));
         cnt++;
       }
@@ -255,17 +361,35 @@ PetscErrorCode JRFEFaceNodes(DM dm, const char *label, PetscInt val, PetscInt *n
   PetscCallMPI(MPI_Type_free(&nodetype));
   qsort(all, (size_t)tot, sizeof(Node), CompareNodeDof);
   cnt = 0;
-  for (PetscInt i = 0; i < tot; i++)
+  for (PetscInt i = 0; i < tot; i++) {
     if (!cnt || all[i].dof != all[cnt - 1].dof) all[cnt++] = all[i];
+    else all[cnt - 1].w += all[i].w; /* a node of several faces: its weights add */
+  }
   *n = cnt;
   PetscCall(PetscMalloc2(3 * PetscMax(cnt, 1), x, PetscMax(cnt, 1), dof));
+  if (wout) PetscCall(PetscMalloc1(PetscMax(cnt, 1), wout));
   for (PetscInt i = 0; i < cnt; i++) {
     (*dof)[i] = all[i].dof;
     for (int d = 0; d < 3; d++) (*x)[3 * i + d] = all[i].x[d];
+    if (wout) (*wout)[i] = all[i].w;
   }
   PetscCall(PetscFree(all));
   PetscCall(PetscFree(loc));
   PetscCall(PetscFree4(counts, displs, rc, rd));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRFEFaceNodes(DM dm, const char *label, PetscInt val, PetscInt *n, PetscReal **x, PetscInt **dof)
+{
+  PetscFunctionBeginUser;
+  PetscCall(FaceNodes(dm, label, val, n, x, dof, NULL));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRFEFaceNodeAreas(DM dm, const char *label, PetscInt val, PetscInt *n, PetscReal **x, PetscInt **dof, PetscReal **w)
+{
+  PetscFunctionBeginUser;
+  PetscCall(FaceNodes(dm, label, val, n, x, dof, w));
   PetscFunctionReturn(0);
 }
 
@@ -598,9 +722,16 @@ static PetscErrorCode AddBolts(JRModel m, Model_FE *fe)
 {
   DenseBlock *bd;
 
+  JRBolts    *B = &m->bolts;
+  PetscInt    ntot = 0;
+
   PetscFunctionBeginUser;
+  PetscCall(JRBoltsDestroy(B));
   if (!fe->nbolts) PetscFunctionReturn(0);
   PetscCall(PetscCalloc1(fe->nbolts, &bd));
+  B->n = fe->nbolts;
+  PetscCall(PetscMalloc3(fe->nbolts + 1, &B->off, fe->nbolts, &B->ka, 3 * fe->nbolts, &B->x));
+  B->off[0] = 0;
   for (PetscInt i = 0; i < fe->nbolts; i++) {
     PetscInt   nh, nn, *dh, *dn;
     PetscReal *xh, *xn, ch[3] = {0, 0, 0}, cn[3] = {0, 0, 0}, Kbeam[144], *Th, *Tn, *T;
@@ -619,6 +750,31 @@ static PetscErrorCode AddBolts(JRModel m, Model_FE *fe)
     PetscCall(PetscMalloc3(6 * 3 * nh, &Th, 6 * 3 * nn, &Tn, 12 * 3 * (nh + nn), &T));
     PetscCall(RigidFit(m->comm, nh, xh, ch, Th));
     PetscCall(RigidFit(m->comm, nn, xn, cn, Tn));
+    { /* the pretension data: elongation g = e3 . (u_nut - u_head) of the fitted ends, e3 from head to nut */
+      const PetscReal L = fe->bolt[i].axis, e3[3] = {(cn[0] - ch[0]) / L, (cn[1] - ch[1]) / L, (cn[2] - ch[2]) / L};
+      PetscInt       *dof;
+      PetscReal      *g;
+      B->off[i + 1] = ntot + 3 * (nh + nn);
+      PetscCall(PetscMalloc2(B->off[i + 1], &dof, B->off[i + 1], &g));
+      if (ntot) {
+        PetscCall(PetscArraycpy(dof, B->dof, ntot));
+        PetscCall(PetscArraycpy(g, B->g, ntot));
+        PetscCall(PetscFree2(B->dof, B->g));
+      }
+      B->dof = dof;
+      B->g   = g;
+      for (PetscInt c = 0; c < 3 * nh; c++) {
+        B->dof[ntot + c] = dh[c / 3] + c % 3;
+        B->g[ntot + c]   = -(e3[0] * Th[0 * 3 * nh + c] + e3[1] * Th[1 * 3 * nh + c] + e3[2] * Th[2 * 3 * nh + c]);
+      }
+      for (PetscInt c = 0; c < 3 * nn; c++) {
+        B->dof[ntot + 3 * nh + c] = dn[c / 3] + c % 3;
+        B->g[ntot + 3 * nh + c]   = e3[0] * Tn[0 * 3 * nn + c] + e3[1] * Tn[1 * 3 * nn + c] + e3[2] * Tn[2 * 3 * nn + c];
+      }
+      ntot     = B->off[i + 1];
+      B->ka[i] = fe->E * PETSC_PI * fe->bolt[i].d * fe->bolt[i].d / 4 / L;
+      for (int d = 0; d < 3; d++) B->x[3 * i + d] = ch[d];
+    }
     /* T = blockdiag(Th, Tn): 12 x 3(nh + nn) */
     PetscCall(PetscArrayzero(T, 12 * 3 * (nh + nn)));
     for (int a = 0; a < 6; a++) {
@@ -752,14 +908,14 @@ static int CompareXKey(const void *a, const void *b)
 static PetscErrorCode FindPairs(JRModel m, Model_FE *fe)
 {
   PetscInt   na, nb, *da, *db, np = 0, *usedB;
-  PetscReal *xa, *xb, tol = fe->pairtol, nrm[3], dev, t[3] = {0, 0, 0}, tn = 0.0, dmax = 0.0;
+  PetscReal *xa, *xb, *wa, tol = fe->pairtol, nrm[3], dev = 0.0, t[3] = {0, 0, 0}, tn = 0.0, dmax = 0.0;
   XKey      *kb;
   JRPairs   *P = &m->pairs;
 
   PetscFunctionBeginUser;
   PetscCheck(tol > 0 && PetscIsNormalReal(tol), m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-model_pair_tol %g: must be a positive distance [m]", (double)tol);
   PetscCall(JRPairsDestroy(P));
-  PetscCall(JRFEFaceNodes(fe->dm, JR_LABEL_CONTACT, 1, &na, &xa, &da));
+  PetscCall(JRFEFaceNodeAreas(fe->dm, JR_LABEL_CONTACT, 1, &na, &xa, &da, &wa));
   PetscCall(JRFEFaceNodes(fe->dm, JR_LABEL_CONTACT, 2, &nb, &xb, &db));
   fe->ncontact[0] = na;
   fe->ncontact[1] = nb;
@@ -779,6 +935,7 @@ static PetscErrorCode FindPairs(JRModel m, Model_FE *fe)
   }
   qsort(kb, (size_t)nb, sizeof(XKey), CompareXKey);
   PetscCall(PetscMalloc5(3 * PetscMax(na, 1), &P->x, 3 * PetscMax(na, 1), &P->t, 3 * PetscMax(na, 1), &P->nrm, 3 * PetscMax(na, 1), &P->dofA, 3 * PetscMax(na, 1), &P->dofB));
+  PetscCall(PetscMalloc2(PetscMax(na, 1), &P->area, PetscMax(na, 1), &P->gap0));
   for (PetscInt a = 0; a < na; a++) {
     PetscInt  lo = 0, hi = nb, best = -1;
     PetscReal bd = tol;
@@ -798,6 +955,8 @@ static PetscErrorCode FindPairs(JRModel m, Model_FE *fe)
     if (best < 0 || usedB[best]) continue;
     usedB[best] = 1;
     dmax        = PetscMax(dmax, bd);
+    P->area[np] = wa[a];
+    P->gap0[np] = (xb[3 * best] - xa[3 * a]) * nrm[0] + (xb[3 * best + 1] - xa[3 * a + 1]) * nrm[1] + (xb[3 * best + 2] - xa[3 * a + 2]) * nrm[2];
     for (int d = 0; d < 3; d++) {
       P->x[3 * np + d]    = xa[3 * a + d];
       P->dofA[3 * np + d] = da[a] + d;
@@ -813,6 +972,7 @@ static PetscErrorCode FindPairs(JRModel m, Model_FE *fe)
   PetscCall(PetscFree(kb));
   PetscCall(PetscFree(usedB));
   PetscCall(PetscFree2(xa, da));
+  PetscCall(PetscFree(wa));
   PetscCall(PetscFree2(xb, db));
   PetscFunctionReturn(0);
 }
@@ -840,10 +1000,20 @@ static PetscErrorCode TieInterface(JRModel m, Model_FE *fe)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode JRBoltsDestroy(JRBolts *B)
+{
+  PetscFunctionBeginUser;
+  if (B->off) PetscCall(PetscFree3(B->off, B->ka, B->x));
+  if (B->dof) PetscCall(PetscFree2(B->dof, B->g));
+  PetscCall(PetscMemzero(B, sizeof(*B)));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode JRPairsDestroy(JRPairs *P)
 {
   PetscFunctionBeginUser;
   if (P->x) PetscCall(PetscFree5(P->x, P->t, P->nrm, P->dofA, P->dofB));
+  if (P->area) PetscCall(PetscFree2(P->area, P->gap0));
   PetscCall(PetscMemzero(P, sizeof(*P)));
   PetscFunctionReturn(0);
 }
@@ -929,12 +1099,13 @@ PetscErrorCode JRFESetUp(JRModel m, Model_FE *fe)
   PetscCall(VecDestroy(&u));
   if (fe->lap) PetscCall(FindPairs(m, fe));
   if (fe->lap && fe->tied) PetscCall(TieInterface(m, fe));
+  m->tied = fe->lap && fe->tied ? PETSC_TRUE : PETSC_FALSE;
   { /* the rigid-body modes as K's near null space: algebraic multigrid (-modes_st_pc_type gamg) needs them */
     Vec          X, Xb;
     MatNullSpace nsp;
     PetscInt     n;
     PetscCall(DMCreateGlobalVector(fe->dm, &X));
-    PetscCall(NodalCoordinates(fe->dm, X));
+    PetscCall(JRFENodalCoordinates(fe->dm, X));
     PetscCall(VecGetLocalSize(X, &n));
     PetscCall(VecCreateMPI(m->comm, n, PETSC_DETERMINE, &Xb));
     PetscCall(VecSetBlockSize(Xb, 3));

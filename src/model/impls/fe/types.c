@@ -154,6 +154,16 @@ static PetscErrorCode JRModelRigidBasis_FE(JRModel m, PetscInt *n, Vec rb[6])
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode JRModelCoordinates_FE(JRModel m, Vec *X)
+{
+  Model_FEType *ft = (Model_FEType *)m->data;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMCreateGlobalVector(ft->fe.dm, X));
+  PetscCall(JRFENodalCoordinates(ft->fe.dm, *X));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode JRModelDestroy_FE(JRModel m)
 {
   Model_FEType *ft = (Model_FEType *)m->data;
@@ -186,6 +196,7 @@ static PetscErrorCode CreateFE(JRModel m, Kind kind, const char *preset, Model_F
   m->ops->view           = JRModelView_FE;
   m->ops->destroy        = JRModelDestroy_FE;
   m->ops->rigidbasis     = JRModelRigidBasis_FE;
+  m->ops->coordinates    = JRModelCoordinates_FE;
   *fe                    = &ft->fe;
   PetscFunctionReturn(0);
 }
