@@ -60,6 +60,13 @@ struct _p_JRPreload {
   PetscInt         *closed, *jclosed, nclamp, *clamp;
   PetscReal         diag;
   PetscBool         jvalid;
+  /* condensed solver: K0 = Kp + sum_i k_i b_i b_i^T factored once, G = B^T K0^-1 B, yf = B^T K0^-1 f (every rank) */
+  PetscBool         condensed;
+  KSP               ksp0;
+  PetscReal        *G, *yf;
+  SNES              csnes;
+  Mat               cJ;
+  Vec               cw;
   /* results (every rank) */
   PetscReal        *N, *gap;
   PetscInt          newton, outer, factorisations;
@@ -84,6 +91,7 @@ PetscErrorCode JRPreloadCreate(MPI_Comm comm, JRPreload *pre)
   p->maxit    = 100;
   p->open_gap = 1e-5;
   p->load_tol = 1e-6;
+  p->condensed = PETSC_TRUE;
   *pre        = p;
   PetscFunctionReturn(0);
 }
@@ -159,6 +167,12 @@ PetscErrorCode JRPreloadSetFromOptions(JRPreload p)
   PetscCall(PetscOptionsReal("-rtol", "Augmented Lagrangian: stop when no pair force changes by more than rtol x the largest", "JRPreloadSolve", p->rtol, &p->rtol, NULL));
   PetscCall(PetscOptionsInt("-max_it", "Augmented Lagrangian: most updates", "JRPreloadSolve", p->maxit, &p->maxit, NULL));
   PetscCall(PetscOptionsReal("-open_stiffness", "Stiffness of an open pair, relative to a closed one", "JRPreloadSolve", p->eps, &p->eps, NULL));
+  {
+    const char *solvers[] = {"condensed", "full"};
+    PetscInt    sv        = p->condensed ? 0 : 1;
+    PetscCall(PetscOptionsEList("-solver", "condensed (one factorisation of K, Newton on the interface's dense flexibility) or full (Newton on all DOFs, a factorisation per change of the closed set)", "JRPreloadSolve", solvers, 2, solvers[sv], &sv, NULL));
+    p->condensed = sv == 0 ? PETSC_TRUE : PETSC_FALSE;
+  }
   PetscCall(PetscOptionsEList("-support", "Supports: minimal (3-2-1, statically determinate), clamp (end x = 0 fixed, as in the thesis), none", "JRPreloadSolve", JRPreloadSupports, 3, JRPreloadSupports[sup], &sup, NULL));
   p->support = (JRPreloadSupport)sup;
   PetscCall(PetscOptionsBool("-open_start", "Start Newton from every pair open (by -preload_open_gap) instead of closed", "JRPreloadSolve", p->open_start, &p->open_start, NULL));
@@ -388,11 +402,13 @@ static PetscErrorCode FormFunction(SNES snes, Vec u, Vec r, void *ctx)
 
 /* J = Kp + sum_i k_i (closed) or eps k_i (open) b_i b_i^T; left untouched (no new factorisation) when the
    set of closed pairs is the one of the last assembly */
+static PetscErrorCode AssembleJacobian(JRPreload, const JRPairs *, Mat);
+
 static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jp, void *ctx)
 {
   JRPreload      p = (JRPreload)ctx;
   const JRPairs *P;
-  PetscInt       rs, re, same = 1;
+  PetscInt       same = 1;
 
   PetscFunctionBeginUser;
   (void)snes;
@@ -402,6 +418,18 @@ static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jp, void *ctx)
   if (p->jvalid)
     for (PetscInt i = 0; i < p->np && same; i++) same = p->closed[i] == p->jclosed[i];
   if (p->jvalid && same) PetscFunctionReturn(0);
+  PetscCall(AssembleJacobian(p, P, Jp));
+  p->jvalid = PETSC_TRUE;
+  p->factorisations++;
+  PetscFunctionReturn(0);
+}
+
+/* Jp = Kp + sum_i (closed ? k_i : eps k_i) b_i b_i^T */
+static PetscErrorCode AssembleJacobian(JRPreload p, const JRPairs *P, Mat Jp)
+{
+  PetscInt rs, re;
+
+  PetscFunctionBeginUser;
   PetscCall(MatCopy(p->Kp, Jp, SAME_NONZERO_PATTERN));
   PetscCall(MatGetOwnershipRange(Jp, &rs, &re));
   for (PetscInt i = 0; i < p->np; i++) {
@@ -423,8 +451,6 @@ static PetscErrorCode FormJacobian(SNES snes, Vec u, Mat J, Mat Jp, void *ctx)
   }
   PetscCall(MatAssemblyBegin(Jp, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(Jp, MAT_FINAL_ASSEMBLY));
-  p->jvalid = PETSC_TRUE;
-  p->factorisations++;
   PetscFunctionReturn(0);
 }
 
@@ -614,6 +640,220 @@ static PetscErrorCode SetUpSystem(JRPreload p)
   PetscFunctionReturn(0);
 }
 
+/* ---- the condensed solver ----
+   With K0 = Kp + sum_i k_i b_i b_i^T (every pair closed; regular) and s_i(w) = c_i(w) - k_i (w_i + gap0_i), the
+   equilibrium Kp u + B c(w) = f is K0 u = f - B s(w), so the penetrations solve the interface equations
+     F(w) = w + gap0 - yf + G s(w) = 0,   G = B^T K0^-1 B (n x n, the interface flexibility),  yf = B^T K0^-1 f,
+   with the Jacobian I + G diag(c_i' - k_i) (columns of closed pairs are unit vectors). One sparse factorisation
+   of K0 and n solves (blocks of right-hand sides) give G; the Newton iterations are dense and cheap. */
+static PetscErrorCode PairValues(JRPreload p, const JRPairs *P, Vec x, PetscReal *y)
+{
+  const PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterBegin(p->sc, x, p->useq, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(p->sc, x, p->useq, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(p->useq, &a));
+  for (PetscInt i = 0; i < p->np; i++) {
+    y[i] = 0.0;
+    for (int d = 0; d < 3; d++) y[i] += (PetscRealPart(a[6 * i + d]) - PetscRealPart(a[6 * i + 3 + d])) * P->nrm[3 * i + d];
+  }
+  PetscCall(VecRestoreArrayRead(p->useq, &a));
+  PetscFunctionReturn(0);
+}
+
+/* r = sum_i s_i b_i (rows owned here) */
+static PetscErrorCode PairLoads(JRPreload p, const JRPairs *P, const PetscReal *sv, Vec r)
+{
+  PetscScalar *ra;
+  PetscInt     rs, re;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(r));
+  PetscCall(VecGetOwnershipRange(r, &rs, &re));
+  PetscCall(VecGetArray(r, &ra));
+  for (PetscInt i = 0; i < p->np; i++)
+    for (int d = 0; d < 3; d++) {
+      const PetscInt a = P->dofA[3 * i + d], b = P->dofB[3 * i + d];
+      if (a >= rs && a < re) ra[a - rs] += sv[i] * P->nrm[3 * i + d];
+      if (b >= rs && b < re) ra[b - rs] -= sv[i] * P->nrm[3 * i + d];
+    }
+  PetscCall(VecRestoreArray(r, &ra));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CondensedState(JRPreload p, const JRPairs *P, Vec w)
+{
+  const PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(w, &a));
+  for (PetscInt i = 0; i < p->np; i++) {
+    p->w[i]      = PetscRealPart(a[i]);
+    p->closed[i] = p->lam[i] + p->k[i] * p->w[i] >= 0.0;
+  }
+  PetscCall(VecRestoreArrayRead(w, &a));
+  (void)P;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CondensedFunction(SNES snes, Vec w, Vec F, void *ctx)
+{
+  JRPreload      p = (JRPreload)ctx;
+  const JRPairs *P;
+  PetscScalar   *fa;
+  PetscReal     *sv;
+  const PetscInt n = p->np;
+
+  PetscFunctionBeginUser;
+  (void)snes;
+  PetscCall(JRModelGetPairs(p->model, &P));
+  PetscCall(CondensedState(p, P, w));
+  PetscCall(PetscMalloc1(n, &sv));
+  for (PetscInt j = 0; j < n; j++) sv[j] = PairForce(p, j) - p->k[j] * (p->w[j] + P->gap0[j]);
+  PetscCall(VecGetArray(F, &fa));
+  for (PetscInt i = 0; i < n; i++) fa[i] = p->w[i] + P->gap0[i] - p->yf[i];
+  for (PetscInt j = 0; j < n; j++) /* G is symmetric: column j = row j, contiguous */
+    for (PetscInt i = 0; i < n; i++) fa[i] += p->G[(size_t)j * n + i] * sv[j];
+  PetscCall(VecRestoreArray(F, &fa));
+  PetscCall(PetscFree(sv));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CondensedJacobian(SNES snes, Vec w, Mat J, Mat Jp, void *ctx)
+{
+  JRPreload      p = (JRPreload)ctx;
+  const JRPairs *P;
+  PetscScalar   *ja;
+  PetscInt       same = 1;
+  const PetscInt n = p->np;
+
+  PetscFunctionBeginUser;
+  (void)snes;
+  (void)J;
+  PetscCall(JRModelGetPairs(p->model, &P));
+  PetscCall(CondensedState(p, P, w));
+  if (p->jvalid)
+    for (PetscInt i = 0; i < n && same; i++) same = p->closed[i] == p->jclosed[i];
+  if (p->jvalid && same) PetscFunctionReturn(0); /* the same closed set: the same matrix, no new LU */
+  PetscCall(MatDenseGetArray(Jp, &ja));
+  for (PetscInt j = 0; j < n; j++) {
+    const PetscReal f = (p->closed[j] ? 1.0 : p->eps) * p->k[j] - p->k[j];
+    for (PetscInt i = 0; i < n; i++) ja[(size_t)j * n + i] = (i == j ? 1.0 : 0.0) + p->G[(size_t)j * n + i] * f;
+    p->jclosed[j] = p->closed[j];
+  }
+  PetscCall(MatDenseRestoreArray(Jp, &ja));
+  PetscCall(MatAssemblyBegin(Jp, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Jp, MAT_FINAL_ASSEMBLY));
+  p->jvalid = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* factor K0, compute G and yf (on every rank), create the dense SNES (PETSC_COMM_SELF: every rank solves the same
+   small system with the same data, so the ranks agree exactly) */
+static PetscErrorCode CondensedSetUp(JRPreload p, const JRPairs *P)
+{
+  const PetscInt n = p->np, chunk = 64;
+  PC             pc;
+  Vec            x;
+  PetscInt       nloc, N;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < n; i++) p->closed[i] = 1;
+  PetscCall(AssembleJacobian(p, P, p->J));
+  PetscCall(KSPCreate(p->comm, &p->ksp0));
+  PetscCall(KSPSetOptionsPrefix(p->ksp0, "preload_"));
+  PetscCall(KSPSetOperators(p->ksp0, p->J, p->J));
+  PetscCall(KSPSetType(p->ksp0, KSPPREONLY));
+  PetscCall(KSPGetPC(p->ksp0, &pc));
+  PetscCall(PCSetType(pc, PCCHOLESKY));
+#if defined(PETSC_HAVE_MUMPS)
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+#endif
+  PetscCall(KSPSetFromOptions(p->ksp0));
+  PetscCall(KSPSetUp(p->ksp0));
+  p->factorisations++;
+  PetscCall(PetscMalloc2((size_t)n * n, &p->G, n, &p->yf));
+  PetscCall(VecDuplicate(p->u, &x));
+  PetscCall(KSPSolve(p->ksp0, p->f, x));
+  PetscCall(PairValues(p, P, x, p->yf));
+  PetscCall(VecDestroy(&x));
+  PetscCall(VecGetLocalSize(p->u, &nloc));
+  PetscCall(VecGetSize(p->u, &N));
+  for (PetscInt j0 = 0; j0 < n; j0 += chunk) {
+    const PetscInt m = PetscMin(chunk, n - j0);
+    Mat            R, X;
+    PetscScalar   *ra;
+    PetscInt       rs, re;
+    PetscCall(MatCreateDense(p->comm, nloc, PETSC_DECIDE, N, m, NULL, &R));
+    PetscCall(MatCreateDense(p->comm, nloc, PETSC_DECIDE, N, m, NULL, &X));
+    PetscCall(MatGetOwnershipRange(R, &rs, &re));
+    PetscCall(MatDenseGetArray(R, &ra)); /* local rows, column-major with leading dimension nloc */
+    for (PetscInt c = 0; c < m; c++) {
+      const PetscInt j = j0 + c;
+      for (int d = 0; d < 3; d++) {
+        const PetscInt a = P->dofA[3 * j + d], b = P->dofB[3 * j + d];
+        if (a >= rs && a < re) ra[(size_t)c * nloc + a - rs] += P->nrm[3 * j + d];
+        if (b >= rs && b < re) ra[(size_t)c * nloc + b - rs] -= P->nrm[3 * j + d];
+      }
+    }
+    PetscCall(MatDenseRestoreArray(R, &ra));
+    PetscCall(KSPMatSolve(p->ksp0, R, X));
+    for (PetscInt c = 0; c < m; c++) {
+      Vec col;
+      PetscCall(MatDenseGetColumnVecRead(X, c, &col));
+      PetscCall(PairValues(p, P, col, p->G + (size_t)(j0 + c) * n));
+      PetscCall(MatDenseRestoreColumnVecRead(X, c, &col));
+    }
+    PetscCall(MatDestroy(&R));
+    PetscCall(MatDestroy(&X));
+  }
+  for (PetscInt j = 0; j < n; j++) /* symmetrise (round-off) */
+    for (PetscInt i = 0; i < j; i++) p->G[(size_t)j * n + i] = p->G[(size_t)i * n + j] = 0.5 * (p->G[(size_t)j * n + i] + p->G[(size_t)i * n + j]);
+  {
+    KSP ksp;
+    PC  cpc;
+    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &p->cJ));
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &p->cw));
+    PetscCall(SNESCreate(PETSC_COMM_SELF, &p->csnes));
+    PetscCall(SNESSetOptionsPrefix(p->csnes, "preload_"));
+    PetscCall(SNESSetFunction(p->csnes, NULL, CondensedFunction, p));
+    PetscCall(SNESSetJacobian(p->csnes, p->cJ, p->cJ, CondensedJacobian, p));
+    PetscCall(SNESSetTolerances(p->csnes, PETSC_DEFAULT, 1e-12, PETSC_DEFAULT, 100, PETSC_DEFAULT));
+    PetscCall(SNESSetDivergenceTolerance(p->csnes, -1.0));
+    {
+      SNESLineSearch ls;
+      PetscCall(SNESGetLineSearch(p->csnes, &ls));
+      PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
+    }
+    PetscCall(SNESGetKSP(p->csnes, &ksp));
+    PetscCall(KSPSetType(ksp, KSPPREONLY));
+    PetscCall(KSPGetPC(ksp, &cpc));
+    PetscCall(PCSetType(cpc, PCLU));
+    PetscCall(PCFactorSetMatSolverType(cpc, MATSOLVERPETSC));
+    PetscCall(SNESSetFromOptions(p->csnes));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* the displacement of the condensed solution: K0 u = f - B s(w) */
+static PetscErrorCode CondensedDisplacement(JRPreload p, const JRPairs *P)
+{
+  PetscReal *sv;
+  Vec        r;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(p->np, &sv));
+  for (PetscInt j = 0; j < p->np; j++) sv[j] = PairForce(p, j) - p->k[j] * (p->w[j] + P->gap0[j]);
+  PetscCall(VecDuplicate(p->f, &r));
+  PetscCall(PairLoads(p, P, sv, r));
+  PetscCall(VecAYPX(r, -1.0, p->f));
+  PetscCall(KSPSolve(p->ksp0, r, p->u));
+  PetscCall(VecDestroy(&r));
+  PetscCall(PetscFree(sv));
+  PetscFunctionReturn(0);
+}
+
 /* ---- import ---- */
 typedef struct {
   PetscReal x;
@@ -759,8 +999,11 @@ PetscErrorCode JRPreloadSolve(JRPreload p)
   if (!p->Kp) PetscCall(SetUpSystem(p));
   PetscCall(JRModelGetPairs(p->model, &P));
   PetscCall(ClearResults(p));
+  p->newton = p->outer = p->factorisations = 0;
+  if (p->condensed && !p->G) PetscCall(CondensedSetUp(p, P));
   PetscCall(VecZeroEntries(p->u));
-  if (p->open_start) { /* every pair open: B's pair nodes moved along the normal, away from A */
+  if (p->condensed) PetscCall(VecSet(p->cw, p->open_start ? -p->open_gap : 0.0));
+  else if (p->open_start) { /* every pair open: B's pair nodes moved along the normal, away from A */
     PetscInt rs, re;
     PetscCall(VecGetOwnershipRange(p->u, &rs, &re));
     for (PetscInt i = 0; i < 3 * p->np; i++)
@@ -769,18 +1012,20 @@ PetscErrorCode JRPreloadSolve(JRPreload p)
     PetscCall(VecAssemblyEnd(p->u));
   }
   for (PetscInt i = 0; i < p->np; i++) p->lam[i] = 0.0;
-  p->newton = p->outer = p->factorisations = 0;
   p->jvalid = PETSC_FALSE;
   for (PetscInt it = 0; it < p->maxit; it++) {
     PetscInt  its;
     PetscReal dmax = 0.0, fmax = 0.0;
-    PetscCall(SNESSolve(p->snes, NULL, p->u));
-    PetscCall(SNESGetConvergedReason(p->snes, &reason));
-    PetscCall(SNESGetIterationNumber(p->snes, &its));
+    SNES      snes = p->condensed ? p->csnes : p->snes;
+    if (p->condensed) PetscCall(SNESSolve(snes, NULL, p->cw));
+    else PetscCall(SNESSolve(snes, NULL, p->u));
+    PetscCall(SNESGetConvergedReason(snes, &reason));
+    PetscCall(SNESGetIterationNumber(snes, &its));
     p->newton += its;
     p->outer++;
-    PetscCheck(reason > 0, p->comm, PETSC_ERR_NOT_CONVERGED, "preload: Newton did not converge (%s after %" PetscInt_FMT " iterations, update %" PetscInt_FMT "); see -preload_snes_monitor, raise -preload_snes_max_it, or try -preload_snes_linesearch_type basic", SNESConvergedReasons[reason], its, it + 1);
-    PetscCall(PairState(p, P, p->u));
+    PetscCheck(reason > 0, p->comm, PETSC_ERR_NOT_CONVERGED, "preload: Newton did not converge (%s after %" PetscInt_FMT " iterations, update %" PetscInt_FMT "); see -preload_snes_monitor, raise -preload_snes_max_it, or try -preload_solver full", SNESConvergedReasons[reason], its, it + 1);
+    if (p->condensed) PetscCall(CondensedState(p, P, p->cw));
+    else PetscCall(PairState(p, P, p->u));
     if (p->method == JR_PRELOAD_PENALTY) break;
     for (PetscInt i = 0; i < p->np; i++) {
       const PetscReal l = PetscMax(0.0, p->lam[i] + p->k[i] * p->w[i]);
@@ -791,6 +1036,7 @@ PetscErrorCode JRPreloadSolve(JRPreload p)
     if (dmax <= p->rtol * fmax) break;
     PetscCheck(it + 1 < p->maxit, p->comm, PETSC_ERR_NOT_CONVERGED, "preload: the augmented Lagrangian did not converge in %" PetscInt_FMT " updates (-preload_max_it): largest force change %g N of %g N; raise -preload_penalty or -preload_rtol", p->maxit, (double)dmax, (double)fmax);
   }
+  if (p->condensed) PetscCall(CondensedDisplacement(p, P));
   /* results */
   PetscCall(PetscMalloc2(p->np, &p->N, p->np, &p->gap));
   p->maxpen = 0.0;
@@ -885,7 +1131,7 @@ PetscErrorCode JRPreloadView(JRPreload p, PetscViewer viewer)
   if (s.loaded) PetscCall(PetscViewerASCIIPrintf(viewer, "preload: read from %s (%" PetscInt_FMT " pairs)\n", p->load, s.pairs));
   else {
     PetscCall(PetscViewerASCIIPrintf(viewer, "preload: %" PetscInt_FMT " bolts, pretension %s%.6g N; %s contact, kp = %.3g N/m^3; supports %s\n", s.bolts, p->nforce > 1 ? "first " : "", (double)p->force[0], p->method == JR_PRELOAD_PENALTY ? "penalty" : "augmented-Lagrangian", (double)s.penalty, JRPreloadSupports[p->support]));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "preload: %" PetscInt_FMT " Newton iterations in %" PetscInt_FMT " solve%s, %" PetscInt_FMT " factorisations, %.3g s; largest penetration %.3g m\n", s.newton, s.updates, s.updates > 1 ? "s" : "", s.factorisations, (double)s.time, (double)s.max_penetration));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "preload: %" PetscInt_FMT " Newton iterations in %" PetscInt_FMT " solve%s (%s), %" PetscInt_FMT " sparse factorisations, %.3g s; largest penetration %.3g m\n", s.newton, s.updates, s.updates > 1 ? "s" : "", p->condensed ? "condensed on the interface" : "all DOFs", s.factorisations, (double)s.time, (double)s.max_penetration));
   }
   PetscCall(PetscViewerASCIIPrintf(viewer, "preload: contact area %.4g mm^2 of %.4g mm^2 (%.1f%%), %" PetscInt_FMT " of %" PetscInt_FMT " pairs closed (%.1f%%)\n", (double)(s.contact_area * 1e6), (double)(s.interface_area * 1e6), (double)(100 * s.contact_area / s.interface_area), s.in_contact, s.pairs, (double)(100.0 * s.in_contact / PetscMax(s.pairs, 1))));
   PetscCall(PetscViewerASCIIPrintf(viewer, "preload: peak pressure %.4g MPa, mean over the contact area %.4g MPa, largest pair force %.4g N, largest gap %.3g um\n", (double)(s.peak_pressure * 1e-6), (double)(s.contact_area > 0 ? s.total_force / s.contact_area * 1e-6 : 0.0), (double)s.peak_force, (double)(s.gap_max * 1e6)));
@@ -907,6 +1153,11 @@ PetscErrorCode JRPreloadDestroy(JRPreload *pre)
   PetscCall(VecDestroy(&p->useq));
   PetscCall(VecDestroy(&p->fext));
   PetscCall(VecScatterDestroy(&p->sc));
+  PetscCall(KSPDestroy(&p->ksp0));
+  PetscCall(SNESDestroy(&p->csnes));
+  PetscCall(MatDestroy(&p->cJ));
+  PetscCall(VecDestroy(&p->cw));
+  PetscCall(PetscFree2(p->G, p->yf));
   if (p->k) PetscCall(PetscFree5(p->k, p->lam, p->w, p->closed, p->jclosed));
   PetscCall(PetscFree(p->clamp));
   PetscCall(PetscFree2(p->supdof, p->supdir));
