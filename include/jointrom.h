@@ -31,7 +31,7 @@ PETSC_EXTERN PetscErrorCode JRFinalizePackage(void);
 
 /* Log events, one per costly phase (see -log_view) */
 PETSC_EXTERN PetscClassId  JR_CONTACT_CLASSID, JR_MODEL_CLASSID, JR_HBM_CLASSID;
-PETSC_EXTERN PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep;
+PETSC_EXTERN PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep;
 
 /* ------------------------------------------------------------------------------------------ */
 /* JRContact: a batch of friction contact elements of one type (thesis chapter 3)             */

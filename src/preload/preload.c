@@ -996,11 +996,14 @@ PetscErrorCode JRPreloadSolve(JRPreload p)
     p->time = t1 - t0;
     PetscFunctionReturn(0);
   }
+  PetscCall(PetscLogEventBegin(JR_PreloadSetUp, 0, 0, 0, 0));
   if (!p->Kp) PetscCall(SetUpSystem(p));
   PetscCall(JRModelGetPairs(p->model, &P));
   PetscCall(ClearResults(p));
   p->newton = p->outer = p->factorisations = 0;
   if (p->condensed && !p->G) PetscCall(CondensedSetUp(p, P));
+  PetscCall(PetscLogEventEnd(JR_PreloadSetUp, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(JR_PreloadSolve, 0, 0, 0, 0));
   PetscCall(VecZeroEntries(p->u));
   if (p->condensed) PetscCall(VecSet(p->cw, p->open_start ? -p->open_gap : 0.0));
   else if (p->open_start) { /* every pair open: B's pair nodes moved along the normal, away from A */
@@ -1037,6 +1040,7 @@ PetscErrorCode JRPreloadSolve(JRPreload p)
     PetscCheck(it + 1 < p->maxit, p->comm, PETSC_ERR_NOT_CONVERGED, "preload: the augmented Lagrangian did not converge in %" PetscInt_FMT " updates (-preload_max_it): largest force change %g N of %g N; raise -preload_penalty or -preload_rtol", p->maxit, (double)dmax, (double)fmax);
   }
   if (p->condensed) PetscCall(CondensedDisplacement(p, P));
+  PetscCall(PetscLogEventEnd(JR_PreloadSolve, 0, 0, 0, 0));
   /* results */
   PetscCall(PetscMalloc2(p->np, &p->N, p->np, &p->gap));
   p->maxpen = 0.0;

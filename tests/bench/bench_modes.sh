@@ -5,14 +5,14 @@
 # (largest process and all processes), and the first bending frequencies beside the thesis's 126 / 532 /
 # 1068 Hz (its model without contact). Sizes: JR_BENCH_MODES_H (default "0.01 0.005 0.0035 0.0025").
 # In-core MUMPS factors outgrow a 24 GiB machine before 10^6 DOFs (8.7 GB at 0.5e6); the sizes in
-# JR_BENCH_MODES_OOC (default "0.00185": 1.06e6 DOFs) run with out-of-core factors, -mat_mumps_icntl_22 1
-# (about 10 GB of files in $MUMPS_OOC_TMPDIR, default /tmp). The whole table takes about 40 minutes on
+# JR_BENCH_MODES_OOC (default "0.0018": 1.23e6 DOFs) run with out-of-core factors, -mat_mumps_icntl_22 1
+# (about 13 GB of files in $MUMPS_OOC_TMPDIR, default /tmp). The whole table takes about 70 minutes on
 # 2 cores; JR_BENCH_MODES_OOC= skips the largest size.
 cd "$(dirname "$0")/../.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export OPENBLAS_NUM_THREADS=1
 sizes=${JR_BENCH_MODES_H:-"0.01 0.005 0.0035 0.0025"}
-ooc=${JR_BENCH_MODES_OOC-"0.00185"}
+ooc=${JR_BENCH_MODES_OOC-"0.0018"}
 echo "== FE model + modes: Brake-Reuss beam, 12 modes (thesis bending: 126 / 532 / 1068 Hz) =="
 printf "%-7s %-5s %9s %8s %10s %11s %11s %9s %9s %9s %9s\n" h_mm ranks DOFs model_s eigen_s MB_max/proc MB_all f7_Hz f9_Hz f12_Hz note
 for h in $sizes $ooc; do
