@@ -60,6 +60,7 @@ for f in runs/*.opts; do
   case $(grep -m1 '^-task' "$f") in
     "-task frf") extra="-frf_output_file $tmp/runfile -frf_plot 0 -cont_monitor 0" ;;
     "-task modes") extra="-modes_output_file '' -model_mesh_h 0.01" ;; # a coarse mesh: the options are what is checked
+    "-task preload") extra="-preload_output_file '' -model_mesh_h 0.005 -model_mesh_grade 4" ;;
     *) extra="-element_loop ''" ;;
   esac
   o=$(eval $J -options_file "$f" -options_left $extra 2>&1); rc=$?
