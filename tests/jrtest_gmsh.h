@@ -1,7 +1,28 @@
-/* Test helper: a hand-written Gmsh file of two stacked blocks (tests/test_fe.c, tests/test_preload.c). */
+/* Test helpers for the FE models (tests/test_fe.c, tests/test_preload.c): the options database, a model from
+   options, and a hand-written Gmsh file of two stacked blocks. */
 #if !defined(JRTEST_GMSH_H)
 #define JRTEST_GMSH_H
 #include "jrtest.h"
+
+/* the options database replaced by s */
+static PetscErrorCode Options(const char *s)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsClear(NULL));
+  PetscCall(PetscOptionsInsertString(NULL, s));
+  PetscFunctionReturn(0);
+}
+
+/* a model created and set up from the options opts alone */
+static PetscErrorCode ModelCreate(const char *opts, JRModel *m)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Options(opts));
+  PetscCall(JRModelCreate(PETSC_COMM_WORLD, m));
+  PetscCall(JRModelSetFromOptions(*m));
+  PetscCall(JRModelSetUp(*m));
+  PetscFunctionReturn(0);
+}
 
 /*
   A Gmsh 2.2 file: two blocks of nx x ny x nz hexahedra, A on z in [0, c], B on z in [c, 2c], each

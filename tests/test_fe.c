@@ -13,28 +13,10 @@
      mesh, pair distances, the pair tolerance;
    - bad input returns an error (missing file, missing physical group, bolt outside the lap, ...).
 */
-#include "jrtest.h"
+#include "jrtest_gmsh.h"
 #include <petscdmplex.h>
 #include <petscksp.h>
 #include <slepcsys.h>
-
-static PetscErrorCode Options(const char *s)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsClear(NULL));
-  PetscCall(PetscOptionsInsertString(NULL, s));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode ModelCreate(const char *opts, JRModel *m)
-{
-  PetscFunctionBeginUser;
-  PetscCall(Options(opts));
-  PetscCall(JRModelCreate(PETSC_COMM_WORLD, m));
-  PetscCall(JRModelSetFromOptions(*m));
-  PetscCall(JRModelSetUp(*m));
-  PetscFunctionReturn(0);
-}
 
 /* set up a model expecting an error; returns the error code (0 if none) */
 static PetscErrorCode ModelError(const char *opts)
@@ -154,8 +136,6 @@ static PetscErrorCode LinearField(Vec X, const PetscReal G[9], Vec u)
   PetscCall(VecRestoreArrayRead(X, &x));
   PetscFunctionReturn(0);
 }
-
-#include "jrtest_gmsh.h"
 
 /* Patch test: the nodes on the planes of the boxes' outer faces (and the interface plane z = c if
    interface) take u = G x; the rest is solved with K; returns max |u - G x| / max |G x| */

@@ -15,24 +15,6 @@
 #include "jrtest_gmsh.h"
 #include <slepcsys.h>
 
-static PetscErrorCode Options(const char *s)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsClear(NULL));
-  PetscCall(PetscOptionsInsertString(NULL, s));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode ModelCreate(const char *opts, JRModel *m)
-{
-  PetscFunctionBeginUser;
-  PetscCall(Options(opts));
-  PetscCall(JRModelCreate(PETSC_COMM_WORLD, m));
-  PetscCall(JRModelSetFromOptions(*m));
-  PetscCall(JRModelSetUp(*m));
-  PetscFunctionReturn(0);
-}
-
 /* preload of model m with the options opts (added to the model's); results copied to N, gap (if given) */
 static PetscErrorCode Preload(JRModel m, const char *opts, Vec fext, PetscInt nsup, const PetscInt *sdof, const PetscReal *sdir, JRPreload *pre)
 {

@@ -305,44 +305,6 @@ static PetscErrorCode MinimalSupports(JRPreload p)
   PetscFunctionReturn(0);
 }
 
-/* a matrix over the model's DOFs holding dense blocks (rows owned here), for the pattern and values */
-static PetscErrorCode BlocksMatrix(Mat K, PetscInt nb, const PetscInt *bn, const PetscInt *const *bdof, const PetscReal *const *bval, Mat *B)
-{
-  MPI_Comm  comm;
-  PetscInt  rs, re, cs, ce, N, *dnz, *onz;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscObjectGetComm((PetscObject)K, &comm));
-  PetscCall(MatGetSize(K, &N, NULL));
-  PetscCall(MatGetOwnershipRange(K, &rs, &re));
-  PetscCall(MatGetOwnershipRangeColumn(K, &cs, &ce));
-  PetscCall(PetscCalloc2(re - rs, &dnz, re - rs, &onz));
-  for (PetscInt b = 0; b < nb; b++)
-    for (PetscInt r = 0; r < bn[b]; r++) {
-      if (bdof[b][r] < rs || bdof[b][r] >= re) continue;
-      for (PetscInt c = 0; c < bn[b]; c++) {
-        if (bdof[b][c] >= cs && bdof[b][c] < ce) dnz[bdof[b][r] - rs]++;
-        else onz[bdof[b][r] - rs]++;
-      }
-    }
-  for (PetscInt r = 0; r < re - rs; r++) {
-    dnz[r] = PetscMin(dnz[r], ce - cs);
-    onz[r] = PetscMin(onz[r], N - (ce - cs));
-  }
-  PetscCall(MatCreate(comm, B));
-  PetscCall(MatSetSizes(*B, re - rs, ce - cs, N, N));
-  PetscCall(MatSetType(*B, MATAIJ));
-  PetscCall(MatXAIJSetPreallocation(*B, 1, dnz, onz, NULL, NULL));
-  PetscCall(MatSetOption(*B, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
-  for (PetscInt b = 0; b < nb; b++)
-    for (PetscInt r = 0; r < bn[b]; r++)
-      if (bdof[b][r] >= rs && bdof[b][r] < re) PetscCall(MatSetValues(*B, 1, &bdof[b][r], bn[b], bdof[b], bval[b] + r * bn[b], ADD_VALUES));
-  PetscCall(MatAssemblyBegin(*B, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(*B, MAT_FINAL_ASSEMBLY));
-  PetscCall(PetscFree2(dnz, onz));
-  PetscFunctionReturn(0);
-}
-
 /* ---- SNES callbacks ---- */
 /* w_i (penetration) and the contact force c_i of every pair from the gathered pair DOFs */
 static PetscErrorCode PairState(JRPreload p, const JRPairs *P, Vec u)
@@ -566,7 +528,7 @@ static PetscErrorCode SetUpSystem(JRPreload p)
     for (int r = 0; r < 3; r++)
       for (int c = 0; c < 3; c++) bval[b][3 * r + c] = p->diag * p->supdir[3 * s + r] * p->supdir[3 * s + c];
   }
-  PetscCall(BlocksMatrix(K, nb, bn, (const PetscInt *const *)bdof, (const PetscReal *const *)bval, &Bb));
+  PetscCall(JRMatCreateFromBlocks(K, nb, bn, (const PetscInt *const *)bdof, (const PetscReal *const *)bval, &Bb));
   for (PetscInt b = 0; b < nb; b++) {
     PetscCall(PetscFree(bval[b]));
     if (b >= B->n) PetscCall(PetscFree(bdof[b]));
@@ -584,7 +546,7 @@ static PetscErrorCode SetUpSystem(JRPreload p)
     }
     for (int c = 0; c < 36; c++) bval[i][c] = 1.0;
   }
-  PetscCall(BlocksMatrix(K, p->np, bn, (const PetscInt *const *)bdof, (const PetscReal *const *)bval, &Bp));
+  PetscCall(JRMatCreateFromBlocks(K, p->np, bn, (const PetscInt *const *)bdof, (const PetscReal *const *)bval, &Bp));
   for (PetscInt i = 0; i < p->np; i++) PetscCall(PetscFree(bdof[i]));
   for (PetscInt i = 0; i < p->np; i++) PetscCall(PetscFree(bval[i]));
   PetscCall(PetscFree3(bn, bdof, bval));

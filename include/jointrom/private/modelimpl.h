@@ -41,6 +41,7 @@ PETSC_INTERN PetscErrorCode JRModelCreate_Lap3(JRModel);
 PETSC_INTERN PetscErrorCode JRModelCreate_Gmsh(JRModel);
 PETSC_INTERN PetscErrorCode JRPairsDestroy(JRPairs *);
 PETSC_INTERN PetscErrorCode JRBoltsDestroy(JRBolts *);
+PETSC_INTERN PetscErrorCode JRMatCreateFromBlocks(Mat, PetscInt, const PetscInt *, const PetscInt *const *, const PetscReal *const *, Mat *);
 PETSC_INTERN PetscErrorCode JRElementsReadCSV(MPI_Comm, const char[], PetscInt, JRElements *);
 PETSC_INTERN PetscErrorCode JRElementsDestroy(JRElements *);
 

@@ -675,45 +675,23 @@ typedef struct {
    frees the blocks' arrays */
 static PetscErrorCode AddDenseBlocks(JRModel m, PetscInt nb, DenseBlock *bd)
 {
-  Mat      Kb;
-  PetscInt rs, re, cs, ce, nloc, *dnz, *onz;
+  Mat         Kb;
+  PetscInt   *bn;
+  PetscInt  **bdof;
+  PetscReal **bval;
 
   PetscFunctionBeginUser;
-  PetscCall(MatGetOwnershipRange(m->K, &rs, &re));
-  PetscCall(MatGetOwnershipRangeColumn(m->K, &cs, &ce));
-  nloc = re - rs;
-  PetscCall(PetscCalloc2(nloc, &dnz, nloc, &onz));
-  for (PetscInt i = 0; i < nb; i++)
-    for (PetscInt r = 0; r < bd[i].n; r++) {
-      const PetscInt row = bd[i].dof[r];
-      if (row < rs || row >= re) continue;
-      for (PetscInt c = 0; c < bd[i].n; c++) {
-        if (bd[i].dof[c] >= cs && bd[i].dof[c] < ce) dnz[row - rs]++;
-        else onz[row - rs]++;
-      }
-    }
-  for (PetscInt r = 0; r < nloc; r++) { /* blocks sharing a DOF overcount: clip to the row length */
-    dnz[r] = PetscMin(dnz[r], ce - cs);
-    onz[r] = PetscMin(onz[r], m->ndof - (ce - cs));
-  }
-  PetscCall(MatCreate(m->comm, &Kb));
-  PetscCall(MatSetSizes(Kb, nloc, ce - cs, m->ndof, m->ndof));
-  PetscCall(MatSetType(Kb, MATAIJ));
-  PetscCall(MatXAIJSetPreallocation(Kb, 1, dnz, onz, NULL, NULL));
-  PetscCall(MatSetOption(Kb, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  PetscCall(PetscMalloc3(nb + 1, &bn, nb + 1, &bdof, nb + 1, &bval));
   for (PetscInt i = 0; i < nb; i++) {
-    for (PetscInt r = 0; r < bd[i].n; r++) {
-      const PetscInt row = bd[i].dof[r];
-      if (row < rs || row >= re) continue;
-      PetscCall(MatSetValues(Kb, 1, &row, bd[i].n, bd[i].dof, bd[i].Kf + r * bd[i].n, ADD_VALUES));
-    }
-    PetscCall(PetscFree2(bd[i].dof, bd[i].Kf));
+    bn[i]   = bd[i].n;
+    bdof[i] = bd[i].dof;
+    bval[i] = bd[i].Kf;
   }
-  PetscCall(MatAssemblyBegin(Kb, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(Kb, MAT_FINAL_ASSEMBLY));
+  PetscCall(JRMatCreateFromBlocks(m->K, nb, bn, (const PetscInt *const *)bdof, (const PetscReal *const *)bval, &Kb));
+  for (PetscInt i = 0; i < nb; i++) PetscCall(PetscFree2(bd[i].dof, bd[i].Kf));
+  PetscCall(PetscFree3(bn, bdof, bval));
   PetscCall(MatAXPY(m->K, 1.0, Kb, DIFFERENT_NONZERO_PATTERN));
   PetscCall(MatDestroy(&Kb));
-  PetscCall(PetscFree2(dnz, onz));
   PetscFunctionReturn(0);
 }
 
