@@ -562,6 +562,19 @@ static PetscErrorCode Invert6(PetscReal A[36], MPI_Comm comm)
   PetscFunctionReturn(0);
 }
 
+/* B (3 x 6): the displacement at x of the rigid motion (u_ref, theta) about xref, u = u_ref + theta x (x - xref) */
+static void RigidRows(const PetscReal x[3], const PetscReal xref[3], PetscReal B[3][6])
+{
+  const PetscReal r[3] = {x[0] - xref[0], x[1] - xref[1], x[2] - xref[2]};
+  const PetscReal b[3][6] = {
+    {1, 0, 0, 0,     r[2],  -r[1]},
+    {0, 1, 0, -r[2], 0,     r[0] },
+    {0, 0, 1, r[1],  -r[0], 0    }
+  };
+  for (int k = 0; k < 3; k++)
+    for (int a = 0; a < 6; a++) B[k][a] = b[k][a];
+}
+
 /* T (6 x 3n, row-major): the rigid motion (u_ref, theta) fitting the footprint nodes' displacements in
    the least-squares sense, u_i ~ u_ref + theta x (x_i - xref); B_i = [I, -[r_i]x] */
 static PetscErrorCode RigidFit(MPI_Comm comm, PetscInt n, const PetscReal *x, const PetscReal xref[3], PetscReal *T)
@@ -570,24 +583,16 @@ static PetscErrorCode RigidFit(MPI_Comm comm, PetscInt n, const PetscReal *x, co
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < n; i++) {
-    const PetscReal r[3]     = {x[3 * i] - xref[0], x[3 * i + 1] - xref[1], x[3 * i + 2] - xref[2]};
-    const PetscReal B[3][6]  = {
-      {1, 0, 0, 0,     r[2],  -r[1]},
-      {0, 1, 0, -r[2], 0,     r[0] },
-      {0, 0, 1, r[1],  -r[0], 0    }
-    };
+    PetscReal B[3][6];
+    RigidRows(x + 3 * i, xref, B);
     for (int a = 0; a < 6; a++)
       for (int b = 0; b < 6; b++)
         for (int k = 0; k < 3; k++) G[a * 6 + b] += B[k][a] * B[k][b];
   }
   PetscCall(Invert6(G, comm));
   for (PetscInt i = 0; i < n; i++) {
-    const PetscReal r[3]    = {x[3 * i] - xref[0], x[3 * i + 1] - xref[1], x[3 * i + 2] - xref[2]};
-    const PetscReal B[3][6] = {
-      {1, 0, 0, 0,     r[2],  -r[1]},
-      {0, 1, 0, -r[2], 0,     r[0] },
-      {0, 0, 1, r[1],  -r[0], 0    }
-    };
+    PetscReal B[3][6];
+    RigidRows(x + 3 * i, xref, B);
     for (int a = 0; a < 6; a++)
       for (int k = 0; k < 3; k++) {
         PetscReal s = 0.0;
@@ -790,12 +795,8 @@ static PetscErrorCode AddBolts(JRModel m, Model_FE *fe)
           for (PetscInt k = 0; k < n; k++) rho2 += (PetscSqr(xe[3 * k] - ce[0]) + PetscSqr(xe[3 * k + 1] - ce[1]) + PetscSqr(xe[3 * k + 2] - ce[2])) / n;
           kappa = JR_TIE_PENALTY * fe->E * PetscSqrtReal(rho2);
           for (PetscInt k = 0; k < n; k++) {
-            const PetscReal r[3]    = {xe[3 * k] - ce[0], xe[3 * k + 1] - ce[1], xe[3 * k + 2] - ce[2]};
-            const PetscReal B[3][6] = {
-              {1, 0, 0, 0,     r[2],  -r[1]},
-              {0, 1, 0, -r[2], 0,     r[0] },
-              {0, 0, 1, r[1],  -r[0], 0    }
-            };
+            PetscReal B[3][6];
+            RigidRows(xe + 3 * k, ce, B);
             for (int d = 0; d < 3; d++)
               for (PetscInt c = 0; c < 3 * n; c++) {
                 PetscReal bt = 0.0;
