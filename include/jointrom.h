@@ -136,13 +136,18 @@ typedef struct {
 } JRBolts;
 
 /* The contact elements of a model, one entry per element (the whole list, on every rank).
-   Tangential relative motion u = x[dof_a] - x[dof_b], normal v = x[ndof_a] - x[ndof_b]; -1 = ground. */
+   Tangential relative motion u = x[dof_a] - x[dof_b], normal v = x[ndof_a] - x[ndof_b]; -1 = ground.
+   Node-to-node interfaces instead give each element the x, y, z DOFs of its two nodes, vdof_a[3e..] and
+   vdof_b[3e..], and unit directions tdir[3e..], ndir[3e..]: u = (x_A - x_B) . t, v = (x_A - x_B) . n
+   (4.3); then dof_a .. ndof_b are unused (vdof_a = NULL for the single-DOF form). */
 typedef struct {
   PetscInt   n;
   PetscInt   ntypes;
   char       typename[8][32]; /* element types present; type[e] indexes this list */
   PetscInt  *type, *dof_a, *dof_b, *ndof_a, *ndof_b;
   PetscReal *kt, *kn, *mu, *n0;
+  PetscInt  *vdof_a, *vdof_b;
+  PetscReal *tdir, *ndir;
 } JRElements;
 
 PETSC_EXTERN PetscFunctionList JRModelList;
@@ -160,6 +165,9 @@ PETSC_EXTERN PetscErrorCode JRModelGetPairs(JRModel, const JRPairs **);
 PETSC_EXTERN PetscErrorCode JRModelGetBolts(JRModel, const JRBolts **);
 PETSC_EXTERN PetscErrorCode JRModelGetCoordinates(JRModel, Vec *);
 PETSC_EXTERN PetscErrorCode JRModelGetDM(JRModel, DM *);
+PETSC_EXTERN PetscErrorCode JRModelGetComm(JRModel, MPI_Comm *);
+PETSC_EXTERN PetscErrorCode JRModelGetBoundingBox(JRModel, PetscReal[3], PetscReal[3]);
+PETSC_EXTERN PetscErrorCode JRModelFindDof(JRModel, const PetscReal[3], PetscInt, PetscInt *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRModelGetRigidBasis(JRModel, PetscInt *, Vec[6]);
 PETSC_EXTERN PetscErrorCode JRModelGetMass(JRModel, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRModelView(JRModel, PetscViewer);
@@ -203,6 +211,10 @@ PETSC_EXTERN PetscErrorCode JRPreloadWrite(JRPreload, const char[], PetscBool);
 PETSC_EXTERN PetscErrorCode JRPreloadView(JRPreload, PetscViewer);
 PETSC_EXTERN PetscErrorCode JRPreloadDestroy(JRPreload *);
 
+/* The node-to-node interface: one friction element per facing node pair (options -interface_*) */
+PETSC_EXTERN PetscErrorCode JRInterfaceCreateElements(JRModel, JRPreload, JRElements *, PetscInt **);
+PETSC_EXTERN PetscErrorCode JRElementsDestroy(JRElements *);
+
 /* ------------------------------------------------------------------------------------------ */
 /* JRModes: mass-normalised modes of K phi = omega^2 M phi (SLEPc, prefix modes_)              */
 /* ------------------------------------------------------------------------------------------ */
@@ -211,6 +223,7 @@ PETSC_EXTERN PetscErrorCode JRModesCreate(MPI_Comm, JRModes *);
 PETSC_EXTERN PetscErrorCode JRModesSetOperators(JRModes, Mat, Mat);
 PETSC_EXTERN PetscErrorCode JRModesSetNumber(JRModes, PetscInt);
 PETSC_EXTERN PetscErrorCode JRModesSetRigidBasis(JRModes, PetscInt, Vec[]);
+PETSC_EXTERN PetscErrorCode JRModesSetCoordinates(JRModes, Vec);
 PETSC_EXTERN PetscErrorCode JRModesGetVecs(JRModes, Vec **);
 PETSC_EXTERN PetscErrorCode JRModesGetNumRigid(JRModes, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRModesSetFromOptions(JRModes);
@@ -250,6 +263,10 @@ PETSC_EXTERN PetscErrorCode JRHBMGetOutputs(JRHBM, PetscInt *, const PetscInt **
 PETSC_EXTERN PetscErrorCode JRHBMResponse(JRHBM, Vec, PetscReal[], PetscReal[], PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMEnergy(JRHBM, PetscReal, Vec, PetscReal *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMContactStates(JRHBM, Vec, PetscInt[4]);
+PETSC_EXTERN PetscErrorCode JRHBMElementStates(JRHBM, Vec, JRContactState[]);
+PETSC_EXTERN PetscErrorCode JRHBMKineticEnergy(JRHBM, PetscReal, Vec, PetscReal *);
+PETSC_EXTERN PetscErrorCode JRHBMSetExcitationDof(JRHBM, PetscInt, PetscInt, const PetscInt[]);
+PETSC_EXTERN PetscErrorCode JRHBMStickFrequencies(JRHBM, PetscInt *, PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMGetDampingDescription(JRHBM, const char **);
 PETSC_EXTERN PetscErrorCode JRHBMView(JRHBM, PetscViewer);
 PETSC_EXTERN PetscErrorCode JRHBMDestroy(JRHBM *);
@@ -279,6 +296,9 @@ PETSC_EXTERN PetscErrorCode JRContSolve(JRCont);
 PETSC_EXTERN PetscErrorCode JRContGetNumLevels(JRCont, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRContGetBranch(JRCont, PetscInt, PetscInt *, const PetscReal **, const PetscReal **, const PetscReal **);
 PETSC_EXTERN PetscErrorCode JRContGetPeak(JRCont, PetscInt, PetscReal *, PetscReal *);
+PETSC_EXTERN PetscErrorCode JRContGetLevel(JRCont, PetscInt, PetscReal *);
+PETSC_EXTERN PetscErrorCode JRContGetPeakStates(JRCont, PetscInt, const JRContactState **);
+PETSC_EXTERN PetscErrorCode JRContGetDamping(JRCont, PetscInt, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRContWrite(JRCont);
 PETSC_EXTERN PetscErrorCode JRContDestroy(JRCont *);
 

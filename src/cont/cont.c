@@ -33,6 +33,10 @@ typedef struct {
   PetscBool  complete;
   PetscReal  seconds;
   PetscInt   newton;
+  PetscInt   kpeak;           /* the computed point of largest amplitude */
+  PetscReal  wpeak, apeak;    /* the peak refined by a parabola through it and its neighbours */
+  PetscReal  zeta, ebal;      /* equivalent damping ratio at the peak; worst energy imbalance of the curve */
+  JRContactState *estate;     /* every element's state at the peak (rank 0) */
 } Branch;
 
 struct _p_JRCont {
@@ -562,6 +566,8 @@ static PetscErrorCode ResponseScale(JRCont c, Vec a)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode Peak(JRCont, PetscInt, Vec);
+
 /* Trace the frequency-response curve of every level */
 PetscErrorCode JRContSolve(JRCont c)
 {
@@ -635,34 +641,17 @@ PetscErrorCode JRContSolve(JRCont c)
     } else PetscCall(Natural(c, lev, b, a));
     PetscCall(PetscTime(&t1));
     b->seconds = t1 - t0;
-    {
-      PetscReal wp, ap;
-      PetscInt  kp = 0;
-      PetscCall(JRContGetPeak(c, lev, &wp, &ap));
-      for (PetscInt k = 0; k < b->np; k++)
-        if (b->omega[k] == wp) kp = k;
-      {
-        Vec ak;
-        PetscCall(VecDuplicate(a, &ak));
-        for (PetscInt i = 0; i < c->n; i++) PetscCall(VecSetValue(ak, i, b->a[kp * c->n + i], INSERT_VALUES));
-        PetscCall(VecAssemblyBegin(ak));
-        PetscCall(VecAssemblyEnd(ak));
-        PetscCall(JRHBMContactStates(c->hbm, ak, b->states));
-        PetscCall(VecDestroy(&ak));
-      }
-      if (c->monitor) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT "/%" PetscInt_FMT " F %g N done: %" PetscInt_FMT " points, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " retries, %.3g s%s\n", lev + 1, c->nlev, (double)b->F, b->np, b->newton, b->retries, (double)b->seconds, b->complete ? "" : " (incomplete: see above)"));
-      PetscCall(PetscPrintf(c->comm, "peak level %g freq_hz %.8g amp %.8e amp_over_force %.8e\n", (double)b->F, (double)(wp / (2 * PETSC_PI)), (double)ap, (double)(ap / b->F)));
-    }
+    PetscCall(Peak(c, lev, a));
+    if (c->monitor) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT "/%" PetscInt_FMT " F %g N done: %" PetscInt_FMT " points, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " retries, %.3g s%s\n", lev + 1, c->nlev, (double)b->F, b->np, b->newton, b->retries, (double)b->seconds, b->complete ? "" : " (incomplete: see above)"));
+    PetscCall(PetscPrintf(c->comm, "peak level %g freq_hz %.8g amp %.8e amp_over_force %.8e\n", (double)b->F, (double)(b->wpeak / (2 * PETSC_PI)), (double)b->apeak, (double)(b->apeak / b->F)));
   }
   PetscCall(VecDestroy(&a));
   /* summary, one row per level */
-  PetscCall(PetscPrintf(c->comm, "frf summary (%s continuation; peak of the first output DOF; elements at the peak: stick / slip / separating)\n", JRContTypes[c->type]));
-  PetscCall(PetscPrintf(c->comm, "  %10s %12s %13s %13s %7s %7s %7s %9s  %s\n", "F [N]", "peak [Hz]", "amp [m]", "amp/F [m/N]", "points", "newton", "retries", "time [s]", "states"));
+  PetscCall(PetscPrintf(c->comm, "frf summary (%s continuation; peak of the first output DOF, refined by a parabola; zeta_eq = energy dissipated per cycle / (8 pi mean kinetic energy) at the peak;\n  energy balance: largest |W_in - W_damping - W_contact| / W_in over the curve; elements at the peak: full stick / stick-slip / separation with stick-slip / full separation)\n", JRContTypes[c->type]));
+  PetscCall(PetscPrintf(c->comm, "  %10s %12s %13s %13s %10s %7s %7s %7s %9s %9s  %s\n", "F [N]", "peak [Hz]", "amp [m]", "amp/F [m/N]", "zeta_eq", "points", "newton", "retries", "time [s]", "balance", "states"));
   for (PetscInt lev = 0; lev < c->nlev; lev++) {
-    Branch   *b = &c->br[lev];
-    PetscReal wp, ap;
-    PetscCall(JRContGetPeak(c, lev, &wp, &ap));
-    PetscCall(PetscPrintf(c->comm, "  %10.4g %12.6g %13.5e %13.5e %7" PetscInt_FMT " %7" PetscInt_FMT " %7" PetscInt_FMT " %9.3g  %" PetscInt_FMT " / %" PetscInt_FMT " / %" PetscInt_FMT "%s\n", (double)b->F, (double)(wp / (2 * PETSC_PI)), (double)ap, (double)(ap / b->F), b->np, b->newton, b->retries, (double)b->seconds, b->states[0], b->states[1], b->states[2] + b->states[3], b->complete ? "" : "  (incomplete)"));
+    Branch *b = &c->br[lev];
+    PetscCall(PetscPrintf(c->comm, "  %10.4g %12.6g %13.5e %13.5e %10.4e %7" PetscInt_FMT " %7" PetscInt_FMT " %7" PetscInt_FMT " %9.3g %9.2e  %" PetscInt_FMT " / %" PetscInt_FMT " / %" PetscInt_FMT " / %" PetscInt_FMT "%s\n", (double)b->F, (double)(b->wpeak / (2 * PETSC_PI)), (double)b->apeak, (double)(b->apeak / b->F), (double)b->zeta, b->np, b->newton, b->retries, (double)b->seconds, (double)b->ebal, b->states[0], b->states[1], b->states[2], b->states[3], b->complete ? "" : "  (incomplete)"));
   }
   PetscFunctionReturn(0);
 }
@@ -686,18 +675,104 @@ PetscErrorCode JRContGetBranch(JRCont c, PetscInt lev, PetscInt *np, const Petsc
   PetscFunctionReturn(0);
 }
 
-/* Peak of the first output's amplitude on level lev: the computed point with the largest amplitude,
-   its frequency [rad/s] and amplitude [m] */
+/* Peak of the first output's amplitude on level lev [rad/s, m]: the computed point with the largest
+   amplitude, refined by the parabola through it and its two neighbours when the frequencies are monotone
+   there (not at a fold) */
 PetscErrorCode JRContGetPeak(JRCont c, PetscInt lev, PetscReal *w, PetscReal *amp)
 {
+  PetscFunctionBeginUser;
+  PetscCheck(c->br && lev >= 0 && lev < c->nlev, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "No level %" PetscInt_FMT, lev);
+  *w   = c->br[lev].wpeak;
+  *amp = c->br[lev].apeak;
+  PetscFunctionReturn(0);
+}
+
+/* Peak, equivalent damping, energy balance, contact states (level lev done; a: work vector; collective) */
+static PetscErrorCode Peak(JRCont c, PetscInt lev, Vec a)
+{
   Branch  *b = &c->br[lev];
-  PetscInt k = 0;
+  PetscInt k = 0, nel;
 
   PetscFunctionBeginUser;
   for (PetscInt i = 1; i < b->np; i++)
     if (b->amp[i * c->nout] > b->amp[k * c->nout]) k = i;
-  *w   = b->omega[k];
-  *amp = b->amp[k * c->nout];
+  b->kpeak = k;
+  b->wpeak = b->omega[k];
+  b->apeak = b->amp[k * c->nout];
+  if (k > 0 && k < b->np - 1) {
+    const PetscReal x0 = b->omega[k - 1], x1 = b->omega[k], x2 = b->omega[k + 1];
+    const PetscReal y0 = b->amp[(k - 1) * c->nout], y1 = b->amp[k * c->nout], y2 = b->amp[(k + 1) * c->nout];
+    if ((x1 - x0) * (x2 - x1) > 0) {
+      /* y = y1 + p (x - x1) + q (x - x1)^2 */
+      const PetscReal d0 = x0 - x1, d2 = x2 - x1, s0 = (y0 - y1) / d0, s2 = (y2 - y1) / d2;
+      const PetscReal q = (s2 - s0) / (d2 - d0), p = s0 - q * d0;
+      if (q < 0) {
+        const PetscReal dx = -p / (2 * q);
+        if (PetscAbsReal(dx) <= PetscMax(PetscAbsReal(d0), PetscAbsReal(d2))) {
+          b->wpeak = x1 + dx;
+          b->apeak = y1 + p * dx + q * dx * dx;
+        }
+      }
+    }
+  }
+  /* energies at every point, damping ratio at the peak */
+  b->ebal = 0.0;
+  for (PetscInt i = 0; i < b->np; i++) {
+    PetscReal    win, ed, enl;
+    PetscScalar *x;
+    PetscCall(VecGetArray(a, &x));
+    for (PetscInt j = 0; j < c->n; j++) x[j] = b->a[i * c->n + j];
+    PetscCall(VecRestoreArray(a, &x));
+    PetscCall(JRHBMEnergy(c->hbm, b->omega[i], a, &win, &ed, &enl));
+    if (win > 0) b->ebal = PetscMax(b->ebal, PetscAbsReal(win - ed - enl) / win);
+    if (i == k) {
+      PetscReal T;
+      PetscCall(JRHBMKineticEnergy(c->hbm, b->omega[i], a, &T));
+      b->zeta = T > 0 ? (ed + enl) / (8 * PETSC_PI * T) : 0.0;
+    }
+  }
+  {
+    PetscScalar *x;
+    PetscCall(VecGetArray(a, &x));
+    for (PetscInt j = 0; j < c->n; j++) x[j] = b->a[k * c->n + j];
+    PetscCall(VecRestoreArray(a, &x));
+  }
+  PetscCall(JRHBMContactStates(c->hbm, a, b->states));
+  nel = b->states[0] + b->states[1] + b->states[2] + b->states[3];
+  PetscCall(PetscFree(b->estate));
+  PetscCall(PetscMalloc1(nel, &b->estate));
+  PetscCall(JRHBMElementStates(c->hbm, a, b->estate));
+  PetscFunctionReturn(0);
+}
+
+/* The excitation level of level lev [N] */
+PetscErrorCode JRContGetLevel(JRCont c, PetscInt lev, PetscReal *F)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(c->levels && lev >= 0 && lev < c->nlev, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "No level %" PetscInt_FMT, lev);
+  *F = c->levels[lev];
+  PetscFunctionReturn(0);
+}
+
+/* Every element's contact state at the peak of level lev (rank 0; NULL elsewhere), in the model's numbering */
+PetscErrorCode JRContGetPeakStates(JRCont c, PetscInt lev, const JRContactState **st)
+{
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCheck(c->br && lev >= 0 && lev < c->nlev, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "No level %" PetscInt_FMT, lev);
+  PetscCallMPI(MPI_Comm_rank(c->comm, &rank));
+  *st = rank ? NULL : c->br[lev].estate;
+  PetscFunctionReturn(0);
+}
+
+/* Equivalent damping ratio at the peak and the worst energy imbalance of level lev */
+PetscErrorCode JRContGetDamping(JRCont c, PetscInt lev, PetscReal *zeta, PetscReal *ebal)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(c->br && lev >= 0 && lev < c->nlev, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "No level %" PetscInt_FMT, lev);
+  if (zeta) *zeta = c->br[lev].zeta;
+  if (ebal) *ebal = c->br[lev].ebal;
   PetscFunctionReturn(0);
 }
 
@@ -759,6 +834,7 @@ PetscErrorCode JRContWrite(JRCont c)
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "modes", PETSC_INT, &nm));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "layout_a", PETSC_STRING, "per point: [a0 | as_1 ac_1 | ... | as_H ac_H], each block over the modes"));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "continuation", PETSC_STRING, JRContTypes[c->type]));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "peak_states", PETSC_STRING, "per level: every element's contact state at the peak, 0 full stick, 1 stick-slip without separation, 2 separation with stick-slip, 3 full separation"));
     for (PetscInt l = 0; l < c->nlev; l++) {
       Branch    *b = &c->br[l];
       char       grp[64];
@@ -805,6 +881,31 @@ PetscErrorCode JRContWrite(JRCont c)
       PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "points", PETSC_INT, &np));
       PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "seconds", PETSC_REAL, &b->seconds));
       PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "complete", PETSC_BOOL, &b->complete));
+      {
+        PetscReal fhz = b->wpeak / (2 * PETSC_PI), aof = b->apeak / b->F;
+        PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "peak_freq_hz", PETSC_REAL, &fhz));
+        PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "peak_amp_m", PETSC_REAL, &b->apeak));
+        PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "peak_amp_over_force_m_per_N", PETSC_REAL, &aof));
+        PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "zeta_eq", PETSC_REAL, &b->zeta));
+        PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "energy_balance", PETSC_REAL, &b->ebal));
+        PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "newton_total", PETSC_INT, &b->newton));
+        PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "elements_full_stick", PETSC_INT, &b->states[0]));
+        PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "elements_stick_slip", PETSC_INT, &b->states[1]));
+        PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "elements_separation_stick_slip", PETSC_INT, &b->states[2]));
+        PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "elements_full_separation", PETSC_INT, &b->states[3]));
+      }
+      {
+        Vec          x;
+        PetscScalar *xa;
+        const PetscInt nel = b->states[0] + b->states[1] + b->states[2] + b->states[3], len = rank ? 0 : nel;
+        PetscCall(VecCreateMPI(c->comm, len, PETSC_DETERMINE, &x));
+        PetscCall(PetscObjectSetName((PetscObject)x, "peak_states"));
+        PetscCall(VecGetArray(x, &xa));
+        for (PetscInt i = 0; i < len; i++) xa[i] = b->estate[i];
+        PetscCall(VecRestoreArray(x, &xa));
+        PetscCall(VecView(x, v));
+        PetscCall(VecDestroy(&x));
+      }
       PetscCall(PetscViewerHDF5PopGroup(v));
     }
     {
@@ -840,7 +941,10 @@ PetscErrorCode JRContDestroy(JRCont *cont)
 
   PetscFunctionBeginUser;
   if (!c) PetscFunctionReturn(0);
-  for (PetscInt l = 0; c->br && l < c->nlev; l++) PetscCall(PetscFree6(c->br[l].omega, c->br[l].a, c->br[l].amp, c->br[l].pp, c->br[l].step, c->br[l].its));
+  for (PetscInt l = 0; c->br && l < c->nlev; l++) {
+    PetscCall(PetscFree6(c->br[l].omega, c->br[l].a, c->br[l].amp, c->br[l].pp, c->br[l].step, c->br[l].its));
+    PetscCall(PetscFree(c->br[l].estate));
+  }
   PetscCall(PetscFree(c->br));
   PetscCall(PetscFree(c->levels));
   PetscCall(SNESDestroy(&c->bsnes));

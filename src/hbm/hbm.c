@@ -41,6 +41,7 @@ typedef struct {
   PetscInt  *sel, nsel;    /* elements not in the stuck pattern */
   PetscReal *Rc, *Sc, *Dc; /* their projection rows (nsel x nm) and one derivative column */
   PetscReal *kt, *kn;
+  PetscInt  *eidx;         /* the model's element number of each local element */
 } HBMGroup;
 
 struct _p_JRHBM {
@@ -54,7 +55,9 @@ struct _p_JRHBM {
   PetscBool         has_C;
   PetscReal        *Km, *Mm, *Cm; /* nm x nm row-major */
   PetscReal        *omega_r;      /* natural frequencies of the modes kept [rad/s] */
+  PetscReal        *pin;          /* rigid-body modes: the mean equation a0_r pin_r = 0 (else 0 = 0) */
   PetscInt          fdof, nout, *outdof;
+  PetscBool         fdof_set;      /* JRHBMSetExcitationDof() called: -frf_dof ignored */
   char              ffile[PETSC_MAX_PATH_LEN];
   PetscReal        *fm, level;    /* modal force shape (unit level) and the level [N] */
   PetscReal        *Phiout;       /* nout x nm */
@@ -145,17 +148,18 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
   PetscCall(PetscOptionsEList("-hbm_jacobian", "Jacobian: analytic (element derivatives projected) or fd (finite differences, thesis 2.23)", "JRHBMSetUp", JRHBMJacobianTypes, 2, JRHBMJacobianTypes[h->jtype], &jt, NULL));
   h->jtype = (JRHBMJacobianType)jt;
   PetscCall(PetscOptionsBool("-hbm_view", "Print the harmonic-balance set-up", "JRHBMView", h->view, &h->view, NULL));
-  PetscCall(PetscOptionsInt("-frf_dof", "Excitation F sin(w t) at this DOF (0-based)", "JRHBMSetUp", h->fdof, &h->fdof, NULL));
+  if (!h->fdof_set) PetscCall(PetscOptionsInt("-frf_dof", "Excitation F sin(w t) at this DOF (0-based)", "JRHBMSetUp", h->fdof, &h->fdof, NULL));
   PetscCall(PetscOptionsString("-frf_force_file", "Excitation shape from a file instead (one value per DOF: .csv/.txt, .bin, .h5)", "JRHBMSetUp", h->ffile, h->ffile, sizeof(h->ffile), NULL));
   PetscCall(PetscOptionsIntArray("-frf_output", "Response DOFs (default: the excitation DOF)", "JRHBMResponse", out, &nout, &flg));
   PetscOptionsEnd();
-  PetscCall(PetscFree(h->outdof));
+  if (h->nout && h->fdof_set) flg = PETSC_FALSE; /* JRHBMSetOutputDofs() called */
+  else PetscCall(PetscFree(h->outdof));
   if (flg) {
     PetscCheck(nout > 0, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_output needs at least one DOF");
     h->nout = nout;
     PetscCall(PetscMalloc1(nout, &h->outdof));
     PetscCall(PetscArraycpy(h->outdof, out, nout));
-  } else h->nout = 0;
+  } else if (!h->fdof_set) h->nout = 0;
   PetscCheck(h->H >= 1 && h->H <= JR_MAX_HARMONICS, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_harmonics %" PetscInt_FMT ": between 1 and %d", h->H, JR_MAX_HARMONICS);
   PetscCheck(h->Ns >= 2 * h->H + 1, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_samples %" PetscInt_FMT " must be at least 2H+1 = %" PetscInt_FMT " for -hbm_harmonics %" PetscInt_FMT, h->Ns, 2 * h->H + 1, h->H);
   PetscCheck(h->gamma >= 0.0 && !PetscIsInfOrNanReal(h->gamma), h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_gamma %g: the structural damping coefficient must be non-negative", (double)h->gamma);
@@ -186,6 +190,7 @@ static PetscErrorCode GroupDestroy(HBMGroup *g)
   PetscCall(JRFreeAligned(&g->Sc));
   PetscCall(JRFreeAligned(&g->Dc));
   PetscCall(PetscFree2(g->kt, g->kn));
+  PetscCall(PetscFree(g->eidx));
   PetscFunctionReturn(0);
 }
 
@@ -208,6 +213,38 @@ static PetscErrorCode ProjectionRows(JRHBM h, PetscInt nloc, const PetscInt da[]
   } else PetscCall(JRModesGetRows(h->modes, 2 * nloc, dofs, rows));
   for (PetscInt e = 0; e < nloc; e++)
     for (PetscInt i = 0; i < h->nm; i++) R[e + i * nloc] = rows[(2 * e) * h->nm + i] - rows[(2 * e + 1) * h->nm + i];
+  PetscCall(PetscFree2(dofs, rows));
+  PetscFunctionReturn(0);
+}
+
+/* Projection rows of node-to-node elements (4.3): R[e + i nloc] = sum_c dir_c (phi_i(A_c) - phi_i(B_c)) for the
+   elements eidx[e] of the model's list, whose nodes' x, y, z DOFs are va[3 eidx..], vb[3 eidx..] */
+static PetscErrorCode ProjectionRowsDir(JRHBM h, PetscInt nloc, const PetscInt eidx[], const PetscInt va[], const PetscInt vb[], const PetscReal dir[], PetscReal R[])
+{
+  const PetscInt nm = h->nm;
+  PetscInt      *dofs;
+  PetscReal     *rows;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(6 * nloc, &dofs, 6 * nloc * nm, &rows));
+  for (PetscInt e = 0; e < nloc; e++)
+    for (PetscInt c = 0; c < 3; c++) {
+      dofs[6 * e + c]     = va[3 * eidx[e] + c];
+      dofs[6 * e + 3 + c] = vb[3 * eidx[e] + c];
+    }
+  if (h->physical) {
+    PetscCall(PetscArrayzero(rows, 6 * nloc * nm));
+    for (PetscInt k = 0; k < 6 * nloc; k++)
+      if (dofs[k] >= 0) rows[k * nm + dofs[k]] = 1.0;
+  } else PetscCall(JRModesGetRows(h->modes, 6 * nloc, dofs, rows));
+  for (PetscInt e = 0; e < nloc; e++) {
+    const PetscReal *d = dir + 3 * eidx[e];
+    for (PetscInt i = 0; i < nm; i++) {
+      PetscReal r = 0.0;
+      for (PetscInt c = 0; c < 3; c++) r += d[c] * (rows[(6 * e + c) * nm + i] - rows[(6 * e + 3 + c) * nm + i]);
+      R[e + i * nloc] = r;
+    }
+  }
   PetscCall(PetscFree2(dofs, rows));
   PetscFunctionReturn(0);
 }
@@ -266,6 +303,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
   /* the linear part: modes (or physical coordinates) */
   PetscCall(PetscFree3(h->Km, h->Mm, h->Cm));
   PetscCall(PetscFree(h->omega_r));
+  PetscCall(PetscFree(h->pin));
   if (h->physical) {
     PetscCheck(ndof <= 2000, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_physical is for small systems (%" PetscInt_FMT " DOFs here, at most 2000): use modes", ndof);
     PetscCheck(h->zeta == 0.0, h->comm, PETSC_ERR_ARG_INCOMP, "-hbm_zeta (modal damping) needs modal coordinates, not -hbm_physical: give a damping matrix with -model_damping");
@@ -291,16 +329,27 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
       PetscCall(JRModelGetRigidBasis(h->model, &nrb, rb));
       PetscCall(JRModesSetRigidBasis(h->modes, nrb, rb));
       for (PetscInt i = 0; i < nrb; i++) PetscCall(VecDestroy(&rb[i]));
+      if (nrb) { /* an FE model: its coordinates go with saved modes */
+        Vec X;
+        PetscCall(JRModelGetCoordinates(h->model, &X));
+        PetscCall(JRModesSetCoordinates(h->modes, X));
+        PetscCall(VecDestroy(&X));
+      }
     }
     PetscCall(JRModesSolve(h->modes));
     PetscCall(JRModesGetEigenvalues(h->modes, &lam));
     PetscCall(PetscCalloc3(h->nm * h->nm, &h->Km, h->nm * h->nm, &h->Mm, h->nm * h->nm, &h->Cm));
     PetscCall(PetscMalloc1(h->nm, &h->omega_r));
+    PetscCall(PetscCalloc1(h->nm, &h->pin));
     for (PetscInt i = 0; i < h->nm; i++) {
       h->Km[i * h->nm + i] = lam[i];
       h->Mm[i * h->nm + i] = 1.0;
       h->omega_r[i]        = PetscSqrtReal(PetscMax(lam[i], 0.0));
     }
+    /* A free-free structure's rigid-body modes stretch no element (their projection rows vanish) and no
+       spring: their mean has no equation. It is zero (the excitation is harmonic), so pin it. */
+    for (PetscInt i = 0; i < h->nm; i++)
+      if (lam[i] <= 1e-8 * lam[h->nm - 1]) h->pin[i] = lam[h->nm - 1];
     if (C) PetscCall(JRModesProject(h->modes, C, h->Cm));
     for (PetscInt i = 0; i < h->nm; i++) h->Cm[i * h->nm + i] += 2.0 * h->zeta * h->omega_r[i];
   }
@@ -355,7 +404,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
   PetscCall(PetscCalloc1(h->ngroups, &h->g));
   for (PetscInt t = 0; t < h->ngroups; t++) {
     HBMGroup  *g = &h->g[t];
-    PetscInt   ntot = 0, nloc = PETSC_DECIDE, start = 0, k = 0, *ia, *ib;
+    PetscInt   ntot = 0, nloc = PETSC_DECIDE, start = 0, k = 0, *ia, *ib, *eidx;
     PetscReal *kt, *kn, *mu, *n0;
     const PetscInt nc = h->nc, nm = h->nm;
     for (PetscInt e = 0; e < el->n; e++) ntot += el->type[e] == t;
@@ -367,9 +416,11 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     PetscCall(PetscMalloc2(nloc, &ia, nloc, &ib));
     PetscCall(PetscMalloc1(nloc, &g->nstatic));
     PetscCall(PetscMalloc1(nloc, &g->state));
+    PetscCall(PetscMalloc1(nloc, &eidx));
     for (PetscInt e = 0, cnt = 0; e < el->n; e++) {
       if (el->type[e] != t) continue;
       if (cnt >= start && cnt < start + nloc) {
+        eidx[k]        = e;
         ia[k]          = el->dof_a[e];
         ib[k]          = el->dof_b[e];
         kt[k]          = el->kt[e];
@@ -392,24 +443,20 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc, &g->U));
     PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc, &g->F));
     PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc * nc, &g->DU));
-    PetscCall(ProjectionRows(h, nloc, ia, ib, g->R));
+    if (el->vdof_a) PetscCall(ProjectionRowsDir(h, nloc, eidx, el->vdof_a, el->vdof_b, el->tdir, g->R));
+    else PetscCall(ProjectionRows(h, nloc, ia, ib, g->R));
     if (g->normal) {
-      k = 0;
-      for (PetscInt e = 0, cnt = 0; e < el->n; e++) {
-        if (el->type[e] != t) continue;
-        if (cnt >= start && cnt < start + nloc) {
-          ia[k] = el->ndof_a[e];
-          ib[k] = el->ndof_b[e];
-          k++;
-        }
-        cnt++;
+      for (k = 0; k < nloc; k++) {
+        ia[k] = el->ndof_a[eidx[k]];
+        ib[k] = el->ndof_b[eidx[k]];
       }
       PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nm, &g->S));
       PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc, &g->V));
       PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc, &g->N));
       PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc * nc, &g->DV));
       PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc * nc, &g->DN));
-      PetscCall(ProjectionRows(h, nloc, ia, ib, g->S));
+      if (el->vdof_a) PetscCall(ProjectionRowsDir(h, nloc, eidx, el->vdof_a, el->vdof_b, el->ndir, g->S));
+      else PetscCall(ProjectionRows(h, nloc, ia, ib, g->S));
     }
     /* friction elements: the stuck part of the Jacobian, once */
     g->split = (PetscBool)(!strcmp(el->typename[t], JRCONTACTJENKINS) || !strcmp(el->typename[t], JRCONTACTJENKINSNV));
@@ -433,6 +480,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     }
     PetscCall(PetscFree4(kt, kn, mu, n0));
     PetscCall(PetscFree2(ia, ib));
+    g->eidx = eidx;
   }
 
   /* the nonlinear solver at fixed frequency: SNES on every rank, prefix hbm_ */
@@ -462,6 +510,57 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
   PetscCall(SNESSetFromOptions(h->snes));
   h->setupcalled = PETSC_TRUE;
   if (h->view) PetscCall(JRHBMView(h, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* The excitation DOF and the response DOFs (nout >= 1) set in code, e.g. found by position on an FE
+   mesh: -frf_dof and -frf_output are then ignored. Call before JRHBMSetFromOptions(). */
+PetscErrorCode JRHBMSetExcitationDof(JRHBM h, PetscInt dof, PetscInt nout, const PetscInt out[])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(nout >= 1, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "At least one response DOF");
+  h->fdof     = dof;
+  h->fdof_set = PETSC_TRUE;
+  PetscCall(PetscFree(h->outdof));
+  h->nout = nout;
+  PetscCall(PetscMalloc1(nout, &h->outdof));
+  PetscCall(PetscArraycpy(h->outdof, out, nout));
+  h->setupcalled = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMStickFrequencies - natural frequencies [Hz] of the linear structure with every element stuck
+  (tangential springs kt and, for jenkins_nv, normal springs kn) in the modal basis of the HBM:
+  eigenvalues of Phi^T (K + sum_e kt r_e r_e^T + kn s_e s_e^T) Phi (collective; freq has room for nm).
+*/
+PetscErrorCode JRHBMStickFrequencies(JRHBM h, PetscInt *nf, PetscReal freq[])
+{
+  const PetscInt nm = h->nm;
+  PetscReal     *A, *B, *loc, *w, *work;
+  PetscBLASInt   n, lwork, info, itype = 1;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(PetscCalloc5(nm * nm, &A, nm * nm, &B, nm * nm, &loc, nm, &w, 8 * nm, &work));
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    HBMGroup *g = &h->g[t];
+    PetscCheck(g->split || !g->nloc, PETSC_COMM_SELF, PETSC_ERR_SUP, "Stuck frequencies need friction elements (jenkins, jenkins_nv)");
+    for (PetscInt i = 0; i < nm * nm; i++) loc[i] += g->Kst[i] + (g->normal ? g->Knn[i] : 0.0);
+  }
+  PetscCall(MPIU_Allreduce(loc, A, nm * nm, MPIU_REAL, MPIU_SUM, h->comm));
+  for (PetscInt i = 0; i < nm; i++)
+    for (PetscInt j = 0; j < nm; j++) {
+      A[i + j * nm] += h->Km[i * nm + j];
+      B[i + j * nm] = h->Mm[i * nm + j];
+    }
+  PetscCall(PetscBLASIntCast(nm, &n));
+  PetscCall(PetscBLASIntCast(8 * nm, &lwork));
+  PetscCallBLAS("LAPACKsygv", LAPACKsygv_(&itype, "N", "U", &n, A, &n, B, &n, w, work, &lwork, &info));
+  PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK sygv failed: info %d", (int)info);
+  for (PetscInt i = 0; i < nm; i++) freq[i] = PetscSqrtReal(PetscMax(w[i], 0.0)) / (2 * PETSC_PI);
+  *nf = nm;
+  PetscCall(PetscFree5(A, B, loc, w, work));
   PetscFunctionReturn(0);
 }
 
@@ -639,9 +738,12 @@ static PetscErrorCode Linear(JRHBM h, PetscReal w, const PetscReal *a, PetscReal
   for (PetscInt i = 0; i < nm; i++) { /* mean: K a0 */
     PetscReal s = 0.0;
     for (PetscInt j = 0; j < nm; j++) s += h->Km[i * nm + j] * a[j];
+    if (h->pin) s += h->pin[i] * a[i];
     res[i] += s;
-    if (jac)
+    if (jac) {
       for (PetscInt j = 0; j < nm; j++) jac[i + j * n] += h->Km[i * nm + j];
+      if (h->pin) jac[i + i * n] += h->pin[i];
+    }
   }
   for (PetscInt hh = 1; hh <= h->H; hh++) {
     const PetscInt   os = (2 * hh - 1) * nm, oc = 2 * hh * nm;
@@ -896,6 +998,78 @@ PetscErrorCode JRHBMEnergy(JRHBM h, PetscReal w, Vec a, PetscReal *Win, PetscRea
   PetscFunctionReturn(0);
 }
 
+/*
+  JRHBMKineticEnergy - the kinetic energy averaged over a cycle [J], (1/4) sum_h (h w)^2 (as_h^T M as_h +
+  ac_h^T M ac_h): with the energy dissipated per cycle E it gives the equivalent damping ratio
+  zeta = E / (8 pi T) (= gamma / 2 for structural damping at resonance).
+*/
+PetscErrorCode JRHBMKineticEnergy(JRHBM h, PetscReal w, Vec a, PetscReal *T)
+{
+  const PetscScalar *x;
+  const PetscInt     nm = h->nm;
+  PetscReal          t  = 0.0;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(a, &x));
+  for (PetscInt hh = 1; hh <= h->H; hh++) {
+    const PetscScalar *as = x + (2 * hh - 1) * nm, *ac = x + 2 * hh * nm;
+    PetscReal          q  = 0.0;
+    for (PetscInt i = 0; i < nm; i++)
+      for (PetscInt j = 0; j < nm; j++) q += h->Mm[i * nm + j] * (PetscRealPart(as[i]) * PetscRealPart(as[j]) + PetscRealPart(ac[i]) * PetscRealPart(ac[j]));
+    t += 0.25 * (hh * w) * (hh * w) * q;
+  }
+  PetscCall(VecRestoreArrayRead(a, &x));
+  *T = t;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMElementStates - the contact state of every element of the model (its numbering) at the solution
+  a, gathered on rank 0 (state: the model's element count; other ranks may pass NULL; collective)
+*/
+PetscErrorCode JRHBMElementStates(JRHBM h, Vec a, JRContactState state[])
+{
+  const PetscScalar *x;
+  PetscInt           nloc = 0, k = 0, *buf, ntot = 0;
+  PetscMPIInt       *counts = NULL, *displs = NULL, sendc;
+  PetscInt          *all = NULL;
+
+  PetscFunctionBeginUser;
+  for (PetscInt t = 0; t < h->ngroups; t++) nloc += h->g[t].nloc;
+  PetscCall(PetscMalloc1(2 * nloc, &buf));
+  PetscCall(VecGetArrayRead(a, &x));
+  h->cache_ok = PETSC_FALSE;
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    HBMGroup *g = &h->g[t];
+    if (!g->nloc) continue;
+    PetscCall(Gemm("N", "N", g->nloc, h->nc, h->nm, 1.0, g->R, g->nloc, x, h->nm, 0.0, g->U, g->nloc));
+    if (g->normal) PetscCall(Gemm("N", "N", g->nloc, h->nc, h->nm, 1.0, g->S, g->nloc, x, h->nm, 0.0, g->V, g->nloc));
+    PetscCall(JRContactEvaluate(g->c, g->U, g->V, NULL, NULL, NULL, NULL, NULL, g->state));
+    for (PetscInt e = 0; e < g->nloc; e++, k++) {
+      buf[2 * k]     = g->eidx[e];
+      buf[2 * k + 1] = (PetscInt)g->state[e];
+    }
+  }
+  PetscCall(VecRestoreArrayRead(a, &x));
+  PetscCall(PetscMPIIntCast(2 * nloc, &sendc));
+  if (!h->rank) PetscCall(PetscMalloc2(h->size, &counts, h->size, &displs));
+  PetscCallMPI(MPI_Gather(&sendc, 1, MPI_INT, counts, 1, MPI_INT, 0, h->comm));
+  if (!h->rank) {
+    for (PetscMPIInt r = 0; r < h->size; r++) {
+      displs[r] = (PetscMPIInt)ntot;
+      ntot += counts[r];
+    }
+    PetscCall(PetscMalloc1(ntot, &all));
+  }
+  PetscCallMPI(MPI_Gatherv(buf, sendc, MPIU_INT, all, counts, displs, MPIU_INT, 0, h->comm));
+  if (!h->rank)
+    for (PetscInt i = 0; i < ntot / 2; i++) state[all[2 * i]] = (JRContactState)all[2 * i + 1];
+  PetscCall(PetscFree(all));
+  if (!h->rank) PetscCall(PetscFree2(counts, displs));
+  PetscCall(PetscFree(buf));
+  PetscFunctionReturn(0);
+}
+
 /* How many elements are in each contact state at the solution a (collective, every rank) */
 PetscErrorCode JRHBMContactStates(JRHBM h, Vec a, PetscInt count[4])
 {
@@ -944,6 +1118,7 @@ PetscErrorCode JRHBMDestroy(JRHBM *hbm)
   PetscCall(JRModesDestroy(&h->modes));
   PetscCall(PetscFree3(h->Km, h->Mm, h->Cm));
   PetscCall(PetscFree(h->omega_r));
+  PetscCall(PetscFree(h->pin));
   PetscCall(PetscFree(h->outdof));
   PetscCall(PetscFree(h->fm));
   PetscCall(PetscFree(h->Phiout));

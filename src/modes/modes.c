@@ -3,9 +3,13 @@
    (phi^T M phi = 1), ascending. SLEPc EPS with prefix modes_: shift-and-invert about a target just
    below zero (so that a singular, free-free K is fine) with a sparse LDL^T factorisation (MUMPS); or every mode by
    dense LAPACK for small systems (-modes_nev equal to the number of DOFs).
-   Options: -modes_nev n, -modes_target t [rad^2/s^2], -modes_view, and every -modes_eps_*, -modes_st_*.
+   Options: -modes_nev n, -modes_target t [rad^2/s^2], -modes_view, and every -modes_eps_*, -modes_st_*;
+   -modes_save FILE.h5 writes the modes for reuse, -modes_load FILE.h5 reads them instead of solving (the
+   node coordinates saved with them must match the model's: same mesh, same number of ranks).
 */
 #include <jointrom/private/modelimpl.h>
+#include <petscviewerhdf5.h>
+#include <unistd.h>
 
 PetscErrorCode JRModesCreate(MPI_Comm comm, JRModes *modes)
 {
@@ -97,6 +101,8 @@ PetscErrorCode JRModesSetFromOptions(JRModes md)
   PetscCall(PetscOptionsReal("-target", "Shift for shift-and-invert [rad^2/s^2] (default: slightly below zero)", "JRModesSolve", md->target, &md->target, &md->target_set));
   PetscCall(PetscOptionsBool("-view", "Print the natural frequencies", "JRModesView", md->view, &md->view, NULL));
   PetscCall(PetscOptionsBool("-rigid_basis", "Free-free FE models: deflate the exact rigid-body modes and solve for the elastic ones", "JRModesSetRigidBasis", md->use_rb, &md->use_rb, NULL));
+  PetscCall(PetscOptionsString("-load", "Read the modes from this HDF5 file (written by -modes_save) instead of solving", "JRModesSolve", md->load, md->load, sizeof(md->load), NULL));
+  PetscCall(PetscOptionsString("-save", "Write the modes to this HDF5 file for -modes_load", "JRModesSolve", md->save, md->save, sizeof(md->save), NULL));
   PetscOptionsEnd();
   PetscCheck(md->nev >= 1, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_nev %" PetscInt_FMT ": at least one mode", md->nev);
   PetscFunctionReturn(0);
@@ -111,7 +117,125 @@ static PetscErrorCode ClearModes(JRModes md)
   PetscFunctionReturn(0);
 }
 
-/* Solve for the nev lowest modes; mass-normalise and sort them */
+/* The node coordinates in the DOF layout (reference kept): saved with the modes and compared on load */
+PetscErrorCode JRModesSetCoordinates(JRModes md, Vec X)
+{
+  PetscFunctionBeginUser;
+  if (X) PetscCall(PetscObjectReference((PetscObject)X));
+  PetscCall(VecDestroy(&md->X));
+  md->X = X;
+  PetscFunctionReturn(0);
+}
+
+/* Write omega^2 and the modes (and the coordinates) to an HDF5 file, through a temporary name */
+static PetscErrorCode ModesSave(JRModes md, const char file[])
+{
+  PetscViewer v;
+  char        tmp[PETSC_MAX_PATH_LEN + 32];
+  Vec         lam;
+  PetscMPIInt rank, size;
+  PetscInt    nm = md->nm, hasx = md->X ? 1 : 0;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(md->comm, &rank));
+  PetscCallMPI(MPI_Comm_size(md->comm, &size));
+  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.tmp%d", file, (int)getpid()));
+  PetscCallMPI(MPI_Bcast(tmp, sizeof(tmp), MPI_CHAR, 0, md->comm));
+  PetscCall(PetscViewerHDF5Open(md->comm, tmp, FILE_MODE_WRITE, &v));
+  PetscCall(PetscViewerHDF5PushGroup(v, "/jointrom_modes"));
+  PetscCall(VecCreateMPI(md->comm, rank ? 0 : nm, nm, &lam));
+  PetscCall(PetscObjectSetName((PetscObject)lam, "omega2"));
+  if (!rank)
+    for (PetscInt i = 0; i < nm; i++) PetscCall(VecSetValue(lam, i, md->lambda[i], INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(lam));
+  PetscCall(VecAssemblyEnd(lam));
+  PetscCall(VecView(lam, v));
+  PetscCall(VecDestroy(&lam));
+  for (PetscInt i = 0; i < nm; i++) {
+    char name[32];
+    PetscCall(PetscSNPrintf(name, sizeof(name), "phi_%" PetscInt_FMT, i));
+    PetscCall(PetscObjectSetName((PetscObject)md->phi[i], name));
+    PetscCall(VecView(md->phi[i], v));
+  }
+  if (md->X) {
+    PetscCall(PetscObjectSetName((PetscObject)md->X, "coordinates"));
+    PetscCall(VecView(md->X, v));
+  }
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "modes", PETSC_INT, &nm));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "ranks", PETSC_INT, &size));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "has_coordinates", PETSC_INT, &hasx));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "units", PETSC_STRING, "omega2: rad^2/s^2; phi_i: mass-normalised modes over every DOF (kg^-1/2) in the model's parallel DOF numbering; coordinates: m"));
+  PetscCall(PetscViewerDestroy(&v));
+  if (!rank) PetscCheck(!rename(tmp, file), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "-modes_save: cannot write the file %s", file);
+  PetscFunctionReturn(0);
+}
+
+/* Read the nev lowest modes from a -modes_save file */
+static PetscErrorCode ModesLoad(JRModes md, const char file[])
+{
+  PetscViewer        v;
+  PetscInt           nm = 0, ranks = 0, hasx = 0, n, nf;
+  PetscMPIInt        size;
+  PetscBool          has;
+  Vec                lam, all, x;
+  VecScatter         sc;
+  const PetscScalar *l;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(md->comm, &size));
+  PetscCall(PetscTestFile(file, 'r', &has));
+  PetscCheck(has, md->comm, PETSC_ERR_FILE_OPEN, "-modes_load %s: cannot read the file", file);
+  PetscCall(PetscViewerHDF5Open(md->comm, file, FILE_MODE_READ, &v));
+  PetscCall(PetscViewerHDF5HasAttribute(v, "/jointrom_modes", "modes", &has));
+  PetscCheck(has, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: not a modes file of this program (no /jointrom_modes; write one with -modes_save)", file);
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "modes", PETSC_INT, NULL, &nm));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "ranks", PETSC_INT, NULL, &ranks));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "has_coordinates", PETSC_INT, NULL, &hasx));
+  PetscCheck(nm >= md->nev, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s holds %" PetscInt_FMT " modes, %" PetscInt_FMT " are asked for (-hbm_modes / -modes_nev)", file, nm, md->nev);
+  PetscCheck(ranks == size, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s was written on %" PetscInt_FMT " ranks, this run has %d: the FE DOF numbering depends on the partition; run on %" PetscInt_FMT " ranks or recompute the modes", file, ranks, (int)size, ranks);
+  PetscCall(MatGetSize(md->K, &n, NULL));
+  PetscCall(PetscViewerHDF5PushGroup(v, "/jointrom_modes"));
+  PetscCall(MatCreateVecs(md->K, &x, NULL));
+  if (md->X && hasx) {
+    PetscReal d, s;
+    PetscCall(PetscObjectSetName((PetscObject)x, "coordinates"));
+    PetscCall(VecLoad(x, v));
+    PetscCall(VecAXPY(x, -1.0, md->X));
+    PetscCall(VecNorm(x, NORM_INFINITY, &d));
+    PetscCall(VecNorm(md->X, NORM_INFINITY, &s));
+    PetscCheck(d <= 1e-9 * s, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: its node coordinates differ from the model's by %g m: it was computed for another mesh (or DOF numbering)", file, (double)d);
+  }
+  PetscCall(VecCreateMPI(md->comm, PETSC_DECIDE, nm, &lam));
+  PetscCall(PetscObjectSetName((PetscObject)lam, "omega2"));
+  PetscCall(VecLoad(lam, v));
+  PetscCall(VecScatterCreateToAll(lam, &sc, &all));
+  PetscCall(VecScatterBegin(sc, lam, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, lam, all, INSERT_VALUES, SCATTER_FORWARD));
+  md->nm = md->nev;
+  PetscCall(PetscMalloc1(md->nm, &md->lambda));
+  PetscCall(VecGetArrayRead(all, &l));
+  for (PetscInt i = 0; i < md->nm; i++) md->lambda[i] = PetscRealPart(l[i]);
+  PetscCall(VecRestoreArrayRead(all, &l));
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecDestroy(&all));
+  PetscCall(VecDestroy(&lam));
+  PetscCall(VecDuplicateVecs(x, md->nm, &md->phi));
+  for (PetscInt i = 0; i < md->nm; i++) {
+    char name[32];
+    PetscCall(PetscSNPrintf(name, sizeof(name), "phi_%" PetscInt_FMT, i));
+    PetscCall(PetscObjectSetName((PetscObject)md->phi[i], name));
+    PetscCall(VecGetSize(md->phi[i], &nf));
+    PetscCall(VecLoad(md->phi[i], v));
+  }
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscCall(PetscViewerDestroy(&v));
+  PetscCall(VecDestroy(&x));
+  PetscCall(PetscInfo(NULL, "Read %" PetscInt_FMT " modes of %" PetscInt_FMT " DOFs from %s\n", md->nm, nf, file));
+  PetscFunctionReturn(0);
+}
+
+/* Solve for the nev lowest modes; mass-normalise and sort them (or read them: -modes_load) */
 PetscErrorCode JRModesSolve(JRModes md)
 {
   PetscInt  n, nconv, *perm, nrb, nel;
@@ -126,6 +250,11 @@ PetscErrorCode JRModesSolve(JRModes md)
   PetscFunctionBeginUser;
   PetscCheck(md->K && md->M, md->comm, PETSC_ERR_ARG_WRONGSTATE, "JRModesSetOperators() first");
   PetscCall(ClearModes(md));
+  if (md->load[0]) {
+    PetscCall(ModesLoad(md, md->load));
+    if (md->view) PetscCall(JRModesView(md, NULL));
+    PetscFunctionReturn(0);
+  }
   PetscCall(MatGetSize(md->K, &n, NULL));
   PetscCheck(md->nev <= n, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "%" PetscInt_FMT " modes requested (-modes_nev or -hbm_modes), the model has %" PetscInt_FMT " DOFs", md->nev, n);
   nrb = md->use_rb ? md->nrb : 0;
@@ -214,6 +343,7 @@ PetscErrorCode JRModesSolve(JRModes md)
   PetscCall(VecDestroy(&Mx));
   PetscCall(PetscFree2(lam, perm));
   PetscCall(PetscLogEventEnd(JR_ModesSolve, 0, 0, 0, 0));
+  if (md->save[0]) PetscCall(ModesSave(md, md->save));
   if (md->view) PetscCall(JRModesView(md, NULL));
   PetscFunctionReturn(0);
 }
@@ -308,6 +438,7 @@ PetscErrorCode JRModesDestroy(JRModes *modes)
   PetscCall(ClearModes(md));
   if (md->rb) PetscCall(VecDestroyVecs(md->nrb, &md->rb));
   PetscCall(EPSDestroy(&md->eps));
+  PetscCall(VecDestroy(&md->X));
   PetscCall(MatDestroy(&md->K));
   PetscCall(MatDestroy(&md->M));
   PetscCall(PetscFree(md));

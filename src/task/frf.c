@@ -1,29 +1,258 @@
 /*
    -task frf: frequency-response curves of a structure with contact elements.
-   model (-model_type matrices: K, M, C and elements from files) -> modes -> harmonic balance
-   (-hbm_*) -> continuation over the levels (-cont_*, -frf_*) -> BASE.h5, BASE.csv, BASE.png.
+
+   Matrices models (-model_type matrices): K, M, C and the element table from files -> modes -> harmonic
+   balance (-hbm_*) -> continuation over the levels (-cont_*, -frf_*) -> BASE.h5, BASE.csv, BASE.png.
+
+   FE models (brb, lap1, lap3, lap, gmsh): the node-to-node contact model, the whole pipeline
+     model -> preload (-preload_*; or -preload_load FILE) -> modes (-hbm_modes, -modes_*; saved to
+     BASE_modes.h5, reused by -modes_load) -> interface (one element per facing pair, -interface_*)
+     -> harmonic balance + continuation -> post:
+   the excitation and the responses are points of the mesh (-frf_at, -frf_dir, -frf_output_at; default: the
+   force at the free end of part A, the responses at the free end of part B and at the force); the stuck
+   structure's natural frequencies in the modal basis (and, with -frf_stick_fe, of the whole FE model with
+   the stuck springs, by SLEPc); every element's contact state at each level's peak, BASE_contact.csv and
+   the map BASE_contact.png in the four colours of thesis Figs 5.12-5.19.
 */
-#include <jointrom.h>
+#include <jointrom/private/modelimpl.h>
+
+/* The full FE model with every element stuck: K + sum_e kt t t^T (+ kn n n^T) between its nodes, and its
+   lowest nf natural frequencies by SLEPc (the same shift-and-invert as the free modes) */
+static PetscErrorCode StickFE(JRModel model, const JRElements *el, PetscInt nf, PetscReal f[])
+{
+  Mat              K, M, B, Ks;
+  JRModes          md;
+  PetscInt        *bn, **bd, nrb;
+  PetscReal      **bv;
+  Vec              rb[6];
+  const PetscReal *lam;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetMatrices(model, &K, &M, NULL));
+  PetscCall(PetscMalloc3(el->n, &bn, el->n, &bd, el->n, &bv));
+  for (PetscInt e = 0; e < el->n; e++) {
+    bn[e] = 6;
+    PetscCall(PetscMalloc2(6, &bd[e], 36, &bv[e]));
+    for (PetscInt c = 0; c < 3; c++) {
+      bd[e][c]     = el->vdof_a[3 * e + c];
+      bd[e][3 + c] = el->vdof_b[3 * e + c];
+    }
+    for (PetscInt i = 0; i < 6; i++)
+      for (PetscInt j = 0; j < 6; j++) {
+        const PetscReal si = i < 3 ? 1.0 : -1.0, sj = j < 3 ? 1.0 : -1.0;
+        const PetscReal *t = el->tdir + 3 * e, *n = el->ndir + 3 * e;
+        bv[e][6 * i + j] = si * sj * (el->kt[e] * t[i % 3] * t[j % 3] + el->kn[e] * n[i % 3] * n[j % 3]);
+      }
+  }
+  PetscCall(JRMatCreateFromBlocks(K, el->n, bn, (const PetscInt *const *)bd, (const PetscReal *const *)bv, &B));
+  for (PetscInt e = 0; e < el->n; e++) PetscCall(PetscFree2(bd[e], bv[e]));
+  PetscCall(PetscFree3(bn, bd, bv));
+  PetscCall(MatDuplicate(K, MAT_COPY_VALUES, &Ks));
+  PetscCall(MatAXPY(Ks, 1.0, B, DIFFERENT_NONZERO_PATTERN));
+  PetscCall(MatDestroy(&B));
+  PetscCall(JRModesCreate(PetscObjectComm((PetscObject)K), &md));
+  PetscCall(JRModesSetOperators(md, Ks, M));
+  PetscCall(JRModelGetRigidBasis(model, &nrb, rb));
+  PetscCall(JRModesSetRigidBasis(md, nrb, rb));
+  for (PetscInt i = 0; i < nrb; i++) PetscCall(VecDestroy(&rb[i]));
+  PetscCall(JRModesSetNumber(md, nf));
+  PetscCall(JRModesSolve(md));
+  PetscCall(JRModesGetEigenvalues(md, &lam));
+  for (PetscInt i = 0; i < nf; i++) f[i] = PetscSqrtReal(PetscMax(lam[i], 0.0)) / (2 * PETSC_PI);
+  PetscCall(JRModesDestroy(&md));
+  PetscCall(MatDestroy(&Ks));
+  PetscFunctionReturn(0);
+}
+
+/* BASE_contact.csv (pair, x, y, z, the state at each level's peak) and BASE_contact.png */
+static PetscErrorCode WriteContactMaps(MPI_Comm comm, JRModel model, JRCont cont, const JRElements *el, const PetscInt pair[], const char base[], PetscBool plot)
+{
+  const JRPairs  *P;
+  PetscInt        nlev;
+  PetscMPIInt     rank;
+  char            csv[PETSC_MAX_PATH_LEN + 16], png[PETSC_MAX_PATH_LEN + 16], tmp[PETSC_MAX_PATH_LEN + 32];
+  FILE           *fp;
+  PetscInt       *of;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(JRModelGetPairs(model, &P));
+  PetscCall(JRContGetNumLevels(cont, &nlev));
+  PetscCall(PetscMalloc1(P->n, &of));
+  for (PetscInt p = 0; p < P->n; p++) of[p] = -1;
+  for (PetscInt e = 0; e < el->n; e++) of[pair[e]] = e;
+  PetscCall(PetscSNPrintf(csv, sizeof(csv), "%s_contact.csv", base));
+  PetscCall(PetscSNPrintf(png, sizeof(png), "%s_contact.png", base));
+  PetscCall(JRFileOpenTemp(comm, csv, &fp, tmp, sizeof(tmp)));
+  if (fp) {
+    fprintf(fp, "pair,x_m,y_m,z_m,element");
+    for (PetscInt l = 0; l < nlev; l++) fprintf(fp, ",state_level_%" PetscInt_FMT, l);
+    fprintf(fp, "\n");
+    for (PetscInt p = 0; p < P->n; p++) {
+      fprintf(fp, "%" PetscInt_FMT ",%.9g,%.9g,%.9g,%" PetscInt_FMT, p, (double)P->x[3 * p], (double)P->x[3 * p + 1], (double)P->x[3 * p + 2], of[p]);
+      for (PetscInt l = 0; l < nlev; l++) {
+        const JRContactState *st;
+        PetscCall(JRContGetPeakStates(cont, l, &st));
+        fprintf(fp, ",%d", of[p] >= 0 ? (int)st[of[p]] : -1);
+      }
+      fprintf(fp, "\n");
+    }
+  }
+  PetscCall(JRFileCommit(comm, &fp, tmp, csv));
+  /* counts per level, for scripts */
+  for (PetscInt l = 0; l < nlev; l++) {
+    PetscInt cnt[4] = {0, 0, 0, 0};
+    if (!rank) {
+      const JRContactState *st;
+      PetscCall(JRContGetPeakStates(cont, l, &st));
+      for (PetscInt e = 0; e < el->n; e++) cnt[st[e]]++;
+    }
+    PetscCallMPI(MPI_Bcast(cnt, 4, MPIU_INT, 0, comm));
+    PetscCall(PetscPrintf(comm, "contact level %" PetscInt_FMT " full_stick %" PetscInt_FMT " stick_slip %" PetscInt_FMT " separation_stick_slip %" PetscInt_FMT " full_separation %" PetscInt_FMT "\n", l, cnt[0], cnt[1], cnt[2], cnt[3]));
+  }
+  if (plot) {
+    PetscBool made;
+    char      vars[4 * PETSC_MAX_PATH_LEN], lv[3 * PETSC_MAX_PATH_LEN] = "";
+    for (PetscInt l = 0; l < nlev && l < 24; l++) {
+      PetscReal w, a, F;
+      char      s[128];
+      PetscCall(JRContGetPeak(cont, l, &w, &a));
+      PetscCall(JRContGetLevel(cont, l, &F));
+      PetscCall(PetscSNPrintf(s, sizeof(s), "; t%" PetscInt_FMT "='F = %g N, peak %.5g Hz'", l + 1, (double)F, (double)(w / (2 * PETSC_PI))));
+      PetscCall(PetscStrlcat(lv, s, sizeof(lv)));
+    }
+    PetscCall(PetscSNPrintf(vars, sizeof(vars), "data='%s'; nlev=%" PetscInt_FMT "%s", csv, PetscMin(nlev, 24), lv));
+    PetscCall(JRPlot(comm, "plot_contact.gp", png, vars, &made));
+    PetscCall(PetscPrintf(comm, "frf: wrote %s%s%s\n", csv, made ? ", " : "", made ? png : ""));
+  } else PetscCall(PetscPrintf(comm, "frf: wrote %s\n", csv));
+  PetscCall(PetscFree(of));
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode JRTaskFRF(MPI_Comm comm)
 {
-  JRModel     model;
-  JRHBM       hbm;
-  JRCont      cont;
-  const char *damping;
-  PetscInt    nm, H, n;
+  JRModel         model;
+  JRPreload       pre = NULL;
+  JRHBM           hbm;
+  JRCont          cont;
+  const JRPairs  *P;
+  const char     *damping;
+  PetscInt        nm, H, n, *pair = NULL;
+  PetscBool       n2n, stickfe = PETSC_FALSE, plot = PETSC_TRUE;
+  JRElements      el;
+  char            base[PETSC_MAX_PATH_LEN] = "out/frf";
+  PetscLogDouble  t0, t1, tpre = 0, tmodel;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(&el, sizeof(el)));
+  PetscCall(PetscTime(&t0));
   PetscCall(JRModelCreate(comm, &model));
   PetscCall(JRModelSetFromOptions(model));
   PetscCall(JRModelSetUp(model));
-  PetscCall(JRHBMCreate(comm, &hbm));
+  PetscCall(PetscTime(&t1));
+  tmodel = t1 - t0;
+  P   = NULL;
+  n2n = PETSC_FALSE;
+  {
+    DM dm;
+    PetscCall(JRModelGetDM(model, &dm));
+    if (dm) {
+      PetscCall(JRModelGetPairs(model, &P));
+      n2n = (PetscBool)(P && P->n > 0);
+    }
+  }
+  PetscOptionsBegin(comm, NULL, "Frequency response (-task frf)", "JRTaskFRF");
+  PetscCall(PetscOptionsString("-frf_output_file", "Output base name", "JRTaskFRF", base, base, sizeof(base), NULL));
+  PetscCall(PetscOptionsBool("-frf_plot", "Draw the PNG plots", "JRTaskFRF", plot, &plot, NULL));
+  if (n2n) PetscCall(PetscOptionsBool("-frf_stick_fe", "Also the natural frequencies of the whole FE model with every element stuck (SLEPc): the modal truncation error", "JRTaskFRF", stickfe, &stickfe, NULL));
+  PetscOptionsEnd();
+
+  if (n2n) {
+    PetscInt         ndof, nout = 0, dir = 2, nd = 3, no = 63;
+    PetscReal        lo[3], hi[3], at[3], oat[63], dist;
+    PetscInt         fdof, odof[21];
+    PetscBool        set, oset;
+    JRPreloadSummary s;
+    const char      *dirs[] = {"x", "y", "z"};
+    char             pbase[PETSC_MAX_PATH_LEN + 16], mfile[PETSC_MAX_PATH_LEN + 16];
+
+    PetscCall(JRModelGetNumDofs(model, &ndof));
+    PetscCall(PetscPrintf(comm, "frf: node-to-node contact model, %" PetscInt_FMT " DOFs, %" PetscInt_FMT " interface pairs (model %.3g s)\n", ndof, P->n, (double)tmodel));
+    /* 2. preload */
+    PetscCall(PetscTime(&t0));
+    PetscCall(JRPreloadCreate(comm, &pre));
+    PetscCall(JRPreloadSetModel(pre, model));
+    PetscCall(JRPreloadSetFromOptions(pre));
+    PetscCall(JRPreloadSolve(pre));
+    PetscCall(PetscTime(&t1));
+    tpre = t1 - t0;
+    PetscCall(JRPreloadGetSummary(pre, &s));
+    PetscCall(PetscPrintf(comm, "preload total_normal_force %.10g bolt_force_sum %.10g pairs_in_contact %" PetscInt_FMT " pairs %" PetscInt_FMT " (%.3g s)\n", (double)s.total_force, (double)s.bolt_force_sum, s.in_contact, s.pairs, (double)tpre));
+    PetscCall(PetscSNPrintf(pbase, sizeof(pbase), "%s_preload", base));
+    PetscCall(JRPreloadWrite(pre, pbase, plot));
+    /* 4. interface */
+    PetscCall(JRInterfaceCreateElements(model, pre, &el, &pair));
+    PetscCall(JRModelSetElements(model, &el));
+    {
+      PetscReal nsum = 0, nmin = PETSC_MAX_REAL, nmax = -PETSC_MAX_REAL;
+      for (PetscInt e = 0; e < el.n; e++) {
+        nsum += el.n0[e];
+        nmin = PetscMin(nmin, el.n0[e]);
+        nmax = PetscMax(nmax, el.n0[e]);
+      }
+      PetscCall(PetscPrintf(comm, "interface: %" PetscInt_FMT " %s elements (kt %g N/m, kn %g N/m, mu %g), n0 %.4g .. %.4g N, sum %.6g N\n", el.n, el.typename[0], (double)el.kt[0], (double)el.kn[0], (double)el.mu[0], (double)nmin, (double)nmax, (double)nsum));
+    }
+    /* excitation and responses by position */
+    PetscCall(JRModelGetBoundingBox(model, lo, hi));
+    at[0] = lo[0];
+    at[1] = 0.5 * (lo[1] + hi[1]);
+    at[2] = hi[2];
+    PetscOptionsBegin(comm, NULL, "Excitation and responses of an FE model (-task frf)", "JRTaskFRF");
+    PetscCall(PetscOptionsRealArray("-frf_at", "Excitation point x,y,z [m] (nearest node; default: the end x = xmin, mid-width, top)", "JRTaskFRF", at, &nd, &set));
+    PetscCall(PetscOptionsEList("-frf_dir", "Direction of the excitation force and of the responses", "JRTaskFRF", dirs, 3, dirs[dir], &dir, NULL));
+    PetscCall(PetscOptionsRealArray("-frf_output_at", "Response points x1,y1,z1,x2,... [m] (default: the other end, then the excitation point)", "JRTaskFRF", oat, &no, &oset));
+    PetscOptionsEnd();
+    PetscCheck(!set || nd == 3, comm, PETSC_ERR_ARG_WRONG, "-frf_at needs three coordinates x,y,z [m], got %" PetscInt_FMT, nd);
+    PetscCheck(!oset || (no % 3 == 0 && no > 0), comm, PETSC_ERR_ARG_WRONG, "-frf_output_at needs triples x,y,z [m], got %" PetscInt_FMT " values", no);
+    PetscCall(JRModelFindDof(model, at, dir, &fdof, &dist));
+    PetscCheck(dist <= 0.05 * (hi[0] - lo[0]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_at (%g, %g, %g) m: the nearest node is %g m away: the point is outside the model (box x %g..%g, y %g..%g, z %g..%g m)", (double)at[0], (double)at[1], (double)at[2], (double)dist, (double)lo[0], (double)hi[0], (double)lo[1], (double)hi[1], (double)lo[2], (double)hi[2]);
+    PetscCall(PetscPrintf(comm, "frf: excitation F sin(w t) along %s at (%g, %g, %g) m: DOF %" PetscInt_FMT " (node %.2g mm away)\n", dirs[dir], (double)at[0], (double)at[1], (double)at[2], fdof, (double)(dist * 1e3)));
+    if (!oset) {
+      oat[0] = hi[0];
+      oat[1] = 0.5 * (lo[1] + hi[1]);
+      oat[2] = hi[2];
+      oat[3] = at[0];
+      oat[4] = at[1];
+      oat[5] = at[2];
+      no     = 6;
+    }
+    nout = no / 3;
+    for (PetscInt o = 0; o < nout; o++) {
+      PetscCall(JRModelFindDof(model, oat + 3 * o, dir, &odof[o], &dist));
+      PetscCheck(dist <= 0.05 * (hi[0] - lo[0]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_output_at (%g, %g, %g) m: the nearest node is %g m away: the point is outside the model", (double)oat[3 * o], (double)oat[3 * o + 1], (double)oat[3 * o + 2], (double)dist);
+      PetscCall(PetscPrintf(comm, "frf: response %" PetscInt_FMT " along %s at (%g, %g, %g) m: DOF %" PetscInt_FMT "\n", o + 1, dirs[dir], (double)oat[3 * o], (double)oat[3 * o + 1], (double)oat[3 * o + 2], odof[o]));
+    }
+    PetscCall(JRHBMCreate(comm, &hbm));
+    PetscCall(JRHBMSetExcitationDof(hbm, fdof, nout, odof));
+    /* the modes are saved for reuse unless they are read */
+    {
+      PetscBool ld, sv;
+      PetscCall(PetscOptionsHasName(NULL, NULL, "-modes_load", &ld));
+      PetscCall(PetscOptionsHasName(NULL, NULL, "-modes_save", &sv));
+      if (!ld && !sv && base[0]) {
+        PetscCall(PetscSNPrintf(mfile, sizeof(mfile), "%s_modes.h5", base));
+        PetscCall(PetscOptionsSetValue(NULL, "-modes_save", mfile));
+      }
+    }
+  } else PetscCall(JRHBMCreate(comm, &hbm));
   PetscCall(JRHBMSetModel(hbm, model));
   PetscCall(JRHBMSetFromOptions(hbm));
   PetscCall(JRContCreate(comm, &cont));
   PetscCall(JRContSetHBM(cont, hbm));
   PetscCall(JRContSetFromOptions(cont));
+  PetscCall(PetscTime(&t0));
   PetscCall(JRHBMSetUp(hbm));
+  PetscCall(PetscTime(&t1));
   PetscCall(JRHBMGetSizes(hbm, &nm, &H, &n));
   PetscCall(JRHBMGetDampingDescription(hbm, &damping));
   {
@@ -32,11 +261,50 @@ PetscErrorCode JRTaskFRF(MPI_Comm comm)
     PetscCall(JRHBMGetModalFrequencies(hbm, &nmod, &om));
     if (nmod) PetscCall(PetscPrintf(comm, "frf: %" PetscInt_FMT " modes (%.6g .. %.6g Hz), %" PetscInt_FMT " harmonics + mean, %" PetscInt_FMT " unknowns; damping: %s\n", nm, (double)(om[0] / (2 * PETSC_PI)), (double)(om[nmod - 1] / (2 * PETSC_PI)), H, n, damping));
     else PetscCall(PetscPrintf(comm, "frf: %" PetscInt_FMT " physical coordinates, %" PetscInt_FMT " harmonics + mean, %" PetscInt_FMT " unknowns; damping: %s\n", nm, H, n, damping));
+    if (n2n) {
+      PetscCall(PetscPrintf(comm, "frf: modes and projections %.3g s; free-free modes [Hz]:", (double)(t1 - t0)));
+      for (PetscInt i = 0; i < nmod; i++) PetscCall(PetscPrintf(comm, " %.5g", (double)(om[i] / (2 * PETSC_PI))));
+      PetscCall(PetscPrintf(comm, "\n"));
+    }
   }
+  PetscCall(PetscTime(&t0));
   PetscCall(JRContSolve(cont));
-  PetscCall(JRContWrite(cont));
+  PetscCall(PetscTime(&t1));
+  PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) %.4g s\n", (double)(t1 - t0)));
+  if (base[0]) PetscCall(JRContWrite(cont));
+  if (n2n) {
+    PetscReal *fs, w, a, best = 0, fe[64];
+    PetscInt   nf;
+    PetscCall(PetscMalloc1(nm, &fs));
+    PetscCall(JRHBMStickFrequencies(hbm, &nf, fs));
+    PetscCall(JRContGetPeak(cont, 0, &w, &a));
+    for (PetscInt i = 0; i < nf; i++)
+      if (PetscAbsReal(fs[i] - w / (2 * PETSC_PI)) < PetscAbsReal(best - w / (2 * PETSC_PI))) best = fs[i];
+    PetscCall(PetscPrintf(comm, "frf: stuck structure, modal basis of %" PetscInt_FMT " modes [Hz]:", nm));
+    for (PetscInt i = 0; i < nf; i++) PetscCall(PetscPrintf(comm, " %.6g", (double)fs[i]));
+    PetscCall(PetscPrintf(comm, "\n"));
+    PetscCall(PetscPrintf(comm, "stick freq_hz %.8g modes %" PetscInt_FMT " lowest_level_peak_hz %.8g rel %.3e\n", (double)best, nm, (double)(w / (2 * PETSC_PI)), (double)(w / (2 * PETSC_PI) / best - 1)));
+    if (stickfe) {
+      PetscInt nfe = PetscMin(nm, 64);
+      PetscReal bfe = 0;
+      PetscCall(PetscTime(&t0));
+      PetscCall(StickFE(model, &el, nfe, fe));
+      PetscCall(PetscTime(&t1));
+      PetscCall(PetscPrintf(comm, "frf: stuck structure, full FE model with the element springs (SLEPc, %.3g s) [Hz]:", (double)(t1 - t0)));
+      for (PetscInt i = 0; i < nfe; i++) PetscCall(PetscPrintf(comm, " %.6g", (double)fe[i]));
+      PetscCall(PetscPrintf(comm, "\n"));
+      for (PetscInt i = 0; i < nfe; i++)
+        if (PetscAbsReal(fe[i] - best) < PetscAbsReal(bfe - best)) bfe = fe[i];
+      PetscCall(PetscPrintf(comm, "stick_fe freq_hz %.8g modal_freq_hz %.8g truncation_error %.3e\n", (double)bfe, (double)best, (double)(best / bfe - 1)));
+    }
+    PetscCall(PetscFree(fs));
+    if (base[0]) PetscCall(WriteContactMaps(comm, model, cont, &el, pair, base, plot));
+  }
   PetscCall(JRContDestroy(&cont));
   PetscCall(JRHBMDestroy(&hbm));
+  PetscCall(JRPreloadDestroy(&pre));
+  PetscCall(JRElementsDestroy(&el));
+  PetscCall(PetscFree(pair));
   PetscCall(JRModelDestroy(&model));
   PetscFunctionReturn(0);
 }

@@ -43,7 +43,6 @@ PETSC_INTERN PetscErrorCode JRPairsDestroy(JRPairs *);
 PETSC_INTERN PetscErrorCode JRBoltsDestroy(JRBolts *);
 PETSC_INTERN PetscErrorCode JRMatCreateFromBlocks(Mat, PetscInt, const PetscInt *, const PetscInt *const *, const PetscReal *const *, Mat *);
 PETSC_INTERN PetscErrorCode JRElementsReadCSV(MPI_Comm, const char[], PetscInt, JRElements *);
-PETSC_INTERN PetscErrorCode JRElementsDestroy(JRElements *);
 
 struct _p_JRModes {
   MPI_Comm   comm;
@@ -58,6 +57,8 @@ struct _p_JRModes {
   PetscInt   nrb;        /* exact rigid-body basis supplied (deflated; kept as the first modes) */
   Vec       *rb;
   PetscBool  use_rb;     /* -modes_rigid_basis */
+  Vec        X;          /* node coordinates in the DOF layout (optional): checks a loaded file's layout */
+  char       load[PETSC_MAX_PATH_LEN], save[PETSC_MAX_PATH_LEN]; /* -modes_load, -modes_save */
 };
 
 #endif

@@ -98,6 +98,7 @@ PetscErrorCode JRElementsDestroy(JRElements *el)
     PetscCall(PetscFree5(el->type, el->dof_a, el->dof_b, el->ndof_a, el->ndof_b));
     PetscCall(PetscFree4(el->kt, el->kn, el->mu, el->n0));
   }
+  PetscCall(PetscFree4(el->vdof_a, el->vdof_b, el->tdir, el->ndir));
   PetscCall(PetscMemzero(el, sizeof(*el)));
   PetscFunctionReturn(0);
 }

@@ -137,6 +137,13 @@ PetscErrorCode JRModelSetElements(JRModel m, const JRElements *el)
   PetscCall(PetscArraycpy(m->el.kn, el->kn, n));
   PetscCall(PetscArraycpy(m->el.mu, el->mu, n));
   PetscCall(PetscArraycpy(m->el.n0, el->n0, n));
+  if (el->vdof_a) {
+    PetscCall(PetscMalloc4(3 * n, &m->el.vdof_a, 3 * n, &m->el.vdof_b, 3 * n, &m->el.tdir, 3 * n, &m->el.ndir));
+    PetscCall(PetscArraycpy(m->el.vdof_a, el->vdof_a, 3 * n));
+    PetscCall(PetscArraycpy(m->el.vdof_b, el->vdof_b, 3 * n));
+    PetscCall(PetscArraycpy(m->el.tdir, el->tdir, 3 * n));
+    PetscCall(PetscArraycpy(m->el.ndir, el->ndir, 3 * n));
+  }
   m->el_given = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
@@ -177,6 +184,13 @@ PetscErrorCode JRModelGetCoordinates(JRModel m, Vec *X)
   PetscCall(JRModelSetUp(m));
   PetscCheck(m->ops->coordinates, m->comm, PETSC_ERR_SUP, "Model type %s has no node coordinates (an FE model has)", m->type_name);
   PetscCall((*m->ops->coordinates)(m, X));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRModelGetComm(JRModel m, MPI_Comm *comm)
+{
+  PetscFunctionBeginUser;
+  *comm = m->comm;
   PetscFunctionReturn(0);
 }
 

@@ -1,0 +1,145 @@
+/*
+   The node-to-node interface (pipeline stage 4): one friction element per facing node pair of an FE
+   model, its normal load from the bolt preload, and points of the mesh found by position.
+
+   Element e joins pair p = pair[e]: tangential relative motion u = (x_A - x_B) . t_p along the beam axis,
+   normal v = (x_A - x_B) . n_p (positive presses the surfaces together), projection rows
+   (phi_A - phi_B) . dir (4.3) formed by JRHBM. Options (prefix interface_):
+     -interface_element jenkins | jenkins_nv   constant normal load (ch. 4) or with its variation (5.1)
+     -interface_kt [N/m]  tangential stiffness per element (thesis BRB: 1000 N/mm = 1e6 N/m)
+     -interface_kn [N/m]  normal stiffness per element (jenkins_nv; default kt)
+     -interface_mu [-]    friction coefficient
+     -interface_max_gap [m] jenkins_nv: leave out pairs whose preload gap is larger (default: keep all)
+   jenkins elements are made only for the pairs in contact after the preload (N_static > 0): an open pair
+   carries no friction. jenkins_nv elements get n0 = N_static - kn v_gap (5.1): gaps as negative loads.
+*/
+#include <jointrom.h>
+
+PetscErrorCode JRInterfaceCreateElements(JRModel model, JRPreload pre, JRElements *el, PetscInt **pair)
+{
+  MPI_Comm         comm;
+  const JRPairs   *P;
+  const PetscReal *N, *gap;
+  PetscReal        kt = 1e6, kn = -1, mu = 0.12, maxgap = -1;
+  PetscInt         np, type = 0, n = 0;
+  const char      *types[] = {JRCONTACTJENKINS, JRCONTACTJENKINSNV};
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetComm(model, &comm));
+  PetscOptionsBegin(comm, "interface_", "Node-to-node interface: one friction element per facing node pair (prefix interface_)", "JRInterface");
+  PetscCall(PetscOptionsEList("-element", "Element: jenkins (constant normal load) or jenkins_nv (normal load variation, separation)", "JRInterfaceCreateElements", types, 2, types[type], &type, NULL));
+  PetscCall(PetscOptionsReal("-kt", "Tangential contact stiffness per element [N/m]", "JRInterfaceCreateElements", kt, &kt, NULL));
+  PetscCall(PetscOptionsReal("-kn", "Normal contact stiffness per element [N/m] (jenkins_nv; default kt)", "JRInterfaceCreateElements", kn, &kn, NULL));
+  PetscCall(PetscOptionsReal("-mu", "Friction coefficient [-]", "JRInterfaceCreateElements", mu, &mu, NULL));
+  PetscCall(PetscOptionsReal("-max_gap", "jenkins_nv: leave out pairs whose preload gap exceeds this [m] (default: keep all)", "JRInterfaceCreateElements", maxgap, &maxgap, NULL));
+  PetscOptionsEnd();
+  if (kn < 0) kn = kt;
+  PetscCheck(PetscIsNormalReal(kt) && kt > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-interface_kt %g: the tangential stiffness must be positive [N/m]", (double)kt);
+  PetscCheck(PetscIsNormalReal(kn) && kn > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-interface_kn %g: the normal stiffness must be positive [N/m]", (double)kn);
+  PetscCheck(!PetscIsInfOrNanReal(mu) && mu > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-interface_mu %g: the friction coefficient must be positive", (double)mu);
+  PetscCall(JRModelGetPairs(model, &P));
+  PetscCheck(P && P->n > 0, comm, PETSC_ERR_ARG_WRONG, "The model has no contact interface (node pairs): -task frf builds the node-to-node elements of FE models (-model_type brb, lap1, lap3, lap, gmsh)");
+  PetscCall(JRPreloadGetResults(pre, &np, &N, &gap));
+  PetscCheck(np == P->n, comm, PETSC_ERR_PLIB, "Preload has %" PetscInt_FMT " pairs, the model %" PetscInt_FMT, np, P->n);
+  for (PetscInt p = 0; p < np; p++) n += type == 0 ? N[p] > 0 : (maxgap < 0 || gap[p] <= maxgap);
+  PetscCheck(n > 0, comm, PETSC_ERR_ARG_WRONG, "No interface pair is in contact after the preload: no friction elements (check -preload_force)");
+  PetscCall(PetscMemzero(el, sizeof(*el)));
+  el->n      = n;
+  el->ntypes = 1;
+  PetscCall(PetscStrncpy(el->typename[0], types[type], sizeof(el->typename[0])));
+  PetscCall(PetscMalloc5(n, &el->type, n, &el->dof_a, n, &el->dof_b, n, &el->ndof_a, n, &el->ndof_b));
+  PetscCall(PetscMalloc4(n, &el->kt, n, &el->kn, n, &el->mu, n, &el->n0));
+  PetscCall(PetscMalloc4(3 * n, &el->vdof_a, 3 * n, &el->vdof_b, 3 * n, &el->tdir, 3 * n, &el->ndir));
+  PetscCall(PetscMalloc1(n, pair));
+  for (PetscInt p = 0, e = 0; p < np; p++) {
+    if (!(type == 0 ? N[p] > 0 : (maxgap < 0 || gap[p] <= maxgap))) continue;
+    el->type[e]  = 0;
+    el->dof_a[e] = el->dof_b[e] = el->ndof_a[e] = el->ndof_b[e] = -1;
+    el->kt[e]    = kt;
+    el->kn[e]    = type ? kn : 0.0;
+    el->mu[e]    = mu;
+    el->n0[e]    = type ? N[p] - kn * gap[p] : N[p];
+    for (PetscInt c = 0; c < 3; c++) {
+      el->vdof_a[3 * e + c] = P->dofA[3 * p + c];
+      el->vdof_b[3 * e + c] = P->dofB[3 * p + c];
+      el->tdir[3 * e + c]   = P->t[3 * p + c];
+      el->ndir[3 * e + c]   = P->nrm[3 * p + c];
+    }
+    (*pair)[e] = p;
+    e++;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Bounding box of the mesh [m] (collective) */
+PetscErrorCode JRModelGetBoundingBox(JRModel model, PetscReal lo[3], PetscReal hi[3])
+{
+  Vec                X;
+  const PetscScalar *x;
+  PetscInt           rlo, rhi;
+  PetscReal          l[3] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, h[3] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL};
+  MPI_Comm           comm;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetComm(model, &comm));
+  PetscCall(JRModelGetCoordinates(model, &X));
+  PetscCheck(X, comm, PETSC_ERR_ARG_WRONG, "The model has no mesh coordinates (points are found by position only on FE models)");
+  PetscCall(VecGetOwnershipRange(X, &rlo, &rhi));
+  PetscCall(VecGetArrayRead(X, &x));
+  for (PetscInt i = rlo; i < rhi; i++) {
+    const PetscInt c = i % 3;
+    l[c]             = PetscMin(l[c], PetscRealPart(x[i - rlo]));
+    h[c]             = PetscMax(h[c], PetscRealPart(x[i - rlo]));
+  }
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCall(VecDestroy(&X));
+  PetscCall(MPIU_Allreduce(l, lo, 3, MPIU_REAL, MPIU_MIN, comm));
+  PetscCall(MPIU_Allreduce(h, hi, 3, MPIU_REAL, MPIU_MAX, comm));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRModelFindDof - the DOF of component comp (0 x, 1 y, 2 z) of the mesh node nearest to the point p [m],
+  and that node's distance from it (collective; the same on every rank; ties go to the lowest rank).
+  The DOFs of a node are consecutive x, y, z (PetscFE layout), so DOF i is component i % 3.
+*/
+PetscErrorCode JRModelFindDof(JRModel model, const PetscReal p[3], PetscInt comp, PetscInt *dof, PetscReal *dist)
+{
+  Vec                X;
+  const PetscScalar *x;
+  PetscInt           rlo, rhi, best = -1;
+  PetscReal          bd = PETSC_MAX_REAL;
+  MPI_Comm           comm;
+  struct {
+    double d;
+    int    r;
+  } in, out;
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetComm(model, &comm));
+  PetscCheck(comp >= 0 && comp < 3, comm, PETSC_ERR_ARG_OUTOFRANGE, "Component %" PetscInt_FMT ": 0 (x), 1 (y) or 2 (z)", comp);
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(JRModelGetCoordinates(model, &X));
+  PetscCheck(X, comm, PETSC_ERR_ARG_WRONG, "The model has no mesh coordinates (points are found by position only on FE models)");
+  PetscCall(VecGetOwnershipRange(X, &rlo, &rhi));
+  PetscCheck(rlo % 3 == 0 && (rhi - rlo) % 3 == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "DOFs are not in x, y, z triples");
+  PetscCall(VecGetArrayRead(X, &x));
+  for (PetscInt i = 0; i < rhi - rlo; i += 3) {
+    PetscReal d = 0.0;
+    for (PetscInt c = 0; c < 3; c++) d += PetscSqr(PetscRealPart(x[i + c]) - p[c]);
+    if (d < bd) {
+      bd   = d;
+      best = rlo + i + comp;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCall(VecDestroy(&X));
+  in.d = bd;
+  in.r = rank;
+  PetscCallMPI(MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm));
+  PetscCallMPI(MPI_Bcast(&best, 1, MPIU_INT, out.r, comm));
+  *dof = best;
+  if (dist) *dist = PetscSqrtReal(out.d);
+  PetscFunctionReturn(0);
+}
