@@ -214,6 +214,7 @@ PETSC_EXTERN PetscErrorCode JRPreloadDestroy(JRPreload *);
 /* The node-to-node interface: one friction element per facing node pair (options -interface_*) */
 PETSC_EXTERN PetscErrorCode JRInterfaceCreateElements(JRModel, JRPreload, JRElements *, PetscInt **);
 PETSC_EXTERN PetscErrorCode JRElementsDestroy(JRElements *);
+PETSC_EXTERN PetscErrorCode JRElementsCreateStuckStiffness(Mat, const JRElements *, Mat *, PetscReal *);
 
 /* ------------------------------------------------------------------------------------------ */
 /* JRModes: mass-normalised modes of K phi = omega^2 M phi (SLEPc, prefix modes_)              */
@@ -224,6 +225,7 @@ PETSC_EXTERN PetscErrorCode JRModesSetOperators(JRModes, Mat, Mat);
 PETSC_EXTERN PetscErrorCode JRModesSetNumber(JRModes, PetscInt);
 PETSC_EXTERN PetscErrorCode JRModesSetRigidBasis(JRModes, PetscInt, Vec[]);
 PETSC_EXTERN PetscErrorCode JRModesSetCoordinates(JRModes, Vec);
+PETSC_EXTERN PetscErrorCode JRModesSetSignature(JRModes, PetscReal);
 PETSC_EXTERN PetscErrorCode JRModesGetVecs(JRModes, Vec **);
 PETSC_EXTERN PetscErrorCode JRModesGetNumRigid(JRModes, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRModesSetFromOptions(JRModes);
@@ -266,6 +268,7 @@ PETSC_EXTERN PetscErrorCode JRHBMContactStates(JRHBM, Vec, PetscInt[4]);
 PETSC_EXTERN PetscErrorCode JRHBMElementStates(JRHBM, Vec, JRContactState[]);
 PETSC_EXTERN PetscErrorCode JRHBMKineticEnergy(JRHBM, PetscReal, Vec, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMSetExcitationDof(JRHBM, PetscInt, PetscInt, const PetscInt[]);
+PETSC_EXTERN PetscErrorCode JRHBMSetBasis(JRHBM, PetscInt);
 PETSC_EXTERN PetscErrorCode JRHBMStickFrequencies(JRHBM, PetscInt *, PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMGetDampingDescription(JRHBM, const char **);
 PETSC_EXTERN PetscErrorCode JRHBMView(JRHBM, PetscViewer);

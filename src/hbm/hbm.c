@@ -42,6 +42,7 @@ typedef struct {
   PetscReal *Rc, *Sc, *Dc; /* their projection rows (nsel x nm) and one derivative column */
   PetscReal *kt, *kn;
   PetscInt  *eidx;         /* the model's element number of each local element */
+  PetscReal *Kc;           /* stuck basis: the stuck springs of this rank's elements in contact at rest (nm x nm) */
 } HBMGroup;
 
 struct _p_JRHBM {
@@ -56,6 +57,9 @@ struct _p_JRHBM {
   PetscReal        *Km, *Mm, *Cm; /* nm x nm row-major */
   PetscReal        *omega_r;      /* natural frequencies of the modes kept [rad/s] */
   PetscReal        *pin;          /* rigid-body modes: the mean equation a0_r pin_r = 0 (else 0 = 0) */
+  PetscInt          basis;        /* 0 free: modes of K; 1 stuck: modes of K + the stuck springs */
+  PetscBool         basis_set;
+  PetscReal        *Kg;           /* the structure's own stiffness in the basis (structural damping gamma Kg) */
   PetscInt          fdof, nout, *outdof;
   PetscBool         fdof_set;      /* JRHBMSetExcitationDof() called: -frf_dof ignored */
   char              ffile[PETSC_MAX_PATH_LEN];
@@ -142,6 +146,10 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
   PetscCall(PetscOptionsInt("-hbm_harmonics", "Harmonics H (plus the mean) in the response", "JRHBMSetUp", h->H, &h->H, NULL));
   PetscCall(PetscOptionsInt("-hbm_samples", "Time samples per cycle N for alternating frequency-time (N >= 2H+1)", "JRHBMSetUp", h->Ns, &h->Ns, NULL));
   PetscCall(PetscOptionsInt("-hbm_modes", "Number of linear modes in the modal superposition (default: all up to 200 DOFs, else 10)", "JRHBMSetUp", h->nmodes_opt, &h->nmodes_opt, NULL));
+  {
+    const char *bases[] = {"free", "stuck"};
+    PetscCall(PetscOptionsEList("-hbm_basis", "Modal basis: free (modes of K: the interface held by the bolts only) or stuck (modes of K plus every element in contact at rest stuck; the elements then add only their deviation from stuck)", "JRHBMSetUp", bases, 2, bases[h->basis], &h->basis, &h->basis_set));
+  }
   PetscCall(PetscOptionsBool("-hbm_physical", "Physical coordinates instead of modes (small systems: checks modal truncation)", "JRHBMSetUp", h->physical, &h->physical, NULL));
   PetscCall(PetscOptionsReal("-hbm_gamma", "Structural damping H = gamma K (2.17) [-]", "JRHBMSetUp", h->gamma, &h->gamma, NULL));
   PetscCall(PetscOptionsReal("-hbm_zeta", "Modal viscous damping ratio, every mode [-]", "JRHBMSetUp", h->zeta, &h->zeta, NULL));
@@ -191,6 +199,7 @@ static PetscErrorCode GroupDestroy(HBMGroup *g)
   PetscCall(JRFreeAligned(&g->Dc));
   PetscCall(PetscFree2(g->kt, g->kn));
   PetscCall(PetscFree(g->eidx));
+  PetscCall(PetscFree(g->Kc));
   PetscFunctionReturn(0);
 }
 
@@ -307,6 +316,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
   if (h->physical) {
     PetscCheck(ndof <= 2000, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_physical is for small systems (%" PetscInt_FMT " DOFs here, at most 2000): use modes", ndof);
     PetscCheck(h->zeta == 0.0, h->comm, PETSC_ERR_ARG_INCOMP, "-hbm_zeta (modal damping) needs modal coordinates, not -hbm_physical: give a damping matrix with -model_damping");
+    PetscCheck(h->basis == 0, h->comm, PETSC_ERR_ARG_INCOMP, "-hbm_basis stuck needs modal coordinates, not -hbm_physical");
     h->nm = ndof;
     PetscCall(PetscCalloc3(h->nm * h->nm, &h->Km, h->nm * h->nm, &h->Mm, h->nm * h->nm, &h->Cm));
     PetscCall(DenseAll(K, h->Km));
@@ -319,7 +329,17 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     PetscCheck(h->nm <= ndof, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_modes %" PetscInt_FMT ": the model has only %" PetscInt_FMT " DOFs", h->nm, ndof);
     PetscCall(JRModesDestroy(&h->modes));
     PetscCall(JRModesCreate(h->comm, &h->modes));
-    PetscCall(JRModesSetOperators(h->modes, K, M));
+    if (h->basis == 1) {
+      Mat       Ks, KK;
+      PetscReal sig;
+      PetscCall(JRElementsCreateStuckStiffness(K, el, &Ks, &sig));
+      PetscCall(MatDuplicate(K, MAT_COPY_VALUES, &KK));
+      PetscCall(MatAXPY(KK, 1.0, Ks, DIFFERENT_NONZERO_PATTERN));
+      PetscCall(JRModesSetOperators(h->modes, KK, M));
+      PetscCall(JRModesSetSignature(h->modes, sig));
+      PetscCall(MatDestroy(&KK));
+      PetscCall(MatDestroy(&Ks));
+    } else PetscCall(JRModesSetOperators(h->modes, K, M));
     PetscCall(JRModesSetNumber(h->modes, h->nm));
     PetscCall(JRModesSetFromOptions(h->modes));
     PetscCall(JRModesSetNumber(h->modes, h->nm)); /* -hbm_modes wins over -modes_nev */
@@ -483,6 +503,35 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     g->eidx = eidx;
   }
 
+  /* stuck basis: each element's stuck spring is in Km already, so the element adds F - kt u (its deviation from
+     stuck); structural damping acts on the structure's own stiffness Kg = Km - Phi^T Ks Phi only */
+  PetscCall(PetscFree(h->Kg));
+  PetscCall(PetscMalloc1(h->nm * h->nm, &h->Kg));
+  PetscCall(PetscArraycpy(h->Kg, h->Km, h->nm * h->nm));
+  if (h->basis == 1) {
+    const PetscInt nm = h->nm;
+    PetscReal     *loc, *all;
+    PetscCall(PetscCalloc2(nm * nm, &loc, nm * nm, &all));
+    for (PetscInt t = 0; t < h->ngroups; t++) {
+      HBMGroup *g = &h->g[t];
+      PetscCall(PetscCalloc1(nm * nm, &g->Kc));
+      if (!g->split || !g->nloc) continue;
+      for (PetscInt i = 0; i < nm; i++)
+        for (PetscInt e = 0; e < g->nloc; e++) g->W[e + i * g->nloc] = (g->nstatic[e] > 0 ? g->kt[e] : 0.0) * g->R[e + i * g->nloc];
+      PetscCall(Gemm("T", "N", nm, nm, g->nloc, 1.0, g->R, g->nloc, g->W, g->nloc, 0.0, g->Kc, nm));
+      if (g->normal) {
+        for (PetscInt i = 0; i < nm; i++)
+          for (PetscInt e = 0; e < g->nloc; e++) g->W[e + i * g->nloc] = (g->nstatic[e] > 0 ? g->kn[e] : 0.0) * g->S[e + i * g->nloc];
+        PetscCall(Gemm("T", "N", nm, nm, g->nloc, 1.0, g->S, g->nloc, g->W, g->nloc, 1.0, g->Kc, nm));
+      }
+      for (PetscInt i = 0; i < nm * nm; i++) loc[i] += g->Kc[i];
+    }
+    PetscCall(MPIU_Allreduce(loc, all, nm * nm, MPIU_REAL, MPIU_SUM, h->comm));
+    for (PetscInt i = 0; i < nm; i++)
+      for (PetscInt j = 0; j < nm; j++) h->Kg[i * nm + j] -= all[i + j * nm];
+    PetscCall(PetscFree2(loc, all));
+  }
+
   /* the nonlinear solver at fixed frequency: SNES on every rank, prefix hbm_ */
   PetscCall(PetscFree(h->buf));
   PetscCall(PetscMalloc1(h->n + h->n * h->n, &h->buf));
@@ -531,8 +580,9 @@ PetscErrorCode JRHBMSetExcitationDof(JRHBM h, PetscInt dof, PetscInt nout, const
 
 /*
   JRHBMStickFrequencies - natural frequencies [Hz] of the linear structure with every element stuck
-  (tangential springs kt and, for jenkins_nv, normal springs kn) in the modal basis of the HBM:
-  eigenvalues of Phi^T (K + sum_e kt r_e r_e^T + kn s_e s_e^T) Phi (collective; freq has room for nm).
+  (tangential springs kt and, for jenkins_nv, normal springs kn; only the elements in contact at rest,
+  n0 > 0) in the modal basis of the HBM: eigenvalues of Phi^T (K + sum_e kt r_e r_e^T + kn s_e s_e^T) Phi
+  (collective; freq has room for nm).
 */
 PetscErrorCode JRHBMStickFrequencies(JRHBM h, PetscInt *nf, PetscReal freq[])
 {
@@ -543,10 +593,18 @@ PetscErrorCode JRHBMStickFrequencies(JRHBM h, PetscInt *nf, PetscReal freq[])
   PetscFunctionBeginUser;
   PetscCall(JRHBMSetUp(h));
   PetscCall(PetscCalloc5(nm * nm, &A, nm * nm, &B, nm * nm, &loc, nm, &w, 8 * nm, &work));
-  for (PetscInt t = 0; t < h->ngroups; t++) {
+  for (PetscInt t = 0; t < h->ngroups && h->basis == 0; t++) { /* the elements in contact at rest (n0 > 0), stuck */
     HBMGroup *g = &h->g[t];
     PetscCheck(g->split || !g->nloc, PETSC_COMM_SELF, PETSC_ERR_SUP, "Stuck frequencies need friction elements (jenkins, jenkins_nv)");
-    for (PetscInt i = 0; i < nm * nm; i++) loc[i] += g->Kst[i] + (g->normal ? g->Knn[i] : 0.0);
+    if (!g->nloc) continue;
+    for (PetscInt i = 0; i < nm; i++)
+      for (PetscInt e = 0; e < g->nloc; e++) g->W[e + i * g->nloc] = (g->nstatic[e] > 0 ? g->kt[e] : 0.0) * g->R[e + i * g->nloc];
+    PetscCall(Gemm("T", "N", nm, nm, g->nloc, 1.0, g->R, g->nloc, g->W, g->nloc, 1.0, loc, nm));
+    if (g->normal) {
+      for (PetscInt i = 0; i < nm; i++)
+        for (PetscInt e = 0; e < g->nloc; e++) g->W[e + i * g->nloc] = (g->nstatic[e] > 0 ? g->kn[e] : 0.0) * g->S[e + i * g->nloc];
+      PetscCall(Gemm("T", "N", nm, nm, g->nloc, 1.0, g->S, g->nloc, g->W, g->nloc, 1.0, loc, nm));
+    }
   }
   PetscCall(MPIU_Allreduce(loc, A, nm * nm, MPIU_REAL, MPIU_SUM, h->comm));
   for (PetscInt i = 0; i < nm; i++)
@@ -561,6 +619,16 @@ PetscErrorCode JRHBMStickFrequencies(JRHBM h, PetscInt *nf, PetscReal freq[])
   for (PetscInt i = 0; i < nm; i++) freq[i] = PetscSqrtReal(PetscMax(w[i], 0.0)) / (2 * PETSC_PI);
   *nf = nm;
   PetscCall(PetscFree5(A, B, loc, w, work));
+  PetscFunctionReturn(0);
+}
+
+/* The modal basis: 0 free (modes of K), 1 stuck (modes of K with the stuck contact springs); -hbm_basis */
+PetscErrorCode JRHBMSetBasis(JRHBM h, PetscInt basis)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(basis == 0 || basis == 1, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Basis 0 (free) or 1 (stuck)");
+  h->basis       = basis;
+  h->setupcalled = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -652,6 +720,15 @@ static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Pet
     }
     PetscCall(Gemm("T", "N", nm, nc, nloc, 1.0, g->R, nloc, g->F, nloc, 1.0, loc, nm));
     if (g->normal) PetscCall(Gemm("T", "N", nm, nc, nloc, 1.0, g->S, nloc, g->N, nloc, 1.0, loc, nm));
+    if (g->Kc) { /* stuck basis: less the stuck springs, which are in Km */
+      PetscCall(Gemm("N", "N", nm, nc, nm, -1.0, g->Kc, nm, a, nm, 1.0, loc, nm));
+      if (jac)
+        for (PetscInt k = 0; k < nc; k++) {
+          PetscReal *blk = loc + n + (k * nm) + (k * nm) * n;
+          for (PetscInt j = 0; j < nm; j++)
+            for (PetscInt i = 0; i < nm; i++) blk[i + j * n] -= g->Kc[i + j * nm];
+        }
+    }
     if (jac) {
       PetscInt         nsel = nloc;
       const PetscReal *Rj = g->R, *Sj = g->S;
@@ -753,7 +830,7 @@ static PetscErrorCode Linear(JRHBM h, PetscReal w, const PetscReal *a, PetscReal
       PetscReal ds = 0.0, dc = 0.0, bs = 0.0, bc = 0.0, ms = 0.0, mc = 0.0, cs = 0.0, cc = 0.0;
       for (PetscInt j = 0; j < nm; j++) {
         const PetscReal kij = h->Km[i * nm + j], mij = h->Mm[i * nm + j], cij = h->Cm[i * nm + j];
-        const PetscReal dij = kij - hw * hw * mij, bij = h->gamma * kij + hw * cij;
+        const PetscReal dij = kij - hw * hw * mij, bij = h->gamma * h->Kg[i * nm + j] + hw * cij;
         ds += dij * as[j];
         dc += dij * ac[j];
         bs += bij * as[j];
@@ -971,7 +1048,7 @@ PetscErrorCode JRHBMEnergy(JRHBM h, PetscReal w, Vec a, PetscReal *Win, PetscRea
     const PetscScalar *as = x + (2 * hh - 1) * nm, *ac = x + 2 * hh * nm;
     for (PetscInt i = 0; i < nm; i++)
       for (PetscInt j = 0; j < nm; j++) {
-        const PetscReal b = h->gamma * h->Km[i * nm + j] + hh * w * h->Cm[i * nm + j];
+        const PetscReal b = h->gamma * h->Kg[i * nm + j] + hh * w * h->Cm[i * nm + j];
         ed += PETSC_PI * hh * b * (PetscRealPart(as[i]) * PetscRealPart(as[j]) + PetscRealPart(ac[i]) * PetscRealPart(ac[j]));
       }
   }
@@ -1119,6 +1196,7 @@ PetscErrorCode JRHBMDestroy(JRHBM *hbm)
   PetscCall(PetscFree3(h->Km, h->Mm, h->Cm));
   PetscCall(PetscFree(h->omega_r));
   PetscCall(PetscFree(h->pin));
+  PetscCall(PetscFree(h->Kg));
   PetscCall(PetscFree(h->outdof));
   PetscCall(PetscFree(h->fm));
   PetscCall(PetscFree(h->Phiout));

@@ -127,6 +127,14 @@ PetscErrorCode JRModesSetCoordinates(JRModes md, Vec X)
   PetscFunctionReturn(0);
 }
 
+/* A number identifying stuck contact springs added to K (stuck basis), saved with the modes and checked on load */
+PetscErrorCode JRModesSetSignature(JRModes md, PetscReal sig)
+{
+  PetscFunctionBeginUser;
+  md->sig = sig;
+  PetscFunctionReturn(0);
+}
+
 /* Write omega^2 and the modes (and the coordinates) to an HDF5 file, through a temporary name */
 static PetscErrorCode ModesSave(JRModes md, const char file[])
 {
@@ -165,6 +173,7 @@ static PetscErrorCode ModesSave(JRModes md, const char file[])
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "modes", PETSC_INT, &nm));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "ranks", PETSC_INT, &size));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "has_coordinates", PETSC_INT, &hasx));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "stuck_signature", PETSC_REAL, &md->sig));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "units", PETSC_STRING, "omega2: rad^2/s^2; phi_i: mass-normalised modes over every DOF (kg^-1/2) in the model's parallel DOF numbering; coordinates: m"));
   PetscCall(PetscViewerDestroy(&v));
   if (!rank) PetscCheck(!rename(tmp, file), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "-modes_save: cannot write the file %s", file);
@@ -192,6 +201,11 @@ static PetscErrorCode ModesLoad(JRModes md, const char file[])
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "modes", PETSC_INT, NULL, &nm));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "ranks", PETSC_INT, NULL, &ranks));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "has_coordinates", PETSC_INT, NULL, &hasx));
+  {
+    PetscReal sig = 0;
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "stuck_signature", PETSC_REAL, NULL, &sig));
+    PetscCheck(PetscAbsReal(sig - md->sig) <= 1e-12 * PetscMax(PetscAbsReal(sig), PetscAbsReal(md->sig)), md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: its modes are of %s, this run needs %s (-hbm_basis, -interface_*, preload): recompute them", file, sig == 0 ? "the free structure" : "another stuck interface", md->sig == 0 ? "the free structure's" : "those of this stuck interface");
+  }
   PetscCheck(nm >= md->nev, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s holds %" PetscInt_FMT " modes, %" PetscInt_FMT " are asked for (-hbm_modes / -modes_nev)", file, nm, md->nev);
   PetscCheck(ranks == size, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s was written on %" PetscInt_FMT " ranks, this run has %d: the FE DOF numbering depends on the partition; run on %" PetscInt_FMT " ranks or recompute the modes", file, ranks, (int)size, ranks);
   PetscCall(MatGetSize(md->K, &n, NULL));

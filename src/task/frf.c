@@ -14,39 +14,22 @@
    the stuck springs, by SLEPc); every element's contact state at each level's peak, BASE_contact.csv and
    the map BASE_contact.png in the four colours of thesis Figs 5.12-5.19.
 */
-#include <jointrom/private/modelimpl.h>
+#include <jointrom.h>
 
-/* The full FE model with every element stuck: K + sum_e kt t t^T (+ kn n n^T) between its nodes, and its
+/* The full FE model with every element in contact at rest (n0 > 0) stuck: K + sum_e kt t t^T (+ kn n n^T)
+   between its nodes, and its
    lowest nf natural frequencies by SLEPc (the same shift-and-invert as the free modes) */
 static PetscErrorCode StickFE(JRModel model, const JRElements *el, PetscInt nf, PetscReal f[])
 {
   Mat              K, M, B, Ks;
   JRModes          md;
-  PetscInt        *bn, **bd, nrb;
-  PetscReal      **bv;
+  PetscInt         nrb;
   Vec              rb[6];
   const PetscReal *lam;
 
   PetscFunctionBeginUser;
   PetscCall(JRModelGetMatrices(model, &K, &M, NULL));
-  PetscCall(PetscMalloc3(el->n, &bn, el->n, &bd, el->n, &bv));
-  for (PetscInt e = 0; e < el->n; e++) {
-    bn[e] = 6;
-    PetscCall(PetscMalloc2(6, &bd[e], 36, &bv[e]));
-    for (PetscInt c = 0; c < 3; c++) {
-      bd[e][c]     = el->vdof_a[3 * e + c];
-      bd[e][3 + c] = el->vdof_b[3 * e + c];
-    }
-    for (PetscInt i = 0; i < 6; i++)
-      for (PetscInt j = 0; j < 6; j++) {
-        const PetscReal si = i < 3 ? 1.0 : -1.0, sj = j < 3 ? 1.0 : -1.0;
-        const PetscReal *t = el->tdir + 3 * e, *n = el->ndir + 3 * e;
-        bv[e][6 * i + j] = si * sj * (el->kt[e] * t[i % 3] * t[j % 3] + el->kn[e] * n[i % 3] * n[j % 3]);
-      }
-  }
-  PetscCall(JRMatCreateFromBlocks(K, el->n, bn, (const PetscInt *const *)bd, (const PetscReal *const *)bv, &B));
-  for (PetscInt e = 0; e < el->n; e++) PetscCall(PetscFree2(bd[e], bv[e]));
-  PetscCall(PetscFree3(bn, bd, bv));
+  PetscCall(JRElementsCreateStuckStiffness(K, el, &B, NULL));
   PetscCall(MatDuplicate(K, MAT_COPY_VALUES, &Ks));
   PetscCall(MatAXPY(Ks, 1.0, B, DIFFERENT_NONZERO_PATTERN));
   PetscCall(MatDestroy(&B));
@@ -234,6 +217,7 @@ PetscErrorCode JRTaskFRF(MPI_Comm comm)
     }
     PetscCall(JRHBMCreate(comm, &hbm));
     PetscCall(JRHBMSetExcitationDof(hbm, fdof, nout, odof));
+    PetscCall(JRHBMSetBasis(hbm, 1)); /* stuck-interface modes: -hbm_basis free for the thesis's free ones */
     /* the modes are saved for reuse unless they are read */
     {
       PetscBool ld, sv;

@@ -57,6 +57,7 @@ struct _p_JRModes {
   PetscInt   nrb;        /* exact rigid-body basis supplied (deflated; kept as the first modes) */
   Vec       *rb;
   PetscBool  use_rb;     /* -modes_rigid_basis */
+  PetscReal  sig;        /* signature of the stuck springs added to K (0: none), saved and checked */
   Vec        X;          /* node coordinates in the DOF layout (optional): checks a loaded file's layout */
   char       load[PETSC_MAX_PATH_LEN], save[PETSC_MAX_PATH_LEN]; /* -modes_load, -modes_save */
 };
