@@ -165,9 +165,13 @@ static PetscErrorCode ModesSave(JRModes md, const char file[])
     PetscCall(PetscObjectSetName((PetscObject)md->phi[i], name));
     PetscCall(VecView(md->phi[i], v));
   }
-  if (md->X) {
-    PetscCall(PetscObjectSetName((PetscObject)md->X, "coordinates"));
-    PetscCall(VecView(md->X, v));
+  if (md->X) { /* a plain copy: a vector of a DMPlex would go to /fields */
+    Vec y;
+    PetscCall(MatCreateVecs(md->K, &y, NULL));
+    PetscCall(VecCopy(md->X, y));
+    PetscCall(PetscObjectSetName((PetscObject)y, "coordinates"));
+    PetscCall(VecView(y, v));
+    PetscCall(VecDestroy(&y));
   }
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "modes", PETSC_INT, &nm));
@@ -201,13 +205,14 @@ static PetscErrorCode ModesLoad(JRModes md, const char file[])
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "modes", PETSC_INT, NULL, &nm));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "ranks", PETSC_INT, NULL, &ranks));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "has_coordinates", PETSC_INT, NULL, &hasx));
+  PetscCheck(nm >= md->nev, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s holds %" PetscInt_FMT " modes, %" PetscInt_FMT " are asked for (-hbm_modes / -modes_nev)", file, nm, md->nev);
+  PetscCheck(ranks == size, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s was written on %" PetscInt_FMT " ranks, this run has %d: the FE DOF numbering depends on the partition; run on %" PetscInt_FMT " ranks or recompute the modes", file, ranks, (int)size, ranks);
   {
     PetscReal sig = 0;
     PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "stuck_signature", PETSC_REAL, NULL, &sig));
+    PetscCall(PetscInfo(NULL, "stuck signature: file %.17g, this run %.17g\n", (double)sig, (double)md->sig));
     PetscCheck(PetscAbsReal(sig - md->sig) <= 1e-12 * PetscMax(PetscAbsReal(sig), PetscAbsReal(md->sig)), md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: its modes are of %s, this run needs %s (-hbm_basis, -interface_*, preload): recompute them", file, sig == 0 ? "the free structure" : "another stuck interface", md->sig == 0 ? "the free structure's" : "those of this stuck interface");
   }
-  PetscCheck(nm >= md->nev, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s holds %" PetscInt_FMT " modes, %" PetscInt_FMT " are asked for (-hbm_modes / -modes_nev)", file, nm, md->nev);
-  PetscCheck(ranks == size, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s was written on %" PetscInt_FMT " ranks, this run has %d: the FE DOF numbering depends on the partition; run on %" PetscInt_FMT " ranks or recompute the modes", file, ranks, (int)size, ranks);
   PetscCall(MatGetSize(md->K, &n, NULL));
   PetscCall(PetscViewerHDF5PushGroup(v, "/jointrom_modes"));
   PetscCall(MatCreateVecs(md->K, &x, NULL));
