@@ -10,6 +10,8 @@
      -interface_kn [N/m]  normal stiffness per element (jenkins_nv; default kt)
      -interface_mu [-]    friction coefficient
      -interface_max_gap [m] jenkins_nv: leave out pairs whose preload gap is larger (default: keep all)
+     -interface_split k   every element as k identical elements in parallel (kt/k, kn/k, n0/k): the same
+                          forces, k times the work; for benchmarks of large interfaces
    jenkins elements are made only for the pairs in contact after the preload (N_static > 0): an open pair
    carries no friction. jenkins_nv elements get n0 = N_static - kn v_gap (5.1): gaps as negative loads.
 */
@@ -21,7 +23,7 @@ PetscErrorCode JRInterfaceCreateElements(JRModel model, JRPreload pre, JRElement
   const JRPairs   *P;
   const PetscReal *N, *gap;
   PetscReal        kt = 1e6, kn = -1, mu = 0.12, maxgap = -1;
-  PetscInt         np, type = 0, n = 0;
+  PetscInt         np, type = 0, n = 0, split = 1;
   const char      *types[] = {JRCONTACTJENKINS, JRCONTACTJENKINSNV};
 
   PetscFunctionBeginUser;
@@ -31,11 +33,13 @@ PetscErrorCode JRInterfaceCreateElements(JRModel model, JRPreload pre, JRElement
   PetscCall(PetscOptionsReal("-kt", "Tangential contact stiffness per element [N/m]", "JRInterfaceCreateElements", kt, &kt, NULL));
   PetscCall(PetscOptionsReal("-kn", "Normal contact stiffness per element [N/m] (jenkins_nv; default kt)", "JRInterfaceCreateElements", kn, &kn, NULL));
   PetscCall(PetscOptionsReal("-mu", "Friction coefficient [-]", "JRInterfaceCreateElements", mu, &mu, NULL));
+  PetscCall(PetscOptionsInt("-split", "Every element as this many identical elements in parallel (kt/k, kn/k, n0/k): the same forces, k times the work (benchmarks)", "JRInterfaceCreateElements", split, &split, NULL));
   PetscCall(PetscOptionsReal("-max_gap", "jenkins_nv: leave out pairs whose preload gap exceeds this [m] (default: keep all)", "JRInterfaceCreateElements", maxgap, &maxgap, NULL));
   PetscOptionsEnd();
   if (kn < 0) kn = kt;
   PetscCheck(PetscIsNormalReal(kt) && kt > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-interface_kt %g: the tangential stiffness must be positive [N/m]", (double)kt);
   PetscCheck(PetscIsNormalReal(kn) && kn > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-interface_kn %g: the normal stiffness must be positive [N/m]", (double)kn);
+  PetscCheck(split >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-interface_split %" PetscInt_FMT ": at least 1", split);
   PetscCheck(!PetscIsInfOrNanReal(mu) && mu > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-interface_mu %g: the friction coefficient must be positive", (double)mu);
   PetscCall(JRModelGetPairs(model, &P));
   PetscCheck(P && P->n > 0, comm, PETSC_ERR_ARG_WRONG, "The model has no contact interface (node pairs): -task frf builds the node-to-node elements of FE models (-model_type brb, lap1, lap3, lap, gmsh)");
@@ -43,6 +47,7 @@ PetscErrorCode JRInterfaceCreateElements(JRModel model, JRPreload pre, JRElement
   PetscCheck(np == P->n, comm, PETSC_ERR_PLIB, "Preload has %" PetscInt_FMT " pairs, the model %" PetscInt_FMT, np, P->n);
   for (PetscInt p = 0; p < np; p++) n += type == 0 ? N[p] > 0 : (maxgap < 0 || gap[p] <= maxgap);
   PetscCheck(n > 0, comm, PETSC_ERR_ARG_WRONG, "No interface pair is in contact after the preload: no friction elements (check -preload_force)");
+  n *= split;
   PetscCall(PetscMemzero(el, sizeof(*el)));
   el->n      = n;
   el->ntypes = 1;
@@ -53,20 +58,21 @@ PetscErrorCode JRInterfaceCreateElements(JRModel model, JRPreload pre, JRElement
   PetscCall(PetscMalloc1(n, pair));
   for (PetscInt p = 0, e = 0; p < np; p++) {
     if (!(type == 0 ? N[p] > 0 : (maxgap < 0 || gap[p] <= maxgap))) continue;
-    el->type[e]  = 0;
-    el->dof_a[e] = el->dof_b[e] = el->ndof_a[e] = el->ndof_b[e] = -1;
-    el->kt[e]    = kt;
-    el->kn[e]    = type ? kn : 0.0;
-    el->mu[e]    = mu;
-    el->n0[e]    = type ? N[p] - kn * gap[p] : N[p];
-    for (PetscInt c = 0; c < 3; c++) {
-      el->vdof_a[3 * e + c] = P->dofA[3 * p + c];
-      el->vdof_b[3 * e + c] = P->dofB[3 * p + c];
-      el->tdir[3 * e + c]   = P->t[3 * p + c];
-      el->ndir[3 * e + c]   = P->nrm[3 * p + c];
+    for (PetscInt k = 0; k < split; k++, e++) {
+      el->type[e]  = 0;
+      el->dof_a[e] = el->dof_b[e] = el->ndof_a[e] = el->ndof_b[e] = -1;
+      el->kt[e]    = kt / split;
+      el->kn[e]    = type ? kn / split : 0.0;
+      el->mu[e]    = mu;
+      el->n0[e]    = (type ? N[p] - kn * gap[p] : N[p]) / split;
+      for (PetscInt c = 0; c < 3; c++) {
+        el->vdof_a[3 * e + c] = P->dofA[3 * p + c];
+        el->vdof_b[3 * e + c] = P->dofB[3 * p + c];
+        el->tdir[3 * e + c]   = P->t[3 * p + c];
+        el->ndir[3 * e + c]   = P->nrm[3 * p + c];
+      }
+      (*pair)[e] = p;
     }
-    (*pair)[e] = p;
-    e++;
   }
   PetscFunctionReturn(0);
 }

@@ -211,7 +211,7 @@ static PetscErrorCode ModesLoad(JRModes md, const char file[])
     PetscReal sig = 0;
     PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "stuck_signature", PETSC_REAL, NULL, &sig));
     PetscCall(PetscInfo(NULL, "stuck signature: file %.17g, this run %.17g\n", (double)sig, (double)md->sig));
-    PetscCheck(PetscAbsReal(sig - md->sig) <= 1e-12 * PetscMax(PetscAbsReal(sig), PetscAbsReal(md->sig)), md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: its modes are of %s, this run needs %s (-hbm_basis, -interface_*, preload): recompute them", file, sig == 0 ? "the free structure" : "another stuck interface", md->sig == 0 ? "the free structure's" : "those of this stuck interface");
+    PetscCheck(PetscAbsReal(sig - md->sig) <= 1e-9 * PetscMax(PetscAbsReal(sig), PetscAbsReal(md->sig)), md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: its modes are of %s, this run needs %s (-hbm_basis, -interface_*, preload): recompute them", file, sig == 0 ? "the free structure" : "another stuck interface", md->sig == 0 ? "the free structure's" : "those of this stuck interface");
   }
   PetscCall(MatGetSize(md->K, &n, NULL));
   PetscCall(PetscViewerHDF5PushGroup(v, "/jointrom_modes"));

@@ -15,6 +15,7 @@
    the map BASE_contact.png in the four colours of thesis Figs 5.12-5.19.
 */
 #include <jointrom.h>
+#include <sys/resource.h>
 
 /* The full FE model with every element in contact at rest (n0 > 0) stuck: K + sum_e kt t t^T (+ kn n n^T)
    between its nodes, and its
@@ -283,6 +284,15 @@ PetscErrorCode JRTaskFRF(MPI_Comm comm)
     }
     PetscCall(PetscFree(fs));
     if (base[0]) PetscCall(WriteContactMaps(comm, model, cont, &el, pair, base, plot));
+  }
+  { /* peak resident memory of the processes */
+    struct rusage ru;
+    PetscReal     mb[2], mx[2];
+    getrusage(RUSAGE_SELF, &ru);
+    mb[0] = mb[1] = ru.ru_maxrss / 1024.0;
+    PetscCall(MPIU_Allreduce(&mb[0], &mx[0], 1, MPIU_REAL, MPIU_MAX, comm));
+    PetscCall(MPIU_Allreduce(&mb[1], &mx[1], 1, MPIU_REAL, MPIU_SUM, comm));
+    PetscCall(PetscPrintf(comm, "frf: peak memory %.1f MB per process (largest), %.1f MB in all\n", (double)mx[0], (double)mx[1]));
   }
   PetscCall(JRContDestroy(&cont));
   PetscCall(JRHBMDestroy(&hbm));

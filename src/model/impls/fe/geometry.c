@@ -131,6 +131,14 @@ static PetscErrorCode BuildMesh(MPI_Comm comm, Model_FE *fe, const LapCtx *lc, P
     }
     PetscCall(PetscFree3(cells, coords, body));
   }
+  { /* the cells are numbered along the beam axis: the simple partitioner cuts the beams into slabs (minimal
+       cuts for a beam) and, unlike PT-Scotch, gives the same DOF numbering every run, so that saved modes can
+       be read back (-modes_load); -petscpartitioner_type chooses another */
+    PetscPartitioner part;
+    PetscCall(DMPlexGetPartitioner(*dm, &part));
+    PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERSIMPLE));
+    PetscCall(PetscPartitionerSetFromOptions(part));
+  }
   PetscCall(DMPlexDistribute(*dm, 0, NULL, &dist));
   if (dist) {
     PetscCall(DMDestroy(dm));
