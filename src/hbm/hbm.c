@@ -13,6 +13,11 @@
    Nonlinear forces: element e with tangential projection row r_e = phi(dof_a) - phi(dof_b) (4.3) sees
    U_e = A^T r_e (A = a as nm x nc) and gives back r_e F_e; jenkins_nv also s_e (normal DOFs) and its
    dynamic normal load N_e - max(n0, 0) (the static part is balanced by the preload).
+   Modal basis (-hbm_basis): free, the modes of K; or stuck, the modes of K + Ks with Ks the springs of every
+   friction element in contact at rest (n0 > 0) stuck: then Km holds them, each element adds its deviation
+   from stuck R^T (F - kt U) (and S^T (N - n0 - kn V)), and the structural damping is gamma Phi^T K Phi (Kg),
+   the structure's own stiffness only. Node-to-node elements (JRElements vdof_a) get rows (phi_A - phi_B) . t.
+   Rigid-body modes (omega = 0) get the mean equation pin * a0 = 0: no spring or element holds their mean.
    Jacobian: element derivatives projected, blocks (k, m): sum_e r_e dF_km/dU r_e^T = R^T diag(d) R
    (BLAS gemm). The thesis's finite differences (2.23) remain as -hbm_jacobian fd.
    Parallel: elements are split across the ranks (each type in contiguous chunks); each rank sums its

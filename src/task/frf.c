@@ -172,8 +172,10 @@ PetscErrorCode JRTaskFRF(MPI_Comm comm)
     tpre = t1 - t0;
     PetscCall(JRPreloadGetSummary(pre, &s));
     PetscCall(PetscPrintf(comm, "preload total_normal_force %.10g bolt_force_sum %.10g pairs_in_contact %" PetscInt_FMT " pairs %" PetscInt_FMT " (%.3g s)\n", (double)s.total_force, (double)s.bolt_force_sum, s.in_contact, s.pairs, (double)tpre));
-    PetscCall(PetscSNPrintf(pbase, sizeof(pbase), "%s_preload", base));
-    PetscCall(JRPreloadWrite(pre, pbase, plot));
+    if (base[0]) {
+      PetscCall(PetscSNPrintf(pbase, sizeof(pbase), "%s_preload", base));
+      PetscCall(JRPreloadWrite(pre, pbase, plot));
+    }
     /* 4. interface */
     PetscCall(JRInterfaceCreateElements(model, pre, &el, &pair));
     PetscCall(JRModelSetElements(model, &el));

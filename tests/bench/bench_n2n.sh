@@ -31,7 +31,7 @@ for k in $splits; do
       /^peak level/ {pk = $5}
       /^frf summary/ {f = 1; next}
       f && $1 ~ /^[0-9.]+$/ {pts = $6; nw = $7; s = $9; f = 0}
-      END {printf "%-9s %-5s %8s %7s %9.3f %12.3f %13.3f %12.6f %10.1f %12s\n", ne, np, pts, nw, s, 1e3 * s / pts, 1e3 * s / nw, pk, mem, ne > 430 ? sprintf("%.2f", (mem - m0) * 1024 / (ne - 430)) : "-"}'
+      END {printf "%-9s %-5s %8s %7s %9.3f %12.3f %13.3f %12.6f %10.1f %12s\n", ne, np, pts, nw, s, 1e3 * s / pts, 1e3 * s / nw, pk, mem, (ne > 430 ? sprintf("%.2f", (mem - m0) * 1024 / (ne - 430)) : "-")}'
   done
 done
 echo "(targets: >= 400 elements, 150 points in < 1 s on one core; 10^6 elements < 1 s per Newton iteration on 2 ranks)"
