@@ -50,6 +50,11 @@ b2=$(mpiexec -n 2 $J $brb -frf_force $lev -frf_fmin 128 -frf_fmax 138 -frf_outpu
 d=$(paste <(echo "$a") <(echo "$b2") | awk '{for (i = 5; i <= 9; i += 2) {x = $i; y = $(i+9); e = (x-y)/x; if (e < 0) e = -e; if (e > m) m = e}} END{printf "%.1e", m+0}')
 check "[ \$(echo \"\$b2\" | wc -l) = 5 ] && awk -v d=$d 'BEGIN{exit !(d < 1e-8)}'" "1 and 2 ranks: the same peaks (max relative difference $d)"
 
+# -interface_split 3: three identical elements in parallel (kt/3, n0/3) per pair: the same curves
+sp=$($J $brb -frf_force $lev -frf_fmin 128 -frf_fmax 138 -interface_split 3 -frf_output_file '' 2>&1 | grep '^peak level')
+d=$(paste <(echo "$a") <(echo "$sp") | awk '{for (i = 5; i <= 9; i += 2) {x = $i; y = $(i+9); e = (x-y)/x; if (e < 0) e = -e; if (e > m) m = e}} END{printf "%.1e", m+0}')
+check "[ \$(echo \"\$sp\" | wc -l) = 5 ] && awk -v d=$d 'BEGIN{exit !(d < 1e-7)}'" "-interface_split 3 (399 elements): the same peaks as 133 elements (max relative difference $d)"
+
 # 5. reuse: -modes_load reproduces the run that saved the modes; bad files are refused
 r=$($J $brb -frf_force $lev -frf_fmin 128 -frf_fmax 138 -modes_load "$tmp/lev_modes.h5" -frf_output_file "$tmp/re" 2>&1 | grep '^peak level')
 check "[ -n '$r' ] && [ \"\$r\" = \"\$a\" ]" "-modes_load: the same peaks as the run that saved the modes"
