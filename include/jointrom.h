@@ -269,6 +269,7 @@ PETSC_EXTERN PetscErrorCode JRHBMElementStates(JRHBM, Vec, JRContactState[]);
 PETSC_EXTERN PetscErrorCode JRHBMKineticEnergy(JRHBM, PetscReal, Vec, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMSetExcitationDof(JRHBM, PetscInt, PetscInt, const PetscInt[]);
 PETSC_EXTERN PetscErrorCode JRHBMSetBasis(JRHBM, PetscInt);
+PETSC_EXTERN PetscErrorCode JRHBMGetBasis(JRHBM, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMStickFrequencies(JRHBM, PetscInt *, PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMGetDampingDescription(JRHBM, const char **);
 PETSC_EXTERN PetscErrorCode JRHBMView(JRHBM, PetscViewer);

@@ -21,8 +21,8 @@ o30=$($J $brb -hbm_basis free -hbm_modes 30 -frf_force 0.001 -frf_fmin 130 -frf_
 e30=$(field "$(echo "$o30" | grep '^stick_fe')" truncation_error)
 check "[ -n '$e30' ] && awk -v a=$e30 -v b=$e12 'BEGIN{exit !(a >= 0 && a < b)}'" "more modes, smaller truncation error: 12 modes $e12, 30 modes $e30"
 
-# 2. stuck basis (default): the 1 mN peak = the full FE model's stuck resonance by SLEPc
-o=$($J $brb -frf_force 0.001 -frf_fmin 130 -frf_fmax 139 -frf_stick_fe -frf_output_file "$tmp/st" 2>&1)
+# 2. stuck basis: the 1 mN peak = the full FE model's stuck resonance by SLEPc
+o=$($J $brb -hbm_basis stuck -frf_force 0.001 -frf_fmin 130 -frf_fmax 139 -frf_stick_fe -frf_output_file "$tmp/st" 2>&1)
 fp=$(field "$(echo "$o" | grep '^stick freq_hz')" lowest_level_peak_hz); ffe=$(field "$(echo "$o" | grep '^stick_fe')" freq_hz)
 check "[ -n '$ffe' ] && close $fp $ffe 1e-3" "stuck modal basis, 1 mN: FRF peak $fp Hz = full FE model with the stuck springs (SLEPc) $ffe Hz within 0.1%"
 
@@ -38,6 +38,10 @@ check "awk -v b=$b 'BEGIN{exit !(b < 1e-8)}'" "energy balance W_in = W_damping +
 g=$($J $brb -hbm_basis free -frf_force 1000 -frf_fmin 128 -frf_fmax 138 -frf_output_file '' 2>&1 | awk '/^peak level/{print $5}')
 m=$($J -task modes -model_type brb -model_mesh_h 0.01 -modes_nev 7 -modes_output_file '' 2>&1 | awk '/^mode 7 /{print $3}')
 check "[ -n '$m' ] && [ -n '$g' ] && close $g $m 1e-3" "gross slip (1000 N, free basis): peak $g Hz -> the free interface's first bending mode $m Hz (-task modes) within 0.1%"
+# the mixed basis (default; 12 stuck + 12 free modes, Ritz vectors) holds both limits: stuck at 1 mN, free at 1000 N
+om=$($J $brb -frf_force 0.001,1000 -frf_fmin 128 -frf_fmax 138 -frf_output_file '' 2>&1)
+p1=$(echo "$om" | awk '/^peak level 0.001/{print $5}'); p2=$(echo "$om" | awk '/^peak level 1000/{print $5}')
+check "[ -n '$p1' ] && [ -n '$p2' ] && close $p1 $ffe 1e-3 && close $p2 $m 1e-3" "mixed basis: 1 mN peak $p1 Hz = FE stuck $ffe Hz and 1000 N peak $p2 Hz = free interface $m Hz, both within 0.1%"
 # contact map: one row per pair, the counts printed equal the CSV's
 n=$(($(wc -l < "$tmp/lev_contact.csv") - 1))
 c4=$(awk -F, 'NR>1 && $10 == 1{c++} END{print c+0}' "$tmp/lev_contact.csv")
@@ -58,7 +62,7 @@ check "[ \$(echo \"\$sp\" | wc -l) = 5 ] && awk -v d=$d 'BEGIN{exit !(d < 1e-7)}
 # 5. reuse: -modes_load reproduces the run that saved the modes; bad files are refused
 r=$($J $brb -frf_force $lev -frf_fmin 128 -frf_fmax 138 -modes_load "$tmp/lev_modes.h5" -frf_output_file "$tmp/re" 2>&1 | grep '^peak level')
 check "[ -n '$r' ] && [ \"\$r\" = \"\$a\" ]" "-modes_load: the same peaks as the run that saved the modes"
-expect_error "modes of another interface" "its modes are of another stuck interface" $J $brb -interface_kt 2e6 -frf_force 1 -modes_load "$tmp/lev_modes.h5" -frf_output_file ''
+expect_error "modes of another interface" "this run needs a mixed basis of this interface" $J $brb -interface_kt 2e6 -frf_force 1 -modes_load "$tmp/lev_modes.h5" -frf_output_file ''
 expect_error "modes of another partition" "was written on 1 ranks, this run has 2" mpiexec -n 2 $J $brb -frf_force 1 -modes_load "$tmp/lev_modes.h5" -frf_output_file ''
 expect_error "modes file missing" "-modes_load $tmp/none.h5: cannot read the file" $J $brb -frf_force 1 -modes_load "$tmp/none.h5" -frf_output_file ''
 expect_error "excitation outside the model" "-frf_at (1., 0., 0.) m: the nearest node is" $J $brb -frf_force 1 -frf_at 1,0,0 -frf_output_file ''

@@ -62,7 +62,8 @@ struct _p_JRHBM {
   PetscReal        *Km, *Mm, *Cm; /* nm x nm row-major */
   PetscReal        *omega_r;      /* natural frequencies of the modes kept [rad/s] */
   PetscReal        *pin;          /* rigid-body modes: the mean equation a0_r pin_r = 0 (else 0 = 0) */
-  PetscInt          basis;        /* 0 free: modes of K; 1 stuck: modes of K + the stuck springs */
+  PetscInt          basis;        /* 0 free: modes of K; 1 stuck: modes of K + the stuck springs; 2 mixed: both */
+  PetscInt          nfree;        /* mixed: free-interface modes added (-1: as many as stuck ones) */
   PetscBool         basis_set;
   PetscReal        *Kg;           /* the structure's own stiffness in the basis (structural damping gamma Kg) */
   PetscInt          fdof, nout, *outdof;
@@ -119,6 +120,7 @@ PetscErrorCode JRHBMCreate(MPI_Comm comm, JRHBM *hbm)
   h->level      = 1.0;
   h->jtype      = JR_HBM_JACOBIAN_ANALYTIC;
   h->nmodes_opt = -1;
+  h->nfree      = -1;
   PetscCallMPI(MPI_Comm_rank(comm, &h->rank));
   PetscCallMPI(MPI_Comm_size(comm, &h->size));
   *hbm = h;
@@ -152,8 +154,9 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
   PetscCall(PetscOptionsInt("-hbm_samples", "Time samples per cycle N for alternating frequency-time (N >= 2H+1)", "JRHBMSetUp", h->Ns, &h->Ns, NULL));
   PetscCall(PetscOptionsInt("-hbm_modes", "Number of linear modes in the modal superposition (default: all up to 200 DOFs, else 10)", "JRHBMSetUp", h->nmodes_opt, &h->nmodes_opt, NULL));
   {
-    const char *bases[] = {"free", "stuck"};
-    PetscCall(PetscOptionsEList("-hbm_basis", "Modal basis: free (modes of K: the interface held by the bolts only) or stuck (modes of K plus every element in contact at rest stuck; the elements then add only their deviation from stuck)", "JRHBMSetUp", bases, 2, bases[h->basis], &h->basis, &h->basis_set));
+    const char *bases[] = {"free", "stuck", "mixed"};
+    PetscCall(PetscOptionsEList("-hbm_basis", "Modal basis: free (modes of K: the interface held by the bolts only), stuck (modes of K plus every element in contact at rest stuck; the elements then add only their deviation from stuck) or mixed (Ritz vectors of the stuck structure in the span of both)", "JRHBMSetUp", bases, 3, bases[h->basis], &h->basis, &h->basis_set));
+    PetscCall(PetscOptionsInt("-hbm_free_modes", "-hbm_basis mixed: free-interface modes added to the -hbm_modes stuck ones (default: as many)", "JRHBMSetUp", h->nfree, &h->nfree, NULL));
   }
   PetscCall(PetscOptionsBool("-hbm_physical", "Physical coordinates instead of modes (small systems: checks modal truncation)", "JRHBMSetUp", h->physical, &h->physical, NULL));
   PetscCall(PetscOptionsReal("-hbm_gamma", "Structural damping H = gamma K (2.17) [-]", "JRHBMSetUp", h->gamma, &h->gamma, NULL));
@@ -291,6 +294,95 @@ static PetscErrorCode DenseAll(Mat A, PetscReal D[])
 static PetscErrorCode FormFunction(SNES, Vec, Vec, void *);
 static PetscErrorCode FormJacobian(SNES, Vec, Mat, Mat, void *);
 
+/*
+  Mixed basis: the stuck modes of h->modes (operators K + Ks, M) and the elastic free-interface modes of (K, M),
+  M-orthonormalised (dependent vectors dropped), then the Ritz vectors of (K + Ks, M) in their span, which
+  replace h->modes' modes: exact for the stuck structure and for the structure with the interface free.
+*/
+static PetscErrorCode MixBasis(JRHBM h, Mat K, Mat M)
+{
+  JRModes       fm, md = h->modes;
+  PetscInt      nrb, nf, nq = 0, ncand;
+  Vec           rb[6], *Q, *cand, Mv;
+  PetscScalar  *d;
+  PetscReal    *A, *lam, *work;
+  PetscBLASInt  bn, lwork, info;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetRigidBasis(h->model, &nrb, rb));
+  nf = h->nfree >= 0 ? h->nfree : h->nm;
+  PetscCall(JRModesCreate(h->comm, &fm));
+  PetscCall(JRModesSetOperators(fm, K, M));
+  PetscCall(JRModesSetFromOptions(fm));
+  fm->load[0] = fm->save[0] = 0;
+  fm->view                  = PETSC_FALSE;
+  PetscCall(JRModesSetNumber(fm, nf + nrb));
+  PetscCall(JRModesSetRigidBasis(fm, nrb, rb));
+  for (PetscInt i = 0; i < nrb; i++) PetscCall(VecDestroy(&rb[i]));
+  PetscCall(JRModesSolve(fm));
+  ncand = md->nm + nf;
+  PetscCall(PetscMalloc2(ncand, &cand, ncand, &Q));
+  for (PetscInt i = 0; i < md->nm; i++) cand[i] = md->phi[i];
+  for (PetscInt i = 0; i < nf; i++) cand[md->nm + i] = fm->phi[nrb + i];
+  PetscCall(VecDuplicate(md->phi[0], &Mv));
+  PetscCall(PetscMalloc1(ncand, &d));
+  for (PetscInt c = 0; c < ncand; c++) { /* modified Gram-Schmidt in the M inner product, twice */
+    PetscScalar nn;
+    PetscReal   n0;
+    PetscCall(VecDuplicate(cand[c], &Q[nq]));
+    PetscCall(VecCopy(cand[c], Q[nq]));
+    PetscCall(MatMult(M, Q[nq], Mv));
+    PetscCall(VecDot(Q[nq], Mv, &nn));
+    n0 = PetscSqrtReal(PetscRealPart(nn));
+    for (PetscInt pass = 0; pass < 2; pass++)
+      for (PetscInt j = 0; j < nq; j++) {
+        PetscCall(MatMult(M, Q[j], Mv));
+        PetscCall(VecDot(Q[nq], Mv, &nn));
+        PetscCall(VecAXPY(Q[nq], -nn, Q[j]));
+      }
+    PetscCall(MatMult(M, Q[nq], Mv));
+    PetscCall(VecDot(Q[nq], Mv, &nn));
+    if (PetscSqrtReal(PetscRealPart(nn)) < 1e-6 * n0) {
+      PetscCall(VecDestroy(&Q[nq]));
+      continue;
+    }
+    PetscCall(VecScale(Q[nq], 1.0 / PetscSqrtReal(PetscRealPart(nn))));
+    nq++;
+  }
+  /* Ritz: A = Q^T (K + Ks) Q, eigenvectors ascending */
+  PetscCall(PetscMalloc3(nq * nq, &A, nq, &lam, 8 * nq, &work));
+  for (PetscInt j = 0; j < nq; j++) {
+    PetscCall(MatMult(md->K, Q[j], Mv));
+    PetscCall(VecMDot(Mv, nq, Q, d));
+    for (PetscInt i = 0; i < nq; i++) A[i + j * nq] = PetscRealPart(d[i]);
+  }
+  for (PetscInt j = 0; j < nq; j++)
+    for (PetscInt i = 0; i < j; i++) A[i + j * nq] = A[j + i * nq] = 0.5 * (A[i + j * nq] + A[j + i * nq]);
+  PetscCall(PetscBLASIntCast(nq, &bn));
+  PetscCall(PetscBLASIntCast(8 * nq, &lwork));
+  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &bn, A, &bn, lam, work, &lwork, &info));
+  PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed: info %d", (int)info);
+  PetscCall(VecDestroyVecs(md->nm, &md->phi));
+  PetscCall(PetscFree(md->lambda));
+  PetscCall(VecDuplicateVecs(Q[0], nq, &md->phi));
+  PetscCall(PetscMalloc1(nq, &md->lambda));
+  for (PetscInt i = 0; i < nq; i++) {
+    PetscCall(VecZeroEntries(md->phi[i]));
+    for (PetscInt j = 0; j < nq; j++) d[j] = A[j + i * nq];
+    PetscCall(VecMAXPY(md->phi[i], nq, d, Q));
+    md->lambda[i] = PetscAbsReal(lam[i]) <= 1e-10 * PetscAbsReal(lam[nq - 1]) ? 0.0 : lam[i];
+  }
+  md->nm = nq;
+  PetscCall(PetscInfo(NULL, "Mixed basis: %" PetscInt_FMT " stuck + %" PetscInt_FMT " free modes -> %" PetscInt_FMT " Ritz vectors\n", md->nev, nf, nq));
+  PetscCall(PetscFree3(A, lam, work));
+  PetscCall(PetscFree(d));
+  PetscCall(VecDestroy(&Mv));
+  for (PetscInt i = 0; i < nq; i++) PetscCall(VecDestroy(&Q[i]));
+  PetscCall(PetscFree2(cand, Q));
+  PetscCall(JRModesDestroy(&fm));
+  PetscFunctionReturn(0);
+}
+
 /* Modes, projections, element partition, linear modal matrices, the SNES; a second call does nothing */
 PetscErrorCode JRHBMSetUp(JRHBM h)
 {
@@ -330,11 +422,12 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     PetscCall(PetscMalloc1(0, &h->omega_r));
   } else {
     const PetscReal *lam;
+    char             save[PETSC_MAX_PATH_LEN] = "";
     h->nm = h->nmodes_opt > 0 ? h->nmodes_opt : (ndof <= 200 ? ndof : 10);
     PetscCheck(h->nm <= ndof, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_modes %" PetscInt_FMT ": the model has only %" PetscInt_FMT " DOFs", h->nm, ndof);
     PetscCall(JRModesDestroy(&h->modes));
     PetscCall(JRModesCreate(h->comm, &h->modes));
-    if (h->basis == 1) {
+    if (h->basis >= 1) {
       Mat       Ks, KK;
       PetscReal sig;
       PetscCall(JRElementsCreateStuckStiffness(K, el, &Ks, &sig));
@@ -361,7 +454,18 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
         PetscCall(VecDestroy(&X));
       }
     }
+    if (h->basis == 2) { /* the saved or loaded basis is the mixed one, marked by the signature's sign */
+      PetscCall(PetscStrncpy(save, h->modes->save, sizeof(save)));
+      h->modes->save[0]  = 0;
+      h->modes->load_all = PETSC_TRUE;
+      h->modes->sig      = -h->modes->sig - 1.0;
+    }
     PetscCall(JRModesSolve(h->modes));
+    if (h->basis == 2 && !h->modes->load[0]) {
+      PetscCall(MixBasis(h, K, M));
+      if (save[0]) PetscCall(JRModesSave(h->modes, save));
+    }
+    h->nm = h->modes->nm;
     PetscCall(JRModesGetEigenvalues(h->modes, &lam));
     PetscCall(PetscCalloc3(h->nm * h->nm, &h->Km, h->nm * h->nm, &h->Mm, h->nm * h->nm, &h->Cm));
     PetscCall(PetscMalloc1(h->nm, &h->omega_r));
@@ -513,7 +617,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
   PetscCall(PetscFree(h->Kg));
   PetscCall(PetscMalloc1(h->nm * h->nm, &h->Kg));
   PetscCall(PetscArraycpy(h->Kg, h->Km, h->nm * h->nm));
-  if (h->basis == 1) {
+  if (h->basis >= 1) {
     const PetscInt nm = h->nm;
     PetscReal     *loc, *all;
     PetscCall(PetscCalloc2(nm * nm, &loc, nm * nm, &all));
@@ -598,7 +702,7 @@ PetscErrorCode JRHBMStickFrequencies(JRHBM h, PetscInt *nf, PetscReal freq[])
   PetscFunctionBeginUser;
   PetscCall(JRHBMSetUp(h));
   PetscCall(PetscCalloc5(nm * nm, &A, nm * nm, &B, nm * nm, &loc, nm, &w, 8 * nm, &work));
-  for (PetscInt t = 0; t < h->ngroups && h->basis == 0; t++) { /* the elements in contact at rest (n0 > 0), stuck */
+  for (PetscInt t = 0; t < h->ngroups && h->basis == 0; t++) { /* the elements in contact at rest (n0 > 0), stuck (in Km already otherwise) */
     HBMGroup *g = &h->g[t];
     PetscCheck(g->split || !g->nloc, PETSC_COMM_SELF, PETSC_ERR_SUP, "Stuck frequencies need friction elements (jenkins, jenkins_nv)");
     if (!g->nloc) continue;
@@ -631,9 +735,16 @@ PetscErrorCode JRHBMStickFrequencies(JRHBM h, PetscInt *nf, PetscReal freq[])
 PetscErrorCode JRHBMSetBasis(JRHBM h, PetscInt basis)
 {
   PetscFunctionBeginUser;
-  PetscCheck(basis == 0 || basis == 1, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Basis 0 (free) or 1 (stuck)");
+  PetscCheck(basis >= 0 && basis <= 2, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Basis 0 (free), 1 (stuck) or 2 (mixed)");
   h->basis       = basis;
   h->setupcalled = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRHBMGetBasis(JRHBM h, PetscInt *basis)
+{
+  PetscFunctionBeginUser;
+  *basis = h->basis;
   PetscFunctionReturn(0);
 }
 

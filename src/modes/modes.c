@@ -136,7 +136,7 @@ PetscErrorCode JRModesSetSignature(JRModes md, PetscReal sig)
 }
 
 /* Write omega^2 and the modes (and the coordinates) to an HDF5 file, through a temporary name */
-static PetscErrorCode ModesSave(JRModes md, const char file[])
+PetscErrorCode JRModesSave(JRModes md, const char file[])
 {
   PetscViewer v;
   char        tmp[PETSC_MAX_PATH_LEN + 32];
@@ -205,13 +205,14 @@ static PetscErrorCode ModesLoad(JRModes md, const char file[])
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "modes", PETSC_INT, NULL, &nm));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "ranks", PETSC_INT, NULL, &ranks));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "has_coordinates", PETSC_INT, NULL, &hasx));
+  if (md->load_all) md->nev = nm; /* a mixed basis: every vector of the file */
   PetscCheck(nm >= md->nev, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s holds %" PetscInt_FMT " modes, %" PetscInt_FMT " are asked for (-hbm_modes / -modes_nev)", file, nm, md->nev);
   PetscCheck(ranks == size, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s was written on %" PetscInt_FMT " ranks, this run has %d: the FE DOF numbering depends on the partition; run on %" PetscInt_FMT " ranks or recompute the modes", file, ranks, (int)size, ranks);
   {
     PetscReal sig = 0;
     PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "stuck_signature", PETSC_REAL, NULL, &sig));
     PetscCall(PetscInfo(NULL, "stuck signature: file %.17g, this run %.17g\n", (double)sig, (double)md->sig));
-    PetscCheck(PetscAbsReal(sig - md->sig) <= 1e-9 * PetscMax(PetscAbsReal(sig), PetscAbsReal(md->sig)), md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: its modes are of %s, this run needs %s (-hbm_basis, -interface_*, preload): recompute them", file, sig == 0 ? "the free structure" : "another stuck interface", md->sig == 0 ? "the free structure's" : "those of this stuck interface");
+    PetscCheck(PetscAbsReal(sig - md->sig) <= 1e-9 * PetscMax(PetscAbsReal(sig), PetscAbsReal(md->sig)), md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: its modes are of %s, this run needs %s (-hbm_basis, -interface_*, preload): recompute them", file, sig == 0 ? "the free structure" : sig < 0 ? "a mixed basis (stuck + free)" : "a stuck interface", md->sig == 0 ? "the free structure's" : md->sig < 0 ? "a mixed basis of this interface" : "those of this stuck interface");
   }
   PetscCall(MatGetSize(md->K, &n, NULL));
   PetscCall(PetscViewerHDF5PushGroup(v, "/jointrom_modes"));
@@ -362,7 +363,7 @@ PetscErrorCode JRModesSolve(JRModes md)
   PetscCall(VecDestroy(&Mx));
   PetscCall(PetscFree2(lam, perm));
   PetscCall(PetscLogEventEnd(JR_ModesSolve, 0, 0, 0, 0));
-  if (md->save[0]) PetscCall(ModesSave(md, md->save));
+  if (md->save[0]) PetscCall(JRModesSave(md, md->save));
   if (md->view) PetscCall(JRModesView(md, NULL));
   PetscFunctionReturn(0);
 }

@@ -220,7 +220,7 @@ PetscErrorCode JRTaskFRF(MPI_Comm comm)
     }
     PetscCall(JRHBMCreate(comm, &hbm));
     PetscCall(JRHBMSetExcitationDof(hbm, fdof, nout, odof));
-    PetscCall(JRHBMSetBasis(hbm, 1)); /* stuck-interface modes: -hbm_basis free for the thesis's free ones */
+    PetscCall(JRHBMSetBasis(hbm, 2)); /* stuck + free-interface modes: -hbm_basis free for the thesis's */
     /* the modes are saved for reuse unless they are read */
     {
       PetscBool ld, sv;
@@ -249,7 +249,9 @@ PetscErrorCode JRTaskFRF(MPI_Comm comm)
     if (nmod) PetscCall(PetscPrintf(comm, "frf: %" PetscInt_FMT " modes (%.6g .. %.6g Hz), %" PetscInt_FMT " harmonics + mean, %" PetscInt_FMT " unknowns; damping: %s\n", nm, (double)(om[0] / (2 * PETSC_PI)), (double)(om[nmod - 1] / (2 * PETSC_PI)), H, n, damping));
     else PetscCall(PetscPrintf(comm, "frf: %" PetscInt_FMT " physical coordinates, %" PetscInt_FMT " harmonics + mean, %" PetscInt_FMT " unknowns; damping: %s\n", nm, H, n, damping));
     if (n2n) {
-      PetscCall(PetscPrintf(comm, "frf: modes and projections %.3g s; free-free modes [Hz]:", (double)(t1 - t0)));
+      PetscInt b;
+      PetscCall(JRHBMGetBasis(hbm, &b));
+      PetscCall(PetscPrintf(comm, "frf: modes and projections %.3g s; modes of the %s [Hz]:", (double)(t1 - t0), b == 2 ? "mixed basis (Ritz, stuck + free)" : b ? "stuck structure" : "free interface"));
       for (PetscInt i = 0; i < nmod; i++) PetscCall(PetscPrintf(comm, " %.5g", (double)(om[i] / (2 * PETSC_PI))));
       PetscCall(PetscPrintf(comm, "\n"));
     }

@@ -40,6 +40,7 @@ PETSC_INTERN PetscErrorCode JRModelCreate_Lap1(JRModel);
 PETSC_INTERN PetscErrorCode JRModelCreate_Lap3(JRModel);
 PETSC_INTERN PetscErrorCode JRModelCreate_Gmsh(JRModel);
 PETSC_INTERN PetscErrorCode JRPairsDestroy(JRPairs *);
+PETSC_INTERN PetscErrorCode JRModesSave(JRModes, const char[]);
 PETSC_INTERN PetscErrorCode JRBoltsDestroy(JRBolts *);
 PETSC_INTERN PetscErrorCode JRMatCreateFromBlocks(Mat, PetscInt, const PetscInt *, const PetscInt *const *, const PetscReal *const *, Mat *);
 PETSC_INTERN PetscErrorCode JRElementsReadCSV(MPI_Comm, const char[], PetscInt, JRElements *);
@@ -60,6 +61,7 @@ struct _p_JRModes {
   PetscReal  sig;        /* signature of the stuck springs added to K (0: none), saved and checked */
   Vec        X;          /* node coordinates in the DOF layout (optional): checks a loaded file's layout */
   char       load[PETSC_MAX_PATH_LEN], save[PETSC_MAX_PATH_LEN]; /* -modes_load, -modes_save */
+  PetscBool  load_all;   /* -modes_load reads every vector of the file (a mixed basis) */
 };
 
 #endif
