@@ -1191,6 +1191,25 @@ PetscErrorCode JRHBMEnergy(JRHBM h, PetscReal w, Vec a, PetscReal *Win, PetscRea
   PetscFunctionReturn(0);
 }
 
+/* Every local element's contact state over the cycle at the solution a, in g->state */
+static PetscErrorCode EvaluateStates(JRHBM h, Vec a)
+{
+  const PetscScalar *x;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(a, &x));
+  h->cache_ok = PETSC_FALSE;
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    HBMGroup *g = &h->g[t];
+    if (!g->nloc) continue;
+    PetscCall(Gemm("N", "N", g->nloc, h->nc, h->nm, 1.0, g->R, g->nloc, x, h->nm, 0.0, g->U, g->nloc));
+    if (g->normal) PetscCall(Gemm("N", "N", g->nloc, h->nc, h->nm, 1.0, g->S, g->nloc, x, h->nm, 0.0, g->V, g->nloc));
+    PetscCall(JRContactEvaluate(g->c, g->U, g->V, NULL, NULL, NULL, NULL, NULL, g->state));
+  }
+  PetscCall(VecRestoreArrayRead(a, &x));
+  PetscFunctionReturn(0);
+}
+
 /*
   JRHBMKineticEnergy - the kinetic energy averaged over a cycle [J], (1/4) sum_h (h w)^2 (as_h^T M as_h +
   ac_h^T M ac_h): with the energy dissipated per cycle E it gives the equivalent damping ratio
@@ -1222,28 +1241,19 @@ PetscErrorCode JRHBMKineticEnergy(JRHBM h, PetscReal w, Vec a, PetscReal *T)
 */
 PetscErrorCode JRHBMElementStates(JRHBM h, Vec a, JRContactState state[])
 {
-  const PetscScalar *x;
-  PetscInt           nloc = 0, k = 0, *buf, ntot = 0;
-  PetscMPIInt       *counts = NULL, *displs = NULL, sendc;
-  PetscInt          *all = NULL;
+  PetscInt     nloc = 0, k = 0, *buf, ntot = 0;
+  PetscMPIInt *counts = NULL, *displs = NULL, sendc;
+  PetscInt    *all = NULL;
 
   PetscFunctionBeginUser;
+  PetscCall(EvaluateStates(h, a));
   for (PetscInt t = 0; t < h->ngroups; t++) nloc += h->g[t].nloc;
   PetscCall(PetscMalloc1(2 * nloc, &buf));
-  PetscCall(VecGetArrayRead(a, &x));
-  h->cache_ok = PETSC_FALSE;
-  for (PetscInt t = 0; t < h->ngroups; t++) {
-    HBMGroup *g = &h->g[t];
-    if (!g->nloc) continue;
-    PetscCall(Gemm("N", "N", g->nloc, h->nc, h->nm, 1.0, g->R, g->nloc, x, h->nm, 0.0, g->U, g->nloc));
-    if (g->normal) PetscCall(Gemm("N", "N", g->nloc, h->nc, h->nm, 1.0, g->S, g->nloc, x, h->nm, 0.0, g->V, g->nloc));
-    PetscCall(JRContactEvaluate(g->c, g->U, g->V, NULL, NULL, NULL, NULL, NULL, g->state));
-    for (PetscInt e = 0; e < g->nloc; e++, k++) {
-      buf[2 * k]     = g->eidx[e];
-      buf[2 * k + 1] = (PetscInt)g->state[e];
+  for (PetscInt t = 0; t < h->ngroups; t++)
+    for (PetscInt e = 0; e < h->g[t].nloc; e++, k++) {
+      buf[2 * k]     = h->g[t].eidx[e];
+      buf[2 * k + 1] = (PetscInt)h->g[t].state[e];
     }
-  }
-  PetscCall(VecRestoreArrayRead(a, &x));
   PetscCall(PetscMPIIntCast(2 * nloc, &sendc));
   if (!h->rank) PetscCall(PetscMalloc2(h->size, &counts, h->size, &displs));
   PetscCallMPI(MPI_Gather(&sendc, 1, MPI_INT, counts, 1, MPI_INT, 0, h->comm));
@@ -1266,21 +1276,12 @@ PetscErrorCode JRHBMElementStates(JRHBM h, Vec a, JRContactState state[])
 /* How many elements are in each contact state at the solution a (collective, every rank) */
 PetscErrorCode JRHBMContactStates(JRHBM h, Vec a, PetscInt count[4])
 {
-  const PetscScalar *x;
-  PetscInt           loc[4] = {0, 0, 0, 0};
+  PetscInt loc[4] = {0, 0, 0, 0};
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetArrayRead(a, &x));
-  h->cache_ok = PETSC_FALSE;
-  for (PetscInt t = 0; t < h->ngroups; t++) {
-    HBMGroup *g = &h->g[t];
-    if (!g->nloc) continue;
-    PetscCall(Gemm("N", "N", g->nloc, h->nc, h->nm, 1.0, g->R, g->nloc, x, h->nm, 0.0, g->U, g->nloc));
-    if (g->normal) PetscCall(Gemm("N", "N", g->nloc, h->nc, h->nm, 1.0, g->S, g->nloc, x, h->nm, 0.0, g->V, g->nloc));
-    PetscCall(JRContactEvaluate(g->c, g->U, g->V, NULL, NULL, NULL, NULL, NULL, g->state));
-    for (PetscInt e = 0; e < g->nloc; e++) loc[g->state[e]]++;
-  }
-  PetscCall(VecRestoreArrayRead(a, &x));
+  PetscCall(EvaluateStates(h, a));
+  for (PetscInt t = 0; t < h->ngroups; t++)
+    for (PetscInt e = 0; e < h->g[t].nloc; e++) loc[h->g[t].state[e]]++;
   PetscCall(MPIU_Allreduce(loc, count, 4, MPIU_INT, MPI_SUM, h->comm));
   PetscFunctionReturn(0);
 }
