@@ -238,28 +238,33 @@ static PetscErrorCode ProjectionRows(JRHBM h, PetscInt nloc, const PetscInt da[]
    elements eidx[e] of the model's list, whose nodes' x, y, z DOFs are va[3 eidx..], vb[3 eidx..] */
 static PetscErrorCode ProjectionRowsDir(JRHBM h, PetscInt nloc, const PetscInt eidx[], const PetscInt va[], const PetscInt vb[], const PetscReal dir[], PetscReal R[])
 {
-  const PetscInt nm = h->nm;
-  PetscInt      *dofs;
+  const PetscInt nm = h->nm, chunk = 8192; /* elements per gather: bounds the work arrays (6 chunk nm values) */
+  PetscInt      *dofs, nch, nchmax;
   PetscReal     *rows;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc2(6 * nloc, &dofs, 6 * nloc * nm, &rows));
-  for (PetscInt e = 0; e < nloc; e++)
-    for (PetscInt c = 0; c < 3; c++) {
-      dofs[6 * e + c]     = va[3 * eidx[e] + c];
-      dofs[6 * e + 3 + c] = vb[3 * eidx[e] + c];
-    }
-  if (h->physical) {
-    PetscCall(PetscArrayzero(rows, 6 * nloc * nm));
-    for (PetscInt k = 0; k < 6 * nloc; k++)
-      if (dofs[k] >= 0) rows[k * nm + dofs[k]] = 1.0;
-  } else PetscCall(JRModesGetRows(h->modes, 6 * nloc, dofs, rows));
-  for (PetscInt e = 0; e < nloc; e++) {
-    const PetscReal *d = dir + 3 * eidx[e];
-    for (PetscInt i = 0; i < nm; i++) {
-      PetscReal r = 0.0;
-      for (PetscInt c = 0; c < 3; c++) r += d[c] * (rows[(6 * e + c) * nm + i] - rows[(6 * e + 3 + c) * nm + i]);
-      R[e + i * nloc] = r;
+  nch = (nloc + chunk - 1) / chunk;
+  PetscCall(MPIU_Allreduce(&nch, &nchmax, 1, MPIU_INT, MPI_MAX, h->comm)); /* the gather is collective */
+  PetscCall(PetscMalloc2(6 * chunk, &dofs, 6 * chunk * nm, &rows));
+  for (PetscInt c0 = 0, ch = 0; ch < PetscMax(nchmax, 1); ch++, c0 += chunk) {
+    const PetscInt n = PetscMax(0, PetscMin(chunk, nloc - c0));
+    for (PetscInt e = 0; e < n; e++)
+      for (PetscInt c = 0; c < 3; c++) {
+        dofs[6 * e + c]     = va[3 * eidx[c0 + e] + c];
+        dofs[6 * e + 3 + c] = vb[3 * eidx[c0 + e] + c];
+      }
+    if (h->physical) {
+      PetscCall(PetscArrayzero(rows, 6 * n * nm));
+      for (PetscInt k = 0; k < 6 * n; k++)
+        if (dofs[k] >= 0) rows[k * nm + dofs[k]] = 1.0;
+    } else PetscCall(JRModesGetRows(h->modes, 6 * n, dofs, rows));
+    for (PetscInt e = 0; e < n; e++) {
+      const PetscReal *d = dir + 3 * eidx[c0 + e];
+      for (PetscInt i = 0; i < nm; i++) {
+        PetscReal r = 0.0;
+        for (PetscInt c = 0; c < 3; c++) r += d[c] * (rows[(6 * e + c) * nm + i] - rows[(6 * e + 3 + c) * nm + i]);
+        R[c0 + e + i * nloc] = r;
+      }
     }
   }
   PetscCall(PetscFree2(dofs, rows));

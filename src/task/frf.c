@@ -160,6 +160,12 @@ PetscErrorCode JRTaskFRF(MPI_Comm comm)
     const char      *dirs[] = {"x", "y", "z"};
     char             pbase[PETSC_MAX_PATH_LEN + 16], mfile[PETSC_MAX_PATH_LEN + 16];
 
+    {
+      PetscBool d, o;
+      PetscCall(PetscOptionsHasName(NULL, NULL, "-frf_dof", &d));
+      PetscCall(PetscOptionsHasName(NULL, NULL, "-frf_output", &o));
+      PetscCheck(!d && !o, comm, PETSC_ERR_ARG_INCOMP, "%s: on an FE model the DOF numbers depend on the partition; give points instead: -frf_at x,y,z and -frf_output_at x,y,z,... [m] with -frf_dir x|y|z", d ? "-frf_dof" : "-frf_output");
+    }
     PetscCall(JRModelGetNumDofs(model, &ndof));
     PetscCall(PetscPrintf(comm, "frf: node-to-node contact model, %" PetscInt_FMT " DOFs, %" PetscInt_FMT " interface pairs (model %.3g s)\n", ndof, P->n, (double)tmodel));
     /* 2. preload */
