@@ -148,6 +148,8 @@ typedef struct {
   PetscReal *kt, *kn, *mu, *n0;
   PetscInt  *vdof_a, *vdof_b;
   PetscReal *tdir, *ndir;
+  PetscInt   njoints, *joint; /* first reduction (4.4), optional: element e belongs to joint joint[e] and moves
+                                 with the joint, the average of its members' relative motions */
 } JRElements;
 
 PETSC_EXTERN PetscFunctionList JRModelList;

@@ -78,3 +78,15 @@ s=$(echo "$o" | grep '^stick freq_hz'); fs=$(field "$s" freq_hz); fp=$(field "$s
 b=$(echo "$o" | awk '/^frf summary/{f=1; next} f && $1 ~ /^[0-9.e-]+$/ {if ($10 > m) m = $10} END{print m+0}')
 check "[ -n '$fs' ] && close $fp $fs 1e-3" "jenkins_nv lap1, 0.1 mN: FRF peak $fp Hz = stuck resonance (tangential and normal springs of the closed pairs) $fs Hz within 0.1%"
 check "awk -v b=$b 'BEGIN{exit !(b < 1e-8)}'" "jenkins_nv lap1: energy balance at every point, worst $b"
+
+# 7. first reduction (issue 7, in progress): every element its own joint reproduces the node-to-node
+#    model exactly; six strips run; bad region definitions are refused
+r=$($J $brb -frf_force $lev -frf_fmin 128 -frf_fmax 138 -rom_joints each -frf_output_file '' 2>&1 | grep '^peak level')
+check "[ -n '$r' ] && [ \"\$r\" = \"\$a\" ]" "-rom_joints each: exactly the node-to-node peaks"
+o=$($J $brb -frf_force 20 -frf_fmin 128 -frf_fmax 138 -rom_joints strips -rom_strips 0.33,0.345,0.36,0.375,0.39 -frf_output_file '' 2>&1)
+nj=$(echo "$o" | grep -c '^rom: joint'); ne=$(echo "$o" | awk '/^rom: joint/{s += $4} END{print s}')
+check "[ $nj = 6 ] && [ '$ne' = 133 ] && echo \"\$o\" | grep -q '^peak level 20'" "-rom_joints strips: 6 joints holding all 133 elements, FRF computed"
+expect_error "cuts not increasing" "-rom_strips: the cuts must increase" $J $brb -frf_force 1 -rom_joints strips -rom_strips 0.36,0.33 -frf_output_file ''
+expect_error "empty region" "holds no element" $J $brb -frf_force 1 -rom_joints strips -rom_strips 0.33,0.331 -frf_output_file ''
+expect_error "strips without cuts" "-rom_joints strips needs the cuts" $J $brb -frf_force 1 -rom_joints strips -frf_output_file ''
+expect_error "cuts without strips" "-rom_strips and -rom_split_width need -rom_joints strips" $J $brb -frf_force 1 -rom_strips 0.35 -frf_output_file ''

@@ -48,6 +48,7 @@ typedef struct {
   PetscReal *kt, *kn;
   PetscInt  *eidx;         /* the model's element number of each local element */
   PetscReal *Kc;           /* stuck basis: the stuck springs of this rank's elements in contact at rest (nm x nm) */
+  PetscReal *R0, *S0;      /* joints in a stuck basis: the members' own rows until Kc is formed */
 } HBMGroup;
 
 struct _p_JRHBM {
@@ -208,6 +209,8 @@ static PetscErrorCode GroupDestroy(HBMGroup *g)
   PetscCall(PetscFree2(g->kt, g->kn));
   PetscCall(PetscFree(g->eidx));
   PetscCall(PetscFree(g->Kc));
+  PetscCall(PetscFree(g->R0));
+  PetscCall(PetscFree(g->S0));
   PetscFunctionReturn(0);
 }
 
@@ -268,6 +271,33 @@ static PetscErrorCode ProjectionRowsDir(JRHBM h, PetscInt nloc, const PetscInt e
     }
   }
   PetscCall(PetscFree2(dofs, rows));
+  PetscFunctionReturn(0);
+}
+
+/* First reduction (4.4): every member of a joint moves with the joint, the average of its members' relative
+   motions; so each member's rows R (and S) become the average of the joint's rows over all ranks (collective) */
+static PetscErrorCode JointAverage(JRHBM h, const JRElements *el, PetscInt nloc, const PetscInt eidx[], PetscReal R[], PetscReal S[])
+{
+  const PetscInt nm = h->nm, nj = el->njoints, w = S ? 2 * nm + 1 : nm + 1;
+  PetscReal     *loc, *sum;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc2(nj * w, &loc, nj * w, &sum));
+  for (PetscInt e = 0; e < nloc; e++) {
+    PetscReal *r = loc + el->joint[eidx[e]] * w;
+    for (PetscInt i = 0; i < nm; i++) r[i] += R[e + i * nloc];
+    if (S)
+      for (PetscInt i = 0; i < nm; i++) r[nm + i] += S[e + i * nloc];
+    r[w - 1] += 1.0;
+  }
+  PetscCall(MPIU_Allreduce(loc, sum, nj * w, MPIU_REAL, MPIU_SUM, h->comm));
+  for (PetscInt e = 0; e < nloc; e++) {
+    const PetscReal *r = sum + el->joint[eidx[e]] * w;
+    for (PetscInt i = 0; i < nm; i++) R[e + i * nloc] = r[i] / r[w - 1];
+    if (S)
+      for (PetscInt i = 0; i < nm; i++) S[e + i * nloc] = r[nm + i] / r[w - 1];
+  }
+  PetscCall(PetscFree2(loc, sum));
   PetscFunctionReturn(0);
 }
 
@@ -592,6 +622,17 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
       if (el->vdof_a) PetscCall(ProjectionRowsDir(h, nloc, eidx, el->vdof_a, el->vdof_b, el->ndir, g->S));
       else PetscCall(ProjectionRows(h, nloc, ia, ib, g->S));
     }
+    if (el->joint) {
+      if (h->basis >= 1) { /* the basis holds the members' own stuck springs: Kc must cancel exactly those */
+        PetscCall(PetscMalloc1(nloc * nm, &g->R0));
+        PetscCall(PetscArraycpy(g->R0, g->R, nloc * nm));
+        if (g->normal) {
+          PetscCall(PetscMalloc1(nloc * nm, &g->S0));
+          PetscCall(PetscArraycpy(g->S0, g->S, nloc * nm));
+        }
+      }
+      PetscCall(JointAverage(h, el, nloc, eidx, g->R, g->normal ? g->S : NULL));
+    }
     /* friction elements: the stuck part of the Jacobian, once */
     g->split = (PetscBool)(!strcmp(el->typename[t], JRCONTACTJENKINS) || !strcmp(el->typename[t], JRCONTACTJENKINSNV));
     PetscCall(PetscCalloc2(nm * nm, &g->Kst, nm * nm, &g->Knn));
@@ -630,14 +671,19 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
       HBMGroup *g = &h->g[t];
       PetscCall(PetscCalloc1(nm * nm, &g->Kc));
       if (!g->split || !g->nloc) continue;
-      for (PetscInt i = 0; i < nm; i++)
-        for (PetscInt e = 0; e < g->nloc; e++) g->W[e + i * g->nloc] = (g->nstatic[e] > 0 ? g->kt[e] : 0.0) * g->R[e + i * g->nloc];
-      PetscCall(Gemm("T", "N", nm, nm, g->nloc, 1.0, g->R, g->nloc, g->W, g->nloc, 0.0, g->Kc, nm));
-      if (g->normal) {
+      {
+        const PetscReal *Rk = g->R0 ? g->R0 : g->R, *Sk = g->S0 ? g->S0 : g->S;
         for (PetscInt i = 0; i < nm; i++)
-          for (PetscInt e = 0; e < g->nloc; e++) g->W[e + i * g->nloc] = (g->nstatic[e] > 0 ? g->kn[e] : 0.0) * g->S[e + i * g->nloc];
-        PetscCall(Gemm("T", "N", nm, nm, g->nloc, 1.0, g->S, g->nloc, g->W, g->nloc, 1.0, g->Kc, nm));
+          for (PetscInt e = 0; e < g->nloc; e++) g->W[e + i * g->nloc] = (g->nstatic[e] > 0 ? g->kt[e] : 0.0) * Rk[e + i * g->nloc];
+        PetscCall(Gemm("T", "N", nm, nm, g->nloc, 1.0, Rk, g->nloc, g->W, g->nloc, 0.0, g->Kc, nm));
+        if (g->normal) {
+          for (PetscInt i = 0; i < nm; i++)
+            for (PetscInt e = 0; e < g->nloc; e++) g->W[e + i * g->nloc] = (g->nstatic[e] > 0 ? g->kn[e] : 0.0) * Sk[e + i * g->nloc];
+          PetscCall(Gemm("T", "N", nm, nm, g->nloc, 1.0, Sk, g->nloc, g->W, g->nloc, 1.0, g->Kc, nm));
+        }
       }
+      PetscCall(PetscFree(g->R0));
+      PetscCall(PetscFree(g->S0));
       for (PetscInt i = 0; i < nm * nm; i++) loc[i] += g->Kc[i];
     }
     PetscCall(MPIU_Allreduce(loc, all, nm * nm, MPIU_REAL, MPIU_SUM, h->comm));
@@ -707,7 +753,7 @@ PetscErrorCode JRHBMStickFrequencies(JRHBM h, PetscInt *nf, PetscReal freq[])
   PetscFunctionBeginUser;
   PetscCall(JRHBMSetUp(h));
   PetscCall(PetscCalloc5(nm * nm, &A, nm * nm, &B, nm * nm, &loc, nm, &w, 8 * nm, &work));
-  for (PetscInt t = 0; t < h->ngroups && h->basis == 0; t++) { /* the elements in contact at rest (n0 > 0), stuck (in Km already otherwise) */
+  for (PetscInt t = 0; t < h->ngroups; t++) { /* the elements in contact at rest (n0 > 0), stuck, on the structure's own Kg */
     HBMGroup *g = &h->g[t];
     PetscCheck(g->split || !g->nloc, PETSC_COMM_SELF, PETSC_ERR_SUP, "Stuck frequencies need friction elements (jenkins, jenkins_nv)");
     if (!g->nloc) continue;
@@ -723,7 +769,7 @@ PetscErrorCode JRHBMStickFrequencies(JRHBM h, PetscInt *nf, PetscReal freq[])
   PetscCall(MPIU_Allreduce(loc, A, nm * nm, MPIU_REAL, MPIU_SUM, h->comm));
   for (PetscInt i = 0; i < nm; i++)
     for (PetscInt j = 0; j < nm; j++) {
-      A[i + j * nm] += h->Km[i * nm + j];
+      A[i + j * nm] += h->Kg[i * nm + j];
       B[i + j * nm] = h->Mm[i * nm + j];
     }
   PetscCall(PetscBLASIntCast(nm, &n));

@@ -17,6 +17,69 @@
 */
 #include <jointrom/private/modelimpl.h>
 
+/*
+  First reduction, joints from regions (options prefix rom_): -rom_joints none (node-to-node) | each (every
+  element its own joint: the node-to-node model again, a check) | strips: cuts -rom_strips x1,x2,... [m]
+  along the beam axis divide the interface into strips, and -rom_split_width splits each strip at
+  mid-width; each region with elements is one joint (4.4): its members move with the average of their
+  relative motions. A region without elements is an error (move the cuts).
+*/
+static PetscErrorCode AssignJoints(MPI_Comm comm, const JRPairs *P, JRElements *el, const PetscInt pair[])
+{
+  const char *kinds[] = {"none", "each", "strips"};
+  PetscInt    kind = 0, ncut = 64, nreg;
+  PetscReal   cut[64], ylo = PETSC_MAX_REAL, yhi = -PETSC_MAX_REAL;
+  PetscBool   split = PETSC_FALSE, set;
+  PetscInt   *cnt;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "rom_", "Reduced-order joints, first reduction (prefix rom_)", "JRInterface");
+  PetscCall(PetscOptionsEList("-joints", "Joints: none (node-to-node), each (every element its own joint), strips (regions between -rom_strips cuts)", "JRInterfaceCreateElements", kinds, 3, kinds[kind], &kind, NULL));
+  PetscCall(PetscOptionsRealArray("-strips", "Cut positions along the beam axis x1,x2,... [m], increasing", "JRInterfaceCreateElements", cut, &ncut, &set));
+  PetscCall(PetscOptionsBool("-split_width", "Split every strip at mid-width into two joints", "JRInterfaceCreateElements", split, &split, NULL));
+  PetscOptionsEnd();
+  if (!set) ncut = 0;
+  if (kind == 0) {
+    PetscCheck(!set && !split, comm, PETSC_ERR_ARG_INCOMP, "-rom_strips and -rom_split_width need -rom_joints strips");
+    PetscFunctionReturn(0);
+  }
+  if (kind == 1) {
+    el->njoints = el->n;
+    PetscCall(PetscMalloc1(el->n, &el->joint));
+    for (PetscInt e = 0; e < el->n; e++) el->joint[e] = e;
+    PetscFunctionReturn(0);
+  }
+  PetscCheck(set && ncut > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints strips needs the cuts -rom_strips x1,x2,... [m]");
+  for (PetscInt k = 1; k < ncut; k++) PetscCheck(cut[k] > cut[k - 1], comm, PETSC_ERR_ARG_WRONG, "-rom_strips: the cuts must increase, but %g m follows %g m", (double)cut[k], (double)cut[k - 1]);
+  for (PetscInt e = 0; e < el->n; e++) {
+    ylo = PetscMin(ylo, P->x[3 * pair[e] + 1]);
+    yhi = PetscMax(yhi, P->x[3 * pair[e] + 1]);
+  }
+  nreg = (ncut + 1) * (split ? 2 : 1);
+  PetscCall(PetscCalloc1(nreg, &cnt));
+  PetscCall(PetscMalloc1(el->n, &el->joint));
+  for (PetscInt e = 0; e < el->n; e++) {
+    const PetscReal *x = P->x + 3 * pair[e];
+    PetscInt         k = 0;
+    while (k < ncut && x[0] >= cut[k]) k++;
+    el->joint[e] = split ? 2 * k + (x[1] > 0.5 * (ylo + yhi) ? 1 : 0) : k;
+    cnt[el->joint[e]]++;
+  }
+  for (PetscInt r = 0; r < nreg; r++) {
+    const PetscInt k = split ? r / 2 : r;
+    PetscCheck(cnt[r] > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_strips: the region x %s%g .. %g%s m%s holds no element: every region must hold some (move the cuts)", k ? "" : "< ", (double)(k ? cut[k - 1] : cut[0]), (double)(k < ncut ? cut[k] : cut[ncut - 1]), k < ncut ? "" : " and beyond", split ? (r % 2 ? ", upper half of the width" : ", lower half of the width") : "");
+  }
+  el->njoints = nreg;
+  for (PetscInt r = 0; r < nreg; r++) {
+    PetscReal n0 = 0;
+    for (PetscInt e = 0; e < el->n; e++)
+      if (el->joint[e] == r) n0 += el->n0[e];
+    PetscCall(PetscPrintf(comm, "rom: joint %" PetscInt_FMT ": %" PetscInt_FMT " elements, normal load %.6g N\n", r, cnt[r], (double)n0));
+  }
+  PetscCall(PetscFree(cnt));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode JRInterfaceCreateElements(JRModel model, JRPreload pre, JRElements *el, PetscInt **pair)
 {
   MPI_Comm         comm;
@@ -74,6 +137,7 @@ PetscErrorCode JRInterfaceCreateElements(JRModel model, JRPreload pre, JRElement
       (*pair)[e] = p;
     }
   }
+  PetscCall(AssignJoints(comm, P, el, *pair));
   PetscFunctionReturn(0);
 }
 

@@ -99,6 +99,7 @@ PetscErrorCode JRElementsDestroy(JRElements *el)
     PetscCall(PetscFree4(el->kt, el->kn, el->mu, el->n0));
   }
   PetscCall(PetscFree4(el->vdof_a, el->vdof_b, el->tdir, el->ndir));
+  PetscCall(PetscFree(el->joint));
   PetscCall(PetscMemzero(el, sizeof(*el)));
   PetscFunctionReturn(0);
 }

@@ -137,6 +137,11 @@ PetscErrorCode JRModelSetElements(JRModel m, const JRElements *el)
   PetscCall(PetscArraycpy(m->el.kn, el->kn, n));
   PetscCall(PetscArraycpy(m->el.mu, el->mu, n));
   PetscCall(PetscArraycpy(m->el.n0, el->n0, n));
+  if (el->joint) {
+    m->el.njoints = el->njoints;
+    PetscCall(PetscMalloc1(n, &m->el.joint));
+    PetscCall(PetscArraycpy(m->el.joint, el->joint, n));
+  }
   if (el->vdof_a) {
     PetscCall(PetscMalloc4(3 * n, &m->el.vdof_a, 3 * n, &m->el.vdof_b, 3 * n, &m->el.tdir, 3 * n, &m->el.ndir));
     PetscCall(PetscArraycpy(m->el.vdof_a, el->vdof_a, 3 * n));
