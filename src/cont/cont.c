@@ -776,6 +776,27 @@ PetscErrorCode JRContGetDamping(JRCont c, PetscInt lev, PetscReal *zeta, PetscRe
   PetscFunctionReturn(0);
 }
 
+/* One dataset written from rank 0: len values (reals r, or integers iv), block size bs (collective) */
+static PetscErrorCode WriteRank0(MPI_Comm comm, PetscViewer v, const char name[], PetscInt len, PetscInt bs, const PetscReal r[], const PetscInt iv[])
+{
+  Vec          x;
+  PetscScalar *xa;
+  PetscMPIInt  rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank) len = 0;
+  PetscCall(VecCreateMPI(comm, len, PETSC_DETERMINE, &x));
+  if (bs > 1) PetscCall(VecSetBlockSize(x, bs));
+  PetscCall(PetscObjectSetName((PetscObject)x, name));
+  PetscCall(VecGetArray(x, &xa));
+  for (PetscInt i = 0; i < len; i++) xa[i] = r ? r[i] : (PetscReal)iv[i];
+  PetscCall(VecRestoreArray(x, &xa));
+  PetscCall(VecView(x, v));
+  PetscCall(VecDestroy(&x));
+  PetscFunctionReturn(0);
+}
+
 /* BASE.h5 (every point), BASE.csv (level,F_N,omega_rad_s,freq_hz,amp_<dof>..[,pp_<dof>..]), BASE.png */
 PetscErrorCode JRContWrite(JRCont c)
 {
@@ -852,31 +873,8 @@ PetscErrorCode JRContWrite(JRCont c)
       };
       PetscCall(PetscSNPrintf(grp, sizeof(grp), "/level_%" PetscInt_FMT, l));
       PetscCall(PetscViewerHDF5PushGroup(v, grp));
-      for (size_t s = 0; s < sizeof(sets) / sizeof(sets[0]); s++) {
-        Vec          x;
-        PetscScalar *xa;
-        const PetscInt len = rank ? 0 : np * sets[s].bs;
-        PetscCall(VecCreateMPI(c->comm, len, PETSC_DETERMINE, &x));
-        if (sets[s].bs > 1) PetscCall(VecSetBlockSize(x, sets[s].bs));
-        PetscCall(PetscObjectSetName((PetscObject)x, sets[s].name));
-        PetscCall(VecGetArray(x, &xa));
-        for (PetscInt i = 0; i < len; i++) xa[i] = sets[s].data[i];
-        PetscCall(VecRestoreArray(x, &xa));
-        PetscCall(VecView(x, v));
-        PetscCall(VecDestroy(&x));
-      }
-      {
-        Vec          x;
-        PetscScalar *xa;
-        const PetscInt len = rank ? 0 : np;
-        PetscCall(VecCreateMPI(c->comm, len, PETSC_DETERMINE, &x));
-        PetscCall(PetscObjectSetName((PetscObject)x, "newton_its"));
-        PetscCall(VecGetArray(x, &xa));
-        for (PetscInt i = 0; i < len; i++) xa[i] = b->its[i];
-        PetscCall(VecRestoreArray(x, &xa));
-        PetscCall(VecView(x, v));
-        PetscCall(VecDestroy(&x));
-      }
+      for (size_t s = 0; s < sizeof(sets) / sizeof(sets[0]); s++) PetscCall(WriteRank0(c->comm, v, sets[s].name, np * sets[s].bs, sets[s].bs, sets[s].data, NULL));
+      PetscCall(WriteRank0(c->comm, v, "newton_its", np, 1, NULL, b->its));
       PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "force_N", PETSC_REAL, &b->F));
       PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "points", PETSC_INT, &np));
       PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "seconds", PETSC_REAL, &b->seconds));
@@ -895,31 +893,16 @@ PetscErrorCode JRContWrite(JRCont c)
         PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "elements_full_separation", PETSC_INT, &b->states[3]));
       }
       {
-        Vec          x;
-        PetscScalar *xa;
-        const PetscInt nel = b->states[0] + b->states[1] + b->states[2] + b->states[3], len = rank ? 0 : nel;
-        PetscCall(VecCreateMPI(c->comm, len, PETSC_DETERMINE, &x));
-        PetscCall(PetscObjectSetName((PetscObject)x, "peak_states"));
-        PetscCall(VecGetArray(x, &xa));
-        for (PetscInt i = 0; i < len; i++) xa[i] = b->estate[i];
-        PetscCall(VecRestoreArray(x, &xa));
-        PetscCall(VecView(x, v));
-        PetscCall(VecDestroy(&x));
+        const PetscInt nel = b->states[0] + b->states[1] + b->states[2] + b->states[3];
+        PetscInt      *st;
+        PetscCall(PetscMalloc1(rank ? 0 : nel, &st));
+        for (PetscInt i = 0; !rank && i < nel; i++) st[i] = (PetscInt)b->estate[i];
+        PetscCall(WriteRank0(c->comm, v, "peak_states", nel, 1, NULL, st));
+        PetscCall(PetscFree(st));
       }
       PetscCall(PetscViewerHDF5PopGroup(v));
     }
-    {
-      Vec          x;
-      PetscScalar *xa;
-      const PetscInt len = rank ? 0 : c->nout;
-      PetscCall(VecCreateMPI(c->comm, len, PETSC_DETERMINE, &x));
-      PetscCall(PetscObjectSetName((PetscObject)x, "output_dofs"));
-      PetscCall(VecGetArray(x, &xa));
-      for (PetscInt i = 0; i < len; i++) xa[i] = dofs[i];
-      PetscCall(VecRestoreArray(x, &xa));
-      PetscCall(VecView(x, v));
-      PetscCall(VecDestroy(&x));
-    }
+    PetscCall(WriteRank0(c->comm, v, "output_dofs", c->nout, 1, NULL, dofs));
     PetscCall(PetscViewerDestroy(&v));
     if (rank == 0) PetscCheck(!rename(tmph5, h5), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write the file %s", h5);
   }

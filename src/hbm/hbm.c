@@ -338,7 +338,7 @@ static PetscErrorCode MixBasis(JRHBM h, Mat K, Mat M)
 {
   JRModes       fm, md = h->modes;
   PetscInt      nrb, nf, nq = 0, ncand;
-  Vec           rb[6], *Q, *cand, Mv;
+  Vec           rb[6], *Q, *MQ, *cand, Mv;
   PetscScalar  *d;
   PetscReal    *A, *lam, *work;
   PetscBLASInt  bn, lwork, info;
@@ -361,7 +361,8 @@ static PetscErrorCode MixBasis(JRHBM h, Mat K, Mat M)
   for (PetscInt i = 0; i < nf; i++) cand[md->nm + i] = fm->phi[nrb + i];
   PetscCall(VecDuplicate(md->phi[0], &Mv));
   PetscCall(PetscMalloc1(ncand, &d));
-  for (PetscInt c = 0; c < ncand; c++) { /* modified Gram-Schmidt in the M inner product, twice */
+  PetscCall(PetscMalloc1(ncand, &MQ));
+  for (PetscInt c = 0; c < ncand; c++) { /* Gram-Schmidt in the M inner product, twice, against M Q kept */
     PetscScalar nn;
     PetscReal   n0;
     PetscCall(VecDuplicate(cand[c], &Q[nq]));
@@ -369,12 +370,11 @@ static PetscErrorCode MixBasis(JRHBM h, Mat K, Mat M)
     PetscCall(MatMult(M, Q[nq], Mv));
     PetscCall(VecDot(Q[nq], Mv, &nn));
     n0 = PetscSqrtReal(PetscRealPart(nn));
-    for (PetscInt pass = 0; pass < 2; pass++)
-      for (PetscInt j = 0; j < nq; j++) {
-        PetscCall(MatMult(M, Q[j], Mv));
-        PetscCall(VecDot(Q[nq], Mv, &nn));
-        PetscCall(VecAXPY(Q[nq], -nn, Q[j]));
-      }
+    for (PetscInt pass = 0; pass < 2 && nq; pass++) {
+      PetscCall(VecMDot(Q[nq], nq, MQ, d));
+      for (PetscInt j = 0; j < nq; j++) d[j] = -d[j];
+      PetscCall(VecMAXPY(Q[nq], nq, d, Q));
+    }
     PetscCall(MatMult(M, Q[nq], Mv));
     PetscCall(VecDot(Q[nq], Mv, &nn));
     if (PetscSqrtReal(PetscRealPart(nn)) < 1e-6 * n0) {
@@ -382,6 +382,8 @@ static PetscErrorCode MixBasis(JRHBM h, Mat K, Mat M)
       continue;
     }
     PetscCall(VecScale(Q[nq], 1.0 / PetscSqrtReal(PetscRealPart(nn))));
+    PetscCall(VecDuplicate(Q[nq], &MQ[nq]));
+    PetscCall(VecAXPBY(MQ[nq], 1.0 / PetscSqrtReal(PetscRealPart(nn)), 0.0, Mv));
     nq++;
   }
   /* Ritz: A = Q^T (K + Ks) Q, eigenvectors ascending */
@@ -412,7 +414,11 @@ static PetscErrorCode MixBasis(JRHBM h, Mat K, Mat M)
   PetscCall(PetscFree3(A, lam, work));
   PetscCall(PetscFree(d));
   PetscCall(VecDestroy(&Mv));
-  for (PetscInt i = 0; i < nq; i++) PetscCall(VecDestroy(&Q[i]));
+  for (PetscInt i = 0; i < nq; i++) {
+    PetscCall(VecDestroy(&Q[i]));
+    PetscCall(VecDestroy(&MQ[i]));
+  }
+  PetscCall(PetscFree(MQ));
   PetscCall(PetscFree2(cand, Q));
   PetscCall(JRModesDestroy(&fm));
   PetscFunctionReturn(0);
