@@ -140,7 +140,7 @@ typedef struct {
    Node-to-node interfaces instead give each element the x, y, z DOFs of its two nodes, vdof_a[3e..] and
    vdof_b[3e..], and unit directions tdir[3e..], ndir[3e..]: u = (x_A - x_B) . t, v = (x_A - x_B) . n
    (4.3); then dof_a .. ndof_b are unused (vdof_a = NULL for the single-DOF form). */
-typedef struct {
+typedef struct _JRElements {
   PetscInt   n;
   PetscInt   ntypes;
   char       typename[8][32]; /* element types present; type[e] indexes this list */
@@ -150,6 +150,9 @@ typedef struct {
   PetscReal *tdir, *ndir;
   PetscInt   njoints, *joint; /* first reduction (4.4), optional: element e belongs to joint joint[e] and moves
                                  with the joint, the average of its members' relative motions */
+  struct _JRElements *members; /* second reduction, optional: the joints' motions are those of these (node-to-node)
+                                  elements' joints (members->joint), whose stuck springs also define a stuck basis;
+                                  then the elements here need no DOFs (their rows are their joint's) */
 } JRElements;
 
 PETSC_EXTERN PetscFunctionList JRModelList;
@@ -216,7 +219,13 @@ PETSC_EXTERN PetscErrorCode JRPreloadDestroy(JRPreload *);
 /* The node-to-node interface: one friction element per facing node pair (options -interface_*) */
 PETSC_EXTERN PetscErrorCode JRInterfaceCreateElements(JRModel, JRPreload, JRElements *, PetscInt **);
 PETSC_EXTERN PetscErrorCode JRElementsDestroy(JRElements *);
+PETSC_EXTERN PetscErrorCode JRElementsDuplicate(const JRElements *, JRElements *);
 PETSC_EXTERN PetscErrorCode JRElementsCreateStuckStiffness(Mat, const JRElements *, Mat *, PetscReal *);
+
+/* Reduced-order joints: second reduction (TAO fit of m elements per joint, options -rom_*), saved models */
+PETSC_EXTERN PetscErrorCode JRROMReduce(MPI_Comm, const JRElements *, PetscInt, const PetscReal[], const char[], PetscBool, JRElements *);
+PETSC_EXTERN PetscErrorCode JRROMSave(JRModel, const JRElements *, PetscReal, const char[]);
+PETSC_EXTERN PetscErrorCode JRROMLoad(JRModel, const char[], JRElements *, PetscReal *);
 
 /* ------------------------------------------------------------------------------------------ */
 /* JRModes: mass-normalised modes of K phi = omega^2 M phi (SLEPc, prefix modes_)              */
@@ -270,6 +279,9 @@ PETSC_EXTERN PetscErrorCode JRHBMContactStates(JRHBM, Vec, PetscInt[4]);
 PETSC_EXTERN PetscErrorCode JRHBMElementStates(JRHBM, Vec, JRContactState[]);
 PETSC_EXTERN PetscErrorCode JRHBMKineticEnergy(JRHBM, PetscReal, Vec, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMSetExcitationDof(JRHBM, PetscInt, PetscInt, const PetscInt[]);
+PETSC_EXTERN PetscErrorCode JRHBMMatchStickFrequency(JRHBM, PetscInt, PetscReal, PetscReal *);
+PETSC_EXTERN PetscErrorCode JRHBMStuckModeMotion(JRHBM, PetscInt, PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRHBMSetModes(JRHBM, JRHBM);
 PETSC_EXTERN PetscErrorCode JRHBMSetBasis(JRHBM, PetscInt);
 PETSC_EXTERN PetscErrorCode JRHBMGetBasis(JRHBM, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMStickFrequencies(JRHBM, PetscInt *, PetscReal[]);
@@ -297,6 +309,8 @@ PETSC_EXTERN PetscErrorCode JRContSetHBM(JRCont, JRHBM);
 PETSC_EXTERN PetscErrorCode JRContSetFromOptions(JRCont);
 PETSC_EXTERN PetscErrorCode JRContSetStepBounds(JRCont, PetscReal, PetscReal);
 PETSC_EXTERN PetscErrorCode JRContSetRange(JRCont, PetscReal, PetscReal);
+PETSC_EXTERN PetscErrorCode JRContGetRange(JRCont, PetscReal *, PetscReal *);
+PETSC_EXTERN PetscErrorCode JRContSetOutputBase(JRCont, const char[]);
 PETSC_EXTERN PetscErrorCode JRContSetLevels(JRCont, PetscInt, const PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRContSolve(JRCont);
 PETSC_EXTERN PetscErrorCode JRContGetNumLevels(JRCont, PetscInt *);
@@ -305,6 +319,7 @@ PETSC_EXTERN PetscErrorCode JRContGetPeak(JRCont, PetscInt, PetscReal *, PetscRe
 PETSC_EXTERN PetscErrorCode JRContGetLevel(JRCont, PetscInt, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRContGetPeakStates(JRCont, PetscInt, const JRContactState **);
 PETSC_EXTERN PetscErrorCode JRContGetDamping(JRCont, PetscInt, PetscReal *, PetscReal *);
+PETSC_EXTERN PetscErrorCode JRContGetLevelStats(JRCont, PetscInt, PetscReal *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRContWrite(JRCont);
 PETSC_EXTERN PetscErrorCode JRContDestroy(JRCont *);
 
@@ -342,6 +357,7 @@ PETSC_EXTERN PetscErrorCode JRPlot(MPI_Comm, const char[], const char[], const c
 /* Driver tasks */
 PETSC_EXTERN PetscErrorCode JRTaskElement(MPI_Comm);
 PETSC_EXTERN PetscErrorCode JRTaskFRF(MPI_Comm);
+PETSC_EXTERN PetscErrorCode JRTaskCompare(MPI_Comm);
 PETSC_EXTERN PetscErrorCode JRTaskModes(MPI_Comm);
 PETSC_EXTERN PetscErrorCode JRTaskPreload(MPI_Comm);
 

@@ -15,6 +15,8 @@ static const char help[] = "jointrom: reduced-order models of bolted joints by h
                            "            matrices (-model_type matrices) with contact elements, at several force levels (HDF5, CSV, PNG)\n"
                            "  modes     a finite-element model (-model_type beam, lap, brb, lap1, lap3, gmsh) and its modes (SLEPc):\n"
                            "            'mode <i> <Hz>' lines, HDF5 + XDMF for ParaView, PNG of the mode shapes\n"
+                           "  compare   node-to-node and reduced-order joint model of one FE case in one run (-rom_joints,\n"
+                           "            -rom_elements): FRF overlays, peak errors per level, wall times and their ratio\n"
                            "  preload   a finite-element model and its bolt preload (static frictionless contact): normal load and\n"
                            "            gap of every interface pair, CSV + HDF5 + XDMF, PNG maps and mid-section profile\n\n";
 
@@ -22,9 +24,10 @@ typedef enum {
   TASK_ELEMENT,
   TASK_FRF,
   TASK_MODES,
-  TASK_PRELOAD
+  TASK_PRELOAD,
+  TASK_COMPARE
 } Task;
-static const char *const Tasks[] = {"element", "frf", "modes", "preload", "Task", "TASK_", NULL};
+static const char *const Tasks[] = {"element", "frf", "modes", "preload", "compare", "Task", "TASK_", NULL};
 
 int main(int argc, char **argv)
 {
@@ -36,7 +39,7 @@ int main(int argc, char **argv)
   comm = PETSC_COMM_WORLD;
   PetscCall(JRInitializePackage());
   PetscOptionsBegin(comm, NULL, "jointrom driver", "jointrom");
-  PetscCall(PetscOptionsEList("-task", "What to do", "jointrom", Tasks, 4, Tasks[task], &task, NULL));
+  PetscCall(PetscOptionsEList("-task", "What to do", "jointrom", Tasks, 5, Tasks[task], &task, NULL));
   PetscOptionsEnd();
   PetscCall(PetscOptionsHasHelp(NULL, &help_given));
   switch ((Task)task) {
@@ -51,6 +54,9 @@ int main(int argc, char **argv)
     break;
   case TASK_PRELOAD:
     PetscCall(JRTaskPreload(comm));
+    break;
+  case TASK_COMPARE:
+    PetscCall(JRTaskCompare(comm));
     break;
   }
   (void)help_given;

@@ -58,7 +58,7 @@ check "[ ! -e .csv ] && [ ! -e .png ]" "-element_loop '' writes no loop files"
 # run files: every option used, no typo
 for f in runs/*.opts; do
   case $(grep -m1 '^-task' "$f") in
-    "-task frf") extra="-frf_output_file $tmp/runfile -frf_plot 0 -cont_monitor 0"
+    "-task frf"|"-task compare") extra="-frf_output_file $tmp/runfile -frf_plot 0 -cont_monitor 0"
       grep -q '^-model_type brb' "$f" && extra="$extra -model_mesh_h 0.01 -cont_max_points 40" # FE: a coarse mesh, the options are what is checked
       grep -q '^-model_type lap' "$f" && extra="$extra -model_mesh_h 0.005 -model_mesh_grade 4 -cont_max_points 40" ;;
     "-task modes") extra="-modes_output_file '' -model_mesh_h 0.01" ;; # a coarse mesh: the options are what is checked

@@ -100,6 +100,24 @@ PetscErrorCode JRContSetStepBounds(JRCont c, PetscReal smin, PetscReal smax)
 }
 
 /* Frequency range [rad/s] */
+/* The frequency range [rad/s] */
+PetscErrorCode JRContGetRange(JRCont c, PetscReal *wmin, PetscReal *wmax)
+{
+  PetscFunctionBeginUser;
+  if (wmin) *wmin = c->wmin;
+  if (wmax) *wmax = c->wmax;
+  PetscFunctionReturn(0);
+}
+
+/* The output base name (instead of -frf_output_file): BASE.h5, BASE.csv, BASE.png */
+PetscErrorCode JRContSetOutputBase(JRCont c, const char base[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(c->out, base, sizeof(c->out)));
+  c->write = c->out[0] ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode JRContSetRange(JRCont c, PetscReal wmin, PetscReal wmax)
 {
   PetscFunctionBeginUser;
@@ -773,6 +791,17 @@ PetscErrorCode JRContGetDamping(JRCont c, PetscInt lev, PetscReal *zeta, PetscRe
   PetscCheck(c->br && lev >= 0 && lev < c->nlev, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "No level %" PetscInt_FMT, lev);
   if (zeta) *zeta = c->br[lev].zeta;
   if (ebal) *ebal = c->br[lev].ebal;
+  PetscFunctionReturn(0);
+}
+
+/* A level's wall time [s] (continuation only), points and Newton iterations */
+PetscErrorCode JRContGetLevelStats(JRCont c, PetscInt lev, PetscReal *seconds, PetscInt *points, PetscInt *newton)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(c->br && lev >= 0 && lev < c->nlev, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "No level %" PetscInt_FMT, lev);
+  if (seconds) *seconds = c->br[lev].seconds;
+  if (points) *points = c->br[lev].np;
+  if (newton) *newton = c->br[lev].newton;
   PetscFunctionReturn(0);
 }
 

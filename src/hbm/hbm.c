@@ -67,6 +67,8 @@ struct _p_JRHBM {
   PetscInt          nfree;        /* mixed: free-interface modes added (-1: as many as stuck ones) */
   PetscBool         basis_set;
   PetscReal        *Kg;           /* the structure's own stiffness in the basis (structural damping gamma Kg) */
+  PetscReal        *Kc;           /* stuck basis: the stuck springs in Km of this rank's elements (or members), nm x nm */
+  PetscBool         modes_shared; /* JRHBMSetModes(): the modes are another JRHBM's, not solved or destroyed here */
   PetscInt          fdof, nout, *outdof;
   PetscBool         fdof_set;      /* JRHBMSetExcitationDof() called: -frf_dof ignored */
   char              ffile[PETSC_MAX_PATH_LEN];
@@ -301,6 +303,63 @@ static PetscErrorCode JointAverage(JRHBM h, const JRElements *el, PetscInt nloc,
   PetscFunctionReturn(0);
 }
 
+/* Second reduction: the joints' projection rows Rj, Sj (nj x nm, row-major, on every rank), the average of their
+   members' rows (4.4), the members split across the ranks; and, in a stuck basis, Kc += this rank's members'
+   stuck springs on their own rows (the springs the basis holds, which the reduced elements replace) */
+static PetscErrorCode JointRows(JRHBM h, const JRElements *mem, PetscReal Rj[], PetscReal Sj[], PetscReal Kc[])
+{
+  const PetscInt nm = h->nm, nj = mem->njoints, w = 2 * nm + 1;
+  PetscInt       nloc = PETSC_DECIDE, n = mem->n, start = 0, *eidx;
+  PetscReal     *R, *S, *loc, *sum;
+
+  PetscFunctionBeginUser;
+  PetscCheck(mem->vdof_a && mem->joint, h->comm, PETSC_ERR_ARG_WRONG, "A reduced model's members must be node-to-node elements with joints");
+  PetscCall(PetscSplitOwnership(h->comm, &nloc, &n));
+  PetscCallMPI(MPI_Scan(&nloc, &start, 1, MPIU_INT, MPI_SUM, h->comm));
+  start -= nloc;
+  PetscCall(PetscMalloc3(nloc, &eidx, nloc * nm, &R, nloc * nm, &S));
+  for (PetscInt e = 0; e < nloc; e++) eidx[e] = start + e;
+  PetscCall(ProjectionRowsDir(h, nloc, eidx, mem->vdof_a, mem->vdof_b, mem->tdir, R));
+  PetscCall(ProjectionRowsDir(h, nloc, eidx, mem->vdof_a, mem->vdof_b, mem->ndir, S));
+  PetscCall(PetscCalloc2(nj * w, &loc, nj * w, &sum));
+  for (PetscInt e = 0; e < nloc; e++) {
+    PetscReal *r = loc + mem->joint[eidx[e]] * w;
+    for (PetscInt i = 0; i < nm; i++) {
+      r[i] += R[e + i * nloc];
+      r[nm + i] += S[e + i * nloc];
+    }
+    r[w - 1] += 1.0;
+  }
+  PetscCall(MPIU_Allreduce(loc, sum, nj * w, MPIU_REAL, MPIU_SUM, h->comm));
+  for (PetscInt j = 0; j < nj; j++) {
+    const PetscReal *r = sum + j * w;
+    PetscCheck(r[w - 1] > 0, h->comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no member element", j);
+    for (PetscInt i = 0; i < nm; i++) {
+      Rj[j * nm + i] = r[i] / r[w - 1];
+      Sj[j * nm + i] = r[nm + i] / r[w - 1];
+    }
+  }
+  if (Kc && nloc) {
+    PetscReal *W;
+    PetscCall(PetscMalloc1(nloc * nm, &W));
+    for (PetscInt q = 0; q < 2; q++) {
+      const PetscReal *X = q ? S : R;
+      for (PetscInt i = 0; i < nm; i++)
+        for (PetscInt e = 0; e < nloc; e++) {
+          const PetscInt  k  = eidx[e];
+          const PetscBool nv = (PetscBool)!strcmp(mem->typename[mem->type[k]], JRCONTACTJENKINSNV);
+          W[e + i * nloc]    = mem->n0[k] > 0 ? (q ? (nv ? mem->kn[k] : 0.0) : mem->kt[k]) : 0.0;
+          W[e + i * nloc] *= X[e + i * nloc];
+        }
+      PetscCall(Gemm("T", "N", nm, nm, nloc, 1.0, X, nloc, W, nloc, 1.0, Kc, nm));
+    }
+    PetscCall(PetscFree(W));
+  }
+  PetscCall(PetscFree2(loc, sum));
+  PetscCall(PetscFree3(eidx, R, S));
+  PetscFunctionReturn(0);
+}
+
 /* Dense copy of a (small) distributed matrix on every rank, row-major */
 static PetscErrorCode DenseAll(Mat A, PetscReal D[])
 {
@@ -430,6 +489,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
   Mat               K, M, C;
   PetscInt          ndof;
   const JRElements *el;
+  PetscReal        *Rj = NULL, *Sj = NULL;
 
   PetscFunctionBeginUser;
   if (h->setupcalled) PetscFunctionReturn(0);
@@ -466,45 +526,47 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     char             save[PETSC_MAX_PATH_LEN] = "";
     h->nm = h->nmodes_opt > 0 ? h->nmodes_opt : (ndof <= 200 ? ndof : 10);
     PetscCheck(h->nm <= ndof, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_modes %" PetscInt_FMT ": the model has only %" PetscInt_FMT " DOFs", h->nm, ndof);
-    PetscCall(JRModesDestroy(&h->modes));
-    PetscCall(JRModesCreate(h->comm, &h->modes));
-    if (h->basis >= 1) {
-      Mat       Ks, KK;
-      PetscReal sig;
-      PetscCall(JRElementsCreateStuckStiffness(K, el, &Ks, &sig));
-      PetscCall(MatDuplicate(K, MAT_COPY_VALUES, &KK));
-      PetscCall(MatAXPY(KK, 1.0, Ks, DIFFERENT_NONZERO_PATTERN));
-      PetscCall(JRModesSetOperators(h->modes, KK, M));
-      PetscCall(JRModesSetSignature(h->modes, sig));
-      PetscCall(MatDestroy(&KK));
-      PetscCall(MatDestroy(&Ks));
-    } else PetscCall(JRModesSetOperators(h->modes, K, M));
-    PetscCall(JRModesSetNumber(h->modes, h->nm));
-    PetscCall(JRModesSetFromOptions(h->modes));
-    PetscCall(JRModesSetNumber(h->modes, h->nm)); /* -hbm_modes wins over -modes_nev */
-    {
-      PetscInt nrb;
-      Vec      rb[6];
-      PetscCall(JRModelGetRigidBasis(h->model, &nrb, rb));
-      PetscCall(JRModesSetRigidBasis(h->modes, nrb, rb));
-      for (PetscInt i = 0; i < nrb; i++) PetscCall(VecDestroy(&rb[i]));
-      if (nrb) { /* an FE model: its coordinates go with saved modes */
-        Vec X;
-        PetscCall(JRModelGetCoordinates(h->model, &X));
-        PetscCall(JRModesSetCoordinates(h->modes, X));
-        PetscCall(VecDestroy(&X));
+    if (!h->modes_shared) {
+      PetscCall(JRModesDestroy(&h->modes));
+      PetscCall(JRModesCreate(h->comm, &h->modes));
+      if (h->basis >= 1) {
+        Mat       Ks, KK;
+        PetscReal sig;
+        PetscCall(JRElementsCreateStuckStiffness(K, el, &Ks, &sig));
+        PetscCall(MatDuplicate(K, MAT_COPY_VALUES, &KK));
+        PetscCall(MatAXPY(KK, 1.0, Ks, DIFFERENT_NONZERO_PATTERN));
+        PetscCall(JRModesSetOperators(h->modes, KK, M));
+        PetscCall(JRModesSetSignature(h->modes, sig));
+        PetscCall(MatDestroy(&KK));
+        PetscCall(MatDestroy(&Ks));
+      } else PetscCall(JRModesSetOperators(h->modes, K, M));
+      PetscCall(JRModesSetNumber(h->modes, h->nm));
+      PetscCall(JRModesSetFromOptions(h->modes));
+      PetscCall(JRModesSetNumber(h->modes, h->nm)); /* -hbm_modes wins over -modes_nev */
+      {
+        PetscInt nrb;
+        Vec      rb[6];
+        PetscCall(JRModelGetRigidBasis(h->model, &nrb, rb));
+        PetscCall(JRModesSetRigidBasis(h->modes, nrb, rb));
+        for (PetscInt i = 0; i < nrb; i++) PetscCall(VecDestroy(&rb[i]));
+        if (nrb) { /* an FE model: its coordinates go with saved modes */
+          Vec X;
+          PetscCall(JRModelGetCoordinates(h->model, &X));
+          PetscCall(JRModesSetCoordinates(h->modes, X));
+          PetscCall(VecDestroy(&X));
+        }
       }
-    }
-    if (h->basis == 2) { /* the saved or loaded basis is the mixed one, marked by the signature's sign */
-      PetscCall(PetscStrncpy(save, h->modes->save, sizeof(save)));
-      h->modes->save[0]  = 0;
-      h->modes->load_all = PETSC_TRUE;
-      h->modes->sig      = -h->modes->sig - 1.0;
-    }
-    PetscCall(JRModesSolve(h->modes));
-    if (h->basis == 2 && !h->modes->load[0]) {
-      PetscCall(MixBasis(h, K, M));
-      if (save[0]) PetscCall(JRModesSave(h->modes, save));
+      if (h->basis == 2) { /* the saved or loaded basis is the mixed one, marked by the signature's sign */
+        PetscCall(PetscStrncpy(save, h->modes->save, sizeof(save)));
+        h->modes->save[0]  = 0;
+        h->modes->load_all = PETSC_TRUE;
+        h->modes->sig      = -h->modes->sig - 1.0;
+      }
+      PetscCall(JRModesSolve(h->modes));
+      if (h->basis == 2 && !h->modes->load[0]) {
+        PetscCall(MixBasis(h, K, M));
+        if (save[0]) PetscCall(JRModesSave(h->modes, save));
+      }
     }
     h->nm = h->modes->nm;
     PetscCall(JRModesGetEigenvalues(h->modes, &lam));
@@ -567,6 +629,14 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     for (PetscInt i = 0; i < h->nout; i++) h->Phiout[i * h->nm + h->outdof[i]] = 1.0;
   } else PetscCall(JRModesGetRows(h->modes, h->nout, h->outdof, h->Phiout));
 
+  /* reduced model: its joints' rows from their members (and, in a stuck basis, the members' springs to cancel) */
+  PetscCall(PetscFree(h->Kc));
+  PetscCall(PetscCalloc1(h->nm * h->nm, &h->Kc));
+  if (el->members) {
+    PetscCheck(el->joint && el->njoints == el->members->njoints, h->comm, PETSC_ERR_ARG_WRONG, "A reduced model needs a joint for every element, among its members' %" PetscInt_FMT " joints", el->members->njoints);
+    PetscCall(PetscMalloc2(el->njoints * h->nm, &Rj, el->njoints * h->nm, &Sj));
+    PetscCall(JointRows(h, el->members, Rj, Sj, h->basis >= 1 ? h->Kc : NULL));
+  }
   /* element groups, one per type, split across the ranks */
   for (PetscInt t = 0; t < h->ngroups; t++) PetscCall(GroupDestroy(&h->g[t]));
   PetscCall(PetscFree(h->g));
@@ -613,7 +683,10 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc, &g->U));
     PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc, &g->F));
     PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc * nc, &g->DU));
-    if (el->vdof_a) PetscCall(ProjectionRowsDir(h, nloc, eidx, el->vdof_a, el->vdof_b, el->tdir, g->R));
+    if (el->members)
+      for (PetscInt e = 0; e < nloc; e++)
+        for (PetscInt i = 0; i < nm; i++) g->R[e + i * nloc] = Rj[el->joint[eidx[e]] * nm + i];
+    else if (el->vdof_a) PetscCall(ProjectionRowsDir(h, nloc, eidx, el->vdof_a, el->vdof_b, el->tdir, g->R));
     else PetscCall(ProjectionRows(h, nloc, ia, ib, g->R));
     if (g->normal) {
       for (k = 0; k < nloc; k++) {
@@ -625,10 +698,13 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
       PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc, &g->N));
       PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc * nc, &g->DV));
       PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc * nc, &g->DN));
-      if (el->vdof_a) PetscCall(ProjectionRowsDir(h, nloc, eidx, el->vdof_a, el->vdof_b, el->ndir, g->S));
+      if (el->members)
+        for (PetscInt e = 0; e < nloc; e++)
+          for (PetscInt i = 0; i < nm; i++) g->S[e + i * nloc] = Sj[el->joint[eidx[e]] * nm + i];
+      else if (el->vdof_a) PetscCall(ProjectionRowsDir(h, nloc, eidx, el->vdof_a, el->vdof_b, el->ndir, g->S));
       else PetscCall(ProjectionRows(h, nloc, ia, ib, g->S));
     }
-    if (el->joint) {
+    if (el->joint && !el->members) {
       if (h->basis >= 1) { /* the basis holds the members' own stuck springs: Kc must cancel exactly those */
         PetscCall(PetscMalloc1(nloc * nm, &g->R0));
         PetscCall(PetscArraycpy(g->R0, g->R, nloc * nm));
@@ -673,7 +749,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     const PetscInt nm = h->nm;
     PetscReal     *loc, *all;
     PetscCall(PetscCalloc2(nm * nm, &loc, nm * nm, &all));
-    for (PetscInt t = 0; t < h->ngroups; t++) {
+    for (PetscInt t = 0; t < h->ngroups && !el->members; t++) {
       HBMGroup *g = &h->g[t];
       PetscCall(PetscCalloc1(nm * nm, &g->Kc));
       if (!g->split || !g->nloc) continue;
@@ -690,14 +766,16 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
       }
       PetscCall(PetscFree(g->R0));
       PetscCall(PetscFree(g->S0));
-      for (PetscInt i = 0; i < nm * nm; i++) loc[i] += g->Kc[i];
+      for (PetscInt i = 0; i < nm * nm; i++) h->Kc[i] += g->Kc[i];
     }
+    PetscCall(PetscArraycpy(loc, h->Kc, nm * nm));
     PetscCall(MPIU_Allreduce(loc, all, nm * nm, MPIU_REAL, MPIU_SUM, h->comm));
     for (PetscInt i = 0; i < nm; i++)
       for (PetscInt j = 0; j < nm; j++) h->Kg[i * nm + j] -= all[i + j * nm];
     PetscCall(PetscFree2(loc, all));
   }
 
+  PetscCall(PetscFree2(Rj, Sj));
   /* the nonlinear solver at fixed frequency: SNES on every rank, prefix hbm_ */
   PetscCall(PetscFree(h->buf));
   PetscCall(PetscMalloc1(h->n + h->n * h->n, &h->buf));
@@ -750,7 +828,102 @@ PetscErrorCode JRHBMSetExcitationDof(JRHBM h, PetscInt dof, PetscInt nout, const
   n0 > 0) in the modal basis of the HBM: eigenvalues of Phi^T (K + sum_e kt r_e r_e^T + kn s_e s_e^T) Phi
   (collective; freq has room for nm).
 */
+static PetscErrorCode StickEig(JRHBM h, PetscReal scale, PetscInt *nf, PetscReal freq[], PetscInt kvec, PetscReal vec[]);
+
 PetscErrorCode JRHBMStickFrequencies(JRHBM h, PetscInt *nf, PetscReal freq[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(StickEig(h, 1.0, nf, freq, -1, NULL));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMMatchStickFrequency - the factor c on every element's stiffness (kt, kn) that puts the k-th stuck natural
+  frequency (JRHBMStickFrequencies) at target [Hz]: the stiffness correction of a reduced model, by a bracketed
+  secant (Illinois) solve on the eigenvalue in the modal basis, to 1e-12 relative (collective; the model is not
+  changed: scale its elements by c and set it up again).
+*/
+PetscErrorCode JRHBMMatchStickFrequency(JRHBM h, PetscInt k, PetscReal target, PetscReal *c)
+{
+  PetscReal *f, lo = 1.0, hi = 1.0, glo, ghi, x = 1.0, gx;
+  PetscInt   nf, side = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCheck(k >= 0 && k < h->nm, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Stuck mode %" PetscInt_FMT ": the basis has %" PetscInt_FMT, k, h->nm);
+  PetscCall(PetscMalloc1(h->nm, &f));
+  PetscCall(StickEig(h, 1.0, &nf, f, -1, NULL));
+  glo = ghi = f[k] - target;
+  for (PetscInt it = 0; glo > 0 && it < 60; it++) {
+    hi  = lo;
+    ghi = glo;
+    lo *= 0.5;
+    PetscCall(StickEig(h, lo, &nf, f, -1, NULL));
+    glo = f[k] - target;
+  }
+  for (PetscInt it = 0; ghi < 0 && it < 60; it++) {
+    lo  = hi;
+    glo = ghi;
+    hi *= 2.0;
+    PetscCall(StickEig(h, hi, &nf, f, -1, NULL));
+    ghi = f[k] - target;
+  }
+  PetscCheck(glo <= 0 && ghi >= 0, h->comm, PETSC_ERR_NOT_CONVERGED, "Stiffness correction: no factor in [%g, %g] puts stuck mode %" PetscInt_FMT " at %g Hz (the elements barely change it)", (double)lo, (double)hi, k, (double)target);
+  x = lo;
+  for (PetscInt it = 0; it < 200 && hi - lo > 1e-13 * hi; it++) {
+    x = (lo * ghi - hi * glo) / (ghi - glo);
+    PetscCall(StickEig(h, x, &nf, f, -1, NULL));
+    gx = f[k] - target;
+    if (PetscAbsReal(gx) <= 1e-12 * target) break;
+    if (gx < 0) {
+      lo  = x;
+      glo = gx;
+      if (side == -1) ghi *= 0.5;
+      side = -1;
+    } else {
+      hi  = x;
+      ghi = gx;
+      if (side == 1) glo *= 0.5;
+      side = 1;
+    }
+  }
+  *c = x;
+  PetscCall(PetscFree(f));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMStuckModeMotion - the k-th stuck mode (JRHBMStickFrequencies, M-normalised in the basis) as every element's
+  tangential relative motion u[e] (e in the model's element list, on every rank; collective)
+*/
+PetscErrorCode JRHBMStuckModeMotion(JRHBM h, PetscInt k, PetscReal u[])
+{
+  const JRElements *el;
+  PetscReal        *f, *q, *loc;
+  PetscInt          nf;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(JRModelGetElements(h->model, &el));
+  PetscCheck(k >= 0 && k < h->nm, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Stuck mode %" PetscInt_FMT ": the basis has %" PetscInt_FMT, k, h->nm);
+  PetscCall(PetscMalloc2(h->nm, &f, h->nm, &q));
+  PetscCall(StickEig(h, 1.0, &nf, f, k, q));
+  PetscCall(PetscCalloc1(el->n, &loc));
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    HBMGroup *g = &h->g[t];
+    for (PetscInt e = 0; e < g->nloc; e++) {
+      PetscReal s = 0;
+      for (PetscInt i = 0; i < h->nm; i++) s += g->R[e + i * g->nloc] * q[i];
+      loc[g->eidx[e]] = s;
+    }
+  }
+  PetscCall(MPIU_Allreduce(loc, u, el->n, MPIU_REAL, MPIU_SUM, h->comm));
+  PetscCall(PetscFree(loc));
+  PetscCall(PetscFree2(f, q));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode StickEig(JRHBM h, PetscReal scale, PetscInt *nf, PetscReal freq[], PetscInt kvec, PetscReal vec[])
 {
   const PetscInt nm = h->nm;
   PetscReal     *A, *B, *loc, *w, *work;
@@ -765,11 +938,11 @@ PetscErrorCode JRHBMStickFrequencies(JRHBM h, PetscInt *nf, PetscReal freq[])
     if (!g->nloc) continue;
     for (PetscInt i = 0; i < nm; i++)
       for (PetscInt e = 0; e < g->nloc; e++) g->W[e + i * g->nloc] = (g->nstatic[e] > 0 ? g->kt[e] : 0.0) * g->R[e + i * g->nloc];
-    PetscCall(Gemm("T", "N", nm, nm, g->nloc, 1.0, g->R, g->nloc, g->W, g->nloc, 1.0, loc, nm));
+    PetscCall(Gemm("T", "N", nm, nm, g->nloc, scale, g->R, g->nloc, g->W, g->nloc, 1.0, loc, nm));
     if (g->normal) {
       for (PetscInt i = 0; i < nm; i++)
         for (PetscInt e = 0; e < g->nloc; e++) g->W[e + i * g->nloc] = (g->nstatic[e] > 0 ? g->kn[e] : 0.0) * g->S[e + i * g->nloc];
-      PetscCall(Gemm("T", "N", nm, nm, g->nloc, 1.0, g->S, g->nloc, g->W, g->nloc, 1.0, loc, nm));
+      PetscCall(Gemm("T", "N", nm, nm, g->nloc, scale, g->S, g->nloc, g->W, g->nloc, 1.0, loc, nm));
     }
   }
   PetscCall(MPIU_Allreduce(loc, A, nm * nm, MPIU_REAL, MPIU_SUM, h->comm));
@@ -780,11 +953,32 @@ PetscErrorCode JRHBMStickFrequencies(JRHBM h, PetscInt *nf, PetscReal freq[])
     }
   PetscCall(PetscBLASIntCast(nm, &n));
   PetscCall(PetscBLASIntCast(8 * nm, &lwork));
-  PetscCallBLAS("LAPACKsygv", LAPACKsygv_(&itype, "N", "U", &n, A, &n, B, &n, w, work, &lwork, &info));
+  PetscCallBLAS("LAPACKsygv", LAPACKsygv_(&itype, vec ? "V" : "N", "U", &n, A, &n, B, &n, w, work, &lwork, &info));
   PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK sygv failed: info %d", (int)info);
   for (PetscInt i = 0; i < nm; i++) freq[i] = PetscSqrtReal(PetscMax(w[i], 0.0)) / (2 * PETSC_PI);
+  if (vec)
+    for (PetscInt i = 0; i < nm; i++) vec[i] = A[i + kvec * nm];
   *nf = nm;
   PetscCall(PetscFree5(A, B, loc, w, work));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMSetModes - use the modes (and basis) of another JRHBM that is set up, e.g. the node-to-node model's for its
+  reduced model: nothing is solved again; the other JRHBM must outlive this one (its modes are not copied).
+*/
+PetscErrorCode JRHBMSetModes(JRHBM h, JRHBM from)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(from));
+  PetscCheck(!from->physical, h->comm, PETSC_ERR_ARG_WRONG, "JRHBMSetModes: the other JRHBM works in physical coordinates");
+  if (!h->modes_shared) PetscCall(JRModesDestroy(&h->modes));
+  h->modes        = from->modes;
+  h->modes_shared = PETSC_TRUE;
+  h->basis        = from->basis;
+  h->basis_set    = PETSC_TRUE;
+  h->nmodes_opt   = from->modes->nm;
+  h->setupcalled  = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -880,6 +1074,15 @@ static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Pet
   PetscFunctionBeginUser;
   if (jac && h->cache_ok) reuse = (PetscBool)!memcmp(a, h->cache_a, sizeof(PetscReal) * n);
   PetscCall(PetscArrayzero(loc, len));
+  if (h->basis >= 1 && h->Kc) { /* stuck basis: less the stuck springs, which are in Km (this rank's share) */
+    PetscCall(Gemm("N", "N", nm, nc, nm, -1.0, h->Kc, nm, a, nm, 1.0, loc, nm));
+    if (jac)
+      for (PetscInt k = 0; k < nc; k++) {
+        PetscReal *blk = loc + n + (k * nm) + (k * nm) * n;
+        for (PetscInt j = 0; j < nm; j++)
+          for (PetscInt i = 0; i < nm; i++) blk[i + j * n] -= h->Kc[i + j * nm];
+      }
+  }
   for (PetscInt t = 0; t < h->ngroups; t++) {
     HBMGroup      *g    = &h->g[t];
     const PetscInt nloc = g->nloc;
@@ -893,15 +1096,6 @@ static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Pet
     }
     PetscCall(Gemm("T", "N", nm, nc, nloc, 1.0, g->R, nloc, g->F, nloc, 1.0, loc, nm));
     if (g->normal) PetscCall(Gemm("T", "N", nm, nc, nloc, 1.0, g->S, nloc, g->N, nloc, 1.0, loc, nm));
-    if (g->Kc) { /* stuck basis: less the stuck springs, which are in Km */
-      PetscCall(Gemm("N", "N", nm, nc, nm, -1.0, g->Kc, nm, a, nm, 1.0, loc, nm));
-      if (jac)
-        for (PetscInt k = 0; k < nc; k++) {
-          PetscReal *blk = loc + n + (k * nm) + (k * nm) * n;
-          for (PetscInt j = 0; j < nm; j++)
-            for (PetscInt i = 0; i < nm; i++) blk[i + j * n] -= g->Kc[i + j * nm];
-        }
-    }
     if (jac) {
       PetscInt         nsel = nloc;
       const PetscReal *Rj = g->R, *Sj = g->S;
@@ -1366,11 +1560,12 @@ PetscErrorCode JRHBMDestroy(JRHBM *hbm)
   if (!h) PetscFunctionReturn(0);
   for (PetscInt t = 0; t < h->ngroups; t++) PetscCall(GroupDestroy(&h->g[t]));
   PetscCall(PetscFree(h->g));
-  PetscCall(JRModesDestroy(&h->modes));
+  if (!h->modes_shared) PetscCall(JRModesDestroy(&h->modes));
   PetscCall(PetscFree3(h->Km, h->Mm, h->Cm));
   PetscCall(PetscFree(h->omega_r));
   PetscCall(PetscFree(h->pin));
   PetscCall(PetscFree(h->Kg));
+  PetscCall(PetscFree(h->Kc));
   PetscCall(PetscFree(h->outdof));
   PetscCall(PetscFree(h->fm));
   PetscCall(PetscFree(h->Phiout));

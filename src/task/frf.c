@@ -113,22 +113,128 @@ static PetscErrorCode WriteContactMaps(MPI_Comm comm, JRModel model, JRCont cont
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode JRTaskFRF(MPI_Comm comm)
+/* Curves of one model: a JRCont on hbm (options -cont_*, -frf_*), written to base (if not empty); seconds: the
+   continuation's wall time (every level) */
+static PetscErrorCode Curves(MPI_Comm comm, JRHBM hbm, const char base[], JRCont *cont, PetscReal *seconds)
+{
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRContCreate(comm, cont));
+  PetscCall(JRContSetHBM(*cont, hbm));
+  PetscCall(JRContSetFromOptions(*cont));
+  if (base) PetscCall(JRContSetOutputBase(*cont, base));
+  PetscCall(PetscTime(&t0));
+  PetscCall(JRContSolve(*cont));
+  PetscCall(PetscTime(&t1));
+  *seconds = t1 - t0;
+  PetscCall(JRContWrite(*cont));
+  PetscFunctionReturn(0);
+}
+
+/* -task compare: per level the peaks of both models and their errors, the wall times, BASE_compare.csv and .png */
+static PetscErrorCode CompareReport(MPI_Comm comm, JRCont cn, JRCont cr, const JRElements *eln, const JRElements *elr, PetscReal tn, PetscReal tr, PetscReal setn, PetscReal setr, PetscReal tred, const char base[], PetscBool plot)
+{
+  PetscInt nlev, nlr;
+  FILE    *fp = NULL;
+  char     csv[PETSC_MAX_PATH_LEN + 32], tmp[PETSC_MAX_PATH_LEN + 48];
+  PetscReal worstf = 0, worsta = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRContGetNumLevels(cn, &nlev));
+  PetscCall(JRContGetNumLevels(cr, &nlr));
+  PetscCheck(nlev == nlr, comm, PETSC_ERR_PLIB, "Different level counts");
+  if (base[0]) {
+    PetscCall(PetscSNPrintf(csv, sizeof(csv), "%s_compare.csv", base));
+    PetscCall(JRFileOpenTemp(comm, csv, &fp, tmp, sizeof(tmp)));
+    if (fp) fprintf(fp, "level,F_N,n2n_freq_hz,rom_freq_hz,freq_rel_err,n2n_amp_m,rom_amp_m,amp_rel_err,n2n_zeta,rom_zeta,n2n_s,rom_s\n");
+  }
+  PetscCall(PetscPrintf(comm, "compare: node-to-node %" PetscInt_FMT " elements (%" PetscInt_FMT " nonlinear relative DOFs) vs reduced %" PetscInt_FMT " elements on %" PetscInt_FMT " joints (%" PetscInt_FMT " nonlinear DOFs)\n", eln->n, eln->n, elr->n, elr->njoints, elr->njoints));
+  PetscCall(PetscPrintf(comm, "  %10s %12s %12s %10s %13s %13s %10s %9s %9s %9s %9s\n", "F [N]", "n2n [Hz]", "rom [Hz]", "err f", "n2n amp [m]", "rom amp [m]", "err amp", "n2n zeta", "rom zeta", "n2n [s]", "rom [s]"));
+  for (PetscInt l = 0; l < nlev; l++) {
+    PetscReal F, wn, an, wr, ar, zn, zr, sn, sr, ef, ea;
+    PetscCall(JRContGetLevel(cn, l, &F));
+    PetscCall(JRContGetPeak(cn, l, &wn, &an));
+    PetscCall(JRContGetPeak(cr, l, &wr, &ar));
+    PetscCall(JRContGetDamping(cn, l, &zn, NULL));
+    PetscCall(JRContGetDamping(cr, l, &zr, NULL));
+    PetscCall(JRContGetLevelStats(cn, l, &sn, NULL, NULL));
+    PetscCall(JRContGetLevelStats(cr, l, &sr, NULL, NULL));
+    ef     = wr / wn - 1;
+    ea     = ar / an - 1;
+    worstf = PetscMax(worstf, PetscAbsReal(ef));
+    worsta = PetscMax(worsta, PetscAbsReal(ea));
+    PetscCall(PetscPrintf(comm, "  %10g %12.6f %12.6f %+10.2e %13.6e %13.6e %+10.2e %9.5f %9.5f %9.4f %9.4f\n", (double)F, (double)(wn / (2 * PETSC_PI)), (double)(wr / (2 * PETSC_PI)), (double)ef, (double)an, (double)ar, (double)ea, (double)zn, (double)zr, (double)sn, (double)sr));
+    if (fp) fprintf(fp, "%" PetscInt_FMT ",%.9g,%.10g,%.10g,%.6e,%.9e,%.9e,%.6e,%.6e,%.6e,%.6g,%.6g\n", l, (double)F, (double)(wn / (2 * PETSC_PI)), (double)(wr / (2 * PETSC_PI)), (double)ef, (double)an, (double)ar, (double)ea, (double)zn, (double)zr, (double)sn, (double)sr);
+  }
+  for (PetscInt l = 0; l < nlev; l++) {
+    PetscReal F, wn, an, wr, ar, sn, sr;
+    PetscCall(JRContGetLevel(cn, l, &F));
+    PetscCall(JRContGetPeak(cn, l, &wn, &an));
+    PetscCall(JRContGetPeak(cr, l, &wr, &ar));
+    PetscCall(JRContGetLevelStats(cn, l, &sn, NULL, NULL));
+    PetscCall(JRContGetLevelStats(cr, l, &sr, NULL, NULL));
+    PetscCall(PetscPrintf(comm, "compare level %g n2n_freq_hz %.8g rom_freq_hz %.8g n2n_amp %.8e rom_amp %.8e n2n_s %.6g rom_s %.6g\n", (double)F, (double)(wn / (2 * PETSC_PI)), (double)(wr / (2 * PETSC_PI)), (double)an, (double)ar, (double)sn, (double)sr));
+  }
+  PetscCall(PetscPrintf(comm, "compare worst freq_rel_err %.3e amp_rel_err %.3e\n", (double)worstf, (double)worsta));
+  PetscCall(PetscPrintf(comm, "compare time n2n_solve_s %.6g rom_solve_s %.6g speedup %.4g n2n_setup_s %.4g rom_setup_s %.4g rom_reduction_s %.4g\n", (double)tn, (double)tr, (double)(tn / tr), (double)setn, (double)setr, (double)tred));
+  if (base[0]) {
+    PetscCall(JRFileCommit(comm, &fp, tmp, csv));
+    if (plot) {
+      char      png[PETSC_MAX_PATH_LEN + 32], vars[3 * PETSC_MAX_PATH_LEN + 64];
+      PetscBool made;
+      PetscCall(PetscSNPrintf(png, sizeof(png), "%s_compare.png", base));
+      PetscCall(PetscSNPrintf(vars, sizeof(vars), "n2n='%s_n2n.csv'; rom='%s_rom.csv'; nlev=%" PetscInt_FMT "; ttl='node-to-node %" PetscInt_FMT " elements (solid) vs reduced %" PetscInt_FMT " elements in %" PetscInt_FMT " joints (dashed)'", base, base, nlev, eln->n, elr->n, elr->njoints));
+      PetscCall(JRPlot(comm, "plot_compare.gp", png, vars, &made));
+      PetscCall(PetscPrintf(comm, "compare: wrote %s%s%s\n", csv, made ? ", " : "", made ? png : ""));
+    } else PetscCall(PetscPrintf(comm, "compare: wrote %s\n", csv));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The stuck mode of hbm nearest the middle of the frequency range (or, without one, the lowest elastic one) */
+static PetscErrorCode TargetMode(JRHBM hbm, JRCont cont, PetscInt *k, PetscReal *f)
+{
+  PetscReal *fs, wmin, wmax;
+  PetscInt   nm, nf;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMGetSizes(hbm, &nm, NULL, NULL));
+  PetscCall(PetscMalloc1(nm, &fs));
+  PetscCall(JRHBMStickFrequencies(hbm, &nf, fs));
+  PetscCall(JRContGetRange(cont, &wmin, &wmax));
+  *k = -1;
+  if (wmax > 0) {
+    const PetscReal fc = 0.25 * (wmin + wmax) / PETSC_PI;
+    for (PetscInt i = 0; i < nf; i++)
+      if (*k < 0 || PetscAbsReal(fs[i] - fc) < PetscAbsReal(fs[*k] - fc)) *k = i;
+  } else
+    for (PetscInt i = 0; i < nf && *k < 0; i++)
+      if (fs[i] > 1e-3 * fs[nf - 1]) *k = i;
+  *f = fs[*k];
+  PetscCall(PetscFree(fs));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
 {
   JRModel         model;
   JRPreload       pre = NULL;
-  JRHBM           hbm;
-  JRCont          cont;
+  JRHBM           hbm = NULL, hbmr = NULL, hbmc;
+  JRCont          cont = NULL, contr = NULL, contc;
   const JRPairs  *P;
   const char     *damping;
-  PetscInt        nm, H, n, *pair = NULL;
-  PetscBool       n2n, stickfe = PETSC_FALSE, plot = PETSC_TRUE;
-  JRElements      el;
-  char            base[PETSC_MAX_PATH_LEN] = "out/frf";
+  PetscInt        nm, H, n, *pair = NULL, romm = 0, fdof = 0, nout = 0, odof[21];
+  PetscBool       n2n, stickfe = PETSC_FALSE, plot = PETSC_TRUE, isrom = PETSC_FALSE, loaded = PETSC_FALSE, corr_on = PETSC_TRUE, weight = PETSC_TRUE;
+  JRElements      el, elr, elj;
+  char            base[PETSC_MAX_PATH_LEN] = "out/frf", romsave[PETSC_MAX_PATH_LEN] = "", romload[PETSC_MAX_PATH_LEN] = "";
   PetscLogDouble  t0, t1, tpre = 0, tmodel;
+  PetscReal       corr = 1.0, tn = 0, tr = 0, setn = 0, setr = 0, tred = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(&el, sizeof(el)));
+  PetscCall(PetscMemzero(&elr, sizeof(elr)));
+  PetscCall(PetscMemzero(&elj, sizeof(elj)));
   PetscCall(PetscTime(&t0));
   PetscCall(JRModelCreate(comm, &model));
   PetscCall(JRModelSetFromOptions(model));
@@ -145,16 +251,24 @@ PetscErrorCode JRTaskFRF(MPI_Comm comm)
       n2n = (PetscBool)(P && P->n > 0);
     }
   }
-  PetscOptionsBegin(comm, NULL, "Frequency response (-task frf)", "JRTaskFRF");
+  PetscOptionsBegin(comm, NULL, "Frequency response (-task frf, -task compare)", "JRTaskFRF");
   PetscCall(PetscOptionsString("-frf_output_file", "Output base name", "JRTaskFRF", base, base, sizeof(base), NULL));
   PetscCall(PetscOptionsBool("-frf_plot", "Draw the PNG plots", "JRTaskFRF", plot, &plot, NULL));
-  if (n2n) PetscCall(PetscOptionsBool("-frf_stick_fe", "Also the natural frequencies of the whole FE model with every element stuck (SLEPc): the modal truncation error", "JRTaskFRF", stickfe, &stickfe, NULL));
+  if (n2n) {
+    PetscCall(PetscOptionsBool("-frf_stick_fe", "Also the natural frequencies of the whole FE model with every element stuck (SLEPc): the modal truncation error", "JRTaskFRF", stickfe, &stickfe, NULL));
+    PetscCall(PetscOptionsInt("-rom_elements", "Second reduction: fit this many elements per joint to its hysteresis loops (0: the first reduction only)", "JRROMReduce", romm, &romm, NULL));
+    PetscCall(PetscOptionsBool("-rom_mode_weights", "Weight every member of a joint by its motion relative to the joint's in the stuck mode of interest (w^2 kt, |w| f; jenkins)", "JRROMReduce", weight, &weight, NULL));
+    PetscCall(PetscOptionsBool("-rom_stiffness_correction", "Scale the reduced elements' stiffness so that the stuck resonance is the node-to-node one", "JRHBMMatchStickFrequency", corr_on, &corr_on, NULL));
+    PetscCall(PetscOptionsString("-rom_save", "Save the reduced model (second reduction) to this HDF5 file", "JRROMSave", romsave, romsave, sizeof(romsave), NULL));
+    PetscCall(PetscOptionsString("-rom_load", "Run the reduced model of this HDF5 file (no preload, no fit)", "JRROMLoad", romload, romload, sizeof(romload), NULL));
+  }
   PetscOptionsEnd();
+  PetscCheck(n2n || !compare, comm, PETSC_ERR_ARG_WRONG, "-task compare needs an FE model with a contact interface (-model_type brb, lap1, lap3, lap, gmsh)");
+  PetscCheck(romm >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_elements %" PetscInt_FMT ": 0 (first reduction only) or more", romm);
 
   if (n2n) {
-    PetscInt         ndof, nout = 0, dir = 2, nd = 3, no = 63;
+    PetscInt         ndof, dir = 2, nd = 3, no = 63;
     PetscReal        lo[3], hi[3], at[3], oat[63], dist;
-    PetscInt         fdof, odof[21];
     PetscBool        set, oset;
     JRPreloadSummary s;
     const char      *dirs[] = {"x", "y", "z"};
@@ -168,32 +282,50 @@ PetscErrorCode JRTaskFRF(MPI_Comm comm)
     }
     PetscCall(JRModelGetNumDofs(model, &ndof));
     PetscCall(PetscPrintf(comm, "frf: node-to-node contact model, %" PetscInt_FMT " DOFs, %" PetscInt_FMT " interface pairs (model %.3g s)\n", ndof, P->n, (double)tmodel));
-    /* 2. preload */
-    PetscCall(PetscTime(&t0));
-    PetscCall(JRPreloadCreate(comm, &pre));
-    PetscCall(JRPreloadSetModel(pre, model));
-    PetscCall(JRPreloadSetFromOptions(pre));
-    PetscCall(JRPreloadSolve(pre));
-    PetscCall(PetscTime(&t1));
-    tpre = t1 - t0;
-    PetscCall(JRPreloadGetSummary(pre, &s));
-    PetscCall(PetscPrintf(comm, "preload total_normal_force %.10g bolt_force_sum %.10g pairs_in_contact %" PetscInt_FMT " pairs %" PetscInt_FMT " (%.3g s)\n", (double)s.total_force, (double)s.bolt_force_sum, s.in_contact, s.pairs, (double)tpre));
-    if (base[0]) {
-      PetscCall(PetscSNPrintf(pbase, sizeof(pbase), "%s_preload", base));
-      PetscCall(JRPreloadWrite(pre, pbase, plot));
-    }
-    /* 4. interface */
-    PetscCall(JRInterfaceCreateElements(model, pre, &el, &pair));
-    PetscCall(JRModelSetElements(model, &el));
-    {
-      PetscReal nsum = 0, nmin = PETSC_MAX_REAL, nmax = -PETSC_MAX_REAL;
-      for (PetscInt e = 0; e < el.n; e++) {
-        nsum += el.n0[e];
-        nmin = PetscMin(nmin, el.n0[e]);
-        nmax = PetscMax(nmax, el.n0[e]);
+    if (romload[0] && !compare) { /* a saved reduced model: no preload, no interface, no fit */
+      PetscCall(JRROMLoad(model, romload, &elr, &corr));
+      isrom  = PETSC_TRUE;
+      loaded = PETSC_TRUE;
+    } else {
+      /* 2. preload */
+      PetscCall(PetscTime(&t0));
+      PetscCall(JRPreloadCreate(comm, &pre));
+      PetscCall(JRPreloadSetModel(pre, model));
+      PetscCall(JRPreloadSetFromOptions(pre));
+      PetscCall(JRPreloadSolve(pre));
+      PetscCall(PetscTime(&t1));
+      tpre = t1 - t0;
+      PetscCall(JRPreloadGetSummary(pre, &s));
+      PetscCall(PetscPrintf(comm, "preload total_normal_force %.10g bolt_force_sum %.10g pairs_in_contact %" PetscInt_FMT " pairs %" PetscInt_FMT " (%.3g s)\n", (double)s.total_force, (double)s.bolt_force_sum, s.in_contact, s.pairs, (double)tpre));
+      if (base[0]) {
+        PetscCall(PetscSNPrintf(pbase, sizeof(pbase), "%s_preload", base));
+        PetscCall(JRPreloadWrite(pre, pbase, plot));
       }
-      PetscCall(PetscPrintf(comm, "interface: %" PetscInt_FMT " %s elements (kt %g N/m, kn %g N/m, mu %g), n0 %.4g .. %.4g N, sum %.6g N\n", el.n, el.typename[0], (double)el.kt[0], (double)el.kn[0], (double)el.mu[0], (double)nmin, (double)nmax, (double)nsum));
+      /* 4. interface, and the reduced model from its joints */
+      PetscCall(JRInterfaceCreateElements(model, pre, &el, &pair));
+      {
+        PetscReal nsum = 0, nmin = PETSC_MAX_REAL, nmax = -PETSC_MAX_REAL;
+        for (PetscInt e = 0; e < el.n; e++) {
+          nsum += el.n0[e];
+          nmin = PetscMin(nmin, el.n0[e]);
+          nmax = PetscMax(nmax, el.n0[e]);
+        }
+        PetscCall(PetscPrintf(comm, "interface: %" PetscInt_FMT " %s elements (kt %g N/m, kn %g N/m, mu %g), n0 %.4g .. %.4g N, sum %.6g N\n", el.n, el.typename[0], (double)el.kt[0], (double)el.kn[0], (double)el.mu[0], (double)nmin, (double)nmax, (double)nsum));
+      }
+      if (el.joint) {
+        isrom = PETSC_TRUE;
+        PetscCall(JRElementsDuplicate(&el, &elj)); /* the joints, reduced below */
+        PetscCall(PetscFree(el.joint));           /* the node-to-node model itself */
+        el.njoints = 0;
+      } else if (romload[0]) {
+        PetscCall(JRROMLoad(model, romload, &elr, &corr));
+        isrom  = PETSC_TRUE;
+        loaded = PETSC_TRUE;
+      }
+      PetscCheck(!romm || isrom, comm, PETSC_ERR_ARG_INCOMP, "-rom_elements needs joints: -rom_joints strips|bolts|between|sides|zones");
+      PetscCheck(!compare || isrom, comm, PETSC_ERR_ARG_WRONG, "-task compare needs a reduced model: joints (-rom_joints ..., optionally -rom_elements m) or -rom_load FILE");
     }
+    PetscCheck(!romsave[0] || (isrom && romm > 0 && !loaded), comm, PETSC_ERR_ARG_INCOMP, "-rom_save saves a second-reduction model: it needs -rom_joints ... and -rom_elements m");
     /* excitation and responses by position */
     PetscCall(JRModelGetBoundingBox(model, lo, hi));
     at[0] = lo[0];
@@ -224,9 +356,6 @@ PetscErrorCode JRTaskFRF(MPI_Comm comm)
       PetscCheck(dist <= 0.05 * (hi[0] - lo[0]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_output_at (%g, %g, %g) m: the nearest node is %g m away: the point is outside the model", (double)oat[3 * o], (double)oat[3 * o + 1], (double)oat[3 * o + 2], (double)dist);
       PetscCall(PetscPrintf(comm, "frf: response %" PetscInt_FMT " along %s at (%g, %g, %g) m: DOF %" PetscInt_FMT "\n", o + 1, dirs[dir], (double)oat[3 * o], (double)oat[3 * o + 1], (double)oat[3 * o + 2], odof[o]));
     }
-    PetscCall(JRHBMCreate(comm, &hbm));
-    PetscCall(JRHBMSetExcitationDof(hbm, fdof, nout, odof));
-    PetscCall(JRHBMSetBasis(hbm, 2)); /* stuck + free-interface modes: -hbm_basis free for the thesis's */
     /* the modes are saved for reuse unless they are read */
     {
       PetscBool ld, sv;
@@ -237,53 +366,146 @@ PetscErrorCode JRTaskFRF(MPI_Comm comm)
         PetscCall(PetscOptionsSetValue(NULL, "-modes_save", mfile));
       }
     }
-  } else PetscCall(JRHBMCreate(comm, &hbm));
-  PetscCall(JRHBMSetModel(hbm, model));
-  PetscCall(JRHBMSetFromOptions(hbm));
-  PetscCall(JRContCreate(comm, &cont));
-  PetscCall(JRContSetHBM(cont, hbm));
-  PetscCall(JRContSetFromOptions(cont));
-  PetscCall(PetscTime(&t0));
-  PetscCall(JRHBMSetUp(hbm));
-  PetscCall(PetscTime(&t1));
-  PetscCall(JRHBMGetSizes(hbm, &nm, &H, &n));
-  PetscCall(JRHBMGetDampingDescription(hbm, &damping));
+  }
+  /* the node-to-node (or matrices) model: its modes serve the reduced model too */
+  if (!loaded) {
+    PetscCall(JRHBMCreate(comm, &hbm));
+    if (n2n) {
+      PetscCall(JRHBMSetExcitationDof(hbm, fdof, nout, odof));
+      PetscCall(JRHBMSetBasis(hbm, 2)); /* stuck + free-interface modes: -hbm_basis free for the thesis's */
+      PetscCall(JRModelSetElements(model, &el));
+    }
+    PetscCall(JRHBMSetModel(hbm, model));
+    PetscCall(JRHBMSetFromOptions(hbm));
+    PetscCall(PetscTime(&t0));
+    PetscCall(JRHBMSetUp(hbm));
+    PetscCall(PetscTime(&t1));
+    setn = t1 - t0;
+  }
+  if (isrom && !loaded) { /* the reduction, from the joints of the node-to-node elements */
+    PetscReal *w = NULL;
+    PetscCall(PetscTime(&t0));
+    if (weight && !strcmp(elj.typename[0], JRCONTACTJENKINS)) { /* each member's motion in the stuck mode of interest over its joint's (4.4) */
+      PetscInt   k  = 0;
+      PetscReal  ft = 0, *u, *ubar, *cnt, umax = 0;
+      JRCont     tmp;
+      PetscCall(JRContCreate(comm, &tmp));
+      PetscCall(JRContSetHBM(tmp, hbm));
+      PetscCall(JRContSetFromOptions(tmp));
+      PetscCall(TargetMode(hbm, tmp, &k, &ft));
+      PetscCall(JRContDestroy(&tmp));
+      PetscCall(PetscMalloc1(el.n, &u));
+      PetscCall(PetscMalloc1(el.n, &w));
+      PetscCall(PetscCalloc2(elj.njoints, &ubar, elj.njoints, &cnt));
+      PetscCall(JRHBMStuckModeMotion(hbm, k, u));
+      for (PetscInt e = 0; e < el.n; e++) {
+        ubar[elj.joint[e]] += u[e];
+        cnt[elj.joint[e]] += 1;
+        umax = PetscMax(umax, PetscAbsReal(u[e]));
+      }
+      for (PetscInt j = 0; j < elj.njoints; j++) ubar[j] /= cnt[j];
+      for (PetscInt e = 0; e < el.n; e++) w[e] = PetscAbsReal(ubar[elj.joint[e]]) > 1e-6 * umax ? u[e] / ubar[elj.joint[e]] : 1.0;
+      PetscCall(PetscPrintf(comm, "rom: members weighted by their motion in stuck mode %" PetscInt_FMT " (%.6g Hz) over their joint's\n", k, (double)ft));
+      PetscCall(PetscFree2(ubar, cnt));
+      PetscCall(PetscFree(u));
+    }
+    PetscCall(JRROMReduce(comm, &elj, romm, w, base, plot, &elr));
+    PetscCall(PetscTime(&t1));
+    tred = t1 - t0;
+    PetscCall(PetscPrintf(comm, "rom: %s reduction: %" PetscInt_FMT " elements in %" PetscInt_FMT " joints (%.3g s)\n", romm ? "second" : "first", elr.n, elr.njoints, (double)tred));
+    PetscCall(PetscFree(w));
+  }
+  if (isrom) {
+    PetscCall(JRHBMCreate(comm, &hbmr));
+    PetscCall(JRHBMSetExcitationDof(hbmr, fdof, nout, odof));
+    PetscCall(JRHBMSetBasis(hbmr, 2));
+    PetscCall(JRModelSetElements(model, &elr));
+    PetscCall(JRHBMSetModel(hbmr, model));
+    PetscCall(JRHBMSetFromOptions(hbmr));
+    if (hbm) PetscCall(JRHBMSetModes(hbmr, hbm));
+    PetscCall(PetscTime(&t0));
+    PetscCall(JRHBMSetUp(hbmr));
+    PetscCall(PetscTime(&t1));
+    setr = t1 - t0;
+    if (!loaded && corr_on) { /* the stiffness correction: the reduced model's stuck resonance on the node-to-node one */
+      PetscInt  k  = 0;
+      PetscReal ft = 0, *fr;
+      JRCont    tmp;
+      PetscCall(JRContCreate(comm, &tmp));
+      PetscCall(JRContSetHBM(tmp, hbm));
+      PetscCall(JRContSetFromOptions(tmp));
+      PetscCall(TargetMode(hbm, tmp, &k, &ft));
+      PetscCall(JRContDestroy(&tmp));
+      PetscCall(JRHBMGetSizes(hbmr, &nm, NULL, NULL));
+      PetscCall(PetscMalloc1(nm, &fr));
+      PetscCall(JRHBMStickFrequencies(hbmr, &n, fr));
+      PetscCall(JRHBMMatchStickFrequency(hbmr, k, ft, &corr));
+      PetscCall(PetscPrintf(comm, "rom stiffness_correction %.8f stuck_mode %" PetscInt_FMT " n2n_hz %.8g rom_before_hz %.8g\n", (double)corr, k, (double)ft, (double)fr[k]));
+      PetscCall(PetscFree(fr));
+      for (PetscInt e = 0; e < elr.n; e++) {
+        elr.kt[e] *= corr;
+        elr.kn[e] *= corr;
+      }
+      PetscCall(JRModelSetElements(model, &elr));
+      PetscCall(JRHBMSetModel(hbmr, model));
+      PetscCall(PetscTime(&t0));
+      PetscCall(JRHBMSetUp(hbmr));
+      PetscCall(PetscTime(&t1));
+      setr += t1 - t0;
+    }
+    if (romsave[0]) PetscCall(JRROMSave(model, &elr, corr, romsave));
+  }
+  hbmc = isrom && !compare ? hbmr : hbm;
+  PetscCall(JRHBMGetSizes(hbmc, &nm, &H, &n));
+  PetscCall(JRHBMGetDampingDescription(hbmc, &damping));
   {
     PetscInt         nmod;
     const PetscReal *om;
-    PetscCall(JRHBMGetModalFrequencies(hbm, &nmod, &om));
+    PetscCall(JRHBMGetModalFrequencies(hbmc, &nmod, &om));
     if (nmod) PetscCall(PetscPrintf(comm, "frf: %" PetscInt_FMT " modes (%.6g .. %.6g Hz), %" PetscInt_FMT " harmonics + mean, %" PetscInt_FMT " unknowns; damping: %s\n", nm, (double)(om[0] / (2 * PETSC_PI)), (double)(om[nmod - 1] / (2 * PETSC_PI)), H, n, damping));
     else PetscCall(PetscPrintf(comm, "frf: %" PetscInt_FMT " physical coordinates, %" PetscInt_FMT " harmonics + mean, %" PetscInt_FMT " unknowns; damping: %s\n", nm, H, n, damping));
     if (n2n) {
       PetscInt b;
-      PetscCall(JRHBMGetBasis(hbm, &b));
-      PetscCall(PetscPrintf(comm, "frf: modes and projections %.3g s; modes of the %s [Hz]:", (double)(t1 - t0), b == 2 ? "mixed basis (Ritz, stuck + free)" : b ? "stuck structure" : "free interface"));
+      PetscCall(JRHBMGetBasis(hbmc, &b));
+      PetscCall(PetscPrintf(comm, "frf: modes and projections %.3g s; modes of the %s [Hz]:", (double)(setn + setr), b == 2 ? "mixed basis (Ritz, stuck + free)" : b ? "stuck structure" : "free interface"));
       for (PetscInt i = 0; i < nmod; i++) PetscCall(PetscPrintf(comm, " %.5g", (double)(om[i] / (2 * PETSC_PI))));
       PetscCall(PetscPrintf(comm, "\n"));
     }
   }
-  PetscCall(PetscTime(&t0));
-  PetscCall(JRContSolve(cont));
-  PetscCall(PetscTime(&t1));
-  PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) %.4g s\n", (double)(t1 - t0)));
-  if (base[0]) PetscCall(JRContWrite(cont));
+  if (compare) {
+    char bn[PETSC_MAX_PATH_LEN + 8], br[PETSC_MAX_PATH_LEN + 8];
+    PetscCall(PetscSNPrintf(bn, sizeof(bn), "%s%s", base, base[0] ? "_n2n" : ""));
+    PetscCall(PetscSNPrintf(br, sizeof(br), "%s%s", base, base[0] ? "_rom" : ""));
+    PetscCall(PetscPrintf(comm, "compare: node-to-node model\n"));
+    PetscCall(Curves(comm, hbm, bn, &cont, &tn));
+    PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) node-to-node %.4g s\n", (double)tn));
+    PetscCall(PetscPrintf(comm, "compare: reduced model\n"));
+    PetscCall(Curves(comm, hbmr, br, &contr, &tr));
+    PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) reduced %.4g s\n", (double)tr));
+    PetscCall(CompareReport(comm, cont, contr, &el, &elr, tn, tr, setn, setr, tred, base, plot));
+    contc = cont;
+  } else {
+    PetscCall(Curves(comm, hbmc, base[0] ? base : NULL, isrom ? &contr : &cont, &tn));
+    PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) %.4g s\n", (double)tn));
+    contc = isrom ? contr : cont;
+  }
   if (n2n) {
     PetscReal *fs, w, a, best = 0, fe[64];
     PetscInt   nf;
     PetscCall(PetscMalloc1(nm, &fs));
-    PetscCall(JRHBMStickFrequencies(hbm, &nf, fs));
-    PetscCall(JRContGetPeak(cont, 0, &w, &a));
+    PetscCall(JRHBMStickFrequencies(hbmc, &nf, fs));
+    PetscCall(JRContGetPeak(contc, 0, &w, &a));
     for (PetscInt i = 0; i < nf; i++)
       if (PetscAbsReal(fs[i] - w / (2 * PETSC_PI)) < PetscAbsReal(best - w / (2 * PETSC_PI))) best = fs[i];
-    PetscCall(PetscPrintf(comm, "frf: stuck structure, modal basis of %" PetscInt_FMT " modes [Hz]:", nm));
+    PetscCall(PetscPrintf(comm, "frf: stuck structure%s, modal basis of %" PetscInt_FMT " modes [Hz]:", hbmc == hbmr ? " (reduced model)" : "", nm));
     for (PetscInt i = 0; i < nf; i++) PetscCall(PetscPrintf(comm, " %.6g", (double)fs[i]));
     PetscCall(PetscPrintf(comm, "\n"));
     PetscCall(PetscPrintf(comm, "stick freq_hz %.8g modes %" PetscInt_FMT " lowest_level_peak_hz %.8g rel %.3e\n", (double)best, nm, (double)(w / (2 * PETSC_PI)), (double)(w / (2 * PETSC_PI) / best - 1)));
     if (stickfe) {
-      PetscInt nfe = PetscMin(nm, 64);
+      PetscInt  nfe = PetscMin(nm, 64);
       PetscReal bfe = 0;
       PetscCall(PetscTime(&t0));
-      PetscCall(StickFE(model, &el, nfe, fe));
+      PetscCall(StickFE(model, loaded ? &elr : &el, nfe, fe));
       PetscCall(PetscTime(&t1));
       PetscCall(PetscPrintf(comm, "frf: stuck structure, full FE model with the element springs (SLEPc, %.3g s) [Hz]:", (double)(t1 - t0)));
       for (PetscInt i = 0; i < nfe; i++) PetscCall(PetscPrintf(comm, " %.6g", (double)fe[i]));
@@ -293,7 +515,7 @@ PetscErrorCode JRTaskFRF(MPI_Comm comm)
       PetscCall(PetscPrintf(comm, "stick_fe freq_hz %.8g modal_freq_hz %.8g truncation_error %.3e\n", (double)bfe, (double)best, (double)(best / bfe - 1)));
     }
     PetscCall(PetscFree(fs));
-    if (base[0]) PetscCall(WriteContactMaps(comm, model, cont, &el, pair, base, plot));
+    if (base[0] && contc == cont && cont) PetscCall(WriteContactMaps(comm, model, cont, &el, pair, base, plot));
   }
   { /* peak resident memory of the processes */
     struct rusage ru;
@@ -304,11 +526,34 @@ PetscErrorCode JRTaskFRF(MPI_Comm comm)
     PetscCall(MPIU_Allreduce(&mb[1], &mx[1], 1, MPIU_REAL, MPIU_SUM, comm));
     PetscCall(PetscPrintf(comm, "frf: peak memory %.1f MB per process (largest), %.1f MB in all\n", (double)mx[0], (double)mx[1]));
   }
+  PetscCall(JRContDestroy(&contr));
   PetscCall(JRContDestroy(&cont));
+  PetscCall(JRHBMDestroy(&hbmr));
   PetscCall(JRHBMDestroy(&hbm));
   PetscCall(JRPreloadDestroy(&pre));
   PetscCall(JRElementsDestroy(&el));
+  PetscCall(JRElementsDestroy(&elr));
+  PetscCall(JRElementsDestroy(&elj));
   PetscCall(PetscFree(pair));
   PetscCall(JRModelDestroy(&model));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRTaskFRF(MPI_Comm comm)
+{
+  PetscFunctionBeginUser;
+  PetscCall(FRF(comm, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+/*
+  -task compare: node-to-node and reduced model of one case in one run, sharing the FE model, preload and modes:
+  FRF overlays per level (BASE_compare.png), BASE_compare.csv, and per level
+  "compare level <F> n2n_freq_hz <f> rom_freq_hz <f> n2n_amp <a> rom_amp <a> n2n_s <t> rom_s <t>".
+*/
+PetscErrorCode JRTaskCompare(MPI_Comm comm)
+{
+  PetscFunctionBeginUser;
+  PetscCall(FRF(comm, PETSC_TRUE));
   PetscFunctionReturn(0);
 }

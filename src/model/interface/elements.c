@@ -100,6 +100,50 @@ PetscErrorCode JRElementsDestroy(JRElements *el)
   }
   PetscCall(PetscFree4(el->vdof_a, el->vdof_b, el->tdir, el->ndir));
   PetscCall(PetscFree(el->joint));
+  if (el->members) {
+    PetscCall(JRElementsDestroy(el->members));
+    PetscCall(PetscFree(el->members));
+  }
   PetscCall(PetscMemzero(el, sizeof(*el)));
+  PetscFunctionReturn(0);
+}
+
+/* A deep copy of an element list (with its joints and members) into b (overwritten) */
+PetscErrorCode JRElementsDuplicate(const JRElements *a, JRElements *b)
+{
+  const PetscInt n = a->n;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(b, sizeof(*b)));
+  b->n      = n;
+  b->ntypes = a->ntypes;
+  for (PetscInt t = 0; t < a->ntypes; t++) PetscCall(PetscStrncpy(b->typename[t], a->typename[t], sizeof(b->typename[t])));
+  PetscCall(PetscMalloc5(n, &b->type, n, &b->dof_a, n, &b->dof_b, n, &b->ndof_a, n, &b->ndof_b));
+  PetscCall(PetscMalloc4(n, &b->kt, n, &b->kn, n, &b->mu, n, &b->n0));
+  PetscCall(PetscArraycpy(b->type, a->type, n));
+  PetscCall(PetscArraycpy(b->dof_a, a->dof_a, n));
+  PetscCall(PetscArraycpy(b->dof_b, a->dof_b, n));
+  PetscCall(PetscArraycpy(b->ndof_a, a->ndof_a, n));
+  PetscCall(PetscArraycpy(b->ndof_b, a->ndof_b, n));
+  PetscCall(PetscArraycpy(b->kt, a->kt, n));
+  PetscCall(PetscArraycpy(b->kn, a->kn, n));
+  PetscCall(PetscArraycpy(b->mu, a->mu, n));
+  PetscCall(PetscArraycpy(b->n0, a->n0, n));
+  if (a->joint) {
+    b->njoints = a->njoints;
+    PetscCall(PetscMalloc1(n, &b->joint));
+    PetscCall(PetscArraycpy(b->joint, a->joint, n));
+  }
+  if (a->vdof_a) {
+    PetscCall(PetscMalloc4(3 * n, &b->vdof_a, 3 * n, &b->vdof_b, 3 * n, &b->tdir, 3 * n, &b->ndir));
+    PetscCall(PetscArraycpy(b->vdof_a, a->vdof_a, 3 * n));
+    PetscCall(PetscArraycpy(b->vdof_b, a->vdof_b, 3 * n));
+    PetscCall(PetscArraycpy(b->tdir, a->tdir, 3 * n));
+    PetscCall(PetscArraycpy(b->ndir, a->ndir, 3 * n));
+  }
+  if (a->members) {
+    PetscCall(PetscNew(&b->members));
+    PetscCall(JRElementsDuplicate(a->members, b->members));
+  }
   PetscFunctionReturn(0);
 }

@@ -119,36 +119,9 @@ PetscErrorCode JRModelSetMatrices(JRModel m, Mat K, Mat M, Mat C)
 /* Copy an element table into the model (the DOFs are checked at set-up) */
 PetscErrorCode JRModelSetElements(JRModel m, const JRElements *el)
 {
-  const PetscInt n = el->n;
-
   PetscFunctionBeginUser;
   PetscCall(JRElementsDestroy(&m->el));
-  m->el.n      = n;
-  m->el.ntypes = el->ntypes;
-  for (PetscInt t = 0; t < el->ntypes; t++) PetscCall(PetscStrncpy(m->el.typename[t], el->typename[t], sizeof(m->el.typename[t])));
-  PetscCall(PetscMalloc5(n, &m->el.type, n, &m->el.dof_a, n, &m->el.dof_b, n, &m->el.ndof_a, n, &m->el.ndof_b));
-  PetscCall(PetscMalloc4(n, &m->el.kt, n, &m->el.kn, n, &m->el.mu, n, &m->el.n0));
-  PetscCall(PetscArraycpy(m->el.type, el->type, n));
-  PetscCall(PetscArraycpy(m->el.dof_a, el->dof_a, n));
-  PetscCall(PetscArraycpy(m->el.dof_b, el->dof_b, n));
-  PetscCall(PetscArraycpy(m->el.ndof_a, el->ndof_a, n));
-  PetscCall(PetscArraycpy(m->el.ndof_b, el->ndof_b, n));
-  PetscCall(PetscArraycpy(m->el.kt, el->kt, n));
-  PetscCall(PetscArraycpy(m->el.kn, el->kn, n));
-  PetscCall(PetscArraycpy(m->el.mu, el->mu, n));
-  PetscCall(PetscArraycpy(m->el.n0, el->n0, n));
-  if (el->joint) {
-    m->el.njoints = el->njoints;
-    PetscCall(PetscMalloc1(n, &m->el.joint));
-    PetscCall(PetscArraycpy(m->el.joint, el->joint, n));
-  }
-  if (el->vdof_a) {
-    PetscCall(PetscMalloc4(3 * n, &m->el.vdof_a, 3 * n, &m->el.vdof_b, 3 * n, &m->el.tdir, 3 * n, &m->el.ndir));
-    PetscCall(PetscArraycpy(m->el.vdof_a, el->vdof_a, 3 * n));
-    PetscCall(PetscArraycpy(m->el.vdof_b, el->vdof_b, 3 * n));
-    PetscCall(PetscArraycpy(m->el.tdir, el->tdir, 3 * n));
-    PetscCall(PetscArraycpy(m->el.ndir, el->ndir, 3 * n));
-  }
+  PetscCall(JRElementsDuplicate(el, &m->el));
   m->el_given = PETSC_TRUE;
   PetscFunctionReturn(0);
 }

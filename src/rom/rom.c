@@ -1,0 +1,810 @@
+/*
+   Reduced-order joints, second reduction (thesis 4.2, cost 4.5; options prefix rom_).
+
+   The first reduction (-rom_joints, src/interface/interface.c) lumps the node-to-node elements of a region into
+   one joint: its members move with the joint's average relative motion (4.4) and its force is the sum of theirs
+   (4.1-4.2). Here each joint's members are replaced by m elements (kt_i, f_i = mu N_i) whose hysteresis loops
+   under u = a cos(theta) at three amplitudes match the joint's, by least squares (TAO, bounds kt_i, f_i > 0):
+     min 1/2 sum_j sum_s (F_rom(a_j, theta_s) - F_joint(a_j, theta_s))^2 / (3 ns max_s |F_joint(a_j)|^2)
+   i.e. (4.5) with every loop weighted by its own size. The amplitudes come from the joint's own range of motion:
+   with delta_e = f_e / kt_e the slip displacement of member e, a_1 and a_2 are the deltas below which the
+   fractions -rom_fit_fractions (default 0.25, 0.6) of the joint's slip force lie (microslip) and a_3 is 1.5 times
+   the largest (gross slip). The start: the members sorted by delta in m groups of equal slip force, each group one
+   element (sum of kt, sum of f): already the exact full-stick and full-slip limits.
+   jenkins_nv joints (beyond the thesis): kt_i, f_i as above with the normal motion at rest (v = 0), n0_i = f_i / mu;
+   then the normal stiffnesses kn_i (the thesis's kv) fitted to the joint's normal load-motion curve
+   sum_e max(n0_e + kn_e v, 0) over v from the separation of every member to as much compression.
+   Loaded and saved with -rom_save / -rom_load (HDF5, /rom/...): the reduced elements and the members that define
+   the joints' motion, with the members' node coordinates to check that the file fits the model.
+*/
+#include <jointrom/private/modelimpl.h>
+#include <petsctao.h>
+#include <petscviewerhdf5.h>
+
+/* Steady Jenkins loop (spring k, slip force f) under u = a cos(theta_s), theta_s = 2 pi s / ns: F[s] += force,
+   and, if not NULL, Fk[s] = dF/dk, Ff[s] = dF/df */
+static void JenkinsLoop(PetscReal k, PetscReal f, PetscReal a, PetscInt ns, PetscReal F[], PetscReal Fk[], PetscReal Ff[])
+{
+  for (PetscInt s = 0; s < ns; s++) {
+    const PetscReal th = 2 * PETSC_PI * s / ns, u = a * PetscCosReal(th);
+    PetscReal       F_, dk, df;
+    if (k * a <= f) { /* never slips */
+      F_ = k * u;
+      dk = u;
+      df = 0;
+    } else if (2 * s <= ns) { /* u falls from a, where it slipped at +f */
+      const PetscReal st = f - k * (a - u);
+      if (st > -f) {
+        F_ = st;
+        dk = -(a - u);
+        df = 1;
+      } else {
+        F_ = -f;
+        dk = 0;
+        df = -1;
+      }
+    } else { /* u rises from -a, where it slipped at -f */
+      const PetscReal st = -f + k * (u + a);
+      if (st < f) {
+        F_ = st;
+        dk = u + a;
+        df = -1;
+      } else {
+        F_ = f;
+        dk = 0;
+        df = 1;
+      }
+    }
+    F[s] += F_;
+    if (Fk) Fk[s] = dk;
+    if (Ff) Ff[s] = df;
+  }
+}
+
+/* Least squares r(x) -> min 1/2 |r|^2 with x >= lo, by TAO (prefix rom_); J: nr x nx column-major */
+typedef struct {
+  PetscInt  nx, nr;
+  PetscErrorCode (*fn)(void *, const PetscReal[], PetscReal[], PetscReal[]);
+  void      *ctx;
+  PetscReal *r, *J;
+} LSQ;
+
+static PetscErrorCode LSQObjective(Tao tao, Vec X, PetscReal *obj, Vec G, void *ctx)
+{
+  LSQ               *q = (LSQ *)ctx;
+  const PetscScalar *x;
+  PetscScalar       *g;
+
+  PetscFunctionBeginUser;
+  (void)tao;
+  PetscCall(VecGetArrayRead(X, &x));
+  PetscCall(q->fn(q->ctx, x, q->r, q->J));
+  PetscCall(VecRestoreArrayRead(X, &x));
+  *obj = 0;
+  for (PetscInt i = 0; i < q->nr; i++) *obj += 0.5 * q->r[i] * q->r[i];
+  PetscCall(VecGetArray(G, &g));
+  for (PetscInt j = 0; j < q->nx; j++) {
+    PetscReal s = 0;
+    for (PetscInt i = 0; i < q->nr; i++) s += q->J[i + j * q->nr] * q->r[i];
+    g[j] = s;
+  }
+  PetscCall(VecRestoreArray(G, &g));
+  PetscFunctionReturn(0);
+}
+
+/* Gauss-Newton Hessian J^T J (J from the last objective evaluation at this X), with a 1e-10 relative shift */
+static PetscErrorCode LSQHessian(Tao tao, Vec X, Mat Hm, Mat Pm, void *ctx)
+{
+  LSQ         *q = (LSQ *)ctx;
+  PetscScalar *a;
+  PetscReal    tr = 0;
+
+  PetscFunctionBeginUser;
+  (void)tao;
+  (void)Pm;
+  {
+    const PetscScalar *x;
+    PetscCall(VecGetArrayRead(X, &x));
+    PetscCall(q->fn(q->ctx, x, q->r, q->J));
+    PetscCall(VecRestoreArrayRead(X, &x));
+  }
+  PetscCall(MatDenseGetArray(Hm, &a));
+  for (PetscInt j = 0; j < q->nx; j++)
+    for (PetscInt i = 0; i < q->nx; i++) {
+      PetscReal v = 0;
+      for (PetscInt k = 0; k < q->nr; k++) v += q->J[k + i * q->nr] * q->J[k + j * q->nr];
+      a[i + j * q->nx] = v;
+      if (i == j) tr += v;
+    }
+  for (PetscInt i = 0; i < q->nx; i++) a[i + i * q->nx] += 1e-10 * tr / q->nx;
+  PetscCall(MatDenseRestoreArray(Hm, &a));
+  PetscCall(MatAssemblyBegin(Hm, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Hm, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+/* rms: sqrt(|r|^2) before (rms0) and after; x updated */
+static PetscErrorCode LSQSolve(LSQ *q, PetscReal x[], PetscReal lo, PetscReal *rms0, PetscReal *rms, PetscInt *its)
+{
+  Tao                tao;
+  Vec                X, L, U;
+  Mat                Hm;
+  PetscScalar       *xa;
+  TaoConvergedReason reason;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(q->nr, &q->r, q->nr * q->nx, &q->J));
+  PetscCall(q->fn(q->ctx, x, q->r, q->J));
+  *rms0 = 0;
+  for (PetscInt i = 0; i < q->nr; i++) *rms0 += q->r[i] * q->r[i];
+  *rms0 = PetscSqrtReal(*rms0);
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, q->nx, &X));
+  PetscCall(VecDuplicate(X, &L));
+  PetscCall(VecDuplicate(X, &U));
+  PetscCall(VecSet(L, lo));
+  PetscCall(VecSet(U, PETSC_INFINITY));
+  PetscCall(VecGetArray(X, &xa));
+  for (PetscInt j = 0; j < q->nx; j++) xa[j] = x[j];
+  PetscCall(VecRestoreArray(X, &xa));
+  PetscCall(TaoCreate(PETSC_COMM_SELF, &tao));
+  PetscCall(TaoSetOptionsPrefix(tao, "rom_"));
+  PetscCall(TaoSetType(tao, TAOBNLS)); /* bounded Newton line search on the Gauss-Newton Hessian */
+  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, q->nx, q->nx, NULL, &Hm));
+  PetscCall(TaoSetHessian(tao, Hm, Hm, LSQHessian, q));
+  PetscCall(TaoSetSolution(tao, X));
+  PetscCall(TaoSetVariableBounds(tao, L, U));
+  PetscCall(TaoSetObjectiveAndGradient(tao, NULL, LSQObjective, q));
+  PetscCall(TaoSetTolerances(tao, 1e-15, 1e-15, 0)); /* to round-off: the fit must not depend on the ranks */
+  PetscCall(TaoSetMaximumIterations(tao, 2000));
+  PetscCall(TaoSetFunctionLowerBound(tao, 1e-26)); /* an exact fit stops there */
+  PetscCall(TaoSetMaximumFunctionEvaluations(tao, 20000));
+  PetscCall(TaoSetFromOptions(tao));
+  PetscCall(TaoSolve(tao));
+  PetscCall(TaoGetConvergedReason(tao, &reason));
+  PetscCall(TaoGetIterationNumber(tao, its));
+  PetscCheck(reason > 0 || reason == TAO_DIVERGED_MAXITS || reason == TAO_DIVERGED_LS_FAILURE || reason == TAO_DIVERGED_MAXFCN || reason == TAO_DIVERGED_TR_REDUCTION, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "The joint fit (TAO, prefix rom_) failed: %s; try -rom_tao_type or -rom_tao_max_it", TaoConvergedReasons[reason]);
+  PetscCall(VecGetArray(X, &xa));
+  for (PetscInt j = 0; j < q->nx; j++) x[j] = PetscRealPart(xa[j]);
+  PetscCall(VecRestoreArray(X, &xa));
+  PetscCall(q->fn(q->ctx, x, q->r, q->J));
+  *rms = 0;
+  for (PetscInt i = 0; i < q->nr; i++) *rms += q->r[i] * q->r[i];
+  *rms = PetscSqrtReal(*rms);
+  PetscCall(TaoDestroy(&tao));
+  PetscCall(MatDestroy(&Hm));
+  PetscCall(VecDestroy(&X));
+  PetscCall(VecDestroy(&L));
+  PetscCall(VecDestroy(&U));
+  PetscCall(PetscFree2(q->r, q->J));
+  PetscFunctionReturn(0);
+}
+
+/* The tangential fit: x = [k_i / ks, f_i / fs] */
+typedef struct {
+  PetscInt   m, ns;
+  PetscReal  amp[4], w[4], ks, fs; /* amplitudes: microslip, microslip, gross slip, and stuck (the stiffness) */
+  PetscReal *target;               /* 4 ns */
+  PetscReal *Fk, *Ff;
+  PetscInt   ne;                   /* amplitudes where the energy dissipated per cycle is matched (relative) */
+  PetscReal  ae[8], Et[8], we;
+} TangentFit;
+
+/* Energy dissipated per cycle by a Jenkins element at amplitude a, and its derivatives in k and f */
+static PetscReal JenkinsEnergy(PetscReal k, PetscReal f, PetscReal a, PetscReal *Ek, PetscReal *Ef)
+{
+  if (k * a <= f) {
+    if (Ek) *Ek = 0;
+    if (Ef) *Ef = 0;
+    return 0;
+  }
+  if (Ek) *Ek = 4 * f * f / (k * k);
+  if (Ef) *Ef = 4 * a - 8 * f / k;
+  return 4 * f * (a - f / k);
+}
+
+static PetscErrorCode TangentResidual(void *ctx, const PetscReal x[], PetscReal r[], PetscReal J[])
+{
+  TangentFit    *t  = (TangentFit *)ctx;
+  const PetscInt ns = t->ns, nr = 4 * ns, ld = nr + t->ne;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < ld * 2 * t->m; i++) J[i] = 0;
+  for (PetscInt i = 0; i < nr; i++) r[i] = 0;
+  for (PetscInt j = 0; j < 4; j++)
+    for (PetscInt i = 0; i < t->m; i++) {
+      JenkinsLoop(t->ks * x[i], t->fs * x[t->m + i], t->amp[j], ns, r + j * ns, t->Fk, t->Ff);
+      for (PetscInt s = 0; s < ns; s++) {
+        J[j * ns + s + i * ld]          = t->w[j] * t->ks * t->Fk[s];
+        J[j * ns + s + (t->m + i) * ld] = t->w[j] * t->fs * t->Ff[s];
+      }
+    }
+  for (PetscInt j = 0; j < 4; j++)
+    for (PetscInt s = 0; s < ns; s++) r[j * ns + s] = t->w[j] * (r[j * ns + s] - t->target[j * ns + s]);
+  for (PetscInt j = 0; j < t->ne; j++) {
+    PetscReal E = 0;
+    for (PetscInt i = 0; i < t->m; i++) {
+      PetscReal Ek, Ef;
+      E += JenkinsEnergy(t->ks * x[i], t->fs * x[t->m + i], t->ae[j], &Ek, &Ef);
+      J[nr + j + i * ld]          = t->we * t->ks * Ek / t->Et[j];
+      J[nr + j + (t->m + i) * ld] = t->we * t->fs * Ef / t->Et[j];
+    }
+    r[nr + j] = t->we * (E / t->Et[j] - 1);
+  }
+
+  PetscFunctionReturn(0);
+}
+
+/* The normal fit of jenkins_nv joints: x = kn_i / kns, n0_i given; target N(v_s) */
+typedef struct {
+  PetscInt   m, nv;
+  PetscReal *n0, kns, w;
+  PetscReal *v, *target;
+} NormalFit;
+
+static PetscErrorCode NormalResidual(void *ctx, const PetscReal x[], PetscReal r[], PetscReal J[])
+{
+  NormalFit *t = (NormalFit *)ctx;
+
+  PetscFunctionBeginUser;
+  for (PetscInt s = 0; s < t->nv; s++) {
+    r[s] = -t->target[s];
+    for (PetscInt i = 0; i < t->m; i++) {
+      const PetscReal N = t->n0[i] + t->kns * x[i] * t->v[s];
+      r[s] += PetscMax(N, 0.0);
+      J[s + i * t->nv] = N > 0 ? t->w * t->kns * t->v[s] : 0.0;
+    }
+    r[s] *= t->w;
+  }
+  PetscFunctionReturn(0);
+}
+
+typedef struct {
+  PetscInt  e;
+  PetscReal delta;
+} MemberDelta;
+
+static int CompareDelta(const void *a, const void *b)
+{
+  const PetscReal x = ((const MemberDelta *)a)->delta, y = ((const MemberDelta *)b)->delta;
+  return x < y ? -1 : x > y ? 1 : (((const MemberDelta *)a)->e < ((const MemberDelta *)b)->e ? -1 : 1);
+}
+
+/*
+  JRROMReduce - the second reduction of the first-reduction model nn (node-to-node elements with joints): m elements
+  per joint (fewer if a joint has fewer members in contact), fitted by TAO; rom gets the elements, with nn as their
+  members. Every rank computes the same fit. base: if not empty, BASE_rom_loops.csv (+ .png if plot) with the
+  loops of every joint, first reduction and fit, at the three amplitudes. Prints one line per joint.
+*/
+PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const char base[], PetscBool plot, JRElements *rom)
+{
+  PetscInt     nj = nn->njoints, ns = 128, nfr = 3, cnt = 0, nmax;
+  PetscReal    fr[3] = {0.25, 0.6, 0.95}, perturb = 0;
+  PetscBool    nv, frset;
+  MemberDelta *md;
+  PetscInt    *jn, *joff;
+  PetscReal   *ek, *ef, *ekn, *en0, *emu, *loops = NULL, *mk, *mf;
+  FILE        *fp  = NULL;
+  char         csv[PETSC_MAX_PATH_LEN + 32], tmp[PETSC_MAX_PATH_LEN + 48];
+
+  PetscFunctionBeginUser;
+  PetscCheck(nn->joint && nj > 0 && !nn->members, comm, PETSC_ERR_ARG_WRONG, "-rom_elements needs joints (the first reduction): -rom_joints strips|bolts|between|sides|zones");
+  PetscCheck(m >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_elements %" PetscInt_FMT ": 0 (the members themselves) or more elements per joint", m);
+  PetscCheck(nn->ntypes == 1, comm, PETSC_ERR_SUP, "The second reduction needs one element type in the interface");
+  nv = (PetscBool)!strcmp(nn->typename[0], JRCONTACTJENKINSNV);
+  PetscCheck(nv || !strcmp(nn->typename[0], JRCONTACTJENKINS), comm, PETSC_ERR_SUP, "The second reduction fits jenkins and jenkins_nv joints, not %s", nn->typename[0]);
+  PetscOptionsBegin(comm, "rom_", "Second reduction: m elements per joint fitted to its hysteresis loops (prefix rom_)", "JRROMReduce");
+  PetscCall(PetscOptionsRealArray("-fit_fractions", "Loop amplitudes: the slip displacements below which these fractions of the joint's slip force lie (microslip to gross slip)", "JRROMReduce", fr, &nfr, &frset));
+  PetscCall(PetscOptionsReal("-fit_perturb", "Perturb the start of the fit by this fraction (tests: the fit must recover)", "JRROMReduce", perturb, &perturb, NULL));
+  PetscCall(PetscOptionsInt("-fit_samples", "Samples per loop", "JRROMReduce", ns, &ns, NULL));
+  PetscOptionsEnd();
+  if (!frset) nfr = 3;
+  PetscCheck(nfr == 3 && fr[0] > 0 && fr[1] > fr[0] && fr[2] > fr[1] && fr[2] <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_fractions: three increasing fractions in (0, 1] (default 0.25,0.6,0.95)");
+  PetscCheck(ns >= 8, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_samples %" PetscInt_FMT ": at least 8", ns);
+  /* every member as an element on its joint's motion: with the mode-shape weight w_e (its motion / the joint's in
+     the mode of interest), a Jenkins element moving w u is one moving u with w^2 kt and |w| f (same forces, same
+     energy); w = 1 is the plain first reduction (4.4) */
+  PetscCall(PetscMalloc2(nn->n, &mk, nn->n, &mf));
+  for (PetscInt e = 0; e < nn->n; e++) {
+    const PetscReal w = wt && !nv ? wt[e] : 1.0;
+    mk[e]             = w * w * nn->kt[e];
+    mf[e]             = PetscAbsReal(w) * nn->mu[e] * PetscMax(nn->n0[e], 0.0);
+  }
+  if (m == 0) { /* the first reduction itself: the members, weighted, as elements on their joints */
+    PetscInt cnt0 = 0;
+    for (PetscInt e = 0; e < nn->n; e++) cnt0 += (nv || mk[e] > 0);
+    PetscCall(PetscMemzero(rom, sizeof(*rom)));
+    rom->n      = cnt0;
+    rom->ntypes = 1;
+    PetscCall(PetscStrncpy(rom->typename[0], nn->typename[0], sizeof(rom->typename[0])));
+    PetscCall(PetscMalloc5(cnt0, &rom->type, cnt0, &rom->dof_a, cnt0, &rom->dof_b, cnt0, &rom->ndof_a, cnt0, &rom->ndof_b));
+    PetscCall(PetscMalloc4(cnt0, &rom->kt, cnt0, &rom->kn, cnt0, &rom->mu, cnt0, &rom->n0));
+    PetscCall(PetscMalloc1(cnt0, &rom->joint));
+    rom->njoints = nj;
+    for (PetscInt e = 0, i = 0; e < nn->n; e++) {
+      if (!(nv || mk[e] > 0)) continue;
+      rom->type[i]  = 0;
+      rom->dof_a[i] = rom->dof_b[i] = rom->ndof_a[i] = rom->ndof_b[i] = -1;
+      rom->kt[i]                                                      = nv ? nn->kt[e] : mk[e];
+      rom->kn[i]                                                      = nn->kn[e];
+      rom->mu[i]                                                      = nn->mu[e];
+      rom->n0[i]                                                      = nv ? nn->n0[e] : mf[e] / nn->mu[e];
+      rom->joint[i++]                                                 = nn->joint[e];
+    }
+    PetscCall(PetscNew(&rom->members));
+    PetscCall(JRElementsDuplicate(nn, rom->members));
+    PetscCall(PetscFree2(mk, mf));
+    PetscFunctionReturn(0);
+  }
+  /* members of each joint in contact at rest, sorted by slip displacement */
+  PetscCall(PetscCalloc2(nj, &jn, nj + 1, &joff));
+  PetscCall(PetscMalloc1(nn->n, &md));
+  for (PetscInt e = 0; e < nn->n; e++)
+    if (mf[e] > 0 && mk[e] > 0) jn[nn->joint[e]]++;
+  for (PetscInt j = 0; j < nj; j++) joff[j + 1] = joff[j] + jn[j];
+  for (PetscInt j = 0; j < nj; j++) jn[j] = 0;
+  for (PetscInt e = 0; e < nn->n; e++) {
+    if (!(mf[e] > 0 && mk[e] > 0)) continue;
+    {
+      const PetscInt j = nn->joint[e];
+      md[joff[j] + jn[j]].e     = e;
+      md[joff[j] + jn[j]].delta = mf[e] / mk[e];
+      jn[j]++;
+    }
+  }
+  for (PetscInt j = 0; j < nj; j++) {
+    PetscCheck(jn[j] > 0, comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no member in contact at rest: nothing to fit (change the regions)", j);
+    qsort(md + joff[j], (size_t)jn[j], sizeof(MemberDelta), CompareDelta);
+    cnt += PetscMin(m, jn[j]);
+  }
+  nmax = cnt;
+  PetscCall(PetscMalloc5(nmax, &ek, nmax, &ef, nmax, &ekn, nmax, &en0, nmax, &emu));
+  if (base && base[0]) {
+    PetscCall(PetscSNPrintf(csv, sizeof(csv), "%s_rom_loops.csv", base));
+    PetscCall(JRFileOpenTemp(comm, csv, &fp, tmp, sizeof(tmp)));
+    if (fp) fprintf(fp, "joint,amplitude,u_m,f_first_reduction_N,f_rom_N\n");
+  }
+  PetscCall(PetscMalloc1(6 * ns, &loops));
+  PetscCall(PetscMemzero(rom, sizeof(*rom)));
+  cnt = 0;
+  for (PetscInt j = 0; j < nj; j++) {
+    const MemberDelta *d  = md + joff[j];
+    const PetscInt     nm = jn[j], mj = PetscMin(m, nm);
+    PetscReal          ftot = 0, ktot = 0, mu = 0, n0s = 0, knsum = 0, rms0 = 0, rms = 0, nrms0 = 0, nrms = 0, *x, *xn = NULL;
+    PetscInt           its = 0, nits = 0;
+    TangentFit         t;
+    LSQ                q;
+    for (PetscInt i = 0; i < nm; i++) {
+      const PetscInt e = d[i].e;
+      ftot += mf[e];
+      ktot += mk[e];
+      mu += nn->mu[e] * nn->n0[e];
+      n0s += nn->n0[e];
+      knsum += nn->kn[e];
+    }
+    mu /= n0s;
+    PetscCall(PetscMemzero(&t, sizeof(t)));
+    t.m  = mj;
+    t.ns = ns;
+    t.ks = ktot / mj;
+    t.fs = ftot / mj;
+    { /* amplitudes from the slip-force distribution */
+      PetscReal c = 0;
+      PetscInt  k = 0;
+      for (PetscInt a = 0; a < 3; a++) {
+        while (k < nm - 1 && c + mf[d[k].e] < fr[a] * ftot) {
+          c += mf[d[k].e];
+          k++;
+        }
+        t.amp[a] = d[k].delta;
+      }
+      t.amp[3] = 0.5 * d[0].delta;
+    }
+    { /* energy matched from the first slips (2% of the slip force) to the gross-slip amplitude */
+      PetscReal c = 0, a0;
+      PetscInt  k = 0;
+      while (k < nm - 1 && c + mf[d[k].e] < 0.02 * ftot) {
+        c += mf[d[k].e];
+        k++;
+      }
+      a0   = PetscMax(d[k].delta, 1.0001 * d[0].delta);
+      t.ne = 6;
+      t.we = 0.05;
+      for (PetscInt i = 0; i < t.ne; i++) {
+        t.ae[i] = a0 * PetscPowReal(t.amp[2] / a0, i / (PetscReal)(t.ne - 1));
+        t.Et[i] = 0;
+        for (PetscInt q = 0; q < nm; q++) t.Et[i] += JenkinsEnergy(mk[d[q].e], mf[d[q].e], t.ae[i], NULL, NULL);
+      }
+    }
+    PetscCall(PetscCalloc1(4 * ns, &t.target));
+    PetscCall(PetscMalloc2(ns, &t.Fk, ns, &t.Ff));
+    for (PetscInt a = 0; a < 4; a++) {
+      PetscReal fmax = 0;
+      for (PetscInt i = 0; i < nm; i++) JenkinsLoop(mk[d[i].e], mf[d[i].e], t.amp[a], ns, t.target + a * ns, NULL, NULL);
+      for (PetscInt s = 0; s < ns; s++) fmax = PetscMax(fmax, PetscAbsReal(t.target[a * ns + s]));
+      t.w[a] = (a == 3 ? 10.0 : 1.0) / (fmax * PetscSqrtReal(4.0 * ns)); /* the stiffness weighs most */
+    }
+    /* start: m groups of members in equal steps of log(delta) (from the first slips to gross slip), each group one
+       element with the group's sums of kt and f: exact at full stick and at gross slip */
+    PetscCall(PetscCalloc1(2 * mj, &x));
+    {
+      const PetscReal l0 = PetscLogReal(d[0].delta), l1 = PetscLogReal(d[nm - 1].delta);
+      for (PetscInt i = 0; i < nm; i++) {
+        const PetscInt e = d[i].e;
+        PetscInt       g = l1 > l0 ? (PetscInt)(mj * (PetscLogReal(d[i].delta) - l0) / (l1 - l0)) : (mj * i) / nm;
+        g                = PetscMin(PetscMax(g, 0), mj - 1);
+        if (nm <= m) g = i;
+        x[g] += mk[e] / t.ks;
+        x[mj + g] += mf[e] / t.fs;
+      }
+      for (PetscInt g = 0; g < mj; g++) /* an empty group: a small element between its neighbours */
+        if (x[g] == 0) {
+          const PetscReal dl = PetscExpReal(l0 + (g + 0.5) * (l1 - l0) / mj);
+          x[mj + g]          = 1e-3;
+          x[g]               = 1e-3 * t.fs / (dl * t.ks);
+        }
+    }
+    for (PetscInt g = 0; g < mj && nm > m; g++) {
+      const PetscReal c = g % 3 == 0 ? 1.0 : g % 3 == 1 ? -1.0 : 0.5;
+      x[g] *= 1 + perturb * c;
+      x[mj + g] *= 1 - perturb * c;
+    }
+    if (nm > m) {
+      q.nx  = 2 * mj;
+      q.nr  = 4 * ns + t.ne;
+      q.fn  = TangentResidual;
+      q.ctx = &t;
+      PetscCall(LSQSolve(&q, x, 1e-10, &rms0, &rms, &its));
+    } else {
+      q.nx = 2 * mj; /* the members themselves: exact */
+      PetscCall(PetscMalloc2(4 * ns + t.ne, &q.r, (4 * ns + t.ne) * 2 * mj, &q.J));
+      PetscCall(TangentResidual(&t, x, q.r, q.J));
+      for (PetscInt i = 0; i < 4 * ns; i++) rms += q.r[i] * q.r[i];
+      rms  = PetscSqrtReal(rms);
+      rms0 = rms;
+      PetscCall(PetscFree2(q.r, q.J));
+    }
+    for (PetscInt i = 0; i < mj; i++) {
+      ek[cnt + i]  = t.ks * x[i];
+      ef[cnt + i]  = t.fs * x[mj + i];
+      en0[cnt + i] = ef[cnt + i] / mu;
+      emu[cnt + i] = mu;
+      ekn[cnt + i] = 0;
+    }
+    if (nv) { /* normal stiffnesses: the joint's normal load against its normal motion */
+      NormalFit nf;
+      PetscReal vsep = 0, nmx = 0;
+      PetscCall(PetscMemzero(&nf, sizeof(nf)));
+      for (PetscInt e = 0; e < nn->n; e++)
+        if (nn->joint[e] == j && nn->kn[e] > 0) vsep = PetscMax(vsep, PetscAbsReal(nn->n0[e]) / nn->kn[e]);
+      nf.m   = mj;
+      nf.nv  = 2 * ns + 1;
+      nf.n0  = en0 + cnt;
+      nf.kns = knsum / mj;
+      PetscCall(PetscMalloc3(nf.nv, &nf.v, nf.nv, &nf.target, mj, &xn));
+      for (PetscInt s = 0; s < nf.nv; s++) {
+        nf.v[s]      = vsep * (2.0 * s / (nf.nv - 1) - 1.0);
+        nf.target[s] = 0;
+        for (PetscInt e = 0; e < nn->n; e++)
+          if (nn->joint[e] == j) nf.target[s] += PetscMax(nn->n0[e] + nn->kn[e] * nf.v[s], 0.0);
+        nmx = PetscMax(nmx, nf.target[s]);
+      }
+      nf.w = 1.0 / (nmx * PetscSqrtReal((PetscReal)nf.nv));
+      for (PetscInt i = 0; i < mj; i++) xn[i] = 0;
+      { /* start: the groups' normal stiffness, as for kt */
+        PetscReal c = 0;
+        for (PetscInt i = 0; i < nm; i++) {
+          const PetscInt e = d[i].e;
+          PetscInt       g = nm <= m ? i : PetscMin(PetscMax((PetscInt)(mj * (c + 0.5 * mf[e]) / ftot), 0), mj - 1);
+          xn[g] += nn->kn[e] / nf.kns;
+          c += mf[e];
+        }
+        for (PetscInt g = 0; g < mj; g++) xn[g] = PetscMax(xn[g], 1e-3);
+      }
+      q.nx  = mj;
+      q.nr  = nf.nv;
+      q.fn  = NormalResidual;
+      q.ctx = &nf;
+      PetscCall(LSQSolve(&q, xn, 1e-10, &nrms0, &nrms, &nits));
+      for (PetscInt i = 0; i < mj; i++) ekn[cnt + i] = nf.kns * xn[i];
+      PetscCall(PetscFree3(nf.v, nf.target, xn));
+    }
+    PetscCall(PetscPrintf(comm, "rom joint %" PetscInt_FMT " members %" PetscInt_FMT " elements %" PetscInt_FMT " amplitudes_m %.4e %.4e %.4e loop_residual %.3e start %.3e tao_its %" PetscInt_FMT, j, nm, mj, (double)t.amp[0], (double)t.amp[1], (double)t.amp[2], (double)rms, (double)rms0, its));
+    if (nv) PetscCall(PetscPrintf(comm, " normal_residual %.3e start %.3e tao_its %" PetscInt_FMT, (double)nrms, (double)nrms0, nits));
+    PetscCall(PetscPrintf(comm, "\n"));
+    if (fp)
+      for (PetscInt a = 0; a < 3; a++) {
+        PetscReal *Fr = loops;
+        for (PetscInt s = 0; s < ns; s++) Fr[s] = 0;
+        for (PetscInt i = 0; i < mj; i++) JenkinsLoop(ek[cnt + i], ef[cnt + i], t.amp[a], ns, Fr, NULL, NULL);
+        for (PetscInt s = 0; s <= ns; s++) fprintf(fp, "%" PetscInt_FMT ",%" PetscInt_FMT ",%.9e,%.9e,%.9e\n", j, a, (double)(t.amp[a] * PetscCosReal(2 * PETSC_PI * s / ns)), (double)t.target[a * ns + s % ns], (double)Fr[s % ns]);
+      }
+    cnt += mj;
+    PetscCall(PetscFree(x));
+    PetscCall(PetscFree(t.target));
+    PetscCall(PetscFree2(t.Fk, t.Ff));
+  }
+  if (base && base[0]) {
+    PetscCall(JRFileCommit(comm, &fp, tmp, csv));
+    if (plot) {
+      char      png[PETSC_MAX_PATH_LEN + 32], vars[2 * PETSC_MAX_PATH_LEN + 64];
+      PetscBool made;
+      PetscCall(PetscSNPrintf(png, sizeof(png), "%s_rom_loops.png", base));
+      PetscCall(PetscSNPrintf(vars, sizeof(vars), "data='%s'; nj=%" PetscInt_FMT, csv, PetscMin(nj, 12)));
+      PetscCall(JRPlot(comm, "plot_rom_loops.gp", png, vars, &made));
+      PetscCall(PetscPrintf(comm, "rom: wrote %s%s%s\n", csv, made ? ", " : "", made ? png : ""));
+    } else PetscCall(PetscPrintf(comm, "rom: wrote %s\n", csv));
+  }
+  /* the reduced elements, the first-reduction model as their members */
+  rom->n      = cnt;
+  rom->ntypes = 1;
+  PetscCall(PetscStrncpy(rom->typename[0], nn->typename[0], sizeof(rom->typename[0])));
+  PetscCall(PetscMalloc5(cnt, &rom->type, cnt, &rom->dof_a, cnt, &rom->dof_b, cnt, &rom->ndof_a, cnt, &rom->ndof_b));
+  PetscCall(PetscMalloc4(cnt, &rom->kt, cnt, &rom->kn, cnt, &rom->mu, cnt, &rom->n0));
+  PetscCall(PetscMalloc1(cnt, &rom->joint));
+  rom->njoints = nj;
+  for (PetscInt j = 0, e = 0; j < nj; j++)
+    for (PetscInt i = 0; i < PetscMin(m, jn[j]); i++, e++) {
+      rom->type[e]  = 0;
+      rom->dof_a[e] = rom->dof_b[e] = rom->ndof_a[e] = rom->ndof_b[e] = -1;
+      rom->kt[e]                                                      = ek[e];
+      rom->kn[e]                                                      = ekn[e];
+      rom->mu[e]                                                      = emu[e];
+      rom->n0[e]                                                      = en0[e];
+      rom->joint[e]                                                   = j;
+    }
+  PetscCall(PetscNew(&rom->members));
+  PetscCall(JRElementsDuplicate(nn, rom->members));
+  PetscCall(PetscFree(loops));
+  PetscCall(PetscFree5(ek, ef, ekn, en0, emu));
+  PetscCall(PetscFree(md));
+  PetscCall(PetscFree2(jn, joff));
+  PetscCall(PetscFree2(mk, mf));
+  PetscFunctionReturn(0);
+}
+
+/* The coordinates of the members' nodes, xc[6 e + c] = x(vdof_a[3e + c]), x(vdof_b[3e + c]) on every rank (collective) */
+static PetscErrorCode MemberCoordinates(JRModel model, const JRElements *mem, PetscReal xc[])
+{
+  Vec                X;
+  const PetscScalar *x;
+  PetscInt           lo, hi;
+  PetscReal         *loc;
+  MPI_Comm           comm;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetComm(model, &comm));
+  PetscCall(JRModelGetCoordinates(model, &X));
+  PetscCheck(X, comm, PETSC_ERR_ARG_WRONG, "A reduced model goes with an FE model (it needs node coordinates)");
+  PetscCall(VecGetOwnershipRange(X, &lo, &hi));
+  PetscCall(VecGetArrayRead(X, &x));
+  PetscCall(PetscCalloc1(6 * mem->n, &loc));
+  for (PetscInt e = 0; e < mem->n; e++)
+    for (PetscInt c = 0; c < 3; c++) {
+      const PetscInt da = mem->vdof_a[3 * e + c], db = mem->vdof_b[3 * e + c];
+      if (da >= lo && da < hi) loc[6 * e + c] = PetscRealPart(x[da - lo]);
+      if (db >= lo && db < hi) loc[6 * e + 3 + c] = PetscRealPart(x[db - lo]);
+    }
+  PetscCall(VecRestoreArrayRead(X, &x));
+  PetscCall(VecDestroy(&X));
+  PetscCall(MPIU_Allreduce(loc, xc, 6 * mem->n, MPIU_REAL, MPIU_SUM, comm));
+  PetscCall(PetscFree(loc));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteSeq(PetscViewer v, const char name[], PetscInt n, PetscInt bs, const PetscReal a[])
+{
+  Vec          x;
+  PetscScalar *xa;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n * bs, &x));
+  PetscCall(VecSetBlockSize(x, bs));
+  PetscCall(PetscObjectSetName((PetscObject)x, name));
+  PetscCall(VecGetArray(x, &xa));
+  for (PetscInt i = 0; i < n * bs; i++) xa[i] = a[i];
+  PetscCall(VecRestoreArray(x, &xa));
+  PetscCall(VecView(x, v));
+  PetscCall(VecDestroy(&x));
+  PetscFunctionReturn(0);
+}
+
+#define JR_ROM_EL  6  /* joint, kt, kn, mu, n0, type */
+#define JR_ROM_MEM 24 /* joint, kt, kn, mu, n0, type, vdof_a[3], vdof_b[3], tdir[3], ndir[3], x_A[3], x_B[3] */
+
+/*
+  JRROMSave - write a reduced model (elements with members) to an HDF5 file: /rom/elements (joint, kt, kn, mu, n0,
+  type per element), /rom/members (joint, kt, kn, mu, n0, type, the 6 DOFs, t, n and the nodes' coordinates per
+  member), attributes njoints, types, stiffness_correction. Written by rank 0 to a temporary file, then renamed.
+*/
+PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, const char file[])
+{
+  MPI_Comm          comm;
+  PetscMPIInt       rank;
+  const JRElements *mem = rom->members;
+  PetscReal        *xc;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetComm(model, &comm));
+  PetscCheck(mem && rom->joint, comm, PETSC_ERR_ARG_WRONG, "-rom_save: only a second-reduction model (-rom_elements m) is saved");
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(PetscMalloc1(6 * mem->n, &xc));
+  PetscCall(MemberCoordinates(model, mem, xc));
+  if (!rank) {
+    PetscViewer v;
+    char        tmp[PETSC_MAX_PATH_LEN + 16];
+    PetscReal  *a;
+    PetscInt    nj = rom->njoints;
+    PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.tmp", file));
+    PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, tmp, FILE_MODE_WRITE, &v));
+    PetscCall(PetscViewerHDF5PushGroup(v, "/rom"));
+    PetscCall(PetscMalloc1(JR_ROM_MEM * PetscMax(mem->n, rom->n), &a));
+    for (PetscInt e = 0; e < rom->n; e++) {
+      PetscReal *r = a + JR_ROM_EL * e;
+      r[0]         = rom->joint[e];
+      r[1]         = rom->kt[e];
+      r[2]         = rom->kn[e];
+      r[3]         = rom->mu[e];
+      r[4]         = rom->n0[e];
+      r[5]         = rom->type[e];
+    }
+    PetscCall(WriteSeq(v, "elements", rom->n, JR_ROM_EL, a));
+    for (PetscInt e = 0; e < mem->n; e++) {
+      PetscReal *r = a + JR_ROM_MEM * e;
+      r[0]         = mem->joint[e];
+      r[1]         = mem->kt[e];
+      r[2]         = mem->kn[e];
+      r[3]         = mem->mu[e];
+      r[4]         = mem->n0[e];
+      r[5]         = mem->type[e];
+      for (PetscInt c = 0; c < 3; c++) {
+        r[6 + c]  = mem->vdof_a[3 * e + c];
+        r[9 + c]  = mem->vdof_b[3 * e + c];
+        r[12 + c] = mem->tdir[3 * e + c];
+        r[15 + c] = mem->ndir[3 * e + c];
+        r[18 + c] = xc[6 * e + c];
+        r[21 + c] = xc[6 * e + 3 + c];
+      }
+    }
+    PetscCall(WriteSeq(v, "members", mem->n, JR_ROM_MEM, a));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "njoints", PETSC_INT, &nj));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "element_type", PETSC_STRING, rom->typename[0]));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "members", "element_type", PETSC_STRING, mem->typename[0]));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "stiffness_correction", PETSC_REAL, &corr));
+    PetscCall(PetscViewerHDF5PopGroup(v));
+    PetscCall(PetscViewerDestroy(&v));
+    PetscCall(PetscFree(a));
+    PetscCheck(!rename(tmp, file), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "-rom_save: cannot write %s", file);
+  }
+  PetscCallMPI(MPI_Barrier(comm));
+  PetscCall(PetscFree(xc));
+  PetscCall(PetscPrintf(comm, "rom: saved %" PetscInt_FMT " elements in %" PetscInt_FMT " joints (%" PetscInt_FMT " members) to %s\n", rom->n, rom->njoints, mem->n, file));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReadSeq(PetscViewer v, const char file[], const char name[], PetscInt bs, PetscInt *n, PetscReal **a)
+{
+  Vec                x;
+  const PetscScalar *xa;
+  PetscInt           len;
+  PetscBool          has;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5HasDataset(v, name, &has));
+  PetscCheck(has, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: no dataset /rom/%s (not a reduced model written by -rom_save)", file, name);
+  PetscCall(VecCreate(PETSC_COMM_SELF, &x));
+  PetscCall(VecSetBlockSize(x, bs));
+  PetscCall(PetscObjectSetName((PetscObject)x, name));
+  PetscCall(VecLoad(x, v));
+  PetscCall(VecGetSize(x, &len));
+  PetscCheck(len % bs == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: /rom/%s has %" PetscInt_FMT " values, not rows of %" PetscInt_FMT, file, name, len, bs);
+  *n = len / bs;
+  PetscCall(PetscMalloc1(len, a));
+  PetscCall(VecGetArrayRead(x, &xa));
+  for (PetscInt i = 0; i < len; i++) (*a)[i] = PetscRealPart(xa[i]);
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(VecDestroy(&x));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetupList(JRElements *el, PetscInt n, const char type[], PetscBool nodes)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(el, sizeof(*el)));
+  el->n      = n;
+  el->ntypes = 1;
+  PetscCall(PetscStrncpy(el->typename[0], type, sizeof(el->typename[0])));
+  PetscCall(PetscMalloc5(n, &el->type, n, &el->dof_a, n, &el->dof_b, n, &el->ndof_a, n, &el->ndof_b));
+  PetscCall(PetscMalloc4(n, &el->kt, n, &el->kn, n, &el->mu, n, &el->n0));
+  PetscCall(PetscMalloc1(n, &el->joint));
+  if (nodes) PetscCall(PetscMalloc4(3 * n, &el->vdof_a, 3 * n, &el->vdof_b, 3 * n, &el->tdir, 3 * n, &el->ndir));
+  for (PetscInt e = 0; e < n; e++) {
+    el->type[e]  = 0;
+    el->dof_a[e] = el->dof_b[e] = el->ndof_a[e] = el->ndof_b[e] = -1;
+  }
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRROMLoad - read a reduced model written by JRROMSave for this FE model: every member's nodes must be where the
+  file says (within 1e-9 of the model's size), else an error naming the file; corr: its stiffness correction.
+*/
+PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, PetscReal *corr)
+{
+  MPI_Comm    comm;
+  PetscViewer v;
+  PetscBool   exists;
+  PetscReal  *a, *b, *xc, lo[3], hi[3], size = 0, worst = 0;
+  PetscInt    ne, nmem, nj = 0, ndof, bad = -1;
+  char       *ty = NULL, *mty = NULL;
+  JRElements *mem;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetComm(model, &comm));
+  PetscCall(PetscTestFile(file, 'r', &exists));
+  PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-rom_load %s: no such file (write one with -rom_save)", file);
+  PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, file, FILE_MODE_READ, &v));
+  PetscCall(PetscViewerHDF5PushGroup(v, "/rom"));
+  PetscCall(ReadSeq(v, file, "elements", JR_ROM_EL, &ne, &a));
+  PetscCall(ReadSeq(v, file, "members", JR_ROM_MEM, &nmem, &b));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "njoints", PETSC_INT, NULL, &nj));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "element_type", PETSC_STRING, NULL, &ty));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "members", "element_type", PETSC_STRING, NULL, &mty));
+  *corr = 1.0;
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "stiffness_correction", PETSC_REAL, corr, corr));
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscCall(PetscViewerDestroy(&v));
+  PetscCheck(!strcmp(ty, JRCONTACTJENKINS) || !strcmp(ty, JRCONTACTJENKINSNV), comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: element type '%s' (jenkins or jenkins_nv)", file, ty);
+  PetscCheck(nj > 0 && ne > 0 && nmem > 0, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: %" PetscInt_FMT " joints, %" PetscInt_FMT " elements, %" PetscInt_FMT " members: an empty model", file, nj, ne, nmem);
+  PetscCall(JRModelGetNumDofs(model, &ndof));
+  PetscCall(SetupList(rom, ne, ty, PETSC_FALSE));
+  rom->njoints = nj;
+  for (PetscInt e = 0; e < ne; e++) {
+    const PetscReal *r = a + JR_ROM_EL * e;
+    rom->joint[e]      = (PetscInt)r[0];
+    rom->kt[e]         = r[1];
+    rom->kn[e]         = r[2];
+    rom->mu[e]         = r[3];
+    rom->n0[e]         = r[4];
+    PetscCheck(rom->joint[e] >= 0 && rom->joint[e] < nj && rom->kt[e] > 0 && rom->mu[e] > 0, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: element %" PetscInt_FMT " has joint %" PetscInt_FMT " (0..%" PetscInt_FMT "), kt %g, mu %g: not a valid element", file, e, rom->joint[e], nj - 1, (double)rom->kt[e], (double)rom->mu[e]);
+  }
+  PetscCall(PetscNew(&mem));
+  PetscCall(SetupList(mem, nmem, mty, PETSC_TRUE));
+  mem->njoints = nj;
+  for (PetscInt e = 0; e < nmem; e++) {
+    const PetscReal *r = b + JR_ROM_MEM * e;
+    mem->joint[e]      = (PetscInt)r[0];
+    mem->kt[e]         = r[1];
+    mem->kn[e]         = r[2];
+    mem->mu[e]         = r[3];
+    mem->n0[e]         = r[4];
+    PetscCheck(mem->joint[e] >= 0 && mem->joint[e] < nj, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT " has joint %" PetscInt_FMT ", outside 0..%" PetscInt_FMT, file, e, mem->joint[e], nj - 1);
+    for (PetscInt c = 0; c < 3; c++) {
+      mem->vdof_a[3 * e + c] = (PetscInt)r[6 + c];
+      mem->vdof_b[3 * e + c] = (PetscInt)r[9 + c];
+      mem->tdir[3 * e + c]   = r[12 + c];
+      mem->ndir[3 * e + c]   = r[15 + c];
+      PetscCheck(mem->vdof_a[3 * e + c] >= 0 && mem->vdof_a[3 * e + c] < ndof && mem->vdof_b[3 * e + c] >= 0 && mem->vdof_b[3 * e + c] < ndof, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT " has DOFs outside the model's 0..%" PetscInt_FMT ": the file is for another mesh", file, e, ndof - 1);
+    }
+  }
+  rom->members = mem;
+  PetscCall(PetscMalloc1(6 * nmem, &xc));
+  PetscCall(MemberCoordinates(model, mem, xc));
+  PetscCall(JRModelGetBoundingBox(model, lo, hi));
+  for (PetscInt c = 0; c < 3; c++) size = PetscMax(size, hi[c] - lo[c]);
+  for (PetscInt e = 0; e < nmem; e++)
+    for (PetscInt c = 0; c < 3; c++) {
+      const PetscReal da = PetscAbsReal(xc[6 * e + c] - b[JR_ROM_MEM * e + 18 + c]), db = PetscAbsReal(xc[6 * e + 3 + c] - b[JR_ROM_MEM * e + 21 + c]);
+      if (PetscMax(da, db) > worst) {
+        worst = PetscMax(da, db);
+        bad   = e;
+      }
+    }
+  PetscCheck(worst <= 1e-9 * size, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT "'s nodes are %g m from where the file puts them: the file is for another mesh or partition (run with the options and ranks that saved it)", file, bad, (double)worst);
+  PetscCall(PetscPrintf(comm, "rom: loaded %" PetscInt_FMT " %s elements in %" PetscInt_FMT " joints (%" PetscInt_FMT " members, stiffness correction %.6f) from %s\n", ne, ty, nj, nmem, (double)*corr, file));
+  PetscCall(PetscFree(xc));
+  PetscCall(PetscFree(a));
+  PetscCall(PetscFree(b));
+  PetscCall(PetscFree(ty));
+  PetscCall(PetscFree(mty));
+  PetscFunctionReturn(0);
+}
