@@ -440,6 +440,10 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
       PetscCall(PetscMalloc1(nm, &fr));
       PetscCall(JRHBMStickFrequencies(hbmr, &n, fr));
       PetscCall(JRHBMMatchStickFrequency(hbmr, k, ft, &corr));
+      if (corr == 0) {
+        PetscCall(PetscPrintf(comm, "rom: WARNING no stiffness correction: no factor in [1e-3, 1e3] on the joints' springs brings stuck mode %" PetscInt_FMT " from %.6g Hz to the node-to-node %.6g Hz (the joints' averaged motion cannot carry the interface's stiffness in this mode: use more joints)\n", k, (double)fr[k], (double)ft));
+        corr = 1.0;
+      }
       PetscCall(PetscPrintf(comm, "rom stiffness_correction %.8f stuck_mode %" PetscInt_FMT " n2n_hz %.8g rom_before_hz %.8g\n", (double)corr, k, (double)ft, (double)fr[k]));
       PetscCall(PetscFree(fr));
       for (PetscInt e = 0; e < elr.n; e++) {

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# make bench: reduced-order joints against node-to-node (-task compare, runs/brb_rom.opts: the 5 mm Brake-Reuss
+# beam, 430 jenkins elements, 6 joints x 3 elements, 7 levels), timed side by side in one run: the solve stage
+# (HBM + continuation, every level) of each model, their ratio, the set-up (projections) and the reduction (fit)
+# apart; the FE model, preload and modes are shared. Then larger interfaces by -interface_split k (every element as
+# k identical parallel elements: the same forces, k times the node-to-node work; a proxy for a finer interface mesh),
+# and where the reduced model's time goes (per point and per Newton iteration: the dense solve of the 24 x 3
+# harmonic-balance unknowns, which both models share). On 1 and 2 ranks. JR_BENCH_ROM_SPLITS sets the k's.
+cd "$(dirname "$0")/../.."
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+export OPENBLAS_NUM_THREADS=1
+splits=${JR_BENCH_ROM_SPLITS:-"1 5 50"}
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+base="-options_file runs/brb_rom.opts -frf_plot 0 -cont_monitor 0"
+echo "== reduced-order joints vs node-to-node: Brake-Reuss beam 5 mm, 6 joints x 3 elements, 7 levels 0.1..100 N =="
+for np in 1 2; do
+  mpiexec -n $np bin/jointrom $base -frf_output_file "$tmp/prep$np" > "$tmp/prep$np.log" 2>&1 || { echo "preparation on $np ranks failed:"; tail -5 "$tmp/prep$np.log"; exit 1; }
+done
+awk '/^compare level/{printf "  F %-5s n2n %.5f Hz rom %.5f Hz (%+.2e)  amp n2n %.4e rom %.4e (%+.2e)\n", $3, $5, $7, $7 / $5 - 1, $9, $11, $11 / $9 - 1}' "$tmp/prep1.log"
+grep '^compare worst' "$tmp/prep1.log"
+printf "%-9s %-5s %11s %11s %8s %12s %12s %14s %14s\n" n2n_elem ranks n2n_solve_s rom_solve_s speedup n2n_setup_s rom_fit_s n2n_ms_per_it rom_ms_per_it
+for k in $splits; do
+  for np in 1 2; do
+    o=$(mpiexec -n $np bin/jointrom $base -modes_load "$tmp/prep${np}_modes.h5" -preload_load "$tmp/prep1_preload.h5" -interface_split $k -frf_output_file '' 2>&1)
+    if ! echo "$o" | grep -q '^compare time'; then
+      printf "%-9s %-5s failed: %s\n" "k=$k" $np "$(echo "$o" | grep -m1 -E 'ERROR: [A-Z]|Killed|memory' | cut -c1-100)"; continue
+    fi
+    echo "$o" | awk -v np=$np '
+      /^interface:/ {ne = $2}
+      /^frf summary/ {blk++}
+      blk && $1 ~ /^[0-9.]+$/ && NF >= 10 {nt[blk] += $7}
+      /^compare time/ {tn = $4; tr = $6; sp = $8; sn = $10; fit = $14}
+      END {printf "%-9s %-5s %11.4f %11.4f %8.2f %12.3f %12.3f %14.3f %14.3f\n", ne, np, tn, tr, sp, sn, fit, 1e3 * tn / nt[1], 1e3 * tr / nt[2]}'
+  done
+done
