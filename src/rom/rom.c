@@ -3,18 +3,20 @@
 
    The first reduction (-rom_joints, src/interface/interface.c) lumps the node-to-node elements of a region into
    one joint: its members move with the joint's average relative motion (4.4) and its force is the sum of theirs
-   (4.1-4.2). Here each joint's members are replaced by m elements (kt_i, f_i = mu N_i) whose hysteresis loops
-   under u = a cos(theta) at three amplitudes match the joint's, by least squares (TAO, bounds kt_i, f_i > 0):
-     min 1/2 sum_j sum_s (F_rom(a_j, theta_s) - F_joint(a_j, theta_s))^2 / (3 ns max_s |F_joint(a_j)|^2)
-   i.e. (4.5) with every loop weighted by its own size. The amplitudes come from the joint's own range of motion:
-   with delta_e = f_e / kt_e the slip displacement of member e, a_1 and a_2 are the deltas below which the
-   fractions -rom_fit_fractions (default 0.25, 0.6) of the joint's slip force lie (microslip) and a_3 is 1.5 times
-   the largest (gross slip). The start: the members sorted by delta in m groups of equal slip force, each group one
-   element (sum of kt, sum of f): already the exact full-stick and full-slip limits.
+   (4.1-4.2). A member weighted by w (its motion over the joint's in the mode of interest; -rom_mode_weights) acts
+   on the joint as the element (w^2 kt, |w| f). Here each joint's members are replaced by m elements (kt_i,
+   f_i = mu N_i) by least squares (TAO, Gauss-Newton Hessian, bounds kt_i, f_i > 0) on
+     - the loops under u = a cos(theta) at three amplitudes, each weighted by its own size (the cost 4.5): the
+       slip displacements below which the fractions -rom_fit_fractions (0.25, 0.6, 0.95) of the slip force lie;
+     - a stuck loop (the joint's stiffness), weighted 10x;
+     - the energy dissipated per cycle, relative, at 6 amplitudes from the first slips (2% of the slip force) to
+       the largest loop amplitude, weighted 0.05 each.
+   The start: the members sorted by slip displacement in m groups of equal log-width, each group one element (sum
+   of kt, sum of f): already exact at full stick and at gross slip.
    jenkins_nv joints (beyond the thesis): kt_i, f_i as above with the normal motion at rest (v = 0), n0_i = f_i / mu;
    then the normal stiffnesses kn_i (the thesis's kv) fitted to the joint's normal load-motion curve
    sum_e max(n0_e + kn_e v, 0) over v from the separation of every member to as much compression.
-   Loaded and saved with -rom_save / -rom_load (HDF5, /rom/...): the reduced elements and the members that define
+   Saved and loaded with -rom_save / -rom_load (HDF5, /rom/...): the reduced elements and the members that define
    the joints' motion, with the members' node coordinates to check that the file fits the model.
 */
 #include <jointrom/private/modelimpl.h>
@@ -278,7 +280,7 @@ static int CompareDelta(const void *a, const void *b)
 PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const char base[], PetscBool plot, JRElements *rom)
 {
   PetscInt     nj = nn->njoints, ns = 128, nfr = 3, cnt = 0, nmax;
-  PetscReal    fr[3] = {0.25, 0.6, 0.95}, perturb = 0;
+  PetscReal    fr[3] = {0.25, 0.6, 0.95}, perturb = 0, efrom = 0.02;
   PetscBool    nv, frset;
   MemberDelta *md;
   PetscInt    *jn, *joff;
@@ -294,6 +296,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   PetscCheck(nv || !strcmp(nn->typename[0], JRCONTACTJENKINS), comm, PETSC_ERR_SUP, "The second reduction fits jenkins and jenkins_nv joints, not %s", nn->typename[0]);
   PetscOptionsBegin(comm, "rom_", "Second reduction: m elements per joint fitted to its hysteresis loops (prefix rom_)", "JRROMReduce");
   PetscCall(PetscOptionsRealArray("-fit_fractions", "Loop amplitudes: the slip displacements below which these fractions of the joint's slip force lie (microslip to gross slip)", "JRROMReduce", fr, &nfr, &frset));
+  PetscCall(PetscOptionsReal("-fit_energy_from", "Energy per cycle matched from the amplitude where this fraction of the slip force has slipped", "JRROMReduce", efrom, &efrom, NULL));
   PetscCall(PetscOptionsReal("-fit_perturb", "Perturb the start of the fit by this fraction (tests: the fit must recover)", "JRROMReduce", perturb, &perturb, NULL));
   PetscCall(PetscOptionsInt("-fit_samples", "Samples per loop", "JRROMReduce", ns, &ns, NULL));
   PetscOptionsEnd();
@@ -402,7 +405,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
     { /* energy matched from the first slips (2% of the slip force) to the gross-slip amplitude */
       PetscReal c = 0, a0;
       PetscInt  k = 0;
-      while (k < nm - 1 && c + mf[d[k].e] < 0.02 * ftot) {
+      while (k < nm - 1 && c + mf[d[k].e] < efrom * ftot) {
         c += mf[d[k].e];
         k++;
       }
