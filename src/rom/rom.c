@@ -236,6 +236,30 @@ static PetscErrorCode TangentResidual(void *ctx, const PetscReal x[], PetscReal 
   PetscFunctionReturn(0);
 }
 
+/* The convex stage: the slip displacements fixed at delta[i], the slip forces y_i = f_i / fs free (k_i = f_i / delta_i):
+   every residual is linear in y, so the bounded least squares has one minimum, continuous in the data */
+typedef struct {
+  TangentFit *t;
+  PetscReal  *delta, *x, *J2;
+} FixedFit;
+
+static PetscErrorCode FixedResidual(void *ctx, const PetscReal y[], PetscReal r[], PetscReal J[])
+{
+  FixedFit      *ff = (FixedFit *)ctx;
+  TangentFit    *t  = ff->t;
+  const PetscInt m = t->m, ld = 4 * t->ns + t->ne;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < m; i++) {
+    ff->x[i]     = t->fs * y[i] / (ff->delta[i] * t->ks);
+    ff->x[m + i] = y[i];
+  }
+  PetscCall(TangentResidual(t, ff->x, r, ff->J2));
+  for (PetscInt i = 0; i < m; i++)
+    for (PetscInt q = 0; q < ld; q++) J[q + i * ld] = ff->J2[q + i * ld] * t->fs / (ff->delta[i] * t->ks) + ff->J2[q + (m + i) * ld];
+  PetscFunctionReturn(0);
+}
+
 /* The normal fit of jenkins_nv joints: x = kn_i / kns, n0_i given; target N(v_s) */
 typedef struct {
   PetscInt   m, nv;
@@ -256,6 +280,25 @@ static PetscErrorCode NormalResidual(void *ctx, const PetscReal x[], PetscReal r
       J[s + i * t->nv] = N > 0 ? t->w * t->kns * t->v[s] : 0.0;
     }
     r[s] *= t->w;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* An element list of n elements of one type with joints (and the node-to-node arrays if nodes), no DOFs */
+static PetscErrorCode SetupList(JRElements *el, PetscInt n, const char type[], PetscBool nodes)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(el, sizeof(*el)));
+  el->n      = n;
+  el->ntypes = 1;
+  PetscCall(PetscStrncpy(el->typename[0], type, sizeof(el->typename[0])));
+  PetscCall(PetscMalloc5(n, &el->type, n, &el->dof_a, n, &el->dof_b, n, &el->ndof_a, n, &el->ndof_b));
+  PetscCall(PetscMalloc4(n, &el->kt, n, &el->kn, n, &el->mu, n, &el->n0));
+  PetscCall(PetscMalloc1(n, &el->joint));
+  if (nodes) PetscCall(PetscMalloc4(3 * n, &el->vdof_a, 3 * n, &el->vdof_b, 3 * n, &el->tdir, 3 * n, &el->ndir));
+  for (PetscInt e = 0; e < n; e++) {
+    el->type[e]  = 0;
+    el->dof_a[e] = el->dof_b[e] = el->ndof_a[e] = el->ndof_b[e] = -1;
   }
   PetscFunctionReturn(0);
 }
@@ -281,6 +324,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
 {
   PetscInt     nj = nn->njoints, ns = 128, nfr = 3, cnt = 0, nmax;
   PetscReal    fr[3] = {0.25, 0.6, 0.95}, perturb = 0, efrom = 0.02;
+  PetscBool    refine = PETSC_FALSE;
   PetscBool    nv, frset;
   MemberDelta *md;
   PetscInt    *jn, *joff;
@@ -297,6 +341,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   PetscOptionsBegin(comm, "rom_", "Second reduction: m elements per joint fitted to its hysteresis loops (prefix rom_)", "JRROMReduce");
   PetscCall(PetscOptionsRealArray("-fit_fractions", "Loop amplitudes: the slip displacements below which these fractions of the joint's slip force lie (microslip to gross slip)", "JRROMReduce", fr, &nfr, &frset));
   PetscCall(PetscOptionsReal("-fit_energy_from", "Energy per cycle matched from the amplitude where this fraction of the slip force has slipped", "JRROMReduce", efrom, &efrom, NULL));
+  PetscCall(PetscOptionsBool("-fit_refine", "After the convex fit on fixed slip displacements, free them too (a non-convex refinement: better loops, but its minimum can move with round-off)", "JRROMReduce", refine, &refine, NULL));
   PetscCall(PetscOptionsReal("-fit_perturb", "Perturb the start of the fit by this fraction (tests: the fit must recover)", "JRROMReduce", perturb, &perturb, NULL));
   PetscCall(PetscOptionsInt("-fit_samples", "Samples per loop", "JRROMReduce", ns, &ns, NULL));
   PetscOptionsEnd();
@@ -315,23 +360,15 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   if (m == 0) { /* the first reduction itself: the members, weighted, as elements on their joints */
     PetscInt cnt0 = 0;
     for (PetscInt e = 0; e < nn->n; e++) cnt0 += (nv || mk[e] > 0);
-    PetscCall(PetscMemzero(rom, sizeof(*rom)));
-    rom->n      = cnt0;
-    rom->ntypes = 1;
-    PetscCall(PetscStrncpy(rom->typename[0], nn->typename[0], sizeof(rom->typename[0])));
-    PetscCall(PetscMalloc5(cnt0, &rom->type, cnt0, &rom->dof_a, cnt0, &rom->dof_b, cnt0, &rom->ndof_a, cnt0, &rom->ndof_b));
-    PetscCall(PetscMalloc4(cnt0, &rom->kt, cnt0, &rom->kn, cnt0, &rom->mu, cnt0, &rom->n0));
-    PetscCall(PetscMalloc1(cnt0, &rom->joint));
+    PetscCall(SetupList(rom, cnt0, nn->typename[0], PETSC_FALSE));
     rom->njoints = nj;
     for (PetscInt e = 0, i = 0; e < nn->n; e++) {
       if (!(nv || mk[e] > 0)) continue;
-      rom->type[i]  = 0;
-      rom->dof_a[i] = rom->dof_b[i] = rom->ndof_a[i] = rom->ndof_b[i] = -1;
-      rom->kt[i]                                                      = nv ? nn->kt[e] : mk[e];
-      rom->kn[i]                                                      = nn->kn[e];
-      rom->mu[i]                                                      = nn->mu[e];
-      rom->n0[i]                                                      = nv ? nn->n0[e] : mf[e] / nn->mu[e];
-      rom->joint[i++]                                                 = nn->joint[e];
+      rom->kt[i]      = nv ? nn->kt[e] : mk[e];
+      rom->kn[i]      = nn->kn[e];
+      rom->mu[i]      = nn->mu[e];
+      rom->n0[i]      = nv ? nn->n0[e] : mf[e] / nn->mu[e];
+      rom->joint[i++] = nn->joint[e];
     }
     PetscCall(PetscNew(&rom->members));
     PetscCall(JRElementsDuplicate(nn, rom->members));
@@ -367,11 +404,11 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
     if (fp) fprintf(fp, "joint,amplitude,u_m,f_first_reduction_N,f_rom_N\n");
   }
   PetscCall(PetscMalloc1(6 * ns, &loops));
-  PetscCall(PetscMemzero(rom, sizeof(*rom)));
   cnt = 0;
   for (PetscInt j = 0; j < nj; j++) {
     const MemberDelta *d  = md + joff[j];
-    const PetscInt     nm = jn[j], mj = PetscMin(m, nm);
+    const PetscInt     nm = jn[j];
+    PetscInt           mj = PetscMin(m, nm);
     PetscReal          ftot = 0, ktot = 0, mu = 0, n0s = 0, knsum = 0, rms0 = 0, rms = 0, nrms0 = 0, nrms = 0, *x, *xn = NULL;
     PetscInt           its = 0, nits = 0;
     TangentFit         t;
@@ -428,7 +465,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
     }
     /* start: m groups of members in equal steps of log(delta) (from the first slips to gross slip), each group one
        element with the group's sums of kt and f: exact at full stick and at gross slip */
-    PetscCall(PetscCalloc1(2 * mj, &x));
+    PetscCall(PetscCalloc1(3 * mj, &x));
     {
       const PetscReal l0 = PetscLogReal(d[0].delta), l1 = PetscLogReal(d[nm - 1].delta);
       for (PetscInt i = 0; i < nm; i++) {
@@ -446,17 +483,43 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
           x[g]               = 1e-3 * t.fs / (dl * t.ks);
         }
     }
-    for (PetscInt g = 0; g < mj && nm > m; g++) {
-      const PetscReal c = g % 3 == 0 ? 1.0 : g % 3 == 1 ? -1.0 : 0.5;
-      x[g] *= 1 + perturb * c;
-      x[mj + g] *= 1 - perturb * c;
-    }
     if (nm > m) {
-      q.nx  = 2 * mj;
+      FixedFit  fx;
+      PetscReal *y;
+      PetscInt   its1 = 0;
+      /* 1. convex: the slip displacements of the start's groups (sum f / sum kt of each log-width group of members),
+         the forces fitted */
+      PetscCall(PetscMalloc4(mj, &fx.delta, 2 * mj, &fx.x, (4 * ns + t.ne) * 2 * mj, &fx.J2, mj, &y));
+      fx.t = &t;
+      for (PetscInt i = 0; i < mj; i++) {
+        fx.delta[i] = t.fs * x[mj + i] / (t.ks * x[i]);
+        y[i]        = x[mj + i] * (1 + perturb * (i % 3 == 0 ? 1.0 : i % 3 == 1 ? -1.0 : 0.5));
+      }
+      q.nx  = mj;
       q.nr  = 4 * ns + t.ne;
-      q.fn  = TangentResidual;
-      q.ctx = &t;
-      PetscCall(LSQSolve(&q, x, 1e-10, &rms0, &rms, &its));
+      q.fn  = FixedResidual;
+      q.ctx = &fx;
+      PetscCall(LSQSolve(&q, y, 0.0, &rms0, &rms, &its1));
+      for (PetscInt i = 0; i < mj; i++) {
+        x[i]      = t.fs * y[i] / (fx.delta[i] * t.ks);
+        x[mj + i] = y[i];
+      }
+      its = its1;
+      PetscCall(PetscFree4(fx.delta, fx.x, fx.J2, y));
+      /* 2. optional: slip displacements free too, from there */
+      if (refine) {
+        PetscReal r1;
+        for (PetscInt g = 0; g < mj; g++) {
+          x[g] = PetscMax(x[g], 1e-8);
+          x[mj + g] = PetscMax(x[mj + g], 1e-8);
+        }
+        q.nx  = 2 * mj;
+        q.nr  = 4 * ns + t.ne;
+        q.fn  = TangentResidual;
+        q.ctx = &t;
+        PetscCall(LSQSolve(&q, x, 1e-10, &r1, &rms, &its1));
+        its += its1;
+      }
     } else {
       q.nx = 2 * mj; /* the members themselves: exact */
       PetscCall(PetscMalloc2(4 * ns + t.ne, &q.r, (4 * ns + t.ne) * 2 * mj, &q.J));
@@ -465,6 +528,19 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
       rms  = PetscSqrtReal(rms);
       rms0 = rms;
       PetscCall(PetscFree2(q.r, q.J));
+    }
+    { /* elements the fit left without force carry nothing: dropped */
+      PetscInt kept = 0;
+      for (PetscInt i = 0; i < mj; i++)
+        if (x[mj + i] > 1e-9) {
+          x[kept]          = x[i];
+          x[2 * mj + kept] = x[mj + i]; /* forces behind the stiffnesses, shifted below */
+          kept++;
+        }
+      for (PetscInt i = 0; i < kept; i++) x[kept + i] = x[2 * mj + i];
+      mj = kept;
+      t.m = mj;
+      jn[j] = -mj - 1; /* the element count of this joint, marked (members counted above) */
     }
     for (PetscInt i = 0; i < mj; i++) {
       ek[cnt + i]  = t.ks * x[i];
@@ -538,22 +614,15 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
     } else PetscCall(PetscPrintf(comm, "rom: wrote %s\n", csv));
   }
   /* the reduced elements, the first-reduction model as their members */
-  rom->n      = cnt;
-  rom->ntypes = 1;
-  PetscCall(PetscStrncpy(rom->typename[0], nn->typename[0], sizeof(rom->typename[0])));
-  PetscCall(PetscMalloc5(cnt, &rom->type, cnt, &rom->dof_a, cnt, &rom->dof_b, cnt, &rom->ndof_a, cnt, &rom->ndof_b));
-  PetscCall(PetscMalloc4(cnt, &rom->kt, cnt, &rom->kn, cnt, &rom->mu, cnt, &rom->n0));
-  PetscCall(PetscMalloc1(cnt, &rom->joint));
+  PetscCall(SetupList(rom, cnt, nn->typename[0], PETSC_FALSE));
   rom->njoints = nj;
   for (PetscInt j = 0, e = 0; j < nj; j++)
-    for (PetscInt i = 0; i < PetscMin(m, jn[j]); i++, e++) {
-      rom->type[e]  = 0;
-      rom->dof_a[e] = rom->dof_b[e] = rom->ndof_a[e] = rom->ndof_b[e] = -1;
-      rom->kt[e]                                                      = ek[e];
-      rom->kn[e]                                                      = ekn[e];
-      rom->mu[e]                                                      = emu[e];
-      rom->n0[e]                                                      = en0[e];
-      rom->joint[e]                                                   = j;
+    for (PetscInt i = 0; i < -jn[j] - 1; i++, e++) {
+      rom->kt[e]    = ek[e];
+      rom->kn[e]    = ekn[e];
+      rom->mu[e]    = emu[e];
+      rom->n0[e]    = en0[e];
+      rom->joint[e] = j;
     }
   PetscCall(PetscNew(&rom->members));
   PetscCall(JRElementsDuplicate(nn, rom->members));
@@ -706,24 +775,6 @@ static PetscErrorCode ReadSeq(PetscViewer v, const char file[], const char name[
   for (PetscInt i = 0; i < len; i++) (*a)[i] = PetscRealPart(xa[i]);
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(VecDestroy(&x));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SetupList(JRElements *el, PetscInt n, const char type[], PetscBool nodes)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(el, sizeof(*el)));
-  el->n      = n;
-  el->ntypes = 1;
-  PetscCall(PetscStrncpy(el->typename[0], type, sizeof(el->typename[0])));
-  PetscCall(PetscMalloc5(n, &el->type, n, &el->dof_a, n, &el->dof_b, n, &el->ndof_a, n, &el->ndof_b));
-  PetscCall(PetscMalloc4(n, &el->kt, n, &el->kn, n, &el->mu, n, &el->n0));
-  PetscCall(PetscMalloc1(n, &el->joint));
-  if (nodes) PetscCall(PetscMalloc4(3 * n, &el->vdof_a, 3 * n, &el->vdof_b, 3 * n, &el->tdir, 3 * n, &el->ndir));
-  for (PetscInt e = 0; e < n; e++) {
-    el->type[e]  = 0;
-    el->dof_a[e] = el->dof_b[e] = el->ndof_a[e] = el->ndof_b[e] = -1;
-  }
   PetscFunctionReturn(0);
 }
 

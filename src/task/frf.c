@@ -192,13 +192,18 @@ static PetscErrorCode CompareReport(MPI_Comm comm, JRCont cn, JRCont cr, const J
   PetscFunctionReturn(0);
 }
 
-/* The stuck mode of hbm nearest the middle of the frequency range (or, without one, the lowest elastic one) */
-static PetscErrorCode TargetMode(JRHBM hbm, JRCont cont, PetscInt *k, PetscReal *f)
+/* The stuck mode of hbm nearest the middle of the frequency range of the options (or, without one, the lowest
+   elastic one): the mode of interest of a reduced model */
+static PetscErrorCode TargetMode(MPI_Comm comm, JRHBM hbm, PetscInt *k, PetscReal *f)
 {
   PetscReal *fs, wmin, wmax;
   PetscInt   nm, nf;
+  JRCont     cont;
 
   PetscFunctionBeginUser;
+  PetscCall(JRContCreate(comm, &cont));
+  PetscCall(JRContSetHBM(cont, hbm));
+  PetscCall(JRContSetFromOptions(cont));
   PetscCall(JRHBMGetSizes(hbm, &nm, NULL, NULL));
   PetscCall(PetscMalloc1(nm, &fs));
   PetscCall(JRHBMStickFrequencies(hbm, &nf, fs));
@@ -213,6 +218,7 @@ static PetscErrorCode TargetMode(JRHBM hbm, JRCont cont, PetscInt *k, PetscReal 
       if (fs[i] > 1e-3 * fs[nf - 1]) *k = i;
   *f = fs[*k];
   PetscCall(PetscFree(fs));
+  PetscCall(JRContDestroy(&cont));
   PetscFunctionReturn(0);
 }
 
@@ -388,12 +394,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     if (weight && !strcmp(elj.typename[0], JRCONTACTJENKINS)) { /* each member's motion in the stuck mode of interest over its joint's (4.4) */
       PetscInt   k  = 0;
       PetscReal  ft = 0, *u, *ubar, *cnt, umax = 0;
-      JRCont     tmp;
-      PetscCall(JRContCreate(comm, &tmp));
-      PetscCall(JRContSetHBM(tmp, hbm));
-      PetscCall(JRContSetFromOptions(tmp));
-      PetscCall(TargetMode(hbm, tmp, &k, &ft));
-      PetscCall(JRContDestroy(&tmp));
+      PetscCall(TargetMode(comm, hbm, &k, &ft));
       PetscCall(PetscMalloc1(el.n, &u));
       PetscCall(PetscMalloc1(el.n, &w));
       PetscCall(PetscCalloc2(elj.njoints, &ubar, elj.njoints, &cnt));
@@ -430,12 +431,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     if (!loaded && corr_on) { /* the stiffness correction: the reduced model's stuck resonance on the node-to-node one */
       PetscInt  k  = 0;
       PetscReal ft = 0, *fr;
-      JRCont    tmp;
-      PetscCall(JRContCreate(comm, &tmp));
-      PetscCall(JRContSetHBM(tmp, hbm));
-      PetscCall(JRContSetFromOptions(tmp));
-      PetscCall(TargetMode(hbm, tmp, &k, &ft));
-      PetscCall(JRContDestroy(&tmp));
+      PetscCall(TargetMode(comm, hbm, &k, &ft));
       PetscCall(JRHBMGetSizes(hbmr, &nm, NULL, NULL));
       PetscCall(PetscMalloc1(nm, &fr));
       PetscCall(JRHBMStickFrequencies(hbmr, &n, fr));
