@@ -11,8 +11,10 @@
      - a stuck loop (the joint's stiffness), weighted 10x;
      - the energy dissipated per cycle, relative, at 6 amplitudes from the first slips (2% of the slip force) to
        the largest loop amplitude, weighted 0.05 each.
-   The start: the members sorted by slip displacement in m groups of equal log-width, each group one element (sum
-   of kt, sum of f): already exact at full stick and at gross slip.
+   The members are sorted by slip displacement into m groups of equal log-width; each element keeps its group's slip
+   displacement (sum f / sum kt) and the slip forces f_i >= 0 are fitted: every residual is linear in f, so the
+   problem is convex and its minimum unique (the same on any ranks); elements left without force are dropped.
+   -rom_fit_refine then frees the slip displacements (kt_i and f_i both): better loops, but not convex.
    jenkins_nv joints (beyond the thesis): kt_i, f_i as above with the normal motion at rest (v = 0), n0_i = f_i / mu;
    then the normal stiffnesses kn_i (the thesis's kv) fitted to the joint's normal load-motion curve
    sum_e max(n0_e + kn_e v, 0) over v from the separation of every member to as much compression.
