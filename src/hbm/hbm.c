@@ -311,16 +311,19 @@ static PetscErrorCode JointRows(JRHBM h, const JRElements *mem, PetscReal Rj[], 
   const PetscInt nm = h->nm, nj = mem->njoints, w = 2 * nm + 1;
   PetscInt       nloc = PETSC_DECIDE, n = mem->n, start = 0, *eidx;
   PetscReal     *R, *S, *loc, *sum;
+  PetscBool      nv = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCheck(mem->vdof_a && mem->joint, h->comm, PETSC_ERR_ARG_WRONG, "A reduced model's members must be node-to-node elements with joints");
+  for (PetscInt t = 0; t < mem->ntypes; t++) nv = (PetscBool)(nv || !strcmp(mem->typename[t], JRCONTACTJENKINSNV));
   PetscCall(PetscSplitOwnership(h->comm, &nloc, &n));
   PetscCallMPI(MPI_Scan(&nloc, &start, 1, MPIU_INT, MPI_SUM, h->comm));
   start -= nloc;
   PetscCall(PetscMalloc3(nloc, &eidx, nloc * nm, &R, nloc * nm, &S));
   for (PetscInt e = 0; e < nloc; e++) eidx[e] = start + e;
   PetscCall(ProjectionRowsDir(h, nloc, eidx, mem->vdof_a, mem->vdof_b, mem->tdir, R));
-  PetscCall(ProjectionRowsDir(h, nloc, eidx, mem->vdof_a, mem->vdof_b, mem->ndir, S));
+  if (nv) PetscCall(ProjectionRowsDir(h, nloc, eidx, mem->vdof_a, mem->vdof_b, mem->ndir, S)); /* normal rows: jenkins_nv only */
+  else PetscCall(PetscArrayzero(S, nloc * nm));
   PetscCall(PetscCalloc2(nj * w, &loc, nj * w, &sum));
   for (PetscInt e = 0; e < nloc; e++) {
     PetscReal *r = loc + mem->joint[eidx[e]] * w;

@@ -682,6 +682,26 @@ static PetscErrorCode WriteSeq(PetscViewer v, const char name[], PetscInt n, Pet
   PetscFunctionReturn(0);
 }
 
+/* The first six columns of a saved element or member: joint, kt, kn, mu, n0, type */
+static void PutRow(const JRElements *el, PetscInt e, PetscReal r[])
+{
+  r[0] = el->joint[e];
+  r[1] = el->kt[e];
+  r[2] = el->kn[e];
+  r[3] = el->mu[e];
+  r[4] = el->n0[e];
+  r[5] = el->type[e];
+}
+
+static void GetRow(JRElements *el, PetscInt e, const PetscReal r[])
+{
+  el->joint[e] = (PetscInt)r[0];
+  el->kt[e]    = r[1];
+  el->kn[e]    = r[2];
+  el->mu[e]    = r[3];
+  el->n0[e]    = r[4];
+}
+
 #define JR_ROM_EL  6  /* joint, kt, kn, mu, n0, type */
 #define JR_ROM_MEM 24 /* joint, kt, kn, mu, n0, type, vdof_a[3], vdof_b[3], tdir[3], ndir[3], x_A[3], x_B[3] */
 
@@ -713,23 +733,12 @@ PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, c
     PetscCall(PetscViewerHDF5PushGroup(v, "/rom"));
     PetscCall(PetscMalloc1(JR_ROM_MEM * PetscMax(mem->n, rom->n), &a));
     for (PetscInt e = 0; e < rom->n; e++) {
-      PetscReal *r = a + JR_ROM_EL * e;
-      r[0]         = rom->joint[e];
-      r[1]         = rom->kt[e];
-      r[2]         = rom->kn[e];
-      r[3]         = rom->mu[e];
-      r[4]         = rom->n0[e];
-      r[5]         = rom->type[e];
+      PutRow(rom, e, a + JR_ROM_EL * e);
     }
     PetscCall(WriteSeq(v, "elements", rom->n, JR_ROM_EL, a));
     for (PetscInt e = 0; e < mem->n; e++) {
       PetscReal *r = a + JR_ROM_MEM * e;
-      r[0]         = mem->joint[e];
-      r[1]         = mem->kt[e];
-      r[2]         = mem->kn[e];
-      r[3]         = mem->mu[e];
-      r[4]         = mem->n0[e];
-      r[5]         = mem->type[e];
+      PutRow(mem, e, r);
       for (PetscInt c = 0; c < 3; c++) {
         r[6 + c]  = mem->vdof_a[3 * e + c];
         r[9 + c]  = mem->vdof_b[3 * e + c];
@@ -815,12 +824,7 @@ PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, Pets
   PetscCall(SetupList(rom, ne, ty, PETSC_FALSE));
   rom->njoints = nj;
   for (PetscInt e = 0; e < ne; e++) {
-    const PetscReal *r = a + JR_ROM_EL * e;
-    rom->joint[e]      = (PetscInt)r[0];
-    rom->kt[e]         = r[1];
-    rom->kn[e]         = r[2];
-    rom->mu[e]         = r[3];
-    rom->n0[e]         = r[4];
+    GetRow(rom, e, a + JR_ROM_EL * e);
     PetscCheck(rom->joint[e] >= 0 && rom->joint[e] < nj && rom->kt[e] > 0 && rom->mu[e] > 0, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: element %" PetscInt_FMT " has joint %" PetscInt_FMT " (0..%" PetscInt_FMT "), kt %g, mu %g: not a valid element", file, e, rom->joint[e], nj - 1, (double)rom->kt[e], (double)rom->mu[e]);
   }
   PetscCall(PetscNew(&mem));
@@ -828,11 +832,7 @@ PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, Pets
   mem->njoints = nj;
   for (PetscInt e = 0; e < nmem; e++) {
     const PetscReal *r = b + JR_ROM_MEM * e;
-    mem->joint[e]      = (PetscInt)r[0];
-    mem->kt[e]         = r[1];
-    mem->kn[e]         = r[2];
-    mem->mu[e]         = r[3];
-    mem->n0[e]         = r[4];
+    GetRow(mem, e, r);
     PetscCheck(mem->joint[e] >= 0 && mem->joint[e] < nj, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT " has joint %" PetscInt_FMT ", outside 0..%" PetscInt_FMT, file, e, mem->joint[e], nj - 1);
     for (PetscInt c = 0; c < 3; c++) {
       mem->vdof_a[3 * e + c] = (PetscInt)r[6 + c];
