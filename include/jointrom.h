@@ -223,7 +223,15 @@ PETSC_EXTERN PetscErrorCode JRElementsDuplicate(const JRElements *, JRElements *
 PETSC_EXTERN PetscErrorCode JRElementsCreateStuckStiffness(Mat, const JRElements *, Mat *, PetscReal *);
 
 /* Reduced-order joints: second reduction (TAO fit of m elements per joint, options -rom_*), saved models */
-PETSC_EXTERN PetscErrorCode JRROMReduce(MPI_Comm, const JRElements *, PetscInt, const PetscReal[], const char[], PetscBool, JRElements *);
+/* The case a reduced model is for: the response of the mode of interest at each level, by energy balance at resonance */
+typedef struct {
+  PetscInt         nlev;
+  const PetscReal *level;  /* excitation levels [N] */
+  PetscReal        force;  /* |mode . force shape| per unit level */
+  PetscReal        damp;   /* linear damping energy per cycle / (modal amplitude)^2 */
+  const PetscReal *ujoint; /* each joint's (average) motion per unit modal amplitude [m] */
+} JRROMCase;
+PETSC_EXTERN PetscErrorCode JRROMReduce(MPI_Comm, const JRElements *, PetscInt, const PetscReal[], const JRROMCase *, const char[], PetscBool, JRElements *);
 PETSC_EXTERN PetscErrorCode JRROMSave(JRModel, const JRElements *, PetscReal, const char[]);
 PETSC_EXTERN PetscErrorCode JRROMLoad(JRModel, const char[], JRElements *, PetscReal *);
 
@@ -281,6 +289,7 @@ PETSC_EXTERN PetscErrorCode JRHBMKineticEnergy(JRHBM, PetscReal, Vec, PetscReal 
 PETSC_EXTERN PetscErrorCode JRHBMSetExcitationDof(JRHBM, PetscInt, PetscInt, const PetscInt[]);
 PETSC_EXTERN PetscErrorCode JRHBMMatchStickFrequency(JRHBM, PetscInt, PetscReal, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMStuckModeMotion(JRHBM, PetscInt, PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRHBMStuckModeBalance(JRHBM, PetscInt, PetscReal *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMSetModes(JRHBM, JRHBM);
 PETSC_EXTERN PetscErrorCode JRHBMSetBasis(JRHBM, PetscInt);
 PETSC_EXTERN PetscErrorCode JRHBMGetBasis(JRHBM, PetscInt *);

@@ -35,10 +35,12 @@ for m in 3 4 7; do
   read f a <<< "$(worst "$o")"
   ne=$(echo "$o" | awk '/^rom joint/{s += $7} END{print s}')
   check "[ -n '$ne' ] && [ '$ne' -ge 6 ] && [ '$ne' -le $((6 * m)) ] && lt '$f' 5e-3" "second reduction 6 x $m: $ne elements (at most $((6 * m)): elements the fit leaves without force are dropped), worst peak frequency error $f (< 0.5%)"
-  # the amplitude: the issue's 5% is missed (README); above the lowest level (0.1 N, where 4 edge elements slip
-  # alone) the measured accuracy of the convex fit is within 10%
-  a5=$(echo "$o" | awk '/^compare level/ && $3 >= 5 {e = $11 / $9 - 1; if (e < 0) e = -e; if (e > w) w = e} END{print w + 0}')
-  check "lt '$a5' 0.1" "second reduction 6 x $m: amplitude within 10% at 5..200 N: worst $a5"
+  # the amplitude at every level (0.1..200 N): the issue's 5% for 6 x 3 is missed (README); the measured accuracy of
+  # the fit with the case's amplitudes (-rom_fit_case_weight 10) is 9.2% (6 x 3), 4.5% (6 x 4), 2.2% (6 x 7)
+  case $m in 3) amax=0.12 ;; 4) amax=0.06 ;; 7) amax=0.04 ;; esac
+  aw=$(echo "$o" | awk '/^compare level/ {e = $11 / $9 - 1; if (e < 0) e = -e; if (e > w) w = e} END{print w + 0}')
+  nc=$(echo "$o" | grep -c '^rom case level .* dissipation_error')
+  check "lt '$aw' $amax && [ '$nc' = 5 ]" "second reduction 6 x $m: amplitude within $amax at every level (0.1..200 N): worst $aw; the fit's dissipation error printed for the 5 levels"
   if [ $m = 3 ]; then
     r=$(echo "$o" | awk '/^rom joint/{if ($13 > w) w = $13} END{print w}')
     r0=$(echo "$o" | awk '/^rom joint/{if ($15 > w) w = $15} END{print w}')
@@ -70,5 +72,6 @@ expect_error "overlapping regions" "the regions overlap" $J -task frf $brb -frf_
 expect_error "element in no region" "lies in no box" $J -task frf $brb -frf_force 1 -rom_joints boxes -rom_boxes 0,0.33,-1,1,0.37,1,-1,1 -frf_output_file ''
 expect_error "empty joint" "holds no element: an empty joint" $J -task frf $brb -frf_force 1 -rom_joints boxes -rom_boxes 0,0.36,-1,1,0.36001,1,-1,1,5,6,-1,1 -frf_output_file ''
 expect_error "compare without joints" "-task compare needs a reduced model" $J -task compare $brb -frf_force 1 -frf_output_file ''
+expect_error "negative case weight" "-rom_fit_case_weight -1: non-negative" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_case_weight -1 -frf_output_file ''
 expect_error "elements without joints" "-rom_elements needs joints" $J -task frf $brb -frf_force 1 -rom_elements 3 -frf_output_file ''
 expect_error "save a first reduction" "-rom_save saves a second-reduction model" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_save "$tmp/x.h5" -frf_output_file ''

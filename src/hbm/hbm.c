@@ -931,6 +931,35 @@ PetscErrorCode JRHBMStuckModeMotion(JRHBM h, PetscInt k, PetscReal u[])
   PetscFunctionReturn(0);
 }
 
+/*
+  JRHBMStuckModeBalance - the energy balance of the k-th stuck mode q (M-normalised) at resonance, for the modal
+  amplitude a: per cycle the excitation of level F puts in pi F |q.fm| a and the linear damping takes out
+  damp a^2 = pi (gamma q^T Kg q + omega q^T Cm q) a^2. omega [rad/s], force = |q.fm| (per unit level). Collective.
+*/
+PetscErrorCode JRHBMStuckModeBalance(JRHBM h, PetscInt k, PetscReal *omega, PetscReal *force, PetscReal *damp)
+{
+  PetscReal *f, *q, fq = 0, kq = 0, cq = 0;
+  PetscInt   nf;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCheck(k >= 0 && k < h->nm, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Stuck mode %" PetscInt_FMT ": the basis has %" PetscInt_FMT, k, h->nm);
+  PetscCall(PetscMalloc2(h->nm, &f, h->nm, &q));
+  PetscCall(StickEig(h, 1.0, &nf, f, k, q));
+  *omega = 2 * PETSC_PI * f[k];
+  for (PetscInt i = 0; i < h->nm; i++) {
+    fq += h->fm[i] * q[i];
+    for (PetscInt j = 0; j < h->nm; j++) {
+      kq += q[i] * h->Kg[i * h->nm + j] * q[j];
+      cq += q[i] * h->Cm[i * h->nm + j] * q[j];
+    }
+  }
+  *force = PetscAbsReal(fq);
+  *damp  = PETSC_PI * (h->gamma * kq + *omega * cq);
+  PetscCall(PetscFree2(f, q));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode StickEig(JRHBM h, PetscReal scale, PetscInt *nf, PetscReal freq[], PetscInt kvec, PetscReal vec[])
 {
   const PetscInt nm = h->nm;

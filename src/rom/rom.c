@@ -10,10 +10,22 @@
        slip displacements below which the fractions -rom_fit_fractions (0.25, 0.6, 0.95) of the slip force lie;
      - a stuck loop (the joint's stiffness), weighted 10x;
      - the energy dissipated per cycle, relative, at 6 amplitudes from the first slips (2% of the slip force) to
-       the largest loop amplitude, weighted 0.05 each.
-   The members are sorted by slip displacement into m groups of equal log-width; each element keeps its group's slip
-   displacement (sum f / sum kt) and the slip forces f_i >= 0 are fitted: every residual is linear in f, so the
-   problem is convex and its minimum unique (the same on any ranks); elements left without force are dropped.
+       the largest loop amplitude, weighted 0.05 each;
+     - the joint's total slip force (gross slip), -rom_fit_gross_weight 1;
+     - the case (amplitudes chosen from the joint's range of motion in the case at hand; JRROMCase from -task frf or
+       compare): the modal amplitude of the mode of interest at resonance at every level by the energy balance of
+       one cycle (pi F |phi.f| a = linear damping + the first-reduction joints' dissipation, stuck mode shape), and
+       the energy per cycle at 24 amplitudes over each joint's range (its motion at the lowest level / 2 to the
+       highest x 2), each error relative to all the energy dissipated at that amplitude: the share of the input
+       the fit gets wrong, which is what moves the peak amplitude (-rom_fit_case_weight 10). After the fit, the
+       error of all joints together at each level is printed (rom case level F dissipation_error).
+   The slip displacements are chosen (-rom_fit_search) among a log grid over the members' range (down to a tenth of
+   the case's smallest joint motion) and the log-width groups' own: every set of m (<= 20000 sets; else coordinate
+   descent from the groups) scored by the non-negative least squares of its slip forces (every support of a Gram
+   system: exact, deterministic). For the set found the slip forces f_i >= 0 are fitted by TAO: every residual is
+   linear in f, so the problem is convex and its minimum unique (the same on any ranks); elements left without
+   force are dropped. The "start" printed is the fit of the groups (sum f / sum kt of each log-width group of
+   members, with their forces).
    -rom_fit_refine then frees the slip displacements (kt_i and f_i both): better loops, but not convex.
    jenkins_nv joints (beyond the thesis): kt_i, f_i as above with the normal motion at rest (v = 0), n0_i = f_i / mu;
    then the normal stiffnesses kn_i (the thesis's kv) fitted to the joint's normal load-motion curve
@@ -24,6 +36,7 @@
 #include <jointrom/private/modelimpl.h>
 #include <petsctao.h>
 #include <petscviewerhdf5.h>
+#include <petscblaslapack.h>
 
 /* Steady Jenkins loop (spring k, slip force f) under u = a cos(theta_s), theta_s = 2 pi s / ns: F[s] += force,
    and, if not NULL, Fk[s] = dF/dk, Ff[s] = dF/df */
@@ -189,9 +202,12 @@ typedef struct {
   PetscReal  amp[4], w[4], ks, fs; /* amplitudes: microslip, microslip, gross slip, and stuck (the stiffness) */
   PetscReal *target;               /* 4 ns */
   PetscReal *Fk, *Ff;
-  PetscInt   ne;                   /* amplitudes where the energy dissipated per cycle is matched (relative) */
-  PetscReal  ae[8], Et[8], we;
+  PetscInt   ne;                   /* amplitudes where the energy dissipated per cycle is matched */
+  PetscReal *ae, *Et, *En, *we;    /* amplitude, target, scale and weight of each: residual we (E - Et) / En */
+  PetscReal  ftot, wg;             /* the joint's slip force (gross slip), matched with weight wg (relative) */
 } TangentFit;
+
+#define FitRows(t) (4 * (t)->ns + (t)->ne + 1)
 
 /* Energy dissipated per cycle by a Jenkins element at amplitude a, and its derivatives in k and f */
 static PetscReal JenkinsEnergy(PetscReal k, PetscReal f, PetscReal a, PetscReal *Ek, PetscReal *Ef)
@@ -209,7 +225,8 @@ static PetscReal JenkinsEnergy(PetscReal k, PetscReal f, PetscReal a, PetscReal 
 static PetscErrorCode TangentResidual(void *ctx, const PetscReal x[], PetscReal r[], PetscReal J[])
 {
   TangentFit    *t  = (TangentFit *)ctx;
-  const PetscInt ns = t->ns, nr = 4 * ns, ld = nr + t->ne;
+  const PetscInt ns = t->ns, nr = 4 * ns, ld = FitRows(t);
+  PetscReal      fsum = 0;
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < ld * 2 * t->m; i++) J[i] = 0;
@@ -229,11 +246,16 @@ static PetscErrorCode TangentResidual(void *ctx, const PetscReal x[], PetscReal 
     for (PetscInt i = 0; i < t->m; i++) {
       PetscReal Ek, Ef;
       E += JenkinsEnergy(t->ks * x[i], t->fs * x[t->m + i], t->ae[j], &Ek, &Ef);
-      J[nr + j + i * ld]          = t->we * t->ks * Ek / t->Et[j];
-      J[nr + j + (t->m + i) * ld] = t->we * t->fs * Ef / t->Et[j];
+      J[nr + j + i * ld]          = t->we[j] * t->ks * Ek / t->En[j];
+      J[nr + j + (t->m + i) * ld] = t->we[j] * t->fs * Ef / t->En[j];
     }
-    r[nr + j] = t->we * (E / t->Et[j] - 1);
+    r[nr + j] = t->we[j] * (E - t->Et[j]) / t->En[j];
   }
+  for (PetscInt i = 0; i < t->m; i++) { /* gross slip */
+    fsum += t->fs * x[t->m + i];
+    J[ld - 1 + (t->m + i) * ld] = t->wg * t->fs / t->ftot;
+  }
+  r[ld - 1] = t->wg * (fsum / t->ftot - 1);
 
   PetscFunctionReturn(0);
 }
@@ -249,7 +271,7 @@ static PetscErrorCode FixedResidual(void *ctx, const PetscReal y[], PetscReal r[
 {
   FixedFit      *ff = (FixedFit *)ctx;
   TangentFit    *t  = ff->t;
-  const PetscInt m = t->m, ld = 4 * t->ns + t->ne;
+  const PetscInt m = t->m, ld = FitRows(t);
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < m; i++) {
@@ -259,6 +281,126 @@ static PetscErrorCode FixedResidual(void *ctx, const PetscReal y[], PetscReal r[
   PetscCall(TangentResidual(t, ff->x, r, ff->J2));
   for (PetscInt i = 0; i < m; i++)
     for (PetscInt q = 0; q < ld; q++) J[q + i * ld] = ff->J2[q + i * ld] * t->fs / (ff->delta[i] * t->ks) + ff->J2[q + (m + i) * ld];
+  PetscFunctionReturn(0);
+}
+
+/* NNLS of the columns sel[0..m) of the Gram system (G, c, bb: C^T C, C^T b, b.b of the residual C y - b): every
+   support tried, the best non-negative least-squares solution (the NNLS minimum: m <= 8). cost: |C y - b|^2 */
+static PetscErrorCode GramNNLS(PetscInt nc, const PetscReal G[], const PetscReal c[], PetscReal bb, PetscInt m, const PetscInt sel[], PetscReal y[], PetscReal *cost)
+{
+  PetscReal    A[64], z[8];
+  PetscInt     idx[8];
+  PetscBLASInt n, one = 1, piv[8], info;
+
+  PetscFunctionBeginUser;
+  *cost = bb;
+  for (PetscInt i = 0; i < m; i++) y[i] = 0;
+  for (PetscInt S = 1; S < (1 << m); S++) {
+    PetscInt  k = 0, ok = 1;
+    PetscReal v = bb;
+    for (PetscInt i = 0; i < m; i++)
+      if (S & (1 << i)) idx[k++] = i;
+    for (PetscInt a = 0; a < k; a++) {
+      for (PetscInt b = 0; b < k; b++) A[a + b * k] = G[sel[idx[a]] + sel[idx[b]] * nc];
+      z[a] = c[sel[idx[a]]];
+    }
+    PetscCall(PetscBLASIntCast(k, &n));
+    PetscCallBLAS("LAPACKgesv", LAPACKgesv_(&n, &one, A, &n, piv, z, &n, &info));
+    if (info) continue; /* singular: a smaller support covers it */
+    for (PetscInt a = 0; a < k; a++) {
+      ok = ok && z[a] > 0;
+      v -= z[a] * c[sel[idx[a]]];
+    }
+    if (ok && v < *cost) {
+      *cost = v;
+      for (PetscInt i = 0; i < m; i++) y[i] = 0;
+      for (PetscInt a = 0; a < k; a++) y[idx[a]] = z[a];
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The slip displacements of the convex fit, chosen among candidates: the m start values and a log grid over the
+   members' range. For each candidate element (y = 1) its residual column; the best set by exhaustive search
+   (<= 20000 sets) or else by coordinate descent from the start: each set scored by its NNLS (GramNNLS). Every
+   step is deterministic: the same on any ranks. delta[] in: the start; out: the best set; y: its forces. */
+static PetscErrorCode SearchDelta(TangentFit *t, PetscReal dmin, PetscReal dmax, PetscInt m, PetscReal delta[], PetscReal y[], PetscReal *cost)
+{
+  const PetscInt ngrid = 32, nc = ngrid + m, ld = FitRows(t), mt = t->m;
+  PetscReal     *dc, *C, *b, *G, *cg, bb = 0, x[2], *J, best, yy[8];
+  PetscInt       sel[8], bsel[8];
+  double         combos = 1;
+
+  PetscFunctionBeginUser;
+  PetscCheck(m <= 8, PETSC_COMM_SELF, PETSC_ERR_SUP, "-rom_elements %" PetscInt_FMT ": at most 8 elements per joint", m);
+  PetscCall(PetscMalloc6(nc, &dc, ld * nc, &C, ld, &b, nc * nc, &G, nc, &cg, 2 * ld, &J));
+  for (PetscInt i = 0; i < m; i++) dc[i] = delta[i];
+  for (PetscInt i = 0; i < ngrid; i++) dc[m + i] = dmin * PetscPowReal(dmax / dmin, i / (PetscReal)(ngrid - 1));
+  t->m = 1;
+  x[0] = x[1] = 0;
+  PetscCall(TangentResidual(t, x, b, J)); /* r(0) = -b */
+  for (PetscInt q = 0; q < ld; q++) b[q] = -b[q];
+  for (PetscInt q = 0; q < ld; q++) bb += b[q] * b[q];
+  for (PetscInt c = 0; c < nc; c++) {
+    x[0] = t->fs / (dc[c] * t->ks);
+    x[1] = 1;
+    PetscCall(TangentResidual(t, x, C + c * ld, J));
+    for (PetscInt q = 0; q < ld; q++) C[q + c * ld] += b[q];
+  }
+  t->m = mt;
+  for (PetscInt i = 0; i < nc; i++) {
+    cg[i] = 0;
+    for (PetscInt q = 0; q < ld; q++) cg[i] += C[q + i * ld] * b[q];
+    for (PetscInt k = 0; k <= i; k++) {
+      PetscReal v = 0;
+      for (PetscInt q = 0; q < ld; q++) v += C[q + i * ld] * C[q + k * ld];
+      G[i + k * nc] = G[k + i * nc] = v;
+    }
+  }
+  for (PetscInt i = 0; i < m; i++) combos *= (double)(ngrid - i) / (i + 1);
+  for (PetscInt i = 0; i < m; i++) bsel[i] = i;
+  PetscCall(GramNNLS(nc, G, cg, bb, m, bsel, y, &best));
+  if (combos <= 20000) { /* every set of m grid values */
+    for (PetscInt i = 0; i < m; i++) sel[i] = m + i;
+    while (1) {
+      PetscReal v;
+      PetscInt  i;
+      PetscCall(GramNNLS(nc, G, cg, bb, m, sel, yy, &v));
+      if (v < best) {
+        best = v;
+        for (PetscInt k = 0; k < m; k++) bsel[k] = sel[k];
+      }
+      for (i = m - 1; i >= 0 && sel[i] == nc - m + i; i--) { }
+      if (i < 0) break;
+      sel[i]++;
+      for (PetscInt k = i + 1; k < m; k++) sel[k] = sel[k - 1] + 1;
+    }
+  } else { /* coordinate descent over the grid from the start */
+    PetscBool improved = PETSC_TRUE;
+    for (PetscInt sweep = 0; sweep < 50 && improved; sweep++) {
+      improved = PETSC_FALSE;
+      for (PetscInt i = 0; i < m; i++) {
+        for (PetscInt k = 0; k < m; k++) sel[k] = bsel[k];
+        for (PetscInt c = m; c < nc; c++) {
+          PetscReal v;
+          PetscBool used = PETSC_FALSE;
+          for (PetscInt k = 0; k < m; k++) used = (PetscBool)(used || bsel[k] == c);
+          if (used) continue;
+          sel[i] = c;
+          PetscCall(GramNNLS(nc, G, cg, bb, m, sel, yy, &v));
+          if (v < best * (1 - 1e-12)) {
+            best = v;
+            bsel[i] = c;
+            improved = PETSC_TRUE;
+          }
+        }
+      }
+    }
+  }
+  for (PetscInt i = 0; i < m; i++) delta[i] = dc[bsel[i]];
+  PetscCall(GramNNLS(nc, G, cg, bb, m, bsel, y, &best));
+  *cost = PetscSqrtReal(PetscMax(best, 0.0));
+  PetscCall(PetscFree6(dc, C, b, G, cg, J));
   PetscFunctionReturn(0);
 }
 
@@ -316,17 +458,60 @@ static int CompareDelta(const void *a, const void *b)
   return x < y ? -1 : x > y ? 1 : (((const MemberDelta *)a)->e < ((const MemberDelta *)b)->e ? -1 : 1);
 }
 
+/* The joints' dissipation at modal amplitude a of the case's mode: sum over members of the (weighted) Jenkins
+   energy per cycle at their joint's motion |u_j| a */
+static PetscReal CaseDissipation(const JRElements *nn, const PetscReal mk[], const PetscReal mf[], const JRROMCase *cs, PetscReal a)
+{
+  PetscReal D = 0;
+  for (PetscInt e = 0; e < nn->n; e++)
+    if (mk[e] > 0 && mf[e] > 0) D += JenkinsEnergy(mk[e], mf[e], PetscAbsReal(cs->ujoint[nn->joint[e]]) * a, NULL, NULL);
+  return D;
+}
+
+/* The modal amplitude a of the case's mode at resonance at every level F, by the energy balance of one cycle
+   (single-mode, stuck mode shape): pi F force a = damp a^2 + D(a), where D (the joints' dissipation) grows faster
+   than a, so the root is unique (bisection). Every rank the same. */
+static PetscErrorCode CaseAmplitudes(MPI_Comm comm, const JRElements *nn, const PetscReal mk[], const PetscReal mf[], const JRROMCase *cs, PetscReal **amod)
+{
+  PetscReal *a;
+
+  PetscFunctionBeginUser;
+  PetscCheck(cs->force > 0, comm, PETSC_ERR_ARG_WRONG, "The mode of interest is not excited by the force shape (-frf_dof): no amplitudes for the fit");
+  PetscCall(PetscMalloc1(cs->nlev, &a));
+  for (PetscInt l = 0; l < cs->nlev; l++) {
+    const PetscReal win = PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force; /* input per cycle / a */
+    PetscReal       lo = 0, hi = cs->damp > 0 ? win / cs->damp : 1.0, umax = 0, D;
+    for (PetscInt j = 0; j < nn->njoints; j++) umax = PetscMax(umax, PetscAbsReal(cs->ujoint[j]));
+    if (!(cs->damp > 0)) { /* no linear damping: bounded only if the joints' friction can absorb the input */
+      PetscInt k = 0;
+      while (win * hi - CaseDissipation(nn, mk, mf, cs, hi) > 0 && k++ < 200) hi *= 2;
+      PetscCheck(k < 200, comm, PETSC_ERR_ARG_OUTOFRANGE, "Level %g N: without linear damping (-hbm_gamma, -hbm_zeta) the joints' friction cannot bound the resonance: no amplitudes for the fit", (double)cs->level[l]);
+    }
+    for (PetscInt it = 0; it < 200 && hi - lo > 1e-14 * hi; it++) {
+      const PetscReal mid = 0.5 * (lo + hi);
+      if (win * mid - cs->damp * mid * mid - CaseDissipation(nn, mk, mf, cs, mid) > 0) lo = mid;
+      else hi = mid;
+    }
+    a[l] = 0.5 * (lo + hi);
+    D    = CaseDissipation(nn, mk, mf, cs, a[l]);
+    PetscCall(PetscPrintf(comm, "rom case level %g modal_amplitude %.5e joint_amplitude_m %.4e joint_dissipation_share %.4f\n", (double)cs->level[l], (double)a[l], (double)(umax * a[l]), (double)(a[l] > 0 ? D / (win * a[l]) : 0.0)));
+  }
+  *amod = a;
+  PetscFunctionReturn(0);
+}
+
 /*
   JRROMReduce - the second reduction of the first-reduction model nn (node-to-node elements with joints): m elements
   per joint (fewer if a joint has fewer members in contact), fitted by TAO; rom gets the elements, with nn as their
   members. Every rank computes the same fit. base: if not empty, BASE_rom_loops.csv (+ .png if plot) with the
   loops of every joint, first reduction and fit, at the three amplitudes. Prints one line per joint.
 */
-PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const char base[], PetscBool plot, JRElements *rom)
+PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const JRROMCase *cs, const char base[], PetscBool plot, JRElements *rom)
 {
   PetscInt     nj = nn->njoints, ns = 128, nfr = 3, cnt = 0, nmax;
-  PetscReal    fr[3] = {0.25, 0.6, 0.95}, perturb = 0, efrom = 0.02;
-  PetscBool    refine = PETSC_FALSE;
+  PetscReal    fr[3] = {0.25, 0.6, 0.95}, perturb = 0, efrom = 0.02, wcase = 10.0, wgross = 1.0, *amod = NULL, amin = 0, amax = 0;
+  const PetscInt ncase = 24;
+  PetscBool    refine = PETSC_FALSE, search = PETSC_TRUE;
   PetscBool    nv, frset;
   MemberDelta *md;
   PetscInt    *jn, *joff;
@@ -346,7 +531,12 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   PetscCall(PetscOptionsBool("-fit_refine", "After the convex fit on fixed slip displacements, free them too (a non-convex refinement: better loops, but its minimum can move with round-off)", "JRROMReduce", refine, &refine, NULL));
   PetscCall(PetscOptionsReal("-fit_perturb", "Perturb the start of the fit by this fraction (tests: the fit must recover)", "JRROMReduce", perturb, &perturb, NULL));
   PetscCall(PetscOptionsInt("-fit_samples", "Samples per loop", "JRROMReduce", ns, &ns, NULL));
+  PetscCall(PetscOptionsReal("-fit_case_weight", "Weight of the energy dissipated per cycle at each joint's amplitude in the case (relative to the input energy at that level; 0: not fitted)", "JRROMReduce", wcase, &wcase, NULL));
+  PetscCall(PetscOptionsReal("-fit_gross_weight", "Weight of the joint's total slip force (gross slip), relative", "JRROMReduce", wgross, &wgross, NULL));
+  PetscCall(PetscOptionsBool("-fit_search", "Choose the slip displacements among a grid over the members' range (best non-negative least squares of the forces); else those of the log-width groups of members", "JRROMReduce", search, &search, NULL));
   PetscOptionsEnd();
+  PetscCheck(wgross >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_gross_weight %g: non-negative", (double)wgross);
+  PetscCheck(wcase >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_case_weight %g: non-negative", (double)wcase);
   if (!frset) nfr = 3;
   PetscCheck(nfr == 3 && fr[0] > 0 && fr[1] > fr[0] && fr[2] > fr[1] && fr[2] <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_fractions: three increasing fractions in (0, 1] (default 0.25,0.6,0.95)");
   PetscCheck(ns >= 8, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_samples %" PetscInt_FMT ": at least 8", ns);
@@ -358,6 +548,14 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
     const PetscReal w = wt && !nv ? wt[e] : 1.0;
     mk[e]             = w * w * nn->kt[e];
     mf[e]             = PetscAbsReal(w) * nn->mu[e] * PetscMax(nn->n0[e], 0.0);
+  }
+  if (cs && cs->nlev > 0 && m > 0 && !nv) {
+    PetscCall(CaseAmplitudes(comm, nn, mk, mf, cs, &amod));
+    amin = amax = amod[0];
+    for (PetscInt l = 1; l < cs->nlev; l++) {
+      amin = PetscMin(amin, amod[l]);
+      amax = PetscMax(amax, amod[l]);
+    }
   }
   if (m == 0) { /* the first reduction itself: the members, weighted, as elements on their joints */
     PetscInt cnt0 = 0;
@@ -427,8 +625,10 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
     PetscCall(PetscMemzero(&t, sizeof(t)));
     t.m  = mj;
     t.ns = ns;
-    t.ks = ktot / mj;
-    t.fs = ftot / mj;
+    t.ks   = ktot / mj;
+    t.fs   = ftot / mj;
+    t.ftot = ftot;
+    t.wg   = wgross;
     { /* amplitudes from the slip-force distribution */
       PetscReal c = 0;
       PetscInt  k = 0;
@@ -449,12 +649,26 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
         k++;
       }
       a0   = PetscMax(d[k].delta, 1.0001 * d[0].delta);
-      t.ne = 6;
-      t.we = 0.05;
+      t.ne = 6 + (amod ? ncase : 0);
+      PetscCall(PetscMalloc4(t.ne, &t.ae, t.ne, &t.Et, t.ne, &t.En, t.ne, &t.we));
       for (PetscInt i = 0; i < t.ne; i++) {
-        t.ae[i] = a0 * PetscPowReal(t.amp[2] / a0, i / (PetscReal)(t.ne - 1));
+        if (i < 6) { /* relative, over the joint's range */
+          t.ae[i] = a0 * PetscPowReal(t.amp[2] / a0, i / 5.0);
+          t.we[i] = 0.05;
+        } else { /* the case: the joint's range of motion over the levels (and a factor 2 either side), each
+                    amplitude's error relative to all the energy dissipated there (= put in, at resonance) */
+          const PetscReal uj = PetscAbsReal(cs->ujoint[j]), am = 0.5 * amin * PetscPowReal(4 * amax / amin, (i - 6) / (PetscReal)(ncase - 1));
+          t.ae[i] = uj * am;
+          t.we[i] = wcase / PetscSqrtReal((PetscReal)ncase);
+          t.En[i] = cs->damp * am * am + CaseDissipation(nn, mk, mf, cs, am);
+        }
         t.Et[i] = 0;
         for (PetscInt q = 0; q < nm; q++) t.Et[i] += JenkinsEnergy(mk[d[q].e], mf[d[q].e], t.ae[i], NULL, NULL);
+        if (i < 6) t.En[i] = t.Et[i];
+        if (!(t.En[i] > 0) || !(t.ae[i] > 0)) { /* nothing dissipated, nothing put in: no row */
+          t.En[i] = 1;
+          t.we[i] = 0;
+        }
       }
     }
     PetscCall(PetscCalloc1(4 * ns, &t.target));
@@ -487,21 +701,33 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
     }
     if (nm > m) {
       FixedFit  fx;
-      PetscReal *y;
+      PetscReal *y, rsearch, rgroup;
       PetscInt   its1 = 0;
       /* 1. convex: the slip displacements of the start's groups (sum f / sum kt of each log-width group of members),
          the forces fitted */
-      PetscCall(PetscMalloc4(mj, &fx.delta, 2 * mj, &fx.x, (4 * ns + t.ne) * 2 * mj, &fx.J2, mj, &y));
+      PetscCall(PetscMalloc4(mj, &fx.delta, 2 * mj, &fx.x, FitRows(&t) * 2 * mj, &fx.J2, mj, &y));
       fx.t = &t;
       for (PetscInt i = 0; i < mj; i++) {
         fx.delta[i] = t.fs * x[mj + i] / (t.ks * x[i]);
-        y[i]        = x[mj + i] * (1 + perturb * (i % 3 == 0 ? 1.0 : i % 3 == 1 ? -1.0 : 0.5));
+        y[i]        = x[mj + i];
       }
+      { /* the start's residual: the groups' own slip displacements and forces */
+        PetscReal *r0, *J0;
+        PetscCall(PetscMalloc2(FitRows(&t), &r0, FitRows(&t) * mj, &J0));
+        PetscCall(FixedResidual(&fx, y, r0, J0));
+        rgroup = 0;
+        for (PetscInt i = 0; i < FitRows(&t); i++) rgroup += r0[i] * r0[i];
+        rgroup = PetscSqrtReal(rgroup);
+        PetscCall(PetscFree2(r0, J0));
+      }
+      if (search) PetscCall(SearchDelta(&t, amod ? PetscMin(d[0].delta, 0.1 * PetscAbsReal(cs->ujoint[j]) * amin) : d[0].delta, PetscMin(d[nm - 1].delta, PetscMax(t.amp[2], amod ? 4 * PetscAbsReal(cs->ujoint[j]) * amax : 0.0)), mj, fx.delta, y, &rsearch));
+      for (PetscInt i = 0; i < mj; i++) y[i] *= 1 + perturb * (i % 3 == 0 ? 1.0 : i % 3 == 1 ? -1.0 : 0.5);
       q.nx  = mj;
-      q.nr  = 4 * ns + t.ne;
+      q.nr  = FitRows(&t);
       q.fn  = FixedResidual;
       q.ctx = &fx;
       PetscCall(LSQSolve(&q, y, 0.0, &rms0, &rms, &its1));
+      rms0 = rgroup; /* reported: the fit against the groups it started from */
       for (PetscInt i = 0; i < mj; i++) {
         x[i]      = t.fs * y[i] / (fx.delta[i] * t.ks);
         x[mj + i] = y[i];
@@ -516,7 +742,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
           x[mj + g] = PetscMax(x[mj + g], 1e-8);
         }
         q.nx  = 2 * mj;
-        q.nr  = 4 * ns + t.ne;
+        q.nr  = FitRows(&t);
         q.fn  = TangentResidual;
         q.ctx = &t;
         PetscCall(LSQSolve(&q, x, 1e-10, &r1, &rms, &its1));
@@ -524,7 +750,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
       }
     } else {
       q.nx = 2 * mj; /* the members themselves: exact */
-      PetscCall(PetscMalloc2(4 * ns + t.ne, &q.r, (4 * ns + t.ne) * 2 * mj, &q.J));
+      PetscCall(PetscMalloc2(FitRows(&t), &q.r, FitRows(&t) * 2 * mj, &q.J));
       PetscCall(TangentResidual(&t, x, q.r, q.J));
       for (PetscInt i = 0; i < 4 * ns; i++) rms += q.r[i] * q.r[i];
       rms  = PetscSqrtReal(rms);
@@ -603,7 +829,18 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
     PetscCall(PetscFree(x));
     PetscCall(PetscFree(t.target));
     PetscCall(PetscFree2(t.Fk, t.Ff));
+    PetscCall(PetscFree4(t.ae, t.Et, t.En, t.we));
   }
+  if (amod) /* the fit at the case's estimated amplitudes: the error of all joints' dissipation, relative to the input */
+    for (PetscInt l = 0; l < cs->nlev; l++) {
+      PetscReal err = 0;
+      for (PetscInt j = 0, e = 0; j < nj; j++) {
+        const PetscReal x = PetscAbsReal(cs->ujoint[j]) * amod[l];
+        for (PetscInt i = 0; i < -jn[j] - 1; i++, e++) err += JenkinsEnergy(ek[e], ef[e], x, NULL, NULL);
+      }
+      err -= CaseDissipation(nn, mk, mf, cs, amod[l]);
+      PetscCall(PetscPrintf(comm, "rom case level %g dissipation_error %+.4f (of the input per cycle)\n", (double)cs->level[l], (double)(err / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * amod[l]))));
+    }
   if (base && base[0]) {
     PetscCall(JRFileCommit(comm, &fp, tmp, csv));
     if (plot) {
@@ -633,6 +870,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   PetscCall(PetscFree(md));
   PetscCall(PetscFree2(jn, joff));
   PetscCall(PetscFree2(mk, mf));
+  PetscCall(PetscFree(amod));
   PetscFunctionReturn(0);
 }
 

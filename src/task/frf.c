@@ -194,7 +194,7 @@ static PetscErrorCode CompareReport(MPI_Comm comm, JRCont cn, JRCont cr, const J
 
 /* The stuck mode of hbm nearest the middle of the frequency range of the options (or, without one, the lowest
    elastic one): the mode of interest of a reduced model */
-static PetscErrorCode TargetMode(MPI_Comm comm, JRHBM hbm, PetscInt *k, PetscReal *f)
+static PetscErrorCode TargetMode(MPI_Comm comm, JRHBM hbm, PetscInt *k, PetscReal *f, PetscInt *nlev, PetscReal **lev)
 {
   PetscReal *fs, wmin, wmax;
   PetscInt   nm, nf;
@@ -217,6 +217,11 @@ static PetscErrorCode TargetMode(MPI_Comm comm, JRHBM hbm, PetscInt *k, PetscRea
     for (PetscInt i = 0; i < nf && *k < 0; i++)
       if (fs[i] > 1e-3 * fs[nf - 1]) *k = i;
   *f = fs[*k];
+  if (lev) { /* the excitation levels of the case */
+    PetscCall(JRContGetNumLevels(cont, nlev));
+    PetscCall(PetscMalloc1(*nlev, lev));
+    for (PetscInt l = 0; l < *nlev; l++) PetscCall(JRContGetLevel(cont, l, *lev + l));
+  }
   PetscCall(PetscFree(fs));
   PetscCall(JRContDestroy(&cont));
   PetscFunctionReturn(0);
@@ -389,15 +394,17 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     setn = t1 - t0;
   }
   if (isrom && !loaded) { /* the reduction, from the joints of the node-to-node elements */
-    PetscReal *w = NULL;
+    PetscReal *w = NULL, *ubar = NULL, *lev = NULL;
+    JRROMCase  cs;
+    PetscCall(PetscMemzero(&cs, sizeof(cs)));
     PetscCall(PetscTime(&t0));
-    if (weight && !strcmp(elj.typename[0], JRCONTACTJENKINS)) { /* each member's motion in the stuck mode of interest over its joint's (4.4) */
-      PetscInt   k  = 0;
-      PetscReal  ft = 0, *u, *ubar, *cnt, umax = 0;
-      PetscCall(TargetMode(comm, hbm, &k, &ft));
+    if (!strcmp(elj.typename[0], JRCONTACTJENKINS)) { /* the stuck mode of interest: each member's motion over its joint's (4.4), and the joints' amplitudes in the case */
+      PetscInt   k  = 0, nlev = 0;
+      PetscReal  ft = 0, *u, *cnt, umax = 0, om;
+      PetscCall(TargetMode(comm, hbm, &k, &ft, &nlev, &lev));
       PetscCall(PetscMalloc1(el.n, &u));
-      PetscCall(PetscMalloc1(el.n, &w));
-      PetscCall(PetscCalloc2(elj.njoints, &ubar, elj.njoints, &cnt));
+      PetscCall(PetscCalloc1(elj.njoints, &ubar));
+      PetscCall(PetscCalloc1(elj.njoints, &cnt));
       PetscCall(JRHBMStuckModeMotion(hbm, k, u));
       for (PetscInt e = 0; e < el.n; e++) {
         ubar[elj.joint[e]] += u[e];
@@ -405,12 +412,21 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
         umax = PetscMax(umax, PetscAbsReal(u[e]));
       }
       for (PetscInt j = 0; j < elj.njoints; j++) ubar[j] /= cnt[j];
-      for (PetscInt e = 0; e < el.n; e++) w[e] = PetscAbsReal(ubar[elj.joint[e]]) > 1e-6 * umax ? u[e] / ubar[elj.joint[e]] : 1.0;
-      PetscCall(PetscPrintf(comm, "rom: members weighted by their motion in stuck mode %" PetscInt_FMT " (%.6g Hz) over their joint's\n", k, (double)ft));
-      PetscCall(PetscFree2(ubar, cnt));
+      if (weight) {
+        PetscCall(PetscMalloc1(el.n, &w));
+        for (PetscInt e = 0; e < el.n; e++) w[e] = PetscAbsReal(ubar[elj.joint[e]]) > 1e-6 * umax ? u[e] / ubar[elj.joint[e]] : 1.0;
+        PetscCall(PetscPrintf(comm, "rom: members weighted by their motion in stuck mode %" PetscInt_FMT " (%.6g Hz) over their joint's\n", k, (double)ft));
+      }
+      PetscCall(JRHBMStuckModeBalance(hbm, k, &om, &cs.force, &cs.damp));
+      cs.nlev   = nlev;
+      cs.level  = lev;
+      cs.ujoint = ubar;
+      PetscCall(PetscFree(cnt));
       PetscCall(PetscFree(u));
     }
-    PetscCall(JRROMReduce(comm, &elj, romm, w, base, plot, &elr));
+    PetscCall(JRROMReduce(comm, &elj, romm, w, ubar ? &cs : NULL, base, plot, &elr));
+    PetscCall(PetscFree(ubar));
+    PetscCall(PetscFree(lev));
     PetscCall(PetscTime(&t1));
     tred = t1 - t0;
     PetscCall(PetscPrintf(comm, "rom: %s reduction: %" PetscInt_FMT " elements in %" PetscInt_FMT " joints (%.3g s)\n", romm ? "second" : "first", elr.n, elr.njoints, (double)tred));
@@ -431,7 +447,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     if (!loaded && corr_on) { /* the stiffness correction: the reduced model's stuck resonance on the node-to-node one */
       PetscInt  k  = 0;
       PetscReal ft = 0, *fr;
-      PetscCall(TargetMode(comm, hbm, &k, &ft));
+      PetscCall(TargetMode(comm, hbm, &k, &ft, NULL, NULL));
       PetscCall(JRHBMGetSizes(hbmr, &nm, NULL, NULL));
       PetscCall(PetscMalloc1(nm, &fr));
       PetscCall(JRHBMStickFrequencies(hbmr, &n, fr));
