@@ -72,6 +72,6 @@ expect_error "overlapping regions" "the regions overlap" $J -task frf $brb -frf_
 expect_error "element in no region" "lies in no box" $J -task frf $brb -frf_force 1 -rom_joints boxes -rom_boxes 0,0.33,-1,1,0.37,1,-1,1 -frf_output_file ''
 expect_error "empty joint" "holds no element: an empty joint" $J -task frf $brb -frf_force 1 -rom_joints boxes -rom_boxes 0,0.36,-1,1,0.36001,1,-1,1,5,6,-1,1 -frf_output_file ''
 expect_error "compare without joints" "-task compare needs a reduced model" $J -task compare $brb -frf_force 1 -frf_output_file ''
-expect_error "negative case weight" "-rom_fit_case_weight -1: non-negative" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_case_weight -1 -frf_output_file ''
+expect_error "negative case weight" "-rom_fit_case_weight -1.: the weight must be non-negative" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_case_weight -1 -frf_output_file ''
 expect_error "elements without joints" "-rom_elements needs joints" $J -task frf $brb -frf_force 1 -rom_elements 3 -frf_output_file ''
 expect_error "save a first reduction" "-rom_save saves a second-reduction model" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_save "$tmp/x.h5" -frf_output_file ''

@@ -535,8 +535,8 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   PetscCall(PetscOptionsReal("-fit_gross_weight", "Weight of the joint's total slip force (gross slip), relative", "JRROMReduce", wgross, &wgross, NULL));
   PetscCall(PetscOptionsBool("-fit_search", "Choose the slip displacements among a grid over the members' range (best non-negative least squares of the forces); else those of the log-width groups of members", "JRROMReduce", search, &search, NULL));
   PetscOptionsEnd();
-  PetscCheck(wgross >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_gross_weight %g: non-negative", (double)wgross);
-  PetscCheck(wcase >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_case_weight %g: non-negative", (double)wcase);
+  PetscCheck(wgross >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_gross_weight %g: the weight must be non-negative", (double)wgross);
+  PetscCheck(wcase >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_case_weight %g: the weight must be non-negative (0: the case is not fitted)", (double)wcase);
   if (!frset) nfr = 3;
   PetscCheck(nfr == 3 && fr[0] > 0 && fr[1] > fr[0] && fr[2] > fr[1] && fr[2] <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_fractions: three increasing fractions in (0, 1] (default 0.25,0.6,0.95)");
   PetscCheck(ns >= 8, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_samples %" PetscInt_FMT ": at least 8", ns);
