@@ -476,7 +476,11 @@ static PetscErrorCode CaseAmplitudes(MPI_Comm comm, const JRElements *nn, const 
   PetscReal *a;
 
   PetscFunctionBeginUser;
-  PetscCheck(cs->force > 0, comm, PETSC_ERR_ARG_WRONG, "The mode of interest is not excited by the force shape (-frf_dof): no amplitudes for the fit");
+  *amod = NULL;
+  if (!(cs->force > 0)) {
+    PetscCall(PetscPrintf(comm, "rom: WARNING the excitation does not drive the mode of interest (stuck mode nearest the middle of the frequency range): the fit does not use the case's amplitudes\n"));
+    PetscFunctionReturn(0);
+  }
   PetscCall(PetscMalloc1(cs->nlev, &a));
   for (PetscInt l = 0; l < cs->nlev; l++) {
     const PetscReal win = PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force; /* input per cycle / a */
@@ -551,8 +555,8 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   }
   if (cs && cs->nlev > 0 && m > 0 && !nv) {
     PetscCall(CaseAmplitudes(comm, nn, mk, mf, cs, &amod));
-    amin = amax = amod[0];
-    for (PetscInt l = 1; l < cs->nlev; l++) {
+    if (amod) amin = amax = amod[0];
+    for (PetscInt l = 1; amod && l < cs->nlev; l++) {
       amin = PetscMin(amin, amod[l]);
       amax = PetscMax(amax, amod[l]);
     }
