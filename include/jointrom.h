@@ -271,6 +271,8 @@ PETSC_EXTERN PetscErrorCode JRHBMSetModel(JRHBM, JRModel);
 PETSC_EXTERN PetscErrorCode JRHBMSetFromOptions(JRHBM);
 PETSC_EXTERN PetscErrorCode JRHBMSetUp(JRHBM);
 PETSC_EXTERN PetscErrorCode JRHBMGetSizes(JRHBM, PetscInt *, PetscInt *, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRHBMGetSolveSize(JRHBM, PetscInt *, const char **);
+PETSC_EXTERN PetscErrorCode JRHBMExpand(JRHBM, PetscReal, Vec, Vec);
 PETSC_EXTERN PetscErrorCode JRHBMSetForceLevel(JRHBM, PetscReal);
 PETSC_EXTERN PetscErrorCode JRHBMGetModalFrequencies(JRHBM, PetscInt *, const PetscReal **);
 PETSC_EXTERN PetscErrorCode JRHBMComputeResidual(JRHBM, PetscReal, Vec, Vec);

@@ -74,8 +74,12 @@ static PetscErrorCode FreeElements(JRElements *el)
   PetscFunctionBeginUser;
   PetscCall(PetscFree5(el->type, el->dof_a, el->dof_b, el->ndof_a, el->ndof_b));
   PetscCall(PetscFree4(el->kt, el->kn, el->mu, el->n0));
+  PetscCall(PetscFree(el->joint));
   PetscFunctionReturn(0);
 }
+
+static const PetscInt *jr_joints = NULL; /* ProblemCreate: the elements' joints (first reduction), if set */
+static PetscInt        jr_njoints = 0;
 
 /* a model + HBM (+ continuation) built from dense K, M, C and elements, options set beforehand */
 typedef struct {
@@ -98,6 +102,11 @@ static PetscErrorCode ProblemCreate(PetscInt n, const double *K, const double *M
   PetscCall(JRModelSetMatrices(p->model, Km, Mm, Cm));
   if (ne) {
     PetscCall(MakeElements(ne, e, &el));
+    if (jr_joints) {
+      el.njoints = jr_njoints;
+      PetscCall(PetscMalloc1(ne, &el.joint));
+      PetscCall(PetscArraycpy(el.joint, jr_joints, ne));
+    }
     PetscCall(JRModelSetElements(p->model, &el));
     PetscCall(FreeElements(&el));
   }
@@ -499,6 +508,128 @@ int main(int argc, char **argv)
     PetscCall(VecDestroy(&Rw));
     PetscCall(MatDestroy(&J));
     PetscCall(ProblemDestroy(&p));
+  }
+
+  /* ---- condensation onto the joints (-hbm_condense): the modal equations with the modes eliminated exactly ---- */
+  for (PetscInt H = 1; H <= 3; H += 2) {
+    const double   K[16] = {4e6, -1e6, 0, -1e6, -1e6, 3e6, -1e6, 0, 0, -1e6, 2e6, -5e5, -1e6, 0, -5e5, 3e6}, M[16] = {1, 0, 0, 0, 0, 1.2, 0, 0, 0, 0, 0.8, 0, 0, 0, 0, 1.5};
+    const El       e[6] = {
+      {"jenkins",    0, -1, -1, -1, 1e6, 0,   0.1, 10 },
+      {"jenkins",    1, 2,  -1, -1, 2e6, 0,   0.2, 5  },
+      {"jenkins_nv", 2, -1, 3,  -1, 1e6, 1e6, 0.3, 2  },
+      {"jenkins_nv", 3, 1,  0,  2,  5e5, 8e5, 0.2, 4  },
+      {"cubic",      0, 3,  -1, -1, 1e11, 0,  0,   0  },
+      {"jenkins",    3, -1, -1, -1, 1e6, 0,   0.1, 100}
+    };
+    const PetscInt joint[6] = {0, 0, 1, 1, 2, 0}; /* 3 joints: their members move with the average of their rows */
+    double         C[16], ej = 0.0, ew = 0.0, jmax = 0.0, wmax = 0.0, w = 2 * M_PI * 250, da = 0.0, amax = 0.0;
+    Problem        p, q;
+    Vec            x, xp, R1, R2, Rw, a, am, ac;
+    Mat            J;
+    PetscInt       n, ns, its;
+    PetscBool      conv, convq;
+    const char    *info;
+    char           opts[160];
+    for (PetscInt i = 0; i < 16; i++) C[i] = 2.0 * M[i] + 1e-5 * K[i]; /* proportional: diagonal in the modes */
+    jr_joints  = joint;
+    jr_njoints = 3;
+    PetscCall(PetscSNPrintf(opts, sizeof(opts), "-hbm_harmonics %" PetscInt_FMT " -hbm_samples 128 -hbm_gamma 0.01 -frf_force 1 -hbm_condense yes", H));
+    PetscCall(Options(opts));
+    PetscCall(ProblemCreate(4, K, M, C, 6, e, &p));
+    PetscCall(PetscSNPrintf(opts, sizeof(opts), "-hbm_harmonics %" PetscInt_FMT " -hbm_samples 128 -hbm_gamma 0.01 -frf_force 1 -hbm_condense no", H));
+    PetscCall(Options(opts));
+    PetscCall(ProblemCreate(4, K, M, C, 6, e, &q));
+    jr_joints = NULL;
+    PetscCall(JRHBMGetSolveSize(p.hbm, &ns, &info));
+    PetscCall(JRHBMGetSizes(p.hbm, NULL, NULL, &n));
+    CHECK(ns == 6 * (2 * H + 1) && n == 4 * (2 * H + 1) && info[0], "condensation, H = %" PetscInt_FMT ": 3 joints x (tangential + normal) = 6 rows, %" PetscInt_FMT " unknowns (modal: %" PetscInt_FMT "): %s", H, ns, n, info);
+    PetscCall(JRHBMSetForceLevel(p.hbm, 3.0));
+    PetscCall(JRHBMSetForceLevel(q.hbm, 3.0));
+    PetscCall(JRHBMCreateVecs(p.hbm, &x, &J));
+    PetscCall(VecDuplicate(x, &xp));
+    PetscCall(VecDuplicate(x, &R1));
+    PetscCall(VecDuplicate(x, &R2));
+    PetscCall(VecDuplicate(x, &Rw));
+    {
+      PetscScalar *v;
+      PetscCall(VecGetArray(x, &v));
+      srand(5);
+      for (PetscInt i = 0; i < ns; i++) v[i] = 6e-6 * (2.0 * rand() / RAND_MAX - 1.0) / (1 + i / 6);
+      PetscCall(VecRestoreArray(x, &v));
+    }
+    PetscCall(JRHBMComputeJacobian(p.hbm, w, x, J, Rw));
+    {
+      const PetscScalar *Ja, *rw, *r1, *r2;
+      const double       h = 1e-6 * 6e-6, hw = 1e-6 * w;
+      PetscCall(MatDenseGetArrayRead(J, &Ja));
+      PetscCall(VecGetArrayRead(Rw, &rw));
+      for (PetscInt j = 0; j < ns; j++) {
+        PetscCall(VecCopy(x, xp));
+        PetscCall(VecSetValue(xp, j, h, ADD_VALUES));
+        PetscCall(VecAssemblyBegin(xp));
+        PetscCall(VecAssemblyEnd(xp));
+        PetscCall(JRHBMComputeResidual(p.hbm, w, xp, R1));
+        PetscCall(VecSetValue(xp, j, -2 * h, ADD_VALUES));
+        PetscCall(VecAssemblyBegin(xp));
+        PetscCall(VecAssemblyEnd(xp));
+        PetscCall(JRHBMComputeResidual(p.hbm, w, xp, R2));
+        PetscCall(VecGetArrayRead(R1, &r1));
+        PetscCall(VecGetArrayRead(R2, &r2));
+        for (PetscInt i = 0; i < ns; i++) {
+          ej   = fmax(ej, fabs(Ja[i + j * ns] - (r1[i] - r2[i]) / (2 * h)));
+          jmax = fmax(jmax, fabs(Ja[i + j * ns]));
+        }
+        PetscCall(VecRestoreArrayRead(R1, &r1));
+        PetscCall(VecRestoreArrayRead(R2, &r2));
+      }
+      PetscCall(JRHBMComputeResidual(p.hbm, w + hw, x, R1));
+      PetscCall(JRHBMComputeResidual(p.hbm, w - hw, x, R2));
+      PetscCall(VecGetArrayRead(R1, &r1));
+      PetscCall(VecGetArrayRead(R2, &r2));
+      for (PetscInt i = 0; i < ns; i++) {
+        ew   = fmax(ew, fabs(rw[i] - (r1[i] - r2[i]) / (2 * hw)));
+        wmax = fmax(wmax, fabs(rw[i]));
+      }
+      PetscCall(VecRestoreArrayRead(R1, &r1));
+      PetscCall(VecRestoreArrayRead(R2, &r2));
+      PetscCall(VecRestoreArrayRead(Rw, &rw));
+      PetscCall(MatDenseRestoreArrayRead(J, &Ja));
+    }
+    CHECK(ej < 1e-6 * jmax && ew < 1e-6 * wmax, "condensed Jacobian, H = %" PetscInt_FMT ", jenkins + jenkins_nv + cubic on 3 joints, proportional viscous + structural damping: dr/dx %.1e, dr/dw %.1e relative to finite differences", H, ej / jmax, ew / wmax);
+    /* the same solution as the modal equations: solve both at 250 Hz, expand the joints' motions to modes */
+    PetscCall(JRHBMLinearSolution(p.hbm, w, x));
+    PetscCall(JRHBMSolve(p.hbm, w, x, &its, &conv));
+    PetscCall(JRHBMCreateVecs(q.hbm, &a, NULL));
+    PetscCall(VecDuplicate(a, &am));
+    PetscCall(JRHBMLinearSolution(q.hbm, w, a));
+    PetscCall(JRHBMSolve(q.hbm, w, a, &its, &convq));
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &ac));
+    PetscCall(JRHBMExpand(p.hbm, w, x, ac));
+    {
+      const PetscScalar *u, *v;
+      PetscInt           cnt[4];
+      PetscCall(VecGetArrayRead(ac, &u));
+      PetscCall(VecGetArrayRead(a, &v));
+      for (PetscInt i = 0; i < n; i++) {
+        da   = fmax(da, fabs(u[i] - v[i]));
+        amax = fmax(amax, fabs(v[i]));
+      }
+      PetscCall(VecRestoreArrayRead(a, &v));
+      PetscCall(VecRestoreArrayRead(ac, &u));
+      PetscCall(JRHBMContactStates(q.hbm, a, cnt));
+      CHECK(conv && convq && da < 1e-8 * amax, "condensed solution at 250 Hz, H = %" PetscInt_FMT ", expanded to the modes = the modal equations' solution within %.1e (relative; states %" PetscInt_FMT " stick, %" PetscInt_FMT " slip, %" PetscInt_FMT " separating)", H, da / amax, cnt[0], cnt[1], cnt[2] + cnt[3]);
+    }
+    PetscCall(VecDestroy(&x));
+    PetscCall(VecDestroy(&xp));
+    PetscCall(VecDestroy(&R1));
+    PetscCall(VecDestroy(&R2));
+    PetscCall(VecDestroy(&Rw));
+    PetscCall(VecDestroy(&a));
+    PetscCall(VecDestroy(&am));
+    PetscCall(VecDestroy(&ac));
+    PetscCall(MatDestroy(&J));
+    PetscCall(ProblemDestroy(&p));
+    PetscCall(ProblemDestroy(&q));
   }
 
   /* ---- H = 5 vs direct time integration; H = 1 vs H = 5 ---- */

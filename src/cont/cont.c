@@ -46,15 +46,17 @@ struct _p_JRCont {
   JRContConstraint constraint;
   PetscReal        wmin, wmax, step0, stepmin, stepmax;
   PetscBool        range_set, secant, plot, normalize, write;
-  PetscInt         maxpts, target, monitor, nlev, n, nout, nc, npoints;
+  PetscInt         maxpts, target, monitor, nlev, n, nmod, nout, nc, npoints; /* n: the solve space; nmod: modal */
   PetscReal       *levels;
   Branch          *br;
   char             out[PETSC_MAX_PATH_LEN];
   /* arclength work */
   SNES             bsnes;
   Mat              BJ, J;
-  Vec              bx, br_, bt, Rw, a, r;
-  PetscReal        aref, wref, ds, wcur;
+  Vec              bx, br_, bt, Rw, a, r, amod;
+  PetscReal        aref, wref, ds, wcur, aunit; /* aunit: the linearised response scale per unit level */
+  KSP              tksp;                          /* the tangent's bordered solve */
+  Mat              TB;
   Vec              xpred, xk, tk;
 };
 
@@ -207,10 +209,10 @@ static PetscErrorCode BranchAdd(JRCont c, Branch *b, PetscReal w, Vec a, PetscIn
     PetscInt   cap = b->cap ? 2 * b->cap : 128;
     PetscReal *o, *aa, *amp, *pp, *st;
     PetscInt  *it;
-    PetscCall(PetscMalloc6(cap, &o, cap * c->n, &aa, cap * c->nout, &amp, cap * c->nout, &pp, cap, &st, cap, &it));
+    PetscCall(PetscMalloc6(cap, &o, cap * c->nmod, &aa, cap * c->nout, &amp, cap * c->nout, &pp, cap, &st, cap, &it));
     if (b->np) {
       PetscCall(PetscArraycpy(o, b->omega, b->np));
-      PetscCall(PetscArraycpy(aa, b->a, b->np * c->n));
+      PetscCall(PetscArraycpy(aa, b->a, b->np * c->nmod));
       PetscCall(PetscArraycpy(amp, b->amp, b->np * c->nout));
       PetscCall(PetscArraycpy(pp, b->pp, b->np * c->nout));
       PetscCall(PetscArraycpy(st, b->step, b->np));
@@ -226,10 +228,11 @@ static PetscErrorCode BranchAdd(JRCont c, Branch *b, PetscReal w, Vec a, PetscIn
     b->cap   = cap;
   }
   b->omega[b->np] = w;
-  PetscCall(VecGetArrayRead(a, &x));
-  for (PetscInt i = 0; i < c->n; i++) b->a[b->np * c->n + i] = PetscRealPart(x[i]);
-  PetscCall(VecRestoreArrayRead(a, &x));
-  PetscCall(JRHBMResponse(c->hbm, a, NULL, b->amp + b->np * c->nout, b->pp + b->np * c->nout));
+  PetscCall(JRHBMExpand(c->hbm, w, a, c->amod)); /* the branch keeps the modal unknowns */
+  PetscCall(VecGetArrayRead(c->amod, &x));
+  for (PetscInt i = 0; i < c->nmod; i++) b->a[b->np * c->nmod + i] = PetscRealPart(x[i]);
+  PetscCall(VecRestoreArrayRead(c->amod, &x));
+  PetscCall(JRHBMResponse(c->hbm, c->amod, NULL, b->amp + b->np * c->nout, b->pp + b->np * c->nout));
   b->its[b->np]  = its;
   b->step[b->np] = step;
   b->newton += its;
@@ -421,7 +424,6 @@ static PetscErrorCode Tangent(JRCont c, Vec x, Vec tprev, Vec t)
   const PetscInt     n = c->n;
   Mat                B;
   Vec                rhs;
-  KSP                ksp;
   PC                 pc;
   const PetscScalar *j, *rw, *tp;
   PetscScalar       *b;
@@ -429,7 +431,14 @@ static PetscErrorCode Tangent(JRCont c, Vec x, Vec tprev, Vec t)
   PetscFunctionBeginUser;
   PetscCall(Split(c, x, c->a, &w));
   PetscCall(JRHBMComputeJacobian(c->hbm, w, c->a, c->J, c->Rw));
-  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n + 1, n + 1, NULL, &B));
+  if (!c->tksp) { /* kept for the whole run: the bordered matrix, LU */
+    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n + 1, n + 1, NULL, &c->TB));
+    PetscCall(KSPCreate(PETSC_COMM_SELF, &c->tksp));
+    PetscCall(KSPSetType(c->tksp, KSPPREONLY));
+    PetscCall(KSPGetPC(c->tksp, &pc));
+    PetscCall(PCSetType(pc, PCLU));
+  }
+  B = c->TB;
   PetscCall(MatDenseGetArrayWrite(B, &b));
   PetscCall(MatDenseGetArrayRead(c->J, &j));
   PetscCall(VecGetArrayRead(c->Rw, &rw));
@@ -451,17 +460,11 @@ static PetscErrorCode Tangent(JRCont c, Vec x, Vec tprev, Vec t)
   PetscCall(VecSetValue(rhs, n, 1.0, INSERT_VALUES));
   PetscCall(VecAssemblyBegin(rhs));
   PetscCall(VecAssemblyEnd(rhs));
-  PetscCall(KSPCreate(PETSC_COMM_SELF, &ksp));
-  PetscCall(KSPSetOperators(ksp, B, B));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  PetscCall(KSPSolve(ksp, rhs, t));
+  PetscCall(KSPSetOperators(c->tksp, B, B));
+  PetscCall(KSPSolve(c->tksp, rhs, t));
   PetscCall(ScaledDot(c, t, t, &nrm));
   PetscCall(VecScale(t, 1.0 / PetscSqrtReal(nrm)));
-  PetscCall(KSPDestroy(&ksp));
   PetscCall(VecDestroy(&rhs));
-  PetscCall(MatDestroy(&B));
   PetscFunctionReturn(0);
 }
 
@@ -568,17 +571,20 @@ static PetscErrorCode Arclength(JRCont c, PetscInt lev, Branch *b, Vec a)
 }
 
 /* the response scale a_ref: the largest linearised response over the range */
-static PetscErrorCode ResponseScale(JRCont c, Vec a)
+static PetscErrorCode ResponseScale(JRCont c, PetscReal F, Vec a)
 {
   PetscReal m = 0.0, nrm;
 
   PetscFunctionBeginUser;
-  for (PetscInt k = 0; k <= 64; k++) {
-    const PetscReal w = c->wmin + (c->wmax - c->wmin) * k / 64.0;
-    PetscCall(JRHBMLinearSolution(c->hbm, w, a));
-    PetscCall(VecNorm(a, NORM_2, &nrm));
-    m = PetscMax(m, nrm);
-  }
+  if (c->aunit <= 0 || F <= 0) { /* the linearised response is proportional to the level: sampled once */
+    for (PetscInt k = 0; k <= 64; k++) {
+      const PetscReal w = c->wmin + (c->wmax - c->wmin) * k / 64.0;
+      PetscCall(JRHBMLinearSolution(c->hbm, w, a));
+      PetscCall(VecNorm(a, NORM_2, &nrm));
+      m = PetscMax(m, nrm);
+    }
+    if (F > 0) c->aunit = m / F;
+  } else m = c->aunit * F;
   c->aref = m > 0 ? m : 1.0;
   c->wref = c->wmax - c->wmin;
   PetscFunctionReturn(0);
@@ -593,7 +599,11 @@ PetscErrorCode JRContSolve(JRCont c)
 
   PetscFunctionBeginUser;
   PetscCheck(c->hbm, c->comm, PETSC_ERR_ARG_WRONGSTATE, "JRContSetHBM() first");
-  PetscCall(JRHBMGetSizes(c->hbm, NULL, NULL, &c->n));
+  c->aunit = 0;
+  PetscCall(KSPDestroy(&c->tksp)); /* sizes may differ from an earlier solve */
+  PetscCall(MatDestroy(&c->TB));
+  PetscCall(JRHBMGetSizes(c->hbm, NULL, NULL, &c->nmod));
+  PetscCall(JRHBMGetSolveSize(c->hbm, &c->n, NULL));
   PetscCall(JRHBMGetOutputs(c->hbm, &c->nout, NULL));
   if (!c->range_set) { /* around the first mode: 0.8 to 1.2 of its frequency */
     PetscInt         nm;
@@ -608,6 +618,8 @@ PetscErrorCode JRContSolve(JRCont c)
     PetscCheck(c->range_set, c->comm, PETSC_ERR_ARG_WRONGSTATE, "No elastic mode to centre the frequency range on: give -frf_fmin/-frf_fmax");
   }
   PetscCall(JRHBMCreateVecs(c->hbm, &a, &c->J));
+  PetscCall(VecDestroy(&c->amod));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, c->nmod, &c->amod));
   PetscCall(VecDuplicate(a, &c->a));
   PetscCall(VecDuplicate(a, &c->r));
   PetscCall(VecDuplicate(a, &c->Rw));
@@ -654,12 +666,12 @@ PetscErrorCode JRContSolve(JRCont c)
       PetscCall(JRHBMGetSNES(c->hbm, &hs));
       PetscCall(SNESGetTolerances(hs, &atol, NULL, NULL, NULL, NULL));
       PetscCall(SNESSetTolerances(c->bsnes, atol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
-      PetscCall(ResponseScale(c, a)); /* the response scale grows with the level */
+      PetscCall(ResponseScale(c, b->F, a)); /* the response scale grows with the level */
       PetscCall(Arclength(c, lev, b, a));
     } else PetscCall(Natural(c, lev, b, a));
     PetscCall(PetscTime(&t1));
     b->seconds = t1 - t0;
-    PetscCall(Peak(c, lev, a));
+    PetscCall(Peak(c, lev, c->amod));
     if (c->monitor) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT "/%" PetscInt_FMT " F %g N done: %" PetscInt_FMT " points, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " retries, %.3g s%s\n", lev + 1, c->nlev, (double)b->F, b->np, b->newton, b->retries, (double)b->seconds, b->complete ? "" : " (incomplete: see above)"));
     PetscCall(PetscPrintf(c->comm, "peak level %g freq_hz %.8g amp %.8e amp_over_force %.8e\n", (double)b->F, (double)(b->wpeak / (2 * PETSC_PI)), (double)b->apeak, (double)(b->apeak / b->F)));
   }
@@ -739,7 +751,7 @@ static PetscErrorCode Peak(JRCont c, PetscInt lev, Vec a)
     PetscReal    win, ed, enl;
     PetscScalar *x;
     PetscCall(VecGetArray(a, &x));
-    for (PetscInt j = 0; j < c->n; j++) x[j] = b->a[i * c->n + j];
+    for (PetscInt j = 0; j < c->nmod; j++) x[j] = b->a[i * c->nmod + j];
     PetscCall(VecRestoreArray(a, &x));
     PetscCall(JRHBMEnergy(c->hbm, b->omega[i], a, &win, &ed, &enl));
     if (win > 0) b->ebal = PetscMax(b->ebal, PetscAbsReal(win - ed - enl) / win);
@@ -752,7 +764,7 @@ static PetscErrorCode Peak(JRCont c, PetscInt lev, Vec a)
   {
     PetscScalar *x;
     PetscCall(VecGetArray(a, &x));
-    for (PetscInt j = 0; j < c->n; j++) x[j] = b->a[k * c->n + j];
+    for (PetscInt j = 0; j < c->nmod; j++) x[j] = b->a[k * c->nmod + j];
     PetscCall(VecRestoreArray(a, &x));
   }
   PetscCall(JRHBMContactStates(c->hbm, a, b->states));
@@ -897,7 +909,7 @@ PetscErrorCode JRContWrite(JRCont c)
         {"omega",      1,       b->omega},
         {"amp",        c->nout, b->amp  },
         {"pp",         c->nout, b->pp   },
-        {"a",          c->n,    b->a    },
+        {"a",          c->nmod, b->a    },
         {"step",       1,       b->step }
       };
       PetscCall(PetscSNPrintf(grp, sizeof(grp), "/level_%" PetscInt_FMT, l));
@@ -962,6 +974,9 @@ PetscErrorCode JRContDestroy(JRCont *cont)
   PetscCall(SNESDestroy(&c->bsnes));
   PetscCall(MatDestroy(&c->BJ));
   PetscCall(MatDestroy(&c->J));
+  PetscCall(KSPDestroy(&c->tksp));
+  PetscCall(MatDestroy(&c->TB));
+  PetscCall(VecDestroy(&c->amod));
   PetscCall(VecDestroy(&c->a));
   PetscCall(VecDestroy(&c->r));
   PetscCall(VecDestroy(&c->Rw));

@@ -49,6 +49,8 @@ typedef struct {
   PetscInt  *eidx;         /* the model's element number of each local element */
   PetscReal *Kc;           /* stuck basis: the stuck springs of this rank's elements in contact at rest (nm x nm) */
   PetscReal *R0, *S0;      /* joints in a stuck basis: the members' own rows until Kc is formed */
+  PetscReal *Rq, *Sq;      /* condensed: each element's joint row among the nq condensed rows (nloc x nq selection) */
+  PetscReal *Kstq, *Knnq;  /* condensed: the stuck part on those rows (nq x nq) */
 } HBMGroup;
 
 struct _p_JRHBM {
@@ -85,6 +87,20 @@ struct _p_JRHBM {
   PetscReal        *cache_a;      /* the unknowns of the element derivatives kept in the groups */
   PetscBool         cache_ok;
   char              damping[256];
+  /* condensation onto the joints (-hbm_condense): the linear part is solved exactly for the joints' motions */
+  PetscInt          condense;     /* option: 0 auto, 1 yes, 2 no */
+  PetscBool         cond;         /* in use: the solve space is the joints' motions */
+  PetscInt          nq, ns;       /* condensed rows (nj tangential, then nj normal for jenkins_nv); solve-space size */
+  PetscReal        *Q, *V, *lamv, *cv, *QV, *VF; /* rows (nq x nm row-major); (Kg, Mm) eigenvectors (col-major), values,
+                                                     V^T Cm V (diagonal); Q V (nq x nm row-major); V^T fm */
+  PetscReal        *Z0, *G0;      /* the mean block Kg + pin, LU-factored (nm x nm); Q Z0^-1 Q^T (nq x nq) */
+  PetscBLASInt     *piv0;
+  PetscReal        *Gb, *inv;     /* per harmonic at frequency wq: G, dG/dw (re, im), xF, dxF/dw; 1/z_k (re, im) */
+  PetscReal         wq;
+  PetscBool         wq_ok;
+  char              condinfo[256];
+  PetscReal        *ctmp;         /* ns + ns^2 work */
+  KSP               klin;         /* JRHBMLinearSolution() */
 };
 
 static PetscErrorCode Gemm(const char *ta, const char *tb, PetscInt m, PetscInt n, PetscInt k, PetscReal alpha, const PetscReal *A, PetscInt lda, const PetscReal *B, PetscInt ldb, PetscReal beta, PetscReal *C, PetscInt ldc)
@@ -161,6 +177,10 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
     PetscCall(PetscOptionsEList("-hbm_basis", "Modal basis: free (modes of K: the interface held by the bolts only), stuck (modes of K plus every element in contact at rest stuck; the elements then add only their deviation from stuck) or mixed (Ritz vectors of the stuck structure in the span of both)", "JRHBMSetUp", bases, 3, bases[h->basis], &h->basis, &h->basis_set));
     PetscCall(PetscOptionsInt("-hbm_free_modes", "-hbm_basis mixed: free-interface modes added to the -hbm_modes stuck ones (default: as many)", "JRHBMSetUp", h->nfree, &h->nfree, NULL));
   }
+  {
+    const char *conds[] = {"auto", "yes", "no"};
+    PetscCall(PetscOptionsEList("-hbm_condense", "Reduced models: eliminate the modes and solve for the joints' motions only (auto: when it is exact and smaller)", "JRHBMSetUp", conds, 3, conds[h->condense], &h->condense, NULL));
+  }
   PetscCall(PetscOptionsBool("-hbm_physical", "Physical coordinates instead of modes (small systems: checks modal truncation)", "JRHBMSetUp", h->physical, &h->physical, NULL));
   PetscCall(PetscOptionsReal("-hbm_gamma", "Structural damping H = gamma K (2.17) [-]", "JRHBMSetUp", h->gamma, &h->gamma, NULL));
   PetscCall(PetscOptionsReal("-hbm_zeta", "Modal viscous damping ratio, every mode [-]", "JRHBMSetUp", h->zeta, &h->zeta, NULL));
@@ -213,6 +233,8 @@ static PetscErrorCode GroupDestroy(HBMGroup *g)
   PetscCall(PetscFree(g->Kc));
   PetscCall(PetscFree(g->R0));
   PetscCall(PetscFree(g->S0));
+  PetscCall(PetscFree2(g->Rq, g->Sq));
+  PetscCall(PetscFree2(g->Kstq, g->Knnq));
   PetscFunctionReturn(0);
 }
 
@@ -390,6 +412,8 @@ static PetscErrorCode DenseAll(Mat A, PetscReal D[])
 
 static PetscErrorCode FormFunction(SNES, Vec, Vec, void *);
 static PetscErrorCode FormJacobian(SNES, Vec, Mat, Mat, void *);
+static PetscErrorCode CondenseSetUp(JRHBM, const JRElements *);
+static PetscErrorCode CondExpand(JRHBM, PetscReal, const PetscReal *, PetscReal *);
 
 /*
   Mixed basis: the stuck modes of h->modes (operators K + Ks, M) and the elastic free-interface modes of (K, M),
@@ -779,11 +803,13 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
   }
 
   PetscCall(PetscFree2(Rj, Sj));
+  /* a reduced model: the modes eliminated, the joints' motions the unknowns */
+  PetscCall(CondenseSetUp(h, el));
   /* the nonlinear solver at fixed frequency: SNES on every rank, prefix hbm_ */
   PetscCall(PetscFree(h->buf));
-  PetscCall(PetscMalloc1(h->n + h->n * h->n, &h->buf));
+  PetscCall(PetscMalloc1(h->ns + h->ns * h->ns, &h->buf));
   PetscCall(PetscFree(h->cache_a));
-  PetscCall(PetscMalloc1(h->n, &h->cache_a));
+  PetscCall(PetscMalloc1(h->ns, &h->cache_a));
   h->cache_ok = PETSC_FALSE;
   PetscCall(SNESDestroy(&h->snes));
   PetscCall(MatDestroy(&h->J));
@@ -1047,6 +1073,38 @@ PetscErrorCode JRHBMGetSizes(JRHBM h, PetscInt *nm, PetscInt *H, PetscInt *n)
 }
 
 /* Natural frequencies of the modes used [rad/s] (none in physical coordinates) */
+/* JRHBMGetSolveSize - the size of the unknowns that JRHBMSolve() and the continuation work on: the modal ones
+   (JRHBMGetSizes n) or, condensed, the joints' motions (info: a description of the condensation, or "") */
+PetscErrorCode JRHBMGetSolveSize(JRHBM h, PetscInt *ns, const char **info)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  if (ns) *ns = h->ns;
+  if (info) *info = h->condinfo;
+  PetscFunctionReturn(0);
+}
+
+/* JRHBMExpand - the modal unknowns a (JRHBMGetSizes n) of the solve-space unknowns x at frequency w: a copy, or
+   condensed a = Z^-1 (F fm - Q^T g(x)) (collective: the elements are evaluated) */
+PetscErrorCode JRHBMExpand(JRHBM h, PetscReal w, Vec x, Vec a)
+{
+  const PetscScalar *xx;
+  PetscScalar       *aa;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  if (!h->cond) {
+    PetscCall(VecCopy(x, a));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecGetArrayRead(x, &xx));
+  PetscCall(VecGetArray(a, &aa));
+  PetscCall(CondExpand(h, w, xx, aa));
+  PetscCall(VecRestoreArray(a, &aa));
+  PetscCall(VecRestoreArrayRead(x, &xx));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode JRHBMGetModalFrequencies(JRHBM h, PetscInt *nm, const PetscReal **omega)
 {
   PetscFunctionBeginUser;
@@ -1065,7 +1123,7 @@ PetscErrorCode JRHBMGetDampingDescription(JRHBM h, const char **d)
 }
 
 /* The excitation level F [N]: f(t) = F f_shape sin(w t). The SNES absolute tolerance follows the
-   level (1e-12 of the modal force) unless -hbm_snes_atol is given. */
+   level (1e-12 of the modal force; condensed, of the joints' motion under it) unless -hbm_snes_atol is given. */
 PetscErrorCode JRHBMSetForceLevel(JRHBM h, PetscReal F)
 {
   PetscBool set;
@@ -1075,17 +1133,29 @@ PetscErrorCode JRHBMSetForceLevel(JRHBM h, PetscReal F)
   PetscCall(JRHBMSetUp(h));
   h->level = F;
   for (PetscInt i = 0; i < h->nm; i++) fn += h->fm[i] * h->fm[i];
+  fn = PetscSqrtReal(fn);
+  if (h->cond) { /* the residual is a motion of the joints: the modal force over the lowest elastic stiffness, on the rows */
+    PetscReal lmin = 0, qn = 0;
+    for (PetscInt k = 0; k < h->nm; k++)
+      if (h->lamv[k] > 1e-8 * h->lamv[h->nm - 1] && (lmin == 0 || h->lamv[k] < lmin)) lmin = h->lamv[k];
+    for (PetscInt r = 0; r < h->nq; r++) {
+      PetscReal q = 0;
+      for (PetscInt i = 0; i < h->nm; i++) q += h->Q[r * h->nm + i] * h->Q[r * h->nm + i];
+      qn = PetscMax(qn, PetscSqrtReal(q));
+    }
+    if (lmin > 0) fn *= qn / lmin;
+  }
   PetscCall(PetscOptionsHasName(NULL, "hbm_", "-snes_atol", &set));
-  if (!set) PetscCall(SNESSetTolerances(h->snes, 1e-12 * PetscAbsReal(F) * PetscSqrtReal(fn) + 1e-300, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
+  if (!set) PetscCall(SNESSetTolerances(h->snes, 1e-12 * PetscAbsReal(F) * fn + 1e-300, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode JRHBMCreateVecs(JRHBM h, Vec *x, Mat *J)
 {
   PetscFunctionBeginUser;
-  if (x) PetscCall(VecCreateSeq(PETSC_COMM_SELF, h->n, x));
+  if (x) PetscCall(VecCreateSeq(PETSC_COMM_SELF, h->ns, x));
   if (J) {
-    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, h->n, h->n, NULL, J));
+    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, h->ns, h->ns, NULL, J));
     PetscCall(MatSetOption(*J, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
   }
   PetscFunctionReturn(0);
@@ -1103,7 +1173,7 @@ PetscErrorCode JRHBMCreateVecs(JRHBM h, Vec *x, Mat *J)
 */
 static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, PetscReal *jac)
 {
-  const PetscInt  nm = h->nm, nc = h->nc, n = h->n, len = jac ? n + n * n : n;
+  const PetscInt  nm = h->cond ? h->nq : h->nm, nc = h->nc, n = h->ns, len = jac ? n + n * n : n; /* nm: the rows' length */
   PetscReal      *loc    = h->buf;
   const PetscBool derivs = (PetscBool)(jac || h->jtype == JR_HBM_JACOBIAN_ANALYTIC);
   PetscBool       reuse  = PETSC_FALSE;
@@ -1111,7 +1181,7 @@ static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Pet
   PetscFunctionBeginUser;
   if (jac && h->cache_ok) reuse = (PetscBool)!memcmp(a, h->cache_a, sizeof(PetscReal) * n);
   PetscCall(PetscArrayzero(loc, len));
-  if (h->basis >= 1 && h->Kc) { /* stuck basis: less the stuck springs, which are in Km (this rank's share) */
+  if (h->basis >= 1 && h->Kc && !h->cond) { /* stuck basis: less the stuck springs, which are in Km (this rank's share) */
     PetscCall(Gemm("N", "N", nm, nc, nm, -1.0, h->Kc, nm, a, nm, 1.0, loc, nm));
     if (jac)
       for (PetscInt k = 0; k < nc; k++) {
@@ -1122,20 +1192,21 @@ static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Pet
   }
   for (PetscInt t = 0; t < h->ngroups; t++) {
     HBMGroup      *g    = &h->g[t];
-    const PetscInt nloc = g->nloc;
+    const PetscInt   nloc = g->nloc;
+    const PetscReal *GR = h->cond ? g->Rq : g->R, *GS = h->cond ? g->Sq : g->S, *Kst = h->cond ? g->Kstq : g->Kst, *Knn = h->cond ? g->Knnq : g->Knn;
     if (!nloc) continue;
     if (!reuse) {
-      PetscCall(Gemm("N", "N", nloc, nc, nm, 1.0, g->R, nloc, a, nm, 0.0, g->U, nloc));
-      if (g->normal) PetscCall(Gemm("N", "N", nloc, nc, nm, 1.0, g->S, nloc, a, nm, 0.0, g->V, nloc));
+      PetscCall(Gemm("N", "N", nloc, nc, nm, 1.0, GR, nloc, a, nm, 0.0, g->U, nloc));
+      if (g->normal) PetscCall(Gemm("N", "N", nloc, nc, nm, 1.0, GS, nloc, a, nm, 0.0, g->V, nloc));
       PetscCall(JRContactEvaluate(g->c, g->U, g->V, g->F, g->normal ? g->N : NULL, derivs ? g->DU : NULL, derivs && g->normal ? g->DV : NULL, derivs && g->normal ? g->DN : NULL, NULL));
       if (g->normal)
         for (PetscInt e = 0; e < nloc; e++) g->N[e] -= g->nstatic[e]; /* the dynamic normal load */
     }
-    PetscCall(Gemm("T", "N", nm, nc, nloc, 1.0, g->R, nloc, g->F, nloc, 1.0, loc, nm));
-    if (g->normal) PetscCall(Gemm("T", "N", nm, nc, nloc, 1.0, g->S, nloc, g->N, nloc, 1.0, loc, nm));
+    PetscCall(Gemm("T", "N", nm, nc, nloc, 1.0, GR, nloc, g->F, nloc, 1.0, loc, nm));
+    if (g->normal) PetscCall(Gemm("T", "N", nm, nc, nloc, 1.0, GS, nloc, g->N, nloc, 1.0, loc, nm));
     if (jac) {
       PetscInt         nsel = nloc;
-      const PetscReal *Rj = g->R, *Sj = g->S;
+      const PetscReal *Rj = GR, *Sj = GS;
       PetscCall(PetscLogEventBegin(JR_HBMJacobian, 0, 0, 0, 0));
       if (g->split) {
         /* which elements differ from the stuck pattern dF/du = kt I, dF/dv = 0, dN/dv = kn I */
@@ -1152,9 +1223,9 @@ static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Pet
         }
         g->nsel = nsel;
         for (PetscInt i = 0; i < nm; i++) {
-          for (PetscInt s = 0; s < nsel; s++) g->Rc[s + i * nsel] = g->R[g->sel[s] + i * nloc];
+          for (PetscInt s = 0; s < nsel; s++) g->Rc[s + i * nsel] = GR[g->sel[s] + i * nloc];
           if (g->normal)
-            for (PetscInt s = 0; s < nsel; s++) g->Sc[s + i * nsel] = g->S[g->sel[s] + i * nloc];
+            for (PetscInt s = 0; s < nsel; s++) g->Sc[s + i * nsel] = GS[g->sel[s] + i * nloc];
         }
         Rj = g->Rc;
         Sj = g->Sc;
@@ -1162,7 +1233,7 @@ static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Pet
         for (PetscInt k = 0; k < nc; k++) {
           PetscReal *blk = loc + n + (k * nm) + (k * nm) * n;
           for (PetscInt j = 0; j < nm; j++)
-            for (PetscInt i = 0; i < nm; i++) blk[i + j * n] += g->Kst[i + j * nm] + (g->normal ? g->Knn[i + j * nm] : 0.0);
+            for (PetscInt i = 0; i < nm; i++) blk[i + j * n] += Kst[i + j * nm] + (g->normal ? Knn[i + j * nm] : 0.0);
         }
       }
       if (nsel)
@@ -1261,6 +1332,328 @@ static PetscErrorCode Linear(JRHBM h, PetscReal w, const PetscReal *a, PetscReal
   PetscFunctionReturn(0);
 }
 
+/*
+  Condensation onto the joints (-hbm_condense). Per harmonic h, in complex form z = as + i ac, the linear part is
+      Z_h(w) = Kg (1 + i gamma) - (h w)^2 Mm + i h w Cm   (the mean: Kg + pin),
+  with Kg the structure's own stiffness (Km less the stuck springs that the stuck basis holds). When V^T Cm V is
+  diagonal for the eigenvectors V of (Kg, Mm) (no viscous damping, or proportional), Z_h^-1 = V diag(1/z_k) V^T with
+  z_k = lam_k (1 + i gamma) - (h w)^2 + i h w c_k. Every element of a reduced model moves with one of the nq
+  condensed rows Q (its joint's), so with x = Q a the joints' motions and g(x) the elements' forces summed on those
+  rows, a = Z^-1 (F fm - Q^T g) and
+      r_h(x) = x_h + G_h g_h(x) - F xF_h,   G_h = Q Z_h^-1 Q^T (nq x nq),  xF_1 = Q Z_1^-1 fm,
+  the modal equations with the modes eliminated exactly: nq (2H+1) unknowns instead of nm (2H+1).
+  CondBlocks: G_h, dG_h/dw, xF_h, dxF_h/dw (re, im; column-major, symmetric) and 1/z_k at frequency w, kept.
+*/
+static PetscErrorCode CondBlocks(JRHBM h, PetscReal w)
+{
+  const PetscInt nq = h->nq, nm = h->nm, bs = 4 * nq * nq + 4 * nq;
+  PetscReal     *dr, *di;
+
+  PetscFunctionBeginUser;
+  if (h->wq_ok && h->wq == w) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc2(nm, &dr, nm, &di));
+  for (PetscInt hh = 1; hh <= h->H; hh++) {
+    PetscReal      *Gr = h->Gb + (hh - 1) * bs, *Gi = Gr + nq * nq, *dGr = Gi + nq * nq, *dGi = dGr + nq * nq;
+    PetscReal      *xFr = dGi + nq * nq, *xFi = xFr + nq, *dxFr = xFi + nq, *dxFi = dxFr + nq;
+    PetscReal      *ir = h->inv + 2 * (hh - 1) * nm, *ii = ir + nm;
+    const PetscReal s  = hh * w;
+    for (PetscInt k = 0; k < nm; k++) {
+      const PetscReal zr = h->lamv[k] - s * s, zi = h->gamma * h->lamv[k] + s * h->cv[k], den = zr * zr + zi * zi;
+      const PetscReal dzr = -2.0 * s * hh, dzi = hh * h->cv[k]; /* dz/dw */
+      PetscReal       sr, si;
+      ir[k] = zr / den;
+      ii[k] = -zi / den;
+      sr    = ir[k] * ir[k] - ii[k] * ii[k]; /* (1/z)^2 */
+      si    = 2.0 * ir[k] * ii[k];
+      dr[k] = -(sr * dzr - si * dzi); /* d(1/z)/dw = -(1/z)^2 dz/dw */
+      di[k] = -(sr * dzi + si * dzr);
+    }
+    for (PetscInt c = 0; c < nq; c++)
+      for (PetscInt r = 0; r <= c; r++) {
+        const PetscReal *qr = h->QV + r * nm, *qc = h->QV + c * nm;
+        PetscReal        v[4] = {0, 0, 0, 0};
+        for (PetscInt k = 0; k < nm; k++) {
+          const PetscReal p = qr[k] * qc[k];
+          v[0] += p * ir[k];
+          v[1] += p * ii[k];
+          v[2] += p * dr[k];
+          v[3] += p * di[k];
+        }
+        Gr[r + c * nq] = Gr[c + r * nq] = v[0];
+        Gi[r + c * nq] = Gi[c + r * nq] = v[1];
+        dGr[r + c * nq] = dGr[c + r * nq] = v[2];
+        dGi[r + c * nq] = dGi[c + r * nq] = v[3];
+      }
+    for (PetscInt r = 0; r < nq; r++) {
+      const PetscReal *qr = h->QV + r * nm;
+      PetscReal        v[4] = {0, 0, 0, 0};
+      if (hh == 1)
+        for (PetscInt k = 0; k < nm; k++) {
+          const PetscReal p = qr[k] * h->VF[k];
+          v[0] += p * ir[k];
+          v[1] += p * ii[k];
+          v[2] += p * dr[k];
+          v[3] += p * di[k];
+        }
+      xFr[r]  = v[0];
+      xFi[r]  = v[1];
+      dxFr[r] = v[2];
+      dxFi[r] = v[3];
+    }
+  }
+  PetscCall(PetscLogFlops(8.0 * h->H * nm * nq * (nq + 3)));
+  PetscCall(PetscFree2(dr, di));
+  h->wq    = w;
+  h->wq_ok = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* Condensed: res holds g(x) on entry and r(x) on exit; jac (if not NULL) dg/dx on entry and I + G dg/dx on exit;
+   dw (if not NULL) gets dr/dw */
+static PetscErrorCode CondApply(JRHBM h, PetscReal w, const PetscReal *x, PetscReal *res, PetscReal *jac, PetscReal *dw)
+{
+  const PetscInt nq = h->nq, ns = h->ns, bs = 4 * nq * nq + 4 * nq;
+  PetscReal     *t = h->ctmp, *T = h->ctmp + ns;
+
+  PetscFunctionBeginUser;
+  PetscCall(CondBlocks(h, w));
+  for (PetscInt r = 0; r < nq; r++) { /* the mean */
+    PetscReal v = x[r];
+    for (PetscInt c = 0; c < nq; c++) v += h->G0[r + c * nq] * res[c];
+    t[r] = v;
+    if (dw) dw[r] = 0.0;
+  }
+  for (PetscInt hh = 1; hh <= h->H; hh++) {
+    const PetscReal *Gr = h->Gb + (hh - 1) * bs, *Gi = Gr + nq * nq, *dGr = Gi + nq * nq, *dGi = dGr + nq * nq;
+    const PetscReal *xFr = dGi + nq * nq, *xFi = xFr + nq, *dxFr = xFi + nq, *dxFi = dxFr + nq;
+    const PetscInt   os = (2 * hh - 1) * nq, oc = 2 * hh * nq;
+    const PetscReal *gs = res + os, *gc = res + oc;
+    for (PetscInt r = 0; r < nq; r++) {
+      PetscReal vs = x[os + r] - h->level * xFr[r], vc = x[oc + r] - h->level * xFi[r], ds = -h->level * dxFr[r], dc = -h->level * dxFi[r];
+      for (PetscInt c = 0; c < nq; c++) {
+        vs += Gr[r + c * nq] * gs[c] - Gi[r + c * nq] * gc[c];
+        vc += Gi[r + c * nq] * gs[c] + Gr[r + c * nq] * gc[c];
+        ds += dGr[r + c * nq] * gs[c] - dGi[r + c * nq] * gc[c];
+        dc += dGi[r + c * nq] * gs[c] + dGr[r + c * nq] * gc[c];
+      }
+      t[os + r] = vs;
+      t[oc + r] = vc;
+      if (dw) {
+        dw[os + r] = ds;
+        dw[oc + r] = dc;
+      }
+    }
+  }
+  if (jac) { /* T = I + blockdiag(G) dg/dx, row blocks of dg/dx (leading dimension ns) */
+    PetscCall(Gemm("N", "N", nq, ns, nq, 1.0, h->G0, nq, jac, ns, 0.0, T, ns));
+    for (PetscInt hh = 1; hh <= h->H; hh++) {
+      const PetscReal *Gr = h->Gb + (hh - 1) * bs, *Gi = Gr + nq * nq;
+      const PetscInt   os = (2 * hh - 1) * nq, oc = 2 * hh * nq;
+      PetscCall(Gemm("N", "N", nq, ns, nq, 1.0, Gr, nq, jac + os, ns, 0.0, T + os, ns));
+      PetscCall(Gemm("N", "N", nq, ns, nq, -1.0, Gi, nq, jac + oc, ns, 1.0, T + os, ns));
+      PetscCall(Gemm("N", "N", nq, ns, nq, 1.0, Gi, nq, jac + os, ns, 0.0, T + oc, ns));
+      PetscCall(Gemm("N", "N", nq, ns, nq, 1.0, Gr, nq, jac + oc, ns, 1.0, T + oc, ns));
+    }
+    for (PetscInt i = 0; i < ns; i++) T[i + i * ns] += 1.0;
+    PetscCall(PetscArraycpy(jac, T, ns * ns));
+  }
+  PetscCall(PetscArraycpy(res, t, ns));
+  PetscFunctionReturn(0);
+}
+
+/*
+  CondenseSetUp - decide on condensation (-hbm_condense auto: a reduced model whose elements all move with their
+  joint's rows, fewer rows than modes, and damping diagonal with Kg) and build its operators (collective)
+*/
+static PetscErrorCode CondenseSetUp(JRHBM h, const JRElements *el)
+{
+  const PetscInt nm = h->nm, nc = h->nc;
+  PetscInt       nj, nq, wdt;
+  PetscBool      anyn = PETSC_FALSE, want = (PetscBool)(h->condense == 1);
+  PetscReal     *loc, *sum, dev = 0, scale = 0, dd[2], da[2], *A, *B, *work, *Y, cmax = 0, coff = 0;
+  PetscBLASInt   bn, bq, lwork, info, itype = 1;
+  const char    *why = NULL;
+
+  PetscFunctionBeginUser;
+  h->cond        = PETSC_FALSE;
+  h->ns          = h->n;
+  h->wq_ok       = PETSC_FALSE;
+  h->condinfo[0] = 0;
+  PetscCall(PetscFree3(h->Q, h->QV, h->VF));
+  PetscCall(PetscFree4(h->V, h->lamv, h->cv, h->G0));
+  PetscCall(PetscFree2(h->Z0, h->piv0));
+  PetscCall(PetscFree3(h->Gb, h->inv, h->ctmp));
+  if (h->condense == 2) PetscFunctionReturn(0);
+  if (!el->joint || el->njoints < 1) PetscFunctionReturn(0); /* not a reduced model: nothing to condense onto */
+  nj = el->njoints;
+  for (PetscInt t = 0; t < h->ngroups; t++) anyn = (PetscBool)(anyn || h->g[t].normal);
+  nq  = anyn ? 2 * nj : nj;
+  wdt = 2 * nm + 1;
+  /* the joints' rows: every element's rows are its joint's (the average of its members' rows, 4.4) */
+  PetscCall(PetscCalloc2(nj * wdt, &loc, nj * wdt, &sum));
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    HBMGroup *g = &h->g[t];
+    for (PetscInt e = 0; e < g->nloc; e++) {
+      PetscReal *r = loc + el->joint[g->eidx[e]] * wdt;
+      for (PetscInt i = 0; i < nm; i++) r[i] += g->R[e + i * g->nloc];
+      if (g->normal)
+        for (PetscInt i = 0; i < nm; i++) r[nm + i] += g->S[e + i * g->nloc];
+      r[wdt - 1] += 1.0;
+    }
+  }
+  PetscCall(MPIU_Allreduce(loc, sum, nj * wdt, MPIU_REAL, MPIU_SUM, h->comm));
+  PetscCall(PetscCalloc3(nq * nm, &h->Q, nq * nm, &h->QV, nm, &h->VF));
+  for (PetscInt j = 0; j < nj; j++) {
+    const PetscReal *r = sum + j * wdt;
+    PetscCheck(r[wdt - 1] > 0, h->comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no element", j);
+    for (PetscInt i = 0; i < nm; i++) {
+      h->Q[j * nm + i] = r[i] / r[wdt - 1];
+      if (anyn) h->Q[(nj + j) * nm + i] = r[nm + i] / r[wdt - 1];
+    }
+  }
+  for (PetscInt i = 0; i < nq * nm; i++) scale = PetscMax(scale, PetscAbsReal(h->Q[i]));
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    HBMGroup *g = &h->g[t];
+    for (PetscInt e = 0; e < g->nloc; e++) {
+      const PetscInt j = el->joint[g->eidx[e]];
+      for (PetscInt i = 0; i < nm; i++) {
+        dev = PetscMax(dev, PetscAbsReal(g->R[e + i * g->nloc] - h->Q[j * nm + i]));
+        if (g->normal) dev = PetscMax(dev, PetscAbsReal(g->S[e + i * g->nloc] - h->Q[(nj + j) * nm + i]));
+      }
+    }
+  }
+  PetscCall(PetscFree2(loc, sum));
+  dd[0] = dev;
+  dd[1] = scale;
+  PetscCall(MPIU_Allreduce(dd, da, 2, MPIU_REAL, MPIU_MAX, h->comm));
+  if (da[0] > 1e-10 * da[1]) why = "the elements of a joint do not all move with the joint's rows";
+  else if (nq >= nm && !want) why = "no fewer joint rows than modes";
+  if (!why) { /* (Kg, Mm) eigenvectors; the viscous damping must be diagonal in them */
+    PetscCall(PetscMalloc4(nm * nm, &h->V, nm, &h->lamv, nm, &h->cv, nq * nq, &h->G0));
+    PetscCall(PetscMalloc4(nm * nm, &A, nm * nm, &B, 8 * nm, &work, nm * PetscMax(nm, nq), &Y));
+    for (PetscInt i = 0; i < nm; i++)
+      for (PetscInt j = 0; j < nm; j++) {
+        h->V[i + j * nm] = 0.5 * (h->Kg[i * nm + j] + h->Kg[j * nm + i]);
+        B[i + j * nm]    = 0.5 * (h->Mm[i * nm + j] + h->Mm[j * nm + i]);
+      }
+    PetscCall(PetscBLASIntCast(nm, &bn));
+    PetscCall(PetscBLASIntCast(8 * nm, &lwork));
+    PetscCallBLAS("LAPACKsygv", LAPACKsygv_(&itype, "V", "U", &bn, h->V, &bn, B, &bn, h->lamv, work, &lwork, &info));
+    PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK sygv (condensation) failed: info %d", (int)info);
+    /* C' = V^T Cm V */
+    for (PetscInt i = 0; i < nm; i++)
+      for (PetscInt j = 0; j < nm; j++) A[i + j * nm] = h->Cm[i * nm + j];
+    PetscCall(Gemm("N", "N", nm, nm, nm, 1.0, A, nm, h->V, nm, 0.0, Y, nm));
+    PetscCall(Gemm("T", "N", nm, nm, nm, 1.0, h->V, nm, Y, nm, 0.0, A, nm));
+    for (PetscInt i = 0; i < nm; i++) {
+      h->cv[i] = A[i + i * nm];
+      for (PetscInt j = 0; j < nm; j++) {
+        cmax = PetscMax(cmax, PetscAbsReal(A[i + j * nm]));
+        if (i != j) coff = PetscMax(coff, PetscAbsReal(A[i + j * nm]));
+      }
+    }
+    if (coff > 1e-9 * cmax) why = "the viscous damping is not diagonal in the eigenvectors of the structure's stiffness and mass (use -hbm_gamma, or proportional damping)";
+    else {
+      /* Q V, V^T fm */
+      PetscCall(Gemm("T", "N", nm, nq, nm, 1.0, h->V, nm, h->Q, nm, 0.0, h->QV, nm)); /* (QV)^T col-major nm x nq = QV row-major */
+      PetscCall(Gemm("T", "N", nm, 1, nm, 1.0, h->V, nm, h->fm, nm, 0.0, h->VF, nm));
+      /* the mean block Kg + pin, LU, and G0 = Q Z0^-1 Q^T */
+      PetscCall(PetscMalloc2(nm * nm, &h->Z0, nm, &h->piv0));
+      for (PetscInt i = 0; i < nm; i++)
+        for (PetscInt j = 0; j < nm; j++) h->Z0[i + j * nm] = h->Kg[i * nm + j] + (i == j && h->pin ? h->pin[i] : 0.0);
+      PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bn, &bn, h->Z0, &bn, h->piv0, &info));
+      PetscCheck(!info, h->comm, PETSC_ERR_MAT_LU_ZRPVT, "Condensation: the static stiffness (mean block) is singular, info %d", (int)info);
+      PetscCall(PetscArraycpy(Y, h->Q, nq * nm)); /* Q^T, col-major nm x nq */
+      PetscCall(PetscBLASIntCast(nq, &bq));
+      PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bn, &bq, h->Z0, &bn, h->piv0, Y, &bn, &info));
+      PetscCall(Gemm("T", "N", nq, nq, nm, 1.0, h->Q, nm, Y, nm, 0.0, h->G0, nq));
+    }
+    PetscCall(PetscFree4(A, B, work, Y));
+  }
+  if (why) {
+    PetscCheck(!want, h->comm, PETSC_ERR_ARG_INCOMP, "-hbm_condense yes: cannot condense onto the joints: %s", why);
+    PetscCall(PetscInfo(NULL, "No condensation: %s\n", why));
+    PetscCall(PetscFree3(h->Q, h->QV, h->VF));
+    PetscCall(PetscFree4(h->V, h->lamv, h->cv, h->G0));
+    PetscCall(PetscFree2(h->Z0, h->piv0));
+    PetscFunctionReturn(0);
+  }
+  /* every element's selection of its joint's rows, and the stuck part on them */
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    HBMGroup      *g    = &h->g[t];
+    const PetscInt nloc = g->nloc;
+    PetscCall(PetscFree2(g->Rq, g->Sq));
+    PetscCall(PetscFree2(g->Kstq, g->Knnq));
+    PetscCall(PetscCalloc2(nloc * nq, &g->Rq, nloc * nq, &g->Sq));
+    PetscCall(PetscCalloc2(nq * nq, &g->Kstq, nq * nq, &g->Knnq));
+    for (PetscInt e = 0; e < nloc; e++) {
+      const PetscInt j = el->joint[g->eidx[e]];
+      g->Rq[e + j * nloc] = 1.0;
+      if (g->normal) g->Sq[e + (nj + j) * nloc] = 1.0;
+    }
+    if (nq > nm) { /* the scratch of the rows (W, Rc, Sc: nloc x rows' length) */
+      PetscCall(JRFreeAligned(&g->W));
+      PetscCall(JRFreeAligned(&g->Rc));
+      PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nq, &g->W));
+      PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nq, &g->Rc));
+      if (g->normal) {
+        PetscCall(JRFreeAligned(&g->Sc));
+        PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nq, &g->Sc));
+      }
+    }
+    if (g->split && nloc) {
+      for (PetscInt e = 0; e < nloc; e++) {
+        const PetscInt j = el->joint[g->eidx[e]];
+        g->Kstq[j + j * nq] += g->kt[e];
+        if (g->normal) g->Knnq[(nj + j) + (nj + j) * nq] += g->kn[e];
+      }
+    }
+  }
+  h->nq = nq;
+  h->ns = nq * nc;
+  PetscCall(PetscMalloc3(h->H * (4 * nq * nq + 4 * nq), &h->Gb, 2 * h->H * nm, &h->inv, h->ns + h->ns * h->ns, &h->ctmp));
+  h->cond = PETSC_TRUE;
+  PetscCall(PetscSNPrintf(h->condinfo, sizeof(h->condinfo), "condensed onto %" PetscInt_FMT " joint motions: %" PetscInt_FMT " unknowns instead of %" PetscInt_FMT, nq, h->ns, h->n));
+  PetscFunctionReturn(0);
+}
+
+/* Condensed: the modal unknowns a (n) of the joints' motions x (ns) at frequency w, a = Z^-1 (F fm - Q^T g(x)) */
+static PetscErrorCode CondExpand(JRHBM h, PetscReal w, const PetscReal *x, PetscReal *a)
+{
+  const PetscInt nq = h->nq, nm = h->nm;
+  PetscReal     *g, *br, *bi;
+  PetscBLASInt   bn, one = 1, info;
+
+  PetscFunctionBeginUser;
+  PetscCall(CondBlocks(h, w));
+  PetscCall(PetscMalloc3(h->ns, &g, nm, &br, nm, &bi));
+  PetscCall(Nonlinear(h, x, g, NULL));
+  for (PetscInt i = 0; i < nm; i++) { /* the mean: Z0 a0 = -Q^T g0 */
+    PetscReal v = 0;
+    for (PetscInt r = 0; r < nq; r++) v -= h->Q[r * nm + i] * g[r];
+    a[i] = v;
+  }
+  PetscCall(PetscBLASIntCast(nm, &bn));
+  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bn, &one, h->Z0, &bn, h->piv0, a, &bn, &info));
+  for (PetscInt hh = 1; hh <= h->H; hh++) {
+    const PetscInt   os = (2 * hh - 1) * nq, oc = 2 * hh * nq;
+    const PetscReal *ir = h->inv + 2 * (hh - 1) * nm, *ii = ir + nm;
+    for (PetscInt k = 0; k < nm; k++) { /* b = V^T (F fm - Q^T g), then z = b / z_k */
+      PetscReal vr = hh == 1 ? h->level * h->VF[k] : 0.0, vi = 0.0;
+      for (PetscInt r = 0; r < nq; r++) {
+        vr -= h->QV[r * nm + k] * g[os + r];
+        vi -= h->QV[r * nm + k] * g[oc + r];
+      }
+      br[k] = ir[k] * vr - ii[k] * vi;
+      bi[k] = ir[k] * vi + ii[k] * vr;
+    }
+    PetscCall(Gemm("N", "N", nm, 1, nm, 1.0, h->V, nm, br, nm, 0.0, a + (2 * hh - 1) * nm, nm));
+    PetscCall(Gemm("N", "N", nm, 1, nm, 1.0, h->V, nm, bi, nm, 0.0, a + 2 * hh * nm, nm));
+  }
+  PetscCall(PetscFree3(g, br, bi));
+  PetscFunctionReturn(0);
+}
+
 /* R(a, w): the harmonic-balance residual (collective) */
 PetscErrorCode JRHBMComputeResidual(JRHBM h, PetscReal w, Vec a, Vec R)
 {
@@ -1273,7 +1666,8 @@ PetscErrorCode JRHBMComputeResidual(JRHBM h, PetscReal w, Vec a, Vec R)
   PetscCall(VecGetArrayRead(a, &x));
   PetscCall(VecGetArray(R, &r));
   PetscCall(Nonlinear(h, x, r, NULL));
-  PetscCall(Linear(h, w, x, r, NULL, NULL));
+  if (h->cond) PetscCall(CondApply(h, w, x, r, NULL, NULL));
+  else PetscCall(Linear(h, w, x, r, NULL, NULL));
   PetscCall(VecRestoreArray(R, &r));
   PetscCall(VecRestoreArrayRead(a, &x));
   PetscCall(PetscLogEventEnd(JR_HBMResidual, 0, 0, 0, 0));
@@ -1289,12 +1683,13 @@ PetscErrorCode JRHBMComputeJacobian(JRHBM h, PetscReal w, Vec a, Mat J, Vec Rw)
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMSetUp(h));
-  PetscCall(PetscMalloc1(h->n, &res));
+  PetscCall(PetscMalloc1(h->ns, &res));
   PetscCall(VecGetArrayRead(a, &x));
   PetscCall(MatDenseGetArrayWrite(J, &j));
   if (Rw) PetscCall(VecGetArray(Rw, &rw));
   PetscCall(Nonlinear(h, x, res, j));
-  PetscCall(Linear(h, w, x, res, j, rw));
+  if (h->cond) PetscCall(CondApply(h, w, x, res, j, rw));
+  else PetscCall(Linear(h, w, x, res, j, rw));
   if (Rw) PetscCall(VecRestoreArray(Rw, &rw));
   PetscCall(MatDenseRestoreArrayWrite(J, &j));
   PetscCall(VecRestoreArrayRead(a, &x));
@@ -1347,7 +1742,6 @@ PetscErrorCode JRHBMSolve(JRHBM h, PetscReal w, Vec a, PetscInt *its, PetscBool 
 PetscErrorCode JRHBMLinearSolution(JRHBM h, PetscReal w, Vec a)
 {
   Vec r;
-  KSP ksp;
   PC  pc;
 
   PetscFunctionBeginUser;
@@ -1356,14 +1750,15 @@ PetscErrorCode JRHBMLinearSolution(JRHBM h, PetscReal w, Vec a)
   PetscCall(VecZeroEntries(a));
   PetscCall(JRHBMComputeJacobian(h, w, a, h->J, NULL));
   PetscCall(JRHBMComputeResidual(h, w, a, r));
-  PetscCall(KSPCreate(PETSC_COMM_SELF, &ksp));
-  PetscCall(KSPSetOperators(ksp, h->J, h->J));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  PetscCall(KSPSolve(ksp, r, a));
+  if (!h->klin) {
+    PetscCall(KSPCreate(PETSC_COMM_SELF, &h->klin));
+    PetscCall(KSPSetType(h->klin, KSPPREONLY));
+    PetscCall(KSPGetPC(h->klin, &pc));
+    PetscCall(PCSetType(pc, PCLU));
+  }
+  PetscCall(KSPSetOperators(h->klin, h->J, h->J));
+  PetscCall(KSPSolve(h->klin, r, a));
   PetscCall(VecScale(a, -1.0));
-  PetscCall(KSPDestroy(&ksp));
   PetscCall(VecDestroy(&r));
   PetscFunctionReturn(0);
 }
@@ -1611,6 +2006,11 @@ PetscErrorCode JRHBMDestroy(JRHBM *hbm)
   PetscCall(SNESDestroy(&h->snes));
   PetscCall(MatDestroy(&h->J));
   PetscCall(VecDestroy(&h->r));
+  PetscCall(KSPDestroy(&h->klin));
+  PetscCall(PetscFree3(h->Q, h->QV, h->VF));
+  PetscCall(PetscFree4(h->V, h->lamv, h->cv, h->G0));
+  PetscCall(PetscFree2(h->Z0, h->piv0));
+  PetscCall(PetscFree3(h->Gb, h->inv, h->ctmp));
   PetscCall(PetscFree(h));
   *hbm = NULL;
   PetscFunctionReturn(0);

@@ -478,7 +478,10 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     PetscInt         nmod;
     const PetscReal *om;
     PetscCall(JRHBMGetModalFrequencies(hbmc, &nmod, &om));
+    const char *cinfo;
+    PetscCall(JRHBMGetSolveSize(isrom ? hbmr : hbmc, NULL, &cinfo));
     if (nmod) PetscCall(PetscPrintf(comm, "frf: %" PetscInt_FMT " modes (%.6g .. %.6g Hz), %" PetscInt_FMT " harmonics + mean, %" PetscInt_FMT " unknowns; damping: %s\n", nm, (double)(om[0] / (2 * PETSC_PI)), (double)(om[nmod - 1] / (2 * PETSC_PI)), H, n, damping));
+    if (cinfo[0]) PetscCall(PetscPrintf(comm, "frf: reduced model %s\n", cinfo));
     else PetscCall(PetscPrintf(comm, "frf: %" PetscInt_FMT " physical coordinates, %" PetscInt_FMT " harmonics + mean, %" PetscInt_FMT " unknowns; damping: %s\n", nm, H, n, damping));
     if (n2n) {
       PetscInt b;
