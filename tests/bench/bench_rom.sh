@@ -4,8 +4,9 @@
 # (HBM + continuation, every level) of each model, their ratio, the set-up (projections) and the reduction (fit)
 # apart; the FE model, preload and modes are shared. Then larger interfaces by -interface_split k (every element as
 # k identical parallel elements: the same forces, k times the node-to-node work; a proxy for a finer interface mesh),
-# and where the reduced model's time goes (per point and per Newton iteration: the dense solve of the 24 x 3
-# harmonic-balance unknowns, which both models share). On 1 and 2 ranks. JR_BENCH_ROM_SPLITS sets the k's.
+# and where the reduced model's time goes (per Newton iteration: the node-to-node model solves 24 modes x 3
+# harmonic-balance unknowns, the reduced one is condensed onto its 6 joints x 3). On 1 and 2 ranks.
+# JR_BENCH_ROM_SPLITS sets the k's.
 cd "$(dirname "$0")/../.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export OPENBLAS_NUM_THREADS=1
