@@ -78,6 +78,17 @@ static PetscErrorCode FreeElements(JRElements *el)
   PetscFunctionReturn(0);
 }
 
+/* a 4-DOF structure with every element type (jenkins, jenkins_nv with separation, cubic): the Jacobian checks */
+static const double K4[16] = {4e6, -1e6, 0, -1e6, -1e6, 3e6, -1e6, 0, 0, -1e6, 2e6, -5e5, -1e6, 0, -5e5, 3e6}, M4[16] = {1, 0, 0, 0, 0, 1.2, 0, 0, 0, 0, 0.8, 0, 0, 0, 0, 1.5};
+static const El     E4[6]  = {
+  {"jenkins",    0, -1, -1, -1, 1e6,  0,   0.1, 10 },
+  {"jenkins",    1, 2,  -1, -1, 2e6,  0,   0.2, 5  },
+  {"jenkins_nv", 2, -1, 3,  -1, 1e6,  1e6, 0.3, 2  },
+  {"jenkins_nv", 3, 1,  0,  2,  5e5,  8e5, 0.2, 4  },
+  {"cubic",      0, 3,  -1, -1, 1e11, 0,   0,   0  },
+  {"jenkins",    3, -1, -1, -1, 1e6,  0,   0.1, 100}
+};
+
 static const PetscInt *jr_joints = NULL; /* ProblemCreate: the elements' joints (first reduction), if set */
 static PetscInt        jr_njoints = 0;
 
@@ -481,15 +492,8 @@ int main(int argc, char **argv)
 
   /* ---- Jacobian and dR/dw vs finite differences, every element type, H = 1 and 3 ---- */
   for (PetscInt H = 1; H <= 3; H += 2) {
-    const double K[16] = {4e6, -1e6, 0, -1e6, -1e6, 3e6, -1e6, 0, 0, -1e6, 2e6, -5e5, -1e6, 0, -5e5, 3e6}, M[16] = {1, 0, 0, 0, 0, 1.2, 0, 0, 0, 0, 0.8, 0, 0, 0, 0, 1.5};
-    const El     e[6] = {
-      {"jenkins",    0, -1, -1, -1, 1e6, 0,   0.1, 10 },
-      {"jenkins",    1, 2,  -1, -1, 2e6, 0,   0.2, 5  },
-      {"jenkins_nv", 2, -1, 3,  -1, 1e6, 1e6, 0.3, 2  },
-      {"jenkins_nv", 3, 1,  0,  2,  5e5, 8e5, 0.2, 4  },
-      {"cubic",      0, 3,  -1, -1, 1e11, 0,  0,   0  },
-      {"jenkins",    3, -1, -1, -1, 1e6, 0,   0.1, 100}
-    };
+    const double *K = K4, *M = M4;
+    const El     *e = E4;
     Problem   p;
     Vec       a;
     PetscInt  n;
@@ -520,15 +524,8 @@ int main(int argc, char **argv)
 
   /* ---- condensation onto the joints (-hbm_condense): the modal equations with the modes eliminated exactly ---- */
   for (PetscInt H = 1; H <= 3; H += 2) {
-    const double   K[16] = {4e6, -1e6, 0, -1e6, -1e6, 3e6, -1e6, 0, 0, -1e6, 2e6, -5e5, -1e6, 0, -5e5, 3e6}, M[16] = {1, 0, 0, 0, 0, 1.2, 0, 0, 0, 0, 0.8, 0, 0, 0, 0, 1.5};
-    const El       e[6] = {
-      {"jenkins",    0, -1, -1, -1, 1e6, 0,   0.1, 10 },
-      {"jenkins",    1, 2,  -1, -1, 2e6, 0,   0.2, 5  },
-      {"jenkins_nv", 2, -1, 3,  -1, 1e6, 1e6, 0.3, 2  },
-      {"jenkins_nv", 3, 1,  0,  2,  5e5, 8e5, 0.2, 4  },
-      {"cubic",      0, 3,  -1, -1, 1e11, 0,  0,   0  },
-      {"jenkins",    3, -1, -1, -1, 1e6, 0,   0.1, 100}
-    };
+    const double  *K = K4, *M = M4;
+    const El      *e = E4;
     const PetscInt joint[6] = {0, 0, 1, 1, 2, 0}; /* 3 joints: their members move with the average of their rows */
     double         C[16], ej = 0.0, ew = 0.0, jmax = 0.0, wmax = 0.0, w = 2 * M_PI * 250, da = 0.0, amax = 0.0;
     Problem        p, q;
