@@ -35,16 +35,22 @@ for m in 3 4 7; do
   read f a <<< "$(worst "$o")"
   ne=$(echo "$o" | awk '/^rom joint/{s += $7} END{print s}')
   check "[ -n '$ne' ] && [ '$ne' -ge 6 ] && [ '$ne' -le $((6 * m)) ] && lt '$f' 5e-3" "second reduction 6 x $m: $ne elements (at most $((6 * m)): elements the fit leaves without force are dropped), worst peak frequency error $f (< 0.5%)"
-  # the amplitude at every level (0.1..200 N): the issue's 5% for 6 x 3 is missed (README); the measured accuracy of
-  # the fit with the case's amplitudes (-rom_fit_case_weight 10) is 9.2% (6 x 3), 4.5% (6 x 4), 2.2% (6 x 7)
-  case $m in 3) amax=0.12 ;; 4) amax=0.06 ;; 7) amax=0.04 ;; esac
+  # the amplitude at every level (0.1..200 N): the issue's 5% for 6 x 3. Measured with the fit coupled across joints
+  # (-rom_fit_total_weight 20): 2.6% (6 x 3), 1.3% (6 x 4), 2.2% (6 x 7); each joint alone: 9.2%, 4.5%, 2.2%
+  case $m in 3) amax=0.05 ;; 4) amax=0.03 ;; 7) amax=0.04 ;; esac
   aw=$(echo "$o" | awk '/^compare level/ {e = $11 / $9 - 1; if (e < 0) e = -e; if (e > w) w = e} END{print w + 0}')
   nc=$(echo "$o" | grep -c '^rom case level .* dissipation_error')
   check "lt '$aw' $amax && [ '$nc' = 5 ]" "second reduction 6 x $m: amplitude within $amax at every level (0.1..200 N): worst $aw; the fit's dissipation error printed for the 5 levels"
   if [ $m = 3 ]; then
-    r=$(echo "$o" | awk '/^rom joint/{if ($13 > w) w = $13} END{print w}')
-    r0=$(echo "$o" | awk '/^rom joint/{if ($15 > w) w = $15} END{print w}')
-    check "lt '$r' '$r0' && [ -f '$tmp/s3_rom_loops.csv' ]" "second reduction 6 x 3: the fit lowers every joint's residual below the start's (worst $r < $r0), loops written"
+    # the coupled fit: the energy all joints dissipate together at the case's amplitudes at least 2x closer than with
+    # each joint fitted alone (which is where it starts); each joint's own rows may give way
+    cp=$(echo "$o" | grep '^rom coupled')
+    rt=$(field "$cp" all_joints_energy_residual); rt0=$(field "$cp" each_alone)
+    check "[ -n '$rt' ] && lt \$(awk -v a='$rt' 'BEGIN{print 2 * a}') '$rt0' && [ -f '$tmp/s3_rom_loops.csv' ]" "second reduction 6 x 3, coupled across joints: all joints' energy residual $rt (each joint alone: $rt0), loops written"
+    o1=$(mpiexec -n 2 $J -task frf $brb -frf_force $lev -rom_joints sides -rom_elements 3 -rom_fit_total_weight 0 -frf_output_file '' 2>&1)
+    r=$(echo "$o1" | awk '/^rom joint/{if ($13 > w) w = $13} END{print w}')
+    r0=$(echo "$o1" | awk '/^rom joint/{if ($15 > w) w = $15} END{print w}')
+    check "lt '$r' '$r0' && ! echo \"\$o1\" | grep -q '^rom coupled'" "second reduction 6 x 3, each joint alone (-rom_fit_total_weight 0): the fit lowers every joint's residual below the start's (worst $r < $r0)"
     cr=$(echo "$o" | grep '^rom stiffness_correction')
   fi
 done
@@ -89,6 +95,7 @@ expect_error "element in no region" "lies in no box" $J -task frf $brb -frf_forc
 expect_error "empty joint" "holds no element: an empty joint" $J -task frf $brb -frf_force 1 -rom_joints boxes -rom_boxes 0,0.36,-1,1,0.36001,1,-1,1,5,6,-1,1 -frf_output_file ''
 expect_error "compare without joints" "-task compare needs a reduced model" $J -task compare $brb -frf_force 1 -frf_output_file ''
 expect_error "negative case weight" "-rom_fit_case_weight -1.: the weight must be non-negative" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_case_weight -1 -frf_output_file ''
+expect_error "negative total weight" "-rom_fit_total_weight -2.: the weight must be non-negative" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_total_weight -2 -frf_output_file ''
 expect_error "elements without joints" "-rom_elements needs joints" $J -task frf $brb -frf_force 1 -rom_elements 3 -frf_output_file ''
 expect_error "bad -hbm_condense" "maybe" $J -task frf $brb -frf_force 1 -rom_joints sides -hbm_condense maybe -frf_output_file ''
 expect_error "save a first reduction" "-rom_save saves a second-reduction model" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_save "$tmp/x.h5" -frf_output_file ''

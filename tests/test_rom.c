@@ -6,13 +6,16 @@
      another code path), equal the members' loops at an amplitude not used by the fit;
    - mode-shape weights: a member moving w u is the element (w^2 kt, |w| f) moving u: JRROMReduce -rom_elements 0
      with weights gives elements whose force on u, times 1, equals w times the member's force on w u;
-   - jenkins_nv joint: the normal stiffnesses of m known elements are recovered from the normal load curve.
+   - jenkins_nv joint: the normal stiffnesses of m known elements are recovered from the normal load curve;
+   - the fit coupled across joints (a case given): two joints, each of 3 known elements, are fitted back exactly - the
+     coupling must keep an exact fit - and their energy per cycle at the case's amplitudes equals the members'.
 */
 #include "jrtest.h"
 
-static PetscErrorCode Members(const char *type, PetscInt m, const double k[], const double f[], const double kn[], PetscInt split, JRElements *nn)
+/* nj joints, each of m known elements (k, f; joint c: k (1 + c), f (1 + 2 c)) split into identical members */
+static PetscErrorCode Members(const char *type, PetscInt m, const double k[], const double f[], const double kn[], PetscInt split, PetscInt nj, JRElements *nn)
 {
-  const PetscInt n = m * split;
+  const PetscInt n = m * split * nj;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(nn, sizeof(*nn)));
@@ -22,16 +25,16 @@ static PetscErrorCode Members(const char *type, PetscInt m, const double k[], co
   PetscCall(PetscMalloc5(n, &nn->type, n, &nn->dof_a, n, &nn->dof_b, n, &nn->ndof_a, n, &nn->ndof_b));
   PetscCall(PetscMalloc4(n, &nn->kt, n, &nn->kn, n, &nn->mu, n, &nn->n0));
   PetscCall(PetscMalloc1(n, &nn->joint));
-  nn->njoints = 1;
+  nn->njoints = nj;
   for (PetscInt e = 0; e < n; e++) {
-    const PetscInt i = e % m; /* interleaved: the order must not matter */
+    const PetscInt i = e % m, c = e % nj; /* interleaved: the order must not matter */
     nn->type[e]      = 0;
     nn->dof_a[e] = nn->dof_b[e] = nn->ndof_a[e] = nn->ndof_b[e] = -1;
-    nn->kt[e]                                                   = k[i] / split;
+    nn->kt[e]                                                   = k[i] * (1 + c) / split;
     nn->kn[e]                                                   = kn ? kn[i] / split : 0;
     nn->mu[e]                                                   = 0.2;
-    nn->n0[e]                                                   = f[i] / 0.2 / split;
-    nn->joint[e]                                                = 0;
+    nn->n0[e]                                                   = f[i] * (1 + 2 * c) / 0.2 / split;
+    nn->joint[e]                                                = c;
   }
   PetscFunctionReturn(0);
 }
@@ -51,7 +54,7 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsSetValue(NULL, "-rom_fit_perturb", "0.3"));
   PetscCall(PetscOptionsSetValue(NULL, "-rom_fit_refine", "1")); /* the slip displacements free: exact recovery */
   /* 1. jenkins: recover the three elements */
-  PetscCall(Members("jenkins", 3, k, f, NULL, 5, &nn));
+  PetscCall(Members("jenkins", 3, k, f, NULL, 5, 1, &nn));
   PetscCall(JRROMReduce(PETSC_COMM_WORLD, &nn, 3, NULL, NULL, "", PETSC_FALSE, &rom));
   {
     double pk[3][2], ex[3][2], worst = 0;
@@ -123,7 +126,7 @@ int main(int argc, char **argv)
   }
   PetscCall(JRElementsDestroy(&nn));
   /* 4. jenkins_nv: kt, f and the normal stiffnesses */
-  PetscCall(Members("jenkins_nv", 3, k, f, kn, 4, &nn));
+  PetscCall(Members("jenkins_nv", 3, k, f, kn, 4, 1, &nn));
   PetscCall(JRROMReduce(PETSC_COMM_WORLD, &nn, 3, NULL, NULL, "", PETSC_FALSE, &rom));
   {
     double worst = 0;
@@ -139,6 +142,45 @@ int main(int argc, char **argv)
   }
   PetscCall(JRElementsDestroy(&rom));
   PetscCall(JRElementsDestroy(&nn));
+  /* 5. coupled across joints: 2 joints x 3 known elements (joint 1: k x 2, f x 3), a case of 4 levels moving joint 1
+     0.6 times as much as joint 0; the stages: each joint alone (exact with the refinement), then the coupled search
+     and TAO, which must stay there */
+  {
+    const PetscReal lev[4] = {0.3, 3, 30, 300}, uj[2] = {1.0, 0.6};
+    JRROMCase       cs;
+    double          worst = 0, ework = 0;
+    PetscCall(PetscMemzero(&cs, sizeof(cs)));
+    cs.nlev   = 4;
+    cs.level  = lev;
+    cs.force  = 1;
+    cs.damp   = 3e5;
+    cs.ujoint = uj;
+    PetscCall(Members("jenkins", 3, k, f, NULL, 4, 2, &nn));
+    PetscCall(JRROMReduce(PETSC_COMM_WORLD, &nn, 3, NULL, &cs, "", PETSC_FALSE, &rom));
+    for (PetscInt i = 0; i < rom.n; i++) {
+      const PetscInt c = rom.joint[i];
+      PetscInt       b = 0;
+      for (PetscInt q = 0; q < 3; q++) /* the known element of the same slip displacement */
+        if (PetscAbsReal(PetscLogReal(rom.mu[i] * rom.n0[i] / rom.kt[i] * (1 + c) / (1 + 2 * c) * k[q] / f[q])) < PetscAbsReal(PetscLogReal(rom.mu[i] * rom.n0[i] / rom.kt[i] * (1 + c) / (1 + 2 * c) * k[b] / f[b]))) b = q;
+      worst = PetscMax(worst, PetscAbsReal(rom.kt[i] / (k[b] * (1 + c)) - 1));
+      worst = PetscMax(worst, PetscAbsReal(rom.mu[i] * rom.n0[i] / (f[b] * (1 + 2 * c)) - 1));
+    }
+    for (double a = 1e-7; a < 1e-3; a *= 1.7) { /* the energy per cycle of both joints, closed form 4 f (u - f / k) */
+      double Em = 0, Er = 0;
+      for (PetscInt e = 0; e < nn.n; e++) {
+        const double u = uj[nn.joint[e]] * a, fe = nn.mu[e] * nn.n0[e];
+        if (nn.kt[e] * u > fe) Em += 4 * fe * (u - fe / nn.kt[e]);
+      }
+      for (PetscInt e = 0; e < rom.n; e++) {
+        const double u = uj[rom.joint[e]] * a, fe = rom.mu[e] * rom.n0[e];
+        if (rom.kt[e] * u > fe) Er += 4 * fe * (u - fe / rom.kt[e]);
+      }
+      if (Em > 0) ework = PetscMax(ework, PetscAbsReal(Er / Em - 1));
+    }
+    CHECK(rom.n == 6 && worst < 1e-5 && ework < 1e-5, "coupled fit of 2 joints x 3 known elements: %d elements, worst relative error %.2e (< 1e-5); energy per cycle of both joints (closed form, 1e-7..1e-3 m) within %.2e", (int)rom.n, worst, ework);
+    PetscCall(JRElementsDestroy(&rom));
+    PetscCall(JRElementsDestroy(&nn));
+  }
   PetscCall(PetscFinalize());
   return jr_fail ? 1 : 0;
 }

@@ -27,6 +27,13 @@
    force are dropped. The "start" printed is the fit of the groups (sum f / sum kt of each log-width group of
    members, with their forces).
    -rom_fit_refine then frees the slip displacements (kt_i and f_i both): better loops, but not convex.
+   Then, with a case, the fit coupled across joints (-rom_fit_total_weight 20; FitCoupled): the energy all joints
+   together dissipate per cycle at the case's 24 amplitudes, relative to all the energy put in there, is added to
+   every joint's own rows. Three kinks per joint cannot follow one joint's smooth energy curve over three decades of
+   amplitude; the kinks of six joints, placed together, can follow their sum, which is what the peak amplitudes answer
+   to. The slip displacements of all joints by coordinate descent (each element over its joint's candidates, every
+   choice scored by the exact non-negative least squares of all forces, Lawson-Hanson), then all forces by TAO.
+   Each joint's own loops may give way (the rom joint lines give each joint's own residual).
    jenkins_nv joints (beyond the thesis): kt_i, f_i as above with the normal motion at rest (v = 0), n0_i = f_i / mu;
    then the normal stiffnesses kn_i (the thesis's kv) fitted to the joint's normal load-motion curve
    sum_e max(n0_e + kn_e v, 0) over v from the separation of every member to as much compression.
@@ -148,6 +155,7 @@ static PetscErrorCode LSQSolve(LSQ *q, PetscReal x[], PetscReal lo, PetscReal *r
   Mat                Hm;
   PetscScalar       *xa;
   TaoConvergedReason reason;
+  PetscReal          jnorm = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc2(q->nr, &q->r, q->nr * q->nx, &q->J));
@@ -155,6 +163,8 @@ static PetscErrorCode LSQSolve(LSQ *q, PetscReal x[], PetscReal lo, PetscReal *r
   *rms0 = 0;
   for (PetscInt i = 0; i < q->nr; i++) *rms0 += q->r[i] * q->r[i];
   *rms0 = PetscSqrtReal(*rms0);
+  for (PetscInt i = 0; i < q->nr * q->nx; i++) jnorm += q->J[i] * q->J[i];
+  jnorm = PetscSqrtReal(jnorm);
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, q->nx, &X));
   PetscCall(VecDuplicate(X, &L));
   PetscCall(VecDuplicate(X, &U));
@@ -171,7 +181,8 @@ static PetscErrorCode LSQSolve(LSQ *q, PetscReal x[], PetscReal lo, PetscReal *r
   PetscCall(TaoSetSolution(tao, X));
   PetscCall(TaoSetVariableBounds(tao, L, U));
   PetscCall(TaoSetObjectiveAndGradient(tao, NULL, LSQObjective, q));
-  PetscCall(TaoSetTolerances(tao, 1e-15, 1e-15, 0)); /* to round-off: the fit must not depend on the ranks */
+  /* to round-off (the fit must not depend on the ranks): the gradient J^T r down to 1e-13 of |J| |r| at the start */
+  PetscCall(TaoSetTolerances(tao, 1e-13 * jnorm * PetscMax(*rms0, 1e-13), 0, 0));
   PetscCall(TaoSetMaximumIterations(tao, 2000));
   PetscCall(TaoSetFunctionLowerBound(tao, 1e-26)); /* an exact fit stops there */
   PetscCall(TaoSetMaximumFunctionEvaluations(tao, 20000));
@@ -320,27 +331,20 @@ static PetscErrorCode GramNNLS(PetscInt nc, const PetscReal G[], const PetscReal
   PetscFunctionReturn(0);
 }
 
-/* The slip displacements of the convex fit, chosen among candidates: the m start values and a log grid over the
-   members' range. For each candidate element (y = 1) its residual column; the best set by exhaustive search
-   (<= 20000 sets) or else by coordinate descent from the start: each set scored by its NNLS (GramNNLS). Every
-   step is deterministic: the same on any ranks. delta[] in: the start; out: the best set; y: its forces. */
-static PetscErrorCode SearchDelta(TangentFit *t, PetscReal dmin, PetscReal dmax, PetscInt m, PetscReal delta[], PetscReal y[], PetscReal *cost)
+/* The residual columns of single elements (y = 1) of joint fit t at the slip displacements dc[0..nc), as the Gram
+   system of the residual C y - b: G = C^T C (nc x nc), cg = C^T b, bb = b.b */
+static PetscErrorCode CandidateGram(TangentFit *t, PetscInt nc, const PetscReal dc[], PetscReal G[], PetscReal cg[], PetscReal *bb)
 {
-  const PetscInt ngrid = 32, nc = ngrid + m, ld = FitRows(t), mt = t->m;
-  PetscReal     *dc, *C, *b, *G, *cg, bb = 0, x[2], *J, best, yy[8];
-  PetscInt       sel[8], bsel[8];
-  double         combos = 1;
+  const PetscInt ld = FitRows(t), mt = t->m;
+  PetscReal     *C, *b, *J, x[2] = {0, 0};
 
   PetscFunctionBeginUser;
-  PetscCheck(m <= 8, PETSC_COMM_SELF, PETSC_ERR_SUP, "-rom_elements %" PetscInt_FMT ": at most 8 elements per joint", m);
-  PetscCall(PetscMalloc6(nc, &dc, ld * nc, &C, ld, &b, nc * nc, &G, nc, &cg, 2 * ld, &J));
-  for (PetscInt i = 0; i < m; i++) dc[i] = delta[i];
-  for (PetscInt i = 0; i < ngrid; i++) dc[m + i] = dmin * PetscPowReal(dmax / dmin, i / (PetscReal)(ngrid - 1));
+  PetscCall(PetscMalloc3(ld * nc, &C, ld, &b, 2 * ld, &J));
   t->m = 1;
-  x[0] = x[1] = 0;
   PetscCall(TangentResidual(t, x, b, J)); /* r(0) = -b */
+  *bb = 0;
   for (PetscInt q = 0; q < ld; q++) b[q] = -b[q];
-  for (PetscInt q = 0; q < ld; q++) bb += b[q] * b[q];
+  for (PetscInt q = 0; q < ld; q++) *bb += b[q] * b[q];
   for (PetscInt c = 0; c < nc; c++) {
     x[0] = t->fs / (dc[c] * t->ks);
     x[1] = 1;
@@ -357,6 +361,34 @@ static PetscErrorCode SearchDelta(TangentFit *t, PetscReal dmin, PetscReal dmax,
       G[i + k * nc] = G[k + i * nc] = v;
     }
   }
+  PetscCall(PetscFree3(C, b, J));
+  PetscFunctionReturn(0);
+}
+
+/* The candidate slip displacements of a joint: its m current values, then a log grid of ngrid over [dmin, dmax] */
+#define NGRID 32
+static void CandidateDeltas(PetscInt m, const PetscReal delta[], PetscReal dmin, PetscReal dmax, PetscReal dc[])
+{
+  for (PetscInt i = 0; i < m; i++) dc[i] = delta[i];
+  for (PetscInt i = 0; i < NGRID; i++) dc[m + i] = dmin * PetscPowReal(dmax / dmin, i / (PetscReal)(NGRID - 1));
+}
+
+/* The slip displacements of the convex fit, chosen among candidates: the m start values and a log grid over the
+   members' range. For each candidate element (y = 1) its residual column; the best set by exhaustive search
+   (<= 20000 sets) or else by coordinate descent from the start: each set scored by its NNLS (GramNNLS). Every
+   step is deterministic: the same on any ranks. delta[] in: the start; out: the best set; y: its forces. */
+static PetscErrorCode SearchDelta(TangentFit *t, PetscReal dmin, PetscReal dmax, PetscInt m, PetscReal delta[], PetscReal y[], PetscReal *cost)
+{
+  const PetscInt ngrid = NGRID, nc = ngrid + m;
+  PetscReal     *dc, *G, *cg, bb = 0, best, yy[8];
+  PetscInt       sel[8], bsel[8];
+  double         combos = 1;
+
+  PetscFunctionBeginUser;
+  PetscCheck(m <= 8, PETSC_COMM_SELF, PETSC_ERR_SUP, "-rom_elements %" PetscInt_FMT ": at most 8 elements per joint", m);
+  PetscCall(PetscMalloc3(nc, &dc, nc * nc, &G, nc, &cg));
+  CandidateDeltas(m, delta, dmin, dmax, dc);
+  PetscCall(CandidateGram(t, nc, dc, G, cg, &bb));
   for (PetscInt i = 0; i < m; i++) combos *= (double)(ngrid - i) / (i + 1);
   for (PetscInt i = 0; i < m; i++) bsel[i] = i;
   PetscCall(GramNNLS(nc, G, cg, bb, m, bsel, y, &best));
@@ -400,7 +432,243 @@ static PetscErrorCode SearchDelta(TangentFit *t, PetscReal dmin, PetscReal dmax,
   for (PetscInt i = 0; i < m; i++) delta[i] = dc[bsel[i]];
   PetscCall(GramNNLS(nc, G, cg, bb, m, bsel, y, &best));
   *cost = PetscSqrtReal(PetscMax(best, 0.0));
-  PetscCall(PetscFree6(dc, C, b, G, cg, J));
+  PetscCall(PetscFree3(dc, G, cg));
+  PetscFunctionReturn(0);
+}
+
+/* min y^T A y - 2 c^T y over y >= 0 (A n x n, symmetric positive semi-definite): the Lawson-Hanson active set on
+   the Gram system, deterministic, warm-started from the support of y on entry if the least squares there is
+   positive. val: that minimum */
+static PetscErrorCode ActiveSetNNLS(PetscInt n, const PetscReal A[], const PetscReal c[], PetscReal y[], PetscReal *val)
+{
+  PetscBool   *P, *skip;
+  PetscReal   *z, *B, *w, cmax = 0;
+  PetscInt    *idx;
+  PetscBLASInt nb, one = 1, *piv, info = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc7(n, &P, n, &skip, n, &z, n * n, &B, n, &w, n, &idx, n, &piv));
+  for (PetscInt i = 0; i < n; i++) {
+    P[i]    = (PetscBool)(y[i] > 0);
+    skip[i] = PETSC_FALSE;
+    cmax    = PetscMax(cmax, PetscAbsReal(c[i]));
+  }
+  { /* the warm start: the least squares on the entry support, if it is positive */
+    PetscInt  k   = 0;
+    PetscBool pos = PETSC_TRUE;
+    for (PetscInt i = 0; i < n; i++)
+      if (P[i]) idx[k++] = i;
+    for (PetscInt a = 0; a < k; a++) {
+      for (PetscInt b = 0; b < k; b++) B[a + b * k] = A[idx[a] + idx[b] * n];
+      z[a] = c[idx[a]];
+    }
+    PetscCall(PetscBLASIntCast(k, &nb));
+    if (k) PetscCallBLAS("LAPACKgesv", LAPACKgesv_(&nb, &one, B, &nb, piv, z, &nb, &info));
+    for (PetscInt a = 0; a < k; a++) pos = (PetscBool)(pos && !info && z[a] > 0);
+    for (PetscInt i = 0; i < n; i++) y[i] = 0;
+    if (k && pos)
+      for (PetscInt a = 0; a < k; a++) y[idx[a]] = z[a];
+    else
+      for (PetscInt i = 0; i < n; i++) P[i] = PETSC_FALSE;
+  }
+  for (PetscInt outer = 0; outer < 3 * n; outer++) {
+    PetscInt  t  = -1;
+    PetscReal wt = 1e-12 * cmax;
+    for (PetscInt i = 0; i < n; i++) { /* the gradient's descent directions off the support */
+      w[i] = c[i];
+      for (PetscInt k = 0; k < n; k++) w[i] -= A[i + k * n] * y[k];
+      if (!P[i] && !skip[i] && w[i] > wt) {
+        wt = w[i];
+        t  = i;
+      }
+    }
+    if (t < 0) break;
+    P[t] = PETSC_TRUE;
+    for (PetscInt inner = 0; inner < 3 * n; inner++) {
+      PetscInt  k = 0, hit = -1;
+      PetscBool pos = PETSC_TRUE;
+      PetscReal alpha = 1;
+      for (PetscInt i = 0; i < n; i++)
+        if (P[i]) idx[k++] = i;
+      for (PetscInt a = 0; a < k; a++) {
+        for (PetscInt b = 0; b < k; b++) B[a + b * k] = A[idx[a] + idx[b] * n];
+        z[a] = c[idx[a]];
+      }
+      PetscCall(PetscBLASIntCast(k, &nb));
+      PetscCallBLAS("LAPACKgesv", LAPACKgesv_(&nb, &one, B, &nb, piv, z, &nb, &info));
+      if (info) { /* t's column depends on the support's: left out */
+        P[t] = PETSC_FALSE;
+        skip[t] = PETSC_TRUE;
+        break;
+      }
+      for (PetscInt a = 0; a < k; a++) pos = (PetscBool)(pos && z[a] > 0);
+      if (pos) {
+        for (PetscInt i = 0; i < n; i++) y[i] = 0;
+        for (PetscInt a = 0; a < k; a++) y[idx[a]] = z[a];
+        break;
+      }
+      for (PetscInt a = 0; a < k; a++) /* the step toward z stops where the first force reaches 0 */
+        if (z[a] <= 0 && y[idx[a]] / (y[idx[a]] - z[a]) < alpha) {
+          alpha = y[idx[a]] / (y[idx[a]] - z[a]);
+          hit   = idx[a];
+        }
+      for (PetscInt a = 0; a < k; a++) {
+        const PetscInt i = idx[a];
+        y[i] += alpha * (z[a] - y[i]);
+        if (i == hit || y[i] <= 0) {
+          y[i] = 0;
+          P[i] = PETSC_FALSE;
+        }
+      }
+    }
+  }
+  *val = 0;
+  for (PetscInt i = 0; i < n; i++) {
+    PetscReal v = -2 * c[i];
+    for (PetscInt k = 0; k < n; k++) v += A[i + k * n] * y[k];
+    *val += v * y[i];
+  }
+  PetscCall(PetscFree7(P, skip, z, B, w, idx, piv));
+  PetscFunctionReturn(0);
+}
+
+/* The fit coupled across joints (-rom_fit_total_weight): to every fitted joint's own rows (FixedFit, slip
+   displacements fixed, forces y free) are added the energy all joints together dissipate per cycle at the case's
+   amplitudes am[l] (joint j moving u[j] am[l]), relative to all the energy put in there (En[l]) - the sum the peak
+   amplitudes answer to. Et: the first reduction's, less that of joints not fitted (their members are their elements). */
+typedef struct {
+  PetscInt    nj, na, n;      /* fitted joints, case amplitudes, elements of them all */
+  FixedFit   *fx;             /* each fitted joint's rows (fx[k].t) and slip displacements (fx[k].delta) */
+  PetscInt   *off, *roff;     /* joint k: forces y[off[k] .. off[k + 1]), rows from roff[k] */
+  PetscReal  *u, *am, *Et, *En, w;
+  PetscReal  *rj, *Jj;        /* scratch: one joint's rows */
+} CoupledFit;
+
+#define CoupledRows(c) ((c)->roff[(c)->nj] + (c)->na)
+
+/* The energy column of an element (force fs y, slip displacement delta) of joint k in the rows of all joints: per unit y */
+static PetscReal CoupledColumn(const CoupledFit *cf, PetscInt k, PetscReal delta, PetscInt l)
+{
+  const PetscReal a = cf->u[k] * cf->am[l];
+  return a > delta ? cf->w * 4 * cf->fx[k].t->fs * (a - delta) / cf->En[l] : 0.0;
+}
+
+static PetscErrorCode CoupledResidual(void *ctx, const PetscReal y[], PetscReal r[], PetscReal J[])
+{
+  CoupledFit    *cf = (CoupledFit *)ctx;
+  const PetscInt nr = CoupledRows(cf);
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < nr * cf->n; i++) J[i] = 0;
+  for (PetscInt k = 0; k < cf->nj; k++) {
+    const PetscInt ld = FitRows(cf->fx[k].t), mk = cf->off[k + 1] - cf->off[k];
+    PetscCall(FixedResidual(&cf->fx[k], y + cf->off[k], cf->rj, cf->Jj));
+    for (PetscInt q = 0; q < ld; q++) {
+      r[cf->roff[k] + q] = cf->rj[q];
+      for (PetscInt i = 0; i < mk; i++) J[cf->roff[k] + q + (cf->off[k] + i) * nr] = cf->Jj[q + i * ld];
+    }
+  }
+  for (PetscInt l = 0; l < cf->na; l++) {
+    const PetscInt R = cf->roff[cf->nj] + l;
+    r[R]             = -cf->w * cf->Et[l] / cf->En[l];
+    for (PetscInt k = 0; k < cf->nj; k++)
+      for (PetscInt e = cf->off[k]; e < cf->off[k + 1]; e++) {
+        const PetscReal v = CoupledColumn(cf, k, cf->fx[k].delta[e - cf->off[k]], l);
+        r[R] += v * y[e];
+        J[R + e * nr] = v;
+      }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The slip displacements of all fitted joints together, by coordinate descent: each element's in turn over its
+   joint's candidates (its current value and the log grid over [dlo, dhi] of the joint), the others fixed, every
+   choice scored by the NNLS of all forces (ActiveSetNNLS); sweeps until none improves. On return fx[k].delta hold the
+   choice, y its forces; cost0 and cost: the residual norm before and after */
+static PetscErrorCode CoupledSearch(CoupledFit *cf, const PetscReal dlo[], const PetscReal dhi[], PetscReal y[], PetscReal *cost0, PetscReal *cost, PetscInt *sweeps)
+{
+  const PetscInt n = cf->n, na = cf->na;
+  PetscInt      *nc, *coff, *sel, ncand = 0;
+  PetscReal    **G, **cgj, *bbj, *dc, *H, *HH, *Hb, *bg, bbs = 0, *A, *c, best, v;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc7(cf->nj, &nc, cf->nj + 1, &coff, n, &sel, cf->nj, &G, cf->nj, &cgj, cf->nj, &bbj, na, &bg));
+  coff[0] = 0;
+  for (PetscInt k = 0; k < cf->nj; k++) {
+    nc[k]       = cf->off[k + 1] - cf->off[k] + NGRID;
+    coff[k + 1] = coff[k] + nc[k];
+  }
+  ncand = coff[cf->nj];
+  PetscCall(PetscMalloc6(ncand, &dc, na * ncand, &H, ncand * ncand, &HH, ncand, &Hb, n * n, &A, n, &c));
+  for (PetscInt k = 0; k < cf->nj; k++) { /* each joint's own rows: Gram system of its candidates */
+    const PetscInt mk = cf->off[k + 1] - cf->off[k];
+    CandidateDeltas(mk, cf->fx[k].delta, dlo[k], dhi[k], dc + coff[k]);
+    PetscCall(PetscMalloc2(nc[k] * nc[k], &G[k], nc[k], &cgj[k]));
+    PetscCall(CandidateGram(cf->fx[k].t, nc[k], dc + coff[k], G[k], cgj[k], &bbj[k]));
+    bbs += bbj[k];
+    for (PetscInt i = 0; i < mk; i++) sel[cf->off[k] + i] = i;
+    for (PetscInt a = 0; a < nc[k]; a++)
+      for (PetscInt l = 0; l < na; l++) H[l + (coff[k] + a) * na] = CoupledColumn(cf, k, dc[coff[k] + a], l);
+  }
+  for (PetscInt l = 0; l < na; l++) {
+    bg[l] = cf->w * cf->Et[l] / cf->En[l];
+    bbs += bg[l] * bg[l];
+  }
+  for (PetscInt a = 0; a < ncand; a++) { /* the rows of all joints: Gram system of every pair of candidates */
+    Hb[a] = 0;
+    for (PetscInt l = 0; l < na; l++) Hb[a] += H[l + a * na] * bg[l];
+    for (PetscInt b = 0; b <= a; b++) {
+      PetscReal hh = 0;
+      for (PetscInt l = 0; l < na; l++) hh += H[l + a * na] * H[l + b * na];
+      HH[a + b * ncand] = HH[b + a * ncand] = hh;
+    }
+  }
+#define SCORE(val) \
+  do { \
+    for (PetscInt k = 0; k < cf->nj; k++) \
+      for (PetscInt e = cf->off[k]; e < cf->off[k + 1]; e++) { \
+        const PetscInt a = coff[k] + sel[e]; \
+        c[e]             = cgj[k][sel[e]] + Hb[a]; \
+        for (PetscInt k2 = 0; k2 < cf->nj; k2++) \
+          for (PetscInt e2 = cf->off[k2]; e2 < cf->off[k2 + 1]; e2++) A[e + e2 * n] = HH[a + (coff[k2] + sel[e2]) * ncand] + (k2 == k ? G[k][sel[e] + sel[e2] * nc[k]] : 0.0); \
+      } \
+    PetscCall(ActiveSetNNLS(n, A, c, y, &v)); \
+    val = bbs + v; \
+  } while (0)
+  SCORE(best);
+  *cost0 = PetscSqrtReal(PetscMax(best, 0.0));
+  for (*sweeps = 0; *sweeps < 50;) {
+    PetscBool improved = PETSC_FALSE;
+    (*sweeps)++;
+    for (PetscInt k = 0; k < cf->nj; k++)
+      for (PetscInt e = cf->off[k]; e < cf->off[k + 1]; e++) {
+        const PetscInt s0 = sel[e];
+        PetscInt       bs = s0;
+        for (PetscInt a = 0; a < nc[k]; a++) {
+          PetscBool used = PETSC_FALSE;
+          for (PetscInt e2 = cf->off[k]; e2 < cf->off[k + 1]; e2++) used = (PetscBool)(used || sel[e2] == a);
+          if (used) continue;
+          sel[e] = a;
+          SCORE(v);
+          if (v < best - 1e-12 * bbs) { /* round-off of the target does not count */
+            best     = v;
+            bs       = a;
+            improved = PETSC_TRUE;
+          }
+        }
+        sel[e] = bs;
+      }
+    if (!improved) break;
+  }
+  SCORE(best);
+#undef SCORE
+  *cost = PetscSqrtReal(PetscMax(best, 0.0));
+  for (PetscInt k = 0; k < cf->nj; k++) {
+    for (PetscInt e = cf->off[k]; e < cf->off[k + 1]; e++) cf->fx[k].delta[e - cf->off[k]] = dc[coff[k] + sel[e]];
+    PetscCall(PetscFree2(G[k], cgj[k]));
+  }
+  PetscCall(PetscFree6(dc, H, HH, Hb, A, c));
+  PetscCall(PetscFree7(nc, coff, sel, G, cgj, bbj, bg));
   PetscFunctionReturn(0);
 }
 
@@ -504,6 +772,97 @@ static PetscErrorCode CaseAmplitudes(MPI_Comm comm, const JRElements *nn, const 
   PetscFunctionReturn(0);
 }
 
+/* The fit coupled across joints (CoupledFit): the joints with more members than elements, from their own fits x,
+   their slip displacements chosen together (CoupledSearch) and their forces fitted together by TAO; x, rms (each
+   joint's own rows) and its updated. Joints whose members are their elements stay as they are (their energy is
+   taken off the target). Prints one line. */
+static PetscErrorCode FitCoupled(MPI_Comm comm, const JRElements *nn, const PetscReal mk[], const PetscReal mf[], const JRROMCase *cs, const PetscInt jn[], PetscInt m, PetscReal wtotal, PetscReal amin, PetscReal amax, PetscInt na, TangentFit tf[], PetscReal *xj[], const PetscInt mjv[], const PetscReal dlo[], const PetscReal dhi[], PetscReal rmsv[], PetscInt itsv[])
+{
+  CoupledFit cf;
+  PetscInt  *jl, ldmax = 0, sweeps = 0, its = 0, nr;
+  PetscReal *y, *dl, *dh, *r, *J, cost0, cost, r0, r1, own0 = 0, own1 = 0, tot0 = 0, tot1 = 0;
+  LSQ        q;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(&cf, sizeof(cf)));
+  for (PetscInt j = 0; j < nn->njoints; j++) cf.nj += jn[j] > m;
+  if (!cf.nj) PetscFunctionReturn(0);
+  cf.na = na;
+  cf.w  = wtotal / PetscSqrtReal((PetscReal)na);
+  PetscCall(PetscMalloc7(cf.nj, &jl, cf.nj, &cf.fx, cf.nj + 1, &cf.off, cf.nj + 1, &cf.roff, cf.nj, &cf.u, cf.nj, &dl, cf.nj, &dh));
+  cf.off[0] = cf.roff[0] = 0;
+  for (PetscInt j = 0, k = 0; j < nn->njoints; j++) {
+    if (!(jn[j] > m)) continue;
+    jl[k]          = j;
+    cf.u[k]        = PetscAbsReal(cs->ujoint[j]);
+    dl[k]          = dlo[j];
+    dh[k]          = dhi[j];
+    cf.off[k + 1]  = cf.off[k] + mjv[j];
+    cf.roff[k + 1] = cf.roff[k] + FitRows(&tf[j]);
+    ldmax          = PetscMax(ldmax, FitRows(&tf[j]));
+    k++;
+  }
+  cf.n = cf.off[cf.nj];
+  nr   = CoupledRows(&cf);
+  PetscCall(PetscMalloc6(cf.n, &y, na, &cf.am, na, &cf.Et, na, &cf.En, ldmax, &cf.rj, 8 * ldmax, &cf.Jj));
+  for (PetscInt k = 0; k < cf.nj; k++) {
+    const PetscInt j = jl[k], mj = mjv[j];
+    cf.fx[k].t = &tf[j];
+    PetscCall(PetscMalloc3(mj, &cf.fx[k].delta, 2 * mj, &cf.fx[k].x, FitRows(&tf[j]) * 2 * mj, &cf.fx[k].J2));
+    for (PetscInt i = 0; i < mj; i++) {
+      cf.fx[k].delta[i]  = tf[j].fs * xj[j][mj + i] / (tf[j].ks * xj[j][i]);
+      y[cf.off[k] + i] = xj[j][mj + i];
+    }
+  }
+  for (PetscInt l = 0; l < na; l++) { /* the case's amplitudes, as the joints' own case rows */
+    const PetscReal am = 0.5 * amin * PetscPowReal(4 * amax / amin, l / (PetscReal)(na - 1)), D = CaseDissipation(nn, mk, mf, cs, am);
+    cf.am[l] = am;
+    cf.En[l] = cs->damp * am * am + D;
+    cf.Et[l] = D;
+    for (PetscInt e = 0; e < nn->n; e++)
+      if (!(jn[nn->joint[e]] > m) && mk[e] > 0 && mf[e] > 0) cf.Et[l] -= JenkinsEnergy(mk[e], mf[e], PetscAbsReal(cs->ujoint[nn->joint[e]]) * am, NULL, NULL);
+    if (!(cf.En[l] > 0)) cf.En[l] = 1;
+  }
+  PetscCall(PetscMalloc2(nr, &r, nr * cf.n, &J));
+#define SPLIT(o, t_) \
+  do { \
+    PetscCall(CoupledResidual(&cf, y, r, J)); \
+    o = t_ = 0; \
+    for (PetscInt i = 0; i < nr; i++) { \
+      if (i < cf.roff[cf.nj]) o += r[i] * r[i]; \
+      else t_ += r[i] * r[i]; \
+    } \
+    o  = PetscSqrtReal(o); \
+    t_ = PetscSqrtReal(t_); \
+  } while (0)
+  SPLIT(own0, tot0);
+  PetscCall(CoupledSearch(&cf, dl, dh, y, &cost0, &cost, &sweeps));
+  q.nx  = cf.n;
+  q.nr  = nr;
+  q.fn  = CoupledResidual;
+  q.ctx = &cf;
+  PetscCall(LSQSolve(&q, y, 0.0, &r0, &r1, &its));
+  SPLIT(own1, tot1);
+#undef SPLIT
+  for (PetscInt k = 0; k < cf.nj; k++) {
+    const PetscInt j = jl[k], mj = mjv[j], ld = FitRows(&tf[j]);
+    PetscReal      s = 0;
+    for (PetscInt i = 0; i < mj; i++) {
+      xj[j][i]      = tf[j].fs * y[cf.off[k] + i] / (cf.fx[k].delta[i] * tf[j].ks);
+      xj[j][mj + i] = y[cf.off[k] + i];
+    }
+    for (PetscInt q = 0; q < ld; q++) s += r[cf.roff[k] + q] * r[cf.roff[k] + q];
+    rmsv[j] = PetscSqrtReal(s);
+    itsv[j] += its;
+    PetscCall(PetscFree3(cf.fx[k].delta, cf.fx[k].x, cf.fx[k].J2));
+  }
+  PetscCall(PetscPrintf(comm, "rom coupled joints %" PetscInt_FMT " elements %" PetscInt_FMT " all_joints_energy_residual %.3e each_alone %.3e own_rows_residual %.3e each_alone %.3e sweeps %" PetscInt_FMT " tao_its %" PetscInt_FMT "\n", cf.nj, cf.n, (double)tot1, (double)tot0, (double)own1, (double)own0, sweeps, its));
+  PetscCall(PetscFree2(r, J));
+  PetscCall(PetscFree6(y, cf.am, cf.Et, cf.En, cf.rj, cf.Jj));
+  PetscCall(PetscFree7(jl, cf.fx, cf.off, cf.roff, cf.u, dl, dh));
+  PetscFunctionReturn(0);
+}
+
 /*
   JRROMReduce - the second reduction of the first-reduction model nn (node-to-node elements with joints): m elements
   per joint (fewer if a joint has fewer members in contact), fitted by TAO; rom gets the elements, with nn as their
@@ -513,13 +872,15 @@ static PetscErrorCode CaseAmplitudes(MPI_Comm comm, const JRElements *nn, const 
 PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const JRROMCase *cs, const char base[], PetscBool plot, JRElements *rom)
 {
   PetscInt     nj = nn->njoints, ns = 128, nfr = 3, cnt = 0, nmax;
-  PetscReal    fr[3] = {0.25, 0.6, 0.95}, perturb = 0, efrom = 0.02, wcase = 10.0, wgross = 1.0, *amod = NULL, amin = 0, amax = 0;
+  PetscReal    fr[3] = {0.25, 0.6, 0.95}, perturb = 0, efrom = 0.02, wcase = 10.0, wgross = 1.0, wtotal = 20.0, *amod = NULL, amin = 0, amax = 0;
   const PetscInt ncase = 24;
   PetscBool    refine = PETSC_FALSE, search = PETSC_TRUE;
   PetscBool    nv, frset;
   MemberDelta *md;
   PetscInt    *jn, *joff;
-  PetscReal   *ek, *ef, *ekn, *en0, *emu, *loops = NULL, *mk, *mf;
+  PetscReal   *ek, *ef, *ekn, *en0, *emu, *loops = NULL, *mk, *mf, **xj, *rmsv, *rms0v, *dlo, *dhi, *muv, *knv;
+  PetscInt    *mjv, *itsv;
+  TangentFit  *tf;
   FILE        *fp  = NULL;
   char         csv[PETSC_MAX_PATH_LEN + 32], tmp[PETSC_MAX_PATH_LEN + 48];
 
@@ -536,10 +897,12 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   PetscCall(PetscOptionsReal("-fit_perturb", "Perturb the start of the fit by this fraction (tests: the fit must recover)", "JRROMReduce", perturb, &perturb, NULL));
   PetscCall(PetscOptionsInt("-fit_samples", "Samples per loop", "JRROMReduce", ns, &ns, NULL));
   PetscCall(PetscOptionsReal("-fit_case_weight", "Weight of the energy dissipated per cycle at each joint's amplitude in the case (relative to the input energy at that level; 0: not fitted)", "JRROMReduce", wcase, &wcase, NULL));
+  PetscCall(PetscOptionsReal("-fit_total_weight", "Weight of the energy all joints together dissipate per cycle at the case's amplitudes (relative to the input energy; a fit coupled across joints; 0: each joint fitted alone)", "JRROMReduce", wtotal, &wtotal, NULL));
   PetscCall(PetscOptionsReal("-fit_gross_weight", "Weight of the joint's total slip force (gross slip), relative", "JRROMReduce", wgross, &wgross, NULL));
   PetscCall(PetscOptionsBool("-fit_search", "Choose the slip displacements among a grid over the members' range (best non-negative least squares of the forces); else those of the log-width groups of members", "JRROMReduce", search, &search, NULL));
   PetscOptionsEnd();
   PetscCheck(wgross >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_gross_weight %g: the weight must be non-negative", (double)wgross);
+  PetscCheck(wtotal >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_total_weight %g: the weight must be non-negative (0: each joint fitted alone)", (double)wtotal);
   PetscCheck(wcase >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_case_weight %g: the weight must be non-negative (0: the case is not fitted)", (double)wcase);
   if (!frset) nfr = 3;
   PetscCheck(nfr == 3 && fr[0] > 0 && fr[1] > fr[0] && fr[2] > fr[1] && fr[2] <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_fractions: three increasing fractions in (0, 1] (default 0.25,0.6,0.95)");
@@ -608,13 +971,15 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
     if (fp) fprintf(fp, "joint,amplitude,u_m,f_first_reduction_N,f_rom_N\n");
   }
   PetscCall(PetscMalloc1(6 * ns, &loops));
+  PetscCall(PetscMalloc3(nj, &tf, nj, &xj, nj, &mjv));
+  PetscCall(PetscMalloc7(nj, &itsv, nj, &rmsv, nj, &rms0v, nj, &dlo, nj, &dhi, nj, &muv, nj, &knv));
   cnt = 0;
   for (PetscInt j = 0; j < nj; j++) {
     const MemberDelta *d  = md + joff[j];
     const PetscInt     nm = jn[j];
     PetscInt           mj = PetscMin(m, nm);
-    PetscReal          ftot = 0, ktot = 0, mu = 0, n0s = 0, knsum = 0, rms0 = 0, rms = 0, nrms0 = 0, nrms = 0, *x, *xn = NULL;
-    PetscInt           its = 0, nits = 0;
+    PetscReal          ftot = 0, ktot = 0, mu = 0, n0s = 0, knsum = 0, rms0 = 0, rms = 0, *x;
+    PetscInt           its = 0;
     TangentFit         t;
     LSQ                q;
     for (PetscInt i = 0; i < nm; i++) {
@@ -626,6 +991,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
       knsum += nn->kn[e];
     }
     mu /= n0s;
+    dlo[j] = dhi[j] = 0;
     PetscCall(PetscMemzero(&t, sizeof(t)));
     t.m  = mj;
     t.ns = ns;
@@ -724,7 +1090,9 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
         rgroup = PetscSqrtReal(rgroup);
         PetscCall(PetscFree2(r0, J0));
       }
-      if (search) PetscCall(SearchDelta(&t, amod ? PetscMin(d[0].delta, 0.1 * PetscAbsReal(cs->ujoint[j]) * amin) : d[0].delta, PetscMin(d[nm - 1].delta, PetscMax(t.amp[2], amod ? 4 * PetscAbsReal(cs->ujoint[j]) * amax : 0.0)), mj, fx.delta, y, &rsearch));
+      dlo[j] = amod ? PetscMin(d[0].delta, 0.1 * PetscAbsReal(cs->ujoint[j]) * amin) : d[0].delta;
+      dhi[j] = PetscMin(d[nm - 1].delta, PetscMax(t.amp[2], amod ? 4 * PetscAbsReal(cs->ujoint[j]) * amax : 0.0));
+      if (search) PetscCall(SearchDelta(&t, dlo[j], dhi[j], mj, fx.delta, y, &rsearch));
       for (PetscInt i = 0; i < mj; i++) y[i] *= 1 + perturb * (i % 3 == 0 ? 1.0 : i % 3 == 1 ? -1.0 : 0.5);
       q.nx  = mj;
       q.nr  = FitRows(&t);
@@ -761,6 +1129,23 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
       rms0 = rms;
       PetscCall(PetscFree2(q.r, q.J));
     }
+    tf[j]    = t;
+    xj[j]    = x;
+    mjv[j]   = mj;
+    itsv[j]  = its;
+    rmsv[j]  = rms;
+    rms0v[j] = rms0;
+    muv[j]   = mu;
+    knv[j]   = knsum;
+  }
+  if (amod && wtotal > 0 && !nv) PetscCall(FitCoupled(comm, nn, mk, mf, cs, jn, m, wtotal, amin, amax, ncase, tf, xj, mjv, dlo, dhi, rmsv, itsv));
+  for (PetscInt j = 0; j < nj; j++) {
+    const MemberDelta *d  = md + joff[j];
+    const PetscInt     nm = jn[j];
+    PetscInt           mj = mjv[j], its = itsv[j], nits = 0;
+    PetscReal          ftot = tf[j].ftot, mu = muv[j], knsum = knv[j], rms = rmsv[j], rms0 = rms0v[j], nrms0 = 0, nrms = 0, *x = xj[j], *xn = NULL;
+    TangentFit         t = tf[j];
+    LSQ                q;
     { /* elements the fit left without force carry nothing: dropped */
       PetscInt kept = 0;
       for (PetscInt i = 0; i < mj; i++)
@@ -870,6 +1255,8 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   PetscCall(PetscNew(&rom->members));
   PetscCall(JRElementsDuplicate(nn, rom->members));
   PetscCall(PetscFree(loops));
+  PetscCall(PetscFree3(tf, xj, mjv));
+  PetscCall(PetscFree7(itsv, rmsv, rms0v, dlo, dhi, muv, knv));
   PetscCall(PetscFree5(ek, ef, ekn, en0, emu));
   PetscCall(PetscFree(md));
   PetscCall(PetscFree2(jn, joff));
