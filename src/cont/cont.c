@@ -57,7 +57,7 @@ struct _p_JRCont {
   PetscReal        aref, wref, ds, wcur, aunit; /* aunit: the linearised response scale per unit level */
   KSP              tksp;                          /* the tangent's bordered solve */
   Mat              TB;
-  Vec              xpred, xk, tk;
+  Vec              xpred, xk, tk, dw; /* dw: work, size of xk */
 };
 
 PetscErrorCode JRContCreate(MPI_Comm comm, JRCont *cont)
@@ -360,13 +360,12 @@ static PetscErrorCode BorderedFunction(SNES snes, Vec x, Vec G, void *ctx)
 {
   JRCont    c = (JRCont)ctx;
   PetscReal w, g;
-  Vec       d;
+  Vec       d = c->dw;
 
   PetscFunctionBeginUser;
   (void)snes;
   PetscCall(Split(c, x, c->a, &w));
   PetscCall(JRHBMComputeResidual(c->hbm, w, c->a, c->r));
-  PetscCall(VecDuplicate(x, &d));
   if (c->constraint == JR_CONT_PSEUDO) {
     PetscCall(VecWAXPY(d, -1.0, c->xpred, x));
     PetscCall(ScaledDot(c, d, c->tk, &g));
@@ -375,7 +374,6 @@ static PetscErrorCode BorderedFunction(SNES snes, Vec x, Vec G, void *ctx)
     PetscCall(ScaledDot(c, d, d, &g));
     g -= c->ds * c->ds;
   }
-  PetscCall(VecDestroy(&d));
   PetscCall(Join(c, c->r, g, G));
   PetscFunctionReturn(0);
 }
@@ -455,7 +453,7 @@ static PetscErrorCode Tangent(JRCont c, Vec x, Vec tprev, Vec t)
   PetscCall(MatDenseRestoreArrayWrite(B, &b));
   PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
-  PetscCall(VecDuplicate(t, &rhs));
+  rhs = c->dw;
   PetscCall(VecZeroEntries(rhs));
   PetscCall(VecSetValue(rhs, n, 1.0, INSERT_VALUES));
   PetscCall(VecAssemblyBegin(rhs));
@@ -464,7 +462,6 @@ static PetscErrorCode Tangent(JRCont c, Vec x, Vec tprev, Vec t)
   PetscCall(KSPSolve(c->tksp, rhs, t));
   PetscCall(ScaledDot(c, t, t, &nrm));
   PetscCall(VecScale(t, 1.0 / PetscSqrtReal(nrm)));
-  PetscCall(VecDestroy(&rhs));
   PetscFunctionReturn(0);
 }
 
@@ -627,6 +624,7 @@ PetscErrorCode JRContSolve(JRCont c)
   PetscCall(VecDuplicate(c->xk, &c->xpred));
   PetscCall(VecDuplicate(c->xk, &c->tk));
   PetscCall(VecDuplicate(c->xk, &c->br_));
+  PetscCall(VecDuplicate(c->xk, &c->dw));
   if (c->type == JR_CONT_ARCLENGTH) {
     KSP  ksp;
     PC   pc;
@@ -984,6 +982,7 @@ PetscErrorCode JRContDestroy(JRCont *cont)
   PetscCall(VecDestroy(&c->xpred));
   PetscCall(VecDestroy(&c->tk));
   PetscCall(VecDestroy(&c->br_));
+  PetscCall(VecDestroy(&c->dw));
   PetscCall(PetscFree(c));
   *cont = NULL;
   PetscFunctionReturn(0);
