@@ -295,13 +295,30 @@ static PetscErrorCode FixedResidual(void *ctx, const PetscReal y[], PetscReal r[
   PetscFunctionReturn(0);
 }
 
+/* The least squares on a support: A[idx, idx] z = c[idx] (A n x n column-major, k indices; B k x k scratch). info:
+   LAPACK's (> 0: singular) */
+static PetscErrorCode SupportSolve(PetscInt n, const PetscReal A[], const PetscReal c[], PetscInt k, const PetscInt idx[], PetscReal B[], PetscReal z[], PetscBLASInt piv[], PetscBLASInt *info)
+{
+  PetscBLASInt nb, one = 1;
+
+  PetscFunctionBeginUser;
+  *info = 0;
+  for (PetscInt a = 0; a < k; a++) {
+    for (PetscInt b = 0; b < k; b++) B[a + b * k] = A[idx[a] + idx[b] * n];
+    z[a] = c[idx[a]];
+  }
+  PetscCall(PetscBLASIntCast(k, &nb));
+  if (k) PetscCallBLAS("LAPACKgesv", LAPACKgesv_(&nb, &one, B, &nb, piv, z, &nb, info));
+  PetscFunctionReturn(0);
+}
+
 /* NNLS of the columns sel[0..m) of the Gram system (G, c, bb: C^T C, C^T b, b.b of the residual C y - b): every
    support tried, the best non-negative least-squares solution (the NNLS minimum: m <= 8). cost: |C y - b|^2 */
 static PetscErrorCode GramNNLS(PetscInt nc, const PetscReal G[], const PetscReal c[], PetscReal bb, PetscInt m, const PetscInt sel[], PetscReal y[], PetscReal *cost)
 {
   PetscReal    A[64], z[8];
-  PetscInt     idx[8];
-  PetscBLASInt n, one = 1, piv[8], info;
+  PetscInt     idx[8], pos[8];
+  PetscBLASInt piv[8], info;
 
   PetscFunctionBeginUser;
   *cost = bb;
@@ -310,22 +327,20 @@ static PetscErrorCode GramNNLS(PetscInt nc, const PetscReal G[], const PetscReal
     PetscInt  k = 0, ok = 1;
     PetscReal v = bb;
     for (PetscInt i = 0; i < m; i++)
-      if (S & (1 << i)) idx[k++] = i;
-    for (PetscInt a = 0; a < k; a++) {
-      for (PetscInt b = 0; b < k; b++) A[a + b * k] = G[sel[idx[a]] + sel[idx[b]] * nc];
-      z[a] = c[sel[idx[a]]];
-    }
-    PetscCall(PetscBLASIntCast(k, &n));
-    PetscCallBLAS("LAPACKgesv", LAPACKgesv_(&n, &one, A, &n, piv, z, &n, &info));
+      if (S & (1 << i)) {
+        pos[k]   = i;
+        idx[k++] = sel[i];
+      }
+    PetscCall(SupportSolve(nc, G, c, k, idx, A, z, piv, &info));
     if (info) continue; /* singular: a smaller support covers it */
     for (PetscInt a = 0; a < k; a++) {
       ok = ok && z[a] > 0;
-      v -= z[a] * c[sel[idx[a]]];
+      v -= z[a] * c[idx[a]];
     }
     if (ok && v < *cost) {
       *cost = v;
       for (PetscInt i = 0; i < m; i++) y[i] = 0;
-      for (PetscInt a = 0; a < k; a++) y[idx[a]] = z[a];
+      for (PetscInt a = 0; a < k; a++) y[pos[a]] = z[a];
     }
   }
   PetscFunctionReturn(0);
@@ -444,7 +459,7 @@ static PetscErrorCode ActiveSetNNLS(PetscInt n, const PetscReal A[], const Petsc
   PetscBool   *P, *skip;
   PetscReal   *z, *B, *w, cmax = 0;
   PetscInt    *idx;
-  PetscBLASInt nb, one = 1, *piv, info = 0;
+  PetscBLASInt *piv, info = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc7(n, &P, n, &skip, n, &z, n * n, &B, n, &w, n, &idx, n, &piv));
@@ -458,12 +473,7 @@ static PetscErrorCode ActiveSetNNLS(PetscInt n, const PetscReal A[], const Petsc
     PetscBool pos = PETSC_TRUE;
     for (PetscInt i = 0; i < n; i++)
       if (P[i]) idx[k++] = i;
-    for (PetscInt a = 0; a < k; a++) {
-      for (PetscInt b = 0; b < k; b++) B[a + b * k] = A[idx[a] + idx[b] * n];
-      z[a] = c[idx[a]];
-    }
-    PetscCall(PetscBLASIntCast(k, &nb));
-    if (k) PetscCallBLAS("LAPACKgesv", LAPACKgesv_(&nb, &one, B, &nb, piv, z, &nb, &info));
+    PetscCall(SupportSolve(n, A, c, k, idx, B, z, piv, &info));
     for (PetscInt a = 0; a < k; a++) pos = (PetscBool)(pos && !info && z[a] > 0);
     for (PetscInt i = 0; i < n; i++) y[i] = 0;
     if (k && pos)
@@ -490,12 +500,7 @@ static PetscErrorCode ActiveSetNNLS(PetscInt n, const PetscReal A[], const Petsc
       PetscReal alpha = 1;
       for (PetscInt i = 0; i < n; i++)
         if (P[i]) idx[k++] = i;
-      for (PetscInt a = 0; a < k; a++) {
-        for (PetscInt b = 0; b < k; b++) B[a + b * k] = A[idx[a] + idx[b] * n];
-        z[a] = c[idx[a]];
-      }
-      PetscCall(PetscBLASIntCast(k, &nb));
-      PetscCallBLAS("LAPACKgesv", LAPACKgesv_(&nb, &one, B, &nb, piv, z, &nb, &info));
+      PetscCall(SupportSolve(n, A, c, k, idx, B, z, piv, &info));
       if (info) { /* t's column depends on the support's: left out */
         P[t] = PETSC_FALSE;
         skip[t] = PETSC_TRUE;
