@@ -54,6 +54,11 @@ for m in 3 4 7; do
     cr=$(echo "$o" | grep '^rom stiffness_correction')
   fi
 done
+# 6 x 10 without the slip-displacement search: the per-joint fits leave elements without force (dropped), and the
+# coupled fit must start from their slip displacements, not from 0 / 0
+o=$($J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements 10 -rom_fit_search 0 -frf_output_file '' 2>&1)
+read f a <<< "$(worst "$o")"
+check "echo \"\$o\" | grep -q '^rom coupled' && lt '$f' 5e-3 && lt '$a' 0.1" "second reduction 6 x 10, no search (elements fitted to no force): coupled fit runs, worst peak frequency error $f, amplitude $a"
 # the stiffness correction: the reduced model's stuck resonance (LAPACK, same basis) = the node-to-node one
 o=$($J -task frf $brb -frf_force 0.01 -rom_joints sides -rom_elements 3 -frf_output_file '' 2>&1)
 fr=$(field "$(echo "$o" | grep '^stick freq_hz')" freq_hz); fn=$(field "$(echo "$o" | grep '^rom stiffness_correction')" n2n_hz)

@@ -216,6 +216,7 @@ typedef struct {
   PetscInt   ne;                   /* amplitudes where the energy dissipated per cycle is matched */
   PetscReal *ae, *Et, *En, *we;    /* amplitude, target, scale and weight of each: residual we (E - Et) / En */
   PetscReal  ftot, wg;             /* the joint's slip force (gross slip), matched with weight wg (relative) */
+  PetscReal *delta;                /* the fitted elements' slip displacements (kept where a force fitted to 0) */
 } TangentFit;
 
 #define FitRows(t) (4 * (t)->ns + (t)->ne + 1)
@@ -546,7 +547,7 @@ typedef struct {
   FixedFit   *fx;             /* each fitted joint's rows (fx[k].t) and slip displacements (fx[k].delta) */
   PetscInt   *off, *roff;     /* joint k: forces y[off[k] .. off[k + 1]), rows from roff[k] */
   PetscReal  *u, *am, *Et, *En, w;
-  PetscReal  *rj, *Jj;        /* scratch: one joint's rows */
+  PetscReal  *rj, *Jj;        /* scratch: one joint's rows and their Jacobian */
 } CoupledFit;
 
 #define CoupledRows(c) ((c)->roff[(c)->nj] + (c)->na)
@@ -784,7 +785,7 @@ static PetscErrorCode CaseAmplitudes(MPI_Comm comm, const JRElements *nn, const 
 static PetscErrorCode FitCoupled(MPI_Comm comm, const JRElements *nn, const PetscReal mk[], const PetscReal mf[], const JRROMCase *cs, const PetscInt jn[], PetscInt m, PetscReal wtotal, PetscReal amin, PetscReal amax, PetscInt na, TangentFit tf[], PetscReal *xj[], const PetscInt mjv[], const PetscReal dlo[], const PetscReal dhi[], PetscReal rmsv[], PetscInt itsv[])
 {
   CoupledFit cf;
-  PetscInt  *jl, ldmax = 0, sweeps = 0, its = 0, nr;
+  PetscInt  *jl, ldmax = 0, mmax = 0, sweeps = 0, its = 0, nr;
   PetscReal *y, *dl, *dh, *r, *J, cost0, cost, r0, r1, own0 = 0, own1 = 0, tot0 = 0, tot1 = 0;
   LSQ        q;
 
@@ -805,17 +806,18 @@ static PetscErrorCode FitCoupled(MPI_Comm comm, const JRElements *nn, const Pets
     cf.off[k + 1]  = cf.off[k] + mjv[j];
     cf.roff[k + 1] = cf.roff[k] + FitRows(&tf[j]);
     ldmax          = PetscMax(ldmax, FitRows(&tf[j]));
+    mmax           = PetscMax(mmax, mjv[j]);
     k++;
   }
   cf.n = cf.off[cf.nj];
   nr   = CoupledRows(&cf);
-  PetscCall(PetscMalloc6(cf.n, &y, na, &cf.am, na, &cf.Et, na, &cf.En, ldmax, &cf.rj, 8 * ldmax, &cf.Jj));
+  PetscCall(PetscMalloc6(cf.n, &y, na, &cf.am, na, &cf.Et, na, &cf.En, ldmax, &cf.rj, mmax * ldmax, &cf.Jj));
   for (PetscInt k = 0; k < cf.nj; k++) {
     const PetscInt j = jl[k], mj = mjv[j];
     cf.fx[k].t = &tf[j];
     PetscCall(PetscMalloc3(mj, &cf.fx[k].delta, 2 * mj, &cf.fx[k].x, FitRows(&tf[j]) * 2 * mj, &cf.fx[k].J2));
     for (PetscInt i = 0; i < mj; i++) {
-      cf.fx[k].delta[i]  = tf[j].fs * xj[j][mj + i] / (tf[j].ks * xj[j][i]);
+      cf.fx[k].delta[i]  = tf[j].delta[i];
       y[cf.off[k] + i] = xj[j][mj + i];
     }
   }
@@ -1110,6 +1112,8 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
         x[mj + i] = y[i];
       }
       its = its1;
+      PetscCall(PetscMalloc1(mj, &t.delta));
+      PetscCall(PetscArraycpy(t.delta, fx.delta, mj));
       PetscCall(PetscFree4(fx.delta, fx.x, fx.J2, y));
       /* 2. optional: slip displacements free too, from there */
       if (refine) {
@@ -1124,6 +1128,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
         q.ctx = &t;
         PetscCall(LSQSolve(&q, x, 1e-10, &r1, &rms, &its1));
         its += its1;
+        for (PetscInt g = 0; g < mj; g++) t.delta[g] = t.fs * x[mj + g] / (t.ks * x[g]);
       }
     } else {
       q.nx = 2 * mj; /* the members themselves: exact */
@@ -1224,6 +1229,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
     PetscCall(PetscFree(t.target));
     PetscCall(PetscFree2(t.Fk, t.Ff));
     PetscCall(PetscFree4(t.ae, t.Et, t.En, t.we));
+    PetscCall(PetscFree(t.delta));
   }
   if (amod) /* the fit at the case's estimated amplitudes: the error of all joints' dissipation, relative to the input */
     for (PetscInt l = 0; l < cs->nlev; l++) {
