@@ -347,6 +347,20 @@ static PetscErrorCode GramNNLS(PetscInt nc, const PetscReal G[], const PetscReal
   PetscFunctionReturn(0);
 }
 
+/* The Gram system of the columns C (ld rows, nc columns, column-major) against b: G = C^T C (nc x nc), cg = C^T b */
+static void Gram(PetscInt ld, PetscInt nc, const PetscReal C[], const PetscReal b[], PetscReal G[], PetscReal cg[])
+{
+  for (PetscInt i = 0; i < nc; i++) {
+    cg[i] = 0;
+    for (PetscInt q = 0; q < ld; q++) cg[i] += C[q + i * ld] * b[q];
+    for (PetscInt k = 0; k <= i; k++) {
+      PetscReal v = 0;
+      for (PetscInt q = 0; q < ld; q++) v += C[q + i * ld] * C[q + k * ld];
+      G[i + k * nc] = G[k + i * nc] = v;
+    }
+  }
+}
+
 /* The residual columns of single elements (y = 1) of joint fit t at the slip displacements dc[0..nc), as the Gram
    system of the residual C y - b: G = C^T C (nc x nc), cg = C^T b, bb = b.b */
 static PetscErrorCode CandidateGram(TangentFit *t, PetscInt nc, const PetscReal dc[], PetscReal G[], PetscReal cg[], PetscReal *bb)
@@ -368,15 +382,7 @@ static PetscErrorCode CandidateGram(TangentFit *t, PetscInt nc, const PetscReal 
     for (PetscInt q = 0; q < ld; q++) C[q + c * ld] += b[q];
   }
   t->m = mt;
-  for (PetscInt i = 0; i < nc; i++) {
-    cg[i] = 0;
-    for (PetscInt q = 0; q < ld; q++) cg[i] += C[q + i * ld] * b[q];
-    for (PetscInt k = 0; k <= i; k++) {
-      PetscReal v = 0;
-      for (PetscInt q = 0; q < ld; q++) v += C[q + i * ld] * C[q + k * ld];
-      G[i + k * nc] = G[k + i * nc] = v;
-    }
-  }
+  Gram(ld, nc, C, b, G, cg);
   PetscCall(PetscFree3(C, b, J));
   PetscFunctionReturn(0);
 }
@@ -620,15 +626,7 @@ static PetscErrorCode CoupledSearch(CoupledFit *cf, const PetscReal dlo[], const
     bg[l] = cf->w * cf->Et[l] / cf->En[l];
     bbs += bg[l] * bg[l];
   }
-  for (PetscInt a = 0; a < ncand; a++) { /* the rows of all joints: Gram system of every pair of candidates */
-    Hb[a] = 0;
-    for (PetscInt l = 0; l < na; l++) Hb[a] += H[l + a * na] * bg[l];
-    for (PetscInt b = 0; b <= a; b++) {
-      PetscReal hh = 0;
-      for (PetscInt l = 0; l < na; l++) hh += H[l + a * na] * H[l + b * na];
-      HH[a + b * ncand] = HH[b + a * ncand] = hh;
-    }
-  }
+  Gram(na, ncand, H, bg, HH, Hb); /* the rows of all joints: every pair of candidates */
 #define SCORE(val) \
   do { \
     for (PetscInt k = 0; k < cf->nj; k++) \
