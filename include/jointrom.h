@@ -358,6 +358,16 @@ PETSC_EXTERN PetscErrorCode JRVecLoadFile(MPI_Comm, const char[], PetscInt, Pets
 PETSC_EXTERN PetscErrorCode JRFileOpenTemp(MPI_Comm, const char[], FILE **, char[], size_t);
 PETSC_EXTERN PetscErrorCode JRFileCommit(MPI_Comm, FILE **, const char[], const char[]);
 
+/* Newton's method for small dense systems on one rank: LAPACK LU, backtracking (src/hbm/newtondense.c); the
+   default of the harmonic-balance and continuation solvers (-hbm_snes_type) */
+#define SNESNEWTONDENSE "newtondense"
+PETSC_EXTERN PetscErrorCode SNESCreate_NewtonDense(SNES);
+PETSC_EXTERN PetscErrorCode JRDenseSolve(PetscInt, const PetscScalar *, PetscInt, PetscScalar *, PetscBLASInt *, PetscScalar *, PetscBool *);
+
+/* A dense matrix written through its array: assembled once; later writes only raise its state (MatDenseRestoreArray),
+   which is what a factorisation checks (MatAssemblyEnd's per-call options lookups cost more than an 19 x 19 LU) */
+PETSC_EXTERN PetscErrorCode JRMatDenseAssemble(Mat);
+
 /* 64-byte aligned allocations (whole cache lines) for large SoA batches */
 PETSC_EXTERN PetscErrorCode JRMallocAligned(size_t, void *);
 PETSC_EXTERN PetscErrorCode JRFreeAligned(void *);

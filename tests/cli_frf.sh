@@ -29,6 +29,14 @@ check "[ -n '$r' ] && awk -v r='$r' 'BEGIN{exit !(r < 1e-5)}'" "-hbm_snes_test_j
 o=$($J $osc -frf_force 40 -frf_fmin 120 -frf_fmax 121 -cont_type natural -hbm_snes_monitor -frf_output_file '' 2>&1)
 check "echo \"\$o\" | grep -q 'SNES Function norm'" "-hbm_snes_monitor reaches the harmonic-balance SNES"
 
+# the default Newton (newtondense: LAPACK LU, backtracking) and PETSc's newtonls + LU trace the same curves: the
+# oscillator run file's 5 levels, arclength through the stick-slip kinks, peaks to 1e-9
+a=$($J -options_file runs/oscillator_frf.opts -frf_output_file '' -frf_plot 0 -cont_monitor 0 2>&1 | awk '/^peak level/{print $5, $7}')
+b=$($J -options_file runs/oscillator_frf.opts -frf_output_file '' -frf_plot 0 -cont_monitor 0 -hbm_snes_type newtonls 2>&1 | awk '/^peak level/{print $5, $7}')
+d=$(paste <(echo "$a") <(echo "$b") | awk '{for (i = 1; i <= 2; i++) {e = ($i - $(i + 2)) / $(i + 2); if (e < 0) e = -e; if (e > m) m = e}; n++} END{if (n != 5) m = 1; printf "%.1e", m}')
+check "awk -v d='$d' 'BEGIN{exit !(d < 1e-9)}'" "newtondense = newtonls: 5 peaks (frequency, amplitude) within $d"
+expect_error "line-search parameter out of range" "-hbm_snes_newtondense_alpha 0.7: give a value in (0, 0.5)" $J $osc -frf_force 40 -frf_fmin 120 -frf_fmax 121 -hbm_snes_newtondense_alpha 0.7 -frf_output_file ''
+
 # the thesis's sphere constraint passes the Duffing folds too
 a=$($J -options_file runs/duffing_frf.opts -frf_force 2 -cont_monitor 0 -frf_output_file '' 2>&1 | grep '^peak')
 b=$($J -options_file runs/duffing_frf.opts -frf_force 2 -cont_monitor 0 -frf_output_file '' -cont_constraint sphere 2>&1 | grep '^peak')

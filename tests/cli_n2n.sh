@@ -72,12 +72,14 @@ expect_error "zero friction" "-interface_mu 0.: the friction coefficient must be
 expect_error "a DOF number on an FE model" "-frf_dof: on an FE model the DOF numbers depend on the partition" $J $brb -frf_force 1 -frf_dof 3 -frf_output_file ''
 expect_error "two coordinates" "-frf_at needs three coordinates" $J $brb -frf_force 1 -frf_at 0,0 -frf_output_file ''
 
-# 6. jenkins_nv (the single-bolt specimen, coarse): 1 mN peak = stuck resonance in the free basis, energy balance
-o=$($J -task frf -model_type lap1 -model_mesh_h 0.008 -preload_force 10000 -interface_element jenkins_nv -interface_kt 1e8 -interface_mu 0.1 -hbm_basis free -hbm_modes 30 -hbm_gamma 0.002 -frf_force 0.0001,0.01 -frf_fmin 120 -frf_fmax 160 -cont_monitor 0 -frf_plot 0 -frf_output_file '' 2>&1)
+# 6. jenkins_nv (the single-bolt specimen, coarse): 1 mN peak = stuck resonance in the free basis, energy balance.
+#    Newton to 1e-12 of the predictor's residual: at the default 1e-10 the worst point's balance is set by where the
+#    steps land (1e-8 or 3e-9 on two equally converged paths), not by the contact law's energy; at 1e-12, 4e-12.
+o=$($J -task frf -model_type lap1 -model_mesh_h 0.008 -preload_force 10000 -interface_element jenkins_nv -interface_kt 1e8 -interface_mu 0.1 -hbm_basis free -hbm_modes 30 -hbm_gamma 0.002 -hbm_snes_rtol 1e-12 -frf_force 0.0001,0.01 -frf_fmin 120 -frf_fmax 160 -cont_monitor 0 -frf_plot 0 -frf_output_file '' 2>&1)
 s=$(echo "$o" | grep '^stick freq_hz'); fs=$(field "$s" freq_hz); fp=$(field "$s" lowest_level_peak_hz)
 b=$(echo "$o" | awk '/^frf summary/{f=1; next} f && $1 ~ /^[0-9.e-]+$/ {if ($10 > m) m = $10} END{print m+0}')
 check "[ -n '$fs' ] && close $fp $fs 1e-3" "jenkins_nv lap1, 0.1 mN: FRF peak $fp Hz = stuck resonance (tangential and normal springs of the closed pairs) $fs Hz within 0.1%"
-check "awk -v b=$b 'BEGIN{exit !(b < 1e-8)}'" "jenkins_nv lap1: energy balance at every point, worst $b"
+check "awk -v b=$b 'BEGIN{exit !(b < 1e-10)}'" "jenkins_nv lap1: energy balance at every point, worst $b (< 1e-10)"
 
 # 7. first reduction (issue 7, in progress): every element its own joint reproduces the node-to-node
 #    model exactly; six strips run; bad region definitions are refused

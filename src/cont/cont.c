@@ -55,8 +55,8 @@ struct _p_JRCont {
   Mat              BJ, J;
   Vec              bx, br_, bt, Rw, a, r, amod;
   PetscReal        aref, wref, ds, wcur, aunit; /* aunit: the linearised response scale per unit level */
-  KSP              tksp;                          /* the tangent's bordered solve */
-  Mat              TB;
+  PetscScalar     *tb, *tlu;                      /* the tangent's bordered matrix and its LU ((n+1) x (n+1)) */
+  PetscBLASInt    *tpiv;
   Vec              xpred, xk, tk, dw; /* dw: work, size of xk */
 };
 
@@ -410,8 +410,7 @@ static PetscErrorCode BorderedJacobian(SNES snes, Vec x, Mat BJ, Mat P, void *ct
   PetscCall(VecRestoreArrayRead(c->tk, &t));
   PetscCall(VecRestoreArrayRead(c->Rw, &rw));
   PetscCall(MatDenseRestoreArrayRead(c->J, &j));
-  PetscCall(MatAssemblyBegin(BJ, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(BJ, MAT_FINAL_ASSEMBLY));
+  PetscCall(JRMatDenseAssemble(BJ));
   PetscFunctionReturn(0);
 }
 
@@ -419,47 +418,34 @@ static PetscErrorCode BorderedJacobian(SNES snes, Vec x, Mat BJ, Mat P, void *ct
 static PetscErrorCode Tangent(JRCont c, Vec x, Vec tprev, Vec t)
 {
   PetscReal          w, nrm;
-  const PetscInt     n = c->n;
-  Mat                B;
-  Vec                rhs;
-  PC                 pc;
+  const PetscInt     n = c->n, m = n + 1;
   const PetscScalar *j, *rw, *tp;
-  PetscScalar       *b;
+  PetscScalar       *b, *tt;
+  PetscBool          singular;
 
   PetscFunctionBeginUser;
   PetscCall(Split(c, x, c->a, &w));
   PetscCall(JRHBMComputeJacobian(c->hbm, w, c->a, c->J, c->Rw));
-  if (!c->tksp) { /* kept for the whole run: the bordered matrix, LU */
-    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n + 1, n + 1, NULL, &c->TB));
-    PetscCall(KSPCreate(PETSC_COMM_SELF, &c->tksp));
-    PetscCall(KSPSetType(c->tksp, KSPPREONLY));
-    PetscCall(KSPGetPC(c->tksp, &pc));
-    PetscCall(PCSetType(pc, PCLU));
-  }
-  B = c->TB;
-  PetscCall(MatDenseGetArrayWrite(B, &b));
+  if (!c->tb) PetscCall(PetscMalloc3(m * m, &c->tb, m * m, &c->tlu, m, &c->tpiv)); /* kept for the whole solve */
+  b = c->tb;
   PetscCall(MatDenseGetArrayRead(c->J, &j));
   PetscCall(VecGetArrayRead(c->Rw, &rw));
   PetscCall(VecGetArrayRead(tprev, &tp));
   for (PetscInt col = 0; col < n; col++) {
-    for (PetscInt row = 0; row < n; row++) b[row + col * (n + 1)] = j[row + col * n];
-    b[n + col * (n + 1)] = tp[col] / (c->aref * c->aref);
+    for (PetscInt row = 0; row < n; row++) b[row + col * m] = j[row + col * n];
+    b[n + col * m] = tp[col] / (c->aref * c->aref);
   }
-  for (PetscInt row = 0; row < n; row++) b[row + n * (n + 1)] = rw[row];
-  b[n + n * (n + 1)] = tp[n] / (c->wref * c->wref);
+  for (PetscInt row = 0; row < n; row++) b[row + n * m] = rw[row];
+  b[n + n * m] = tp[n] / (c->wref * c->wref);
   PetscCall(VecRestoreArrayRead(tprev, &tp));
   PetscCall(VecRestoreArrayRead(c->Rw, &rw));
   PetscCall(MatDenseRestoreArrayRead(c->J, &j));
-  PetscCall(MatDenseRestoreArrayWrite(B, &b));
-  PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
-  rhs = c->dw;
-  PetscCall(VecZeroEntries(rhs));
-  PetscCall(VecSetValue(rhs, n, 1.0, INSERT_VALUES));
-  PetscCall(VecAssemblyBegin(rhs));
-  PetscCall(VecAssemblyEnd(rhs));
-  PetscCall(KSPSetOperators(c->tksp, B, B));
-  PetscCall(KSPSolve(c->tksp, rhs, t));
+  PetscCall(VecZeroEntries(t));
+  PetscCall(VecGetArray(t, &tt));
+  tt[n] = 1.0;
+  PetscCall(JRDenseSolve(m, b, m, c->tlu, c->tpiv, tt, &singular));
+  PetscCall(VecRestoreArray(t, &tt));
+  PetscCheck(!singular, PETSC_COMM_SELF, PETSC_ERR_MAT_LU_ZRPVT, "Continuation: the bordered tangent system is singular at %g Hz (a zero pivot)", (double)(w / (2 * PETSC_PI)));
   PetscCall(ScaledDot(c, t, t, &nrm));
   PetscCall(VecScale(t, 1.0 / PetscSqrtReal(nrm)));
   PetscFunctionReturn(0);
@@ -597,8 +583,7 @@ PetscErrorCode JRContSolve(JRCont c)
   PetscFunctionBeginUser;
   PetscCheck(c->hbm, c->comm, PETSC_ERR_ARG_WRONGSTATE, "JRContSetHBM() first");
   c->aunit = 0;
-  PetscCall(KSPDestroy(&c->tksp)); /* sizes may differ from an earlier solve */
-  PetscCall(MatDestroy(&c->TB));
+  PetscCall(PetscFree3(c->tb, c->tlu, c->tpiv)); /* sizes may differ from an earlier solve */
   PetscCall(JRHBMGetSizes(c->hbm, NULL, NULL, &c->nmod));
   PetscCall(JRHBMGetSolveSize(c->hbm, &c->n, NULL));
   PetscCall(JRHBMGetOutputs(c->hbm, &c->nout, NULL));
@@ -643,6 +628,7 @@ PetscErrorCode JRContSolve(JRCont c)
     PetscCall(JRHBMGetSNES(c->hbm, &hs));
     PetscCall(SNESGetTolerances(hs, &atol, &rtol, &stol, &maxit, &maxf));
     PetscCall(SNESSetTolerances(c->bsnes, atol, rtol, stol, maxit, maxf));
+    PetscCall(SNESSetType(c->bsnes, SNESNEWTONDENSE));
     PetscCall(SNESSetFromOptions(c->bsnes));
     {
       JRHBMJacobianType jt;
@@ -972,8 +958,7 @@ PetscErrorCode JRContDestroy(JRCont *cont)
   PetscCall(SNESDestroy(&c->bsnes));
   PetscCall(MatDestroy(&c->BJ));
   PetscCall(MatDestroy(&c->J));
-  PetscCall(KSPDestroy(&c->tksp));
-  PetscCall(MatDestroy(&c->TB));
+  PetscCall(PetscFree3(c->tb, c->tlu, c->tpiv));
   PetscCall(VecDestroy(&c->amod));
   PetscCall(VecDestroy(&c->a));
   PetscCall(VecDestroy(&c->r));

@@ -96,6 +96,7 @@ struct _p_JRHBM {
   PetscReal        *Z0, *G0;      /* the mean block Kg + pin, LU-factored (nm x nm); Q Z0^-1 Q^T (nq x nq) */
   PetscBLASInt     *piv0;
   PetscReal        *Gb, *inv;     /* per harmonic at frequency wq: G, dG/dw (re, im), xF, dxF/dw; 1/z_k (re, im) */
+  PetscReal        *QQ, *cb;      /* products of QV's rows per mode (nm x (pairs r <= c, then rows x VF)); CondBlocks work */
   PetscReal         wq;
   PetscBool         wq_ok;
   char              condinfo[256];
@@ -829,6 +830,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     PetscCall(PCSetType(pc, PCLU));
   }
   PetscCall(SNESSetTolerances(h->snes, PETSC_DEFAULT, 1e-10, 1e-12, 40, 10000));
+  PetscCall(SNESSetType(h->snes, SNESNEWTONDENSE));
   PetscCall(SNESSetFromOptions(h->snes));
   h->setupcalled = PETSC_TRUE;
   if (h->view) PetscCall(JRHBMView(h, NULL));
@@ -1350,16 +1352,28 @@ static PetscErrorCode Linear(JRHBM h, PetscReal w, const PetscReal *a, PetscReal
 */
 static PetscErrorCode CondBlocks(JRHBM h, PetscReal w)
 {
-  const PetscInt nq = h->nq, nm = h->nm, bs = 4 * nq * nq + 4 * nq;
-  PetscReal     *dr, *di;
+  const PetscInt nq = h->nq, nm = h->nm, bs = 4 * nq * nq + 4 * nq, np = nq * (nq + 1) / 2 + nq;
+  PetscReal     *dr, *di, *o;
 
   PetscFunctionBeginUser;
   if (h->wq_ok && h->wq == w) PetscFunctionReturn(0);
-  PetscCall(PetscMalloc2(nm, &dr, nm, &di));
+  if (!h->QQ) { /* once: the products of the joints' modal rows, pairs r <= c then each row with V^T fm */
+    PetscCall(PetscMalloc2(nm * np, &h->QQ, 2 * nm + 4 * np, &h->cb));
+    for (PetscInt k = 0; k < nm; k++) {
+      PetscReal *q = h->QQ + k * np;
+      for (PetscInt c = 0; c < nq; c++)
+        for (PetscInt r = 0; r <= c; r++) *q++ = h->QV[r * nm + k] * h->QV[c * nm + k];
+      for (PetscInt r = 0; r < nq; r++) *q++ = h->QV[r * nm + k] * h->VF[k];
+    }
+  }
+  dr = h->cb;
+  di = dr + nm;
+  o  = di + nm; /* 4 x np: sums over the modes of the products times 1/z, d(1/z)/dw (re, im) */
   for (PetscInt hh = 1; hh <= h->H; hh++) {
     PetscReal      *Gr = h->Gb + (hh - 1) * bs, *Gi = Gr + nq * nq, *dGr = Gi + nq * nq, *dGi = dGr + nq * nq;
     PetscReal      *xFr = dGi + nq * nq, *xFi = xFr + nq, *dxFr = xFi + nq, *dxFi = dxFr + nq;
     PetscReal      *ir = h->inv + 2 * (hh - 1) * nm, *ii = ir + nm;
+    PetscReal      *o0 = o, *o1 = o + np, *o2 = o + 2 * np, *o3 = o + 3 * np;
     const PetscReal s  = hh * w;
     for (PetscInt k = 0; k < nm; k++) {
       const PetscReal zr = h->lamv[k] - s * s, zi = h->gamma * h->lamv[k] + s * h->cv[k], den = zr * zr + zi * zi;
@@ -1372,41 +1386,31 @@ static PetscErrorCode CondBlocks(JRHBM h, PetscReal w)
       dr[k] = -(sr * dzr - si * dzi); /* d(1/z)/dw = -(1/z)^2 dz/dw */
       di[k] = -(sr * dzi + si * dzr);
     }
-    for (PetscInt c = 0; c < nq; c++)
-      for (PetscInt r = 0; r <= c; r++) {
-        const PetscReal *qr = h->QV + r * nm, *qc = h->QV + c * nm;
-        PetscReal        v[4] = {0, 0, 0, 0};
-        for (PetscInt k = 0; k < nm; k++) {
-          const PetscReal p = qr[k] * qc[k];
-          v[0] += p * ir[k];
-          v[1] += p * ii[k];
-          v[2] += p * dr[k];
-          v[3] += p * di[k];
-        }
-        Gr[r + c * nq] = Gr[c + r * nq] = v[0];
-        Gi[r + c * nq] = Gi[c + r * nq] = v[1];
-        dGr[r + c * nq] = dGr[c + r * nq] = v[2];
-        dGi[r + c * nq] = dGi[c + r * nq] = v[3];
+    PetscCall(PetscArrayzero(o, 4 * np));
+    for (PetscInt k = 0; k < nm; k++) { /* mode by mode: the inner loop runs over independent sums (vectorised) */
+      const PetscReal *q = h->QQ + k * np, a = ir[k], b = ii[k], c = dr[k], d = di[k];
+      for (PetscInt p = 0; p < np; p++) {
+        o0[p] += q[p] * a;
+        o1[p] += q[p] * b;
+        o2[p] += q[p] * c;
+        o3[p] += q[p] * d;
       }
-    for (PetscInt r = 0; r < nq; r++) {
-      const PetscReal *qr = h->QV + r * nm;
-      PetscReal        v[4] = {0, 0, 0, 0};
-      if (hh == 1)
-        for (PetscInt k = 0; k < nm; k++) {
-          const PetscReal p = qr[k] * h->VF[k];
-          v[0] += p * ir[k];
-          v[1] += p * ii[k];
-          v[2] += p * dr[k];
-          v[3] += p * di[k];
-        }
-      xFr[r]  = v[0];
-      xFi[r]  = v[1];
-      dxFr[r] = v[2];
-      dxFi[r] = v[3];
+    }
+    for (PetscInt c = 0, p = 0; c < nq; c++)
+      for (PetscInt r = 0; r <= c; r++, p++) {
+        Gr[r + c * nq] = Gr[c + r * nq] = o0[p];
+        Gi[r + c * nq] = Gi[c + r * nq] = o1[p];
+        dGr[r + c * nq] = dGr[c + r * nq] = o2[p];
+        dGi[r + c * nq] = dGi[c + r * nq] = o3[p];
+      }
+    for (PetscInt r = 0, p = nq * (nq + 1) / 2; r < nq; r++, p++) { /* the force enters the first harmonic only */
+      xFr[r]  = hh == 1 ? o0[p] : 0.0;
+      xFi[r]  = hh == 1 ? o1[p] : 0.0;
+      dxFr[r] = hh == 1 ? o2[p] : 0.0;
+      dxFi[r] = hh == 1 ? o3[p] : 0.0;
     }
   }
-  PetscCall(PetscLogFlops(8.0 * h->H * nm * nq * (nq + 3)));
-  PetscCall(PetscFree2(dr, di));
+  PetscCall(PetscLogFlops(8.0 * h->H * nm * np));
   h->wq    = w;
   h->wq_ok = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -1697,8 +1701,7 @@ PetscErrorCode JRHBMComputeJacobian(JRHBM h, PetscReal w, Vec a, Mat J, Vec Rw)
   if (Rw) PetscCall(VecRestoreArray(Rw, &rw));
   PetscCall(MatDenseRestoreArrayWrite(J, &j));
   PetscCall(VecRestoreArrayRead(a, &x));
-  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(JRMatDenseAssemble(J));
   PetscCall(PetscFree(res));
   PetscFunctionReturn(0);
 }
@@ -2010,6 +2013,7 @@ PetscErrorCode JRHBMDestroy(JRHBM *hbm)
   PetscCall(SNESDestroy(&h->snes));
   PetscCall(MatDestroy(&h->J));
   PetscCall(VecDestroy(&h->r));
+  PetscCall(PetscFree2(h->QQ, h->cb));
   PetscCall(KSPDestroy(&h->klin));
   PetscCall(PetscFree3(h->Q, h->QV, h->VF));
   PetscCall(PetscFree4(h->V, h->lamv, h->cv, h->G0));

@@ -41,3 +41,16 @@ PetscErrorCode JRMatCreateFromBlocks(Mat K, PetscInt nb, const PetscInt *bn, con
   PetscFunctionReturn(0);
 }
 
+
+PetscErrorCode JRMatDenseAssemble(Mat A)
+{
+  PetscBool done;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatAssembled(A, &done));
+  if (!done) {
+    PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  }
+  PetscFunctionReturn(0);
+}
