@@ -31,6 +31,13 @@ static PetscErrorCode SNESSetUp_NewtonDense(SNES snes)
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)snes), &size));
   PetscCheck(size == 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_SUP, "-snes_type newtondense: a SNES on one rank (PETSC_COMM_SELF) only; use newtonls");
   PetscCheck(!snes->xl && !snes->xu && !snes->ops->computevariablebounds, PETSC_COMM_SELF, PETSC_ERR_SUP, "-snes_type newtondense: no variable bounds; use vinewtonrsls");
+  {
+    Mat       A;
+    PetscBool dense = PETSC_FALSE;
+    PetscCall(SNESGetJacobian(snes, &A, NULL, NULL, NULL));
+    if (A) PetscCall(PetscObjectTypeCompare((PetscObject)A, MATSEQDENSE, &dense));
+    PetscCheck(dense, PETSC_COMM_SELF, PETSC_ERR_SUP, "-snes_type newtondense: the Jacobian must be a MATSEQDENSE matrix (set with SNESSetJacobian()); use newtonls");
+  }
   PetscCall(SNESSetWorkVecs(snes, 3)); /* the trial point, its residual, the Newton step */
   PetscCall(VecGetSize(snes->vec_sol, &n));
   if (n != nd->n) {
