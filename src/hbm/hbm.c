@@ -49,8 +49,7 @@ typedef struct {
   PetscInt  *eidx;         /* the model's element number of each local element */
   PetscReal *Kc;           /* stuck basis: the stuck springs of this rank's elements in contact at rest (nm x nm) */
   PetscReal *R0, *S0;      /* joints in a stuck basis: the members' own rows until Kc is formed */
-  PetscReal *Rq, *Sq;      /* condensed: each element's joint row among the nq condensed rows (nloc x nq selection) */
-  PetscReal *Kstq, *Knnq;  /* condensed: the stuck part on those rows (nq x nq) */
+  PetscInt  *qt, *qn;      /* condensed: each element's joint row among the nq condensed rows, and its normal row */
 } HBMGroup;
 
 struct _p_JRHBM {
@@ -97,6 +96,8 @@ struct _p_JRHBM {
   PetscBLASInt     *piv0;
   PetscReal        *Gb, *inv;     /* per harmonic at frequency wq: G, dG/dw (re, im), xF, dxF/dw; 1/z_k (re, im) */
   PetscReal        *QQ, *cb;      /* products of QV's rows per mode (nm x (pairs r <= c, then rows x VF)); CondBlocks work */
+  PetscReal        *jres;         /* JRHBMComputeJacobian: the residual it also computes (ns) */
+  PetscReal        *pptab;        /* JRHBMResponse: sin, cos of each harmonic at 16 nc samples of a cycle */
   PetscReal         wq;
   PetscBool         wq_ok;
   char              condinfo[256];
@@ -234,8 +235,7 @@ static PetscErrorCode GroupDestroy(HBMGroup *g)
   PetscCall(PetscFree(g->Kc));
   PetscCall(PetscFree(g->R0));
   PetscCall(PetscFree(g->S0));
-  PetscCall(PetscFree2(g->Rq, g->Sq));
-  PetscCall(PetscFree2(g->Kstq, g->Knnq));
+  PetscCall(PetscFree2(g->qt, g->qn));
   PetscFunctionReturn(0);
 }
 
@@ -526,6 +526,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
   PetscCall(JRModelGetNumDofs(h->model, &ndof));
   PetscCall(JRModelGetElements(h->model, &el));
   h->nc    = 2 * h->H + 1;
+  PetscCall(PetscFree(h->pptab)); /* sized by nc */
   h->has_C = C ? PETSC_TRUE : PETSC_FALSE;
   PetscCheck(h->fdof >= 0 && h->fdof < ndof, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_dof %" PetscInt_FMT " is out of range: DOFs are 0..%" PetscInt_FMT, h->fdof, ndof - 1);
   if (!h->nout) {
@@ -1197,10 +1198,46 @@ static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Pet
       }
   }
   for (PetscInt t = 0; t < h->ngroups; t++) {
-    HBMGroup      *g    = &h->g[t];
+    HBMGroup        *g    = &h->g[t];
     const PetscInt   nloc = g->nloc;
-    const PetscReal *GR = h->cond ? g->Rq : g->R, *GS = h->cond ? g->Sq : g->S, *Kst = h->cond ? g->Kstq : g->Kst, *Knn = h->cond ? g->Knnq : g->Knn;
+    const PetscReal *GR = g->R, *GS = g->S, *Kst = g->Kst, *Knn = g->Knn;
     if (!nloc) continue;
+    if (h->cond) { /* every element moves with one joint row (and one normal row): gathers and scatter-adds */
+      const PetscInt *qt = g->qt, *qn = g->qn;
+      if (!reuse) {
+        for (PetscInt c = 0; c < nc; c++)
+          for (PetscInt e = 0; e < nloc; e++) {
+            g->U[e + c * nloc] = a[qt[e] + c * nm];
+            if (g->normal) g->V[e + c * nloc] = a[qn[e] + c * nm];
+          }
+        PetscCall(JRContactEvaluate(g->c, g->U, g->V, g->F, g->normal ? g->N : NULL, derivs ? g->DU : NULL, derivs && g->normal ? g->DV : NULL, derivs && g->normal ? g->DN : NULL, NULL));
+        if (g->normal)
+          for (PetscInt e = 0; e < nloc; e++) g->N[e] -= g->nstatic[e];
+      }
+      for (PetscInt c = 0; c < nc; c++)
+        for (PetscInt e = 0; e < nloc; e++) {
+          loc[qt[e] + c * nm] += g->F[e + c * nloc];
+          if (g->normal) loc[qn[e] + c * nm] += g->N[e + c * nloc];
+        }
+      if (jac) { /* dF/du on (joint row, joint row), dF/dv on (joint row, normal row), dN/dv on (normal row, normal row) */
+        PetscCall(PetscLogEventBegin(JR_HBMJacobian, 0, 0, 0, 0));
+        for (PetscInt k = 0; k < nc; k++)
+          for (PetscInt m = 0; m < nc; m++) {
+            PetscReal       *blk = loc + n + (k * nm) + (m * nm) * n;
+            const PetscReal *du = g->DU + (k * nc + m) * nloc, *dv = g->normal ? g->DV + (k * nc + m) * nloc : NULL, *dn = g->normal ? g->DN + (k * nc + m) * nloc : NULL;
+            for (PetscInt e = 0; e < nloc; e++) {
+              blk[qt[e] + qt[e] * n] += du[e];
+              if (g->normal) {
+                blk[qt[e] + qn[e] * n] += dv[e];
+                blk[qn[e] + qn[e] * n] += dn[e];
+              }
+            }
+          }
+        PetscCall(PetscLogFlops(1.0 * nloc * nc * nc * (g->normal ? 3 : 1)));
+        PetscCall(PetscLogEventEnd(JR_HBMJacobian, 0, 0, 0, 0));
+      }
+      continue;
+    }
     if (!reuse) {
       PetscCall(Gemm("N", "N", nloc, nc, nm, 1.0, GR, nloc, a, nm, 0.0, g->U, nloc));
       if (g->normal) PetscCall(Gemm("N", "N", nloc, nc, nm, 1.0, GS, nloc, a, nm, 0.0, g->V, nloc));
@@ -1452,16 +1489,32 @@ static PetscErrorCode CondApply(JRHBM h, PetscReal w, const PetscReal *x, PetscR
       }
     }
   }
-  if (jac) { /* T = I + blockdiag(G) dg/dx, row blocks of dg/dx (leading dimension ns) */
-    PetscCall(Gemm("N", "N", nq, ns, nq, 1.0, h->G0, nq, jac, ns, 0.0, T, ns));
-    for (PetscInt hh = 1; hh <= h->H; hh++) {
-      const PetscReal *Gr = h->Gb + (hh - 1) * bs, *Gi = Gr + nq * nq;
-      const PetscInt   os = (2 * hh - 1) * nq, oc = 2 * hh * nq;
-      PetscCall(Gemm("N", "N", nq, ns, nq, 1.0, Gr, nq, jac + os, ns, 0.0, T + os, ns));
-      PetscCall(Gemm("N", "N", nq, ns, nq, -1.0, Gi, nq, jac + oc, ns, 1.0, T + os, ns));
-      PetscCall(Gemm("N", "N", nq, ns, nq, 1.0, Gi, nq, jac + os, ns, 0.0, T + oc, ns));
-      PetscCall(Gemm("N", "N", nq, ns, nq, 1.0, Gr, nq, jac + oc, ns, 1.0, T + oc, ns));
+  if (jac) { /* T = I + blockdiag(G) dg/dx, row blocks of dg/dx (leading dimension ns); blocks of a few joints:
+                plain loops, the inner one over the rows (a BLAS call costs more than its 6 x 6 product) */
+    for (PetscInt j = 0; j < ns; j++) {
+      const PetscReal *jc = jac + j * ns;
+      PetscReal       *tc = T + j * ns;
+      for (PetscInt r = 0; r < nq; r++) tc[r] = 0.0;
+      for (PetscInt c = 0; c < nq; c++) {
+        const PetscReal v = jc[c];
+        if (v != 0.0)
+          for (PetscInt r = 0; r < nq; r++) tc[r] += h->G0[r + c * nq] * v;
+      }
+      for (PetscInt hh = 1; hh <= h->H; hh++) {
+        const PetscReal *Gr = h->Gb + (hh - 1) * bs, *Gi = Gr + nq * nq;
+        const PetscInt   os = (2 * hh - 1) * nq, oc = 2 * hh * nq;
+        for (PetscInt r = 0; r < nq; r++) tc[os + r] = tc[oc + r] = 0.0;
+        for (PetscInt c = 0; c < nq; c++) {
+          const PetscReal vs = jc[os + c], vc = jc[oc + c];
+          if (vs == 0.0 && vc == 0.0) continue;
+          for (PetscInt r = 0; r < nq; r++) {
+            tc[os + r] += Gr[r + c * nq] * vs - Gi[r + c * nq] * vc;
+            tc[oc + r] += Gi[r + c * nq] * vs + Gr[r + c * nq] * vc;
+          }
+        }
+      }
     }
+    PetscCall(PetscLogFlops(4.0 * ns * nq * ns));
     for (PetscInt i = 0; i < ns; i++) T[i + i * ns] += 1.0;
     PetscCall(PetscArraycpy(jac, T, ns * ns));
   }
@@ -1491,6 +1544,8 @@ static PetscErrorCode CondenseSetUp(JRHBM h, const JRElements *el)
   PetscCall(PetscFree4(h->V, h->lamv, h->cv, h->G0));
   PetscCall(PetscFree2(h->Z0, h->piv0));
   PetscCall(PetscFree3(h->Gb, h->inv, h->ctmp));
+  PetscCall(PetscFree2(h->QQ, h->cb)); /* products of the rows: rebuilt from the new ones */
+  PetscCall(PetscFree(h->jres));       /* sized by the solve space */
   if (h->condense == 2) PetscFunctionReturn(0);
   if (!el->joint || el->njoints < 1) PetscFunctionReturn(0); /* not a reduced model: nothing to condense onto */
   nj = el->njoints;
@@ -1586,35 +1641,16 @@ static PetscErrorCode CondenseSetUp(JRHBM h, const JRElements *el)
     PetscCall(PetscFree2(h->Z0, h->piv0));
     PetscFunctionReturn(0);
   }
-  /* every element's selection of its joint's rows, and the stuck part on them */
+  /* every element's joint row (and normal row) */
   for (PetscInt t = 0; t < h->ngroups; t++) {
     HBMGroup      *g    = &h->g[t];
     const PetscInt nloc = g->nloc;
-    PetscCall(PetscFree2(g->Rq, g->Sq));
-    PetscCall(PetscFree2(g->Kstq, g->Knnq));
-    PetscCall(PetscCalloc2(nloc * nq, &g->Rq, nloc * nq, &g->Sq));
-    PetscCall(PetscCalloc2(nq * nq, &g->Kstq, nq * nq, &g->Knnq));
+    PetscCall(PetscFree2(g->qt, g->qn));
+    PetscCall(PetscMalloc2(nloc, &g->qt, nloc, &g->qn));
     for (PetscInt e = 0; e < nloc; e++) {
       const PetscInt j = el->joint[g->eidx[e]];
-      g->Rq[e + j * nloc] = 1.0;
-      if (g->normal) g->Sq[e + (nj + j) * nloc] = 1.0;
-    }
-    if (nq > nm) { /* the scratch of the rows (W, Rc, Sc: nloc x rows' length) */
-      PetscCall(JRFreeAligned(&g->W));
-      PetscCall(JRFreeAligned(&g->Rc));
-      PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nq, &g->W));
-      PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nq, &g->Rc));
-      if (g->normal) {
-        PetscCall(JRFreeAligned(&g->Sc));
-        PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nq, &g->Sc));
-      }
-    }
-    if (g->split && nloc) {
-      for (PetscInt e = 0; e < nloc; e++) {
-        const PetscInt j = el->joint[g->eidx[e]];
-        g->Kstq[j + j * nq] += g->kt[e];
-        if (g->normal) g->Knnq[(nj + j) + (nj + j) * nq] += g->kn[e];
-      }
+      g->qt[e]         = j;
+      g->qn[e]         = g->normal ? nj + j : -1;
     }
   }
   h->nq = nq;
@@ -1691,7 +1727,8 @@ PetscErrorCode JRHBMComputeJacobian(JRHBM h, PetscReal w, Vec a, Mat J, Vec Rw)
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMSetUp(h));
-  PetscCall(PetscMalloc1(h->ns, &res));
+  if (!h->jres) PetscCall(PetscMalloc1(h->ns, &h->jres));
+  res = h->jres;
   PetscCall(VecGetArrayRead(a, &x));
   PetscCall(MatDenseGetArrayWrite(J, &j));
   if (Rw) PetscCall(VecGetArray(Rw, &rw));
@@ -1702,7 +1739,6 @@ PetscErrorCode JRHBMComputeJacobian(JRHBM h, PetscReal w, Vec a, Mat J, Vec Rw)
   PetscCall(MatDenseRestoreArrayWrite(J, &j));
   PetscCall(VecRestoreArrayRead(a, &x));
   PetscCall(JRMatDenseAssemble(J));
-  PetscCall(PetscFree(res));
   PetscFunctionReturn(0);
 }
 
@@ -1819,10 +1855,19 @@ PetscErrorCode JRHBMResponse(JRHBM h, Vec a, PetscReal X[], PetscReal amp[], Pet
     if (pp) {
       const PetscInt ns = 16 * nc;
       PetscReal      lo = PETSC_MAX_REAL, hi = -PETSC_MAX_REAL;
+      if (!h->pptab) { /* sin and cos of every harmonic at the ns samples, once */
+        PetscCall(PetscMalloc1(ns * (nc - 1), &h->pptab));
+        for (PetscInt j = 0; j < ns; j++)
+          for (PetscInt hh = 1; 2 * hh < nc; hh++) {
+            const PetscReal th = 2.0 * PETSC_PI * j / ns;
+            h->pptab[j * (nc - 1) + 2 * hh - 2] = PetscSinReal(hh * th);
+            h->pptab[j * (nc - 1) + 2 * hh - 1] = PetscCosReal(hh * th);
+          }
+      }
       for (PetscInt j = 0; j < ns; j++) {
-        const PetscReal th = 2.0 * PETSC_PI * j / ns;
-        PetscReal       v  = Xo[0];
-        for (PetscInt hh = 1; 2 * hh < nc; hh++) v += Xo[2 * hh - 1] * PetscSinReal(hh * th) + Xo[2 * hh] * PetscCosReal(hh * th);
+        const PetscReal *sc = h->pptab + j * (nc - 1);
+        PetscReal        v  = Xo[0];
+        for (PetscInt hh = 1; 2 * hh < nc; hh++) v += Xo[2 * hh - 1] * sc[2 * hh - 2] + Xo[2 * hh] * sc[2 * hh - 1];
         lo = PetscMin(lo, v);
         hi = PetscMax(hi, v);
       }
@@ -2014,6 +2059,8 @@ PetscErrorCode JRHBMDestroy(JRHBM *hbm)
   PetscCall(MatDestroy(&h->J));
   PetscCall(VecDestroy(&h->r));
   PetscCall(PetscFree2(h->QQ, h->cb));
+  PetscCall(PetscFree(h->pptab));
+  PetscCall(PetscFree(h->jres));
   PetscCall(KSPDestroy(&h->klin));
   PetscCall(PetscFree3(h->Q, h->QV, h->VF));
   PetscCall(PetscFree4(h->V, h->lamv, h->cv, h->G0));
