@@ -102,7 +102,8 @@ struct _p_JRHBM {
   PetscBool         wq_ok;
   char              condinfo[256];
   PetscReal        *ctmp;         /* ns + ns^2 work */
-  KSP               klin;         /* JRHBMLinearSolution() */
+  PetscReal        *llu;          /* JRHBMLinearSolution(): LU of the Jacobian (ns x ns) and its pivots */
+  PetscBLASInt     *lpiv;
 };
 
 static PetscErrorCode Gemm(const char *ta, const char *tb, PetscInt m, PetscInt n, PetscInt k, PetscReal alpha, const PetscReal *A, PetscInt lda, const PetscReal *B, PetscInt ldb, PetscReal beta, PetscReal *C, PetscInt ldc)
@@ -1546,6 +1547,7 @@ static PetscErrorCode CondenseSetUp(JRHBM h, const JRElements *el)
   PetscCall(PetscFree3(h->Gb, h->inv, h->ctmp));
   PetscCall(PetscFree2(h->QQ, h->cb)); /* products of the rows: rebuilt from the new ones */
   PetscCall(PetscFree(h->jres));       /* sized by the solve space */
+  PetscCall(PetscFree2(h->llu, h->lpiv));
   if (h->condense == 2) PetscFunctionReturn(0);
   if (!el->joint || el->njoints < 1) PetscFunctionReturn(0); /* not a reduced model: nothing to condense onto */
   nj = el->njoints;
@@ -1784,25 +1786,23 @@ PetscErrorCode JRHBMSolve(JRHBM h, PetscReal w, Vec a, PetscInt *its, PetscBool 
    one Newton step from a = 0, exact when the elements stay in full stick */
 PetscErrorCode JRHBMLinearSolution(JRHBM h, PetscReal w, Vec a)
 {
-  Vec r;
-  PC  pc;
+  const PetscInt     n = h->ns;
+  const PetscScalar *j;
+  PetscScalar       *x;
+  PetscBool          singular;
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMSetUp(h));
-  PetscCall(VecDuplicate(a, &r));
   PetscCall(VecZeroEntries(a));
-  PetscCall(JRHBMComputeJacobian(h, w, a, h->J, NULL));
-  PetscCall(JRHBMComputeResidual(h, w, a, r));
-  if (!h->klin) {
-    PetscCall(KSPCreate(PETSC_COMM_SELF, &h->klin));
-    PetscCall(KSPSetType(h->klin, KSPPREONLY));
-    PetscCall(KSPGetPC(h->klin, &pc));
-    PetscCall(PCSetType(pc, PCLU));
-  }
-  PetscCall(KSPSetOperators(h->klin, h->J, h->J));
-  PetscCall(KSPSolve(h->klin, r, a));
-  PetscCall(VecScale(a, -1.0));
-  PetscCall(VecDestroy(&r));
+  PetscCall(JRHBMComputeJacobian(h, w, a, h->J, NULL)); /* and the residual at a = 0, in jres */
+  if (!h->llu) PetscCall(PetscMalloc2(n * n, &h->llu, n, &h->lpiv));
+  PetscCall(VecGetArray(a, &x));
+  for (PetscInt i = 0; i < n; i++) x[i] = -h->jres[i];
+  PetscCall(MatDenseGetArrayRead(h->J, &j));
+  PetscCall(JRDenseSolve(n, j, n, h->llu, h->lpiv, x, &singular));
+  PetscCall(MatDenseRestoreArrayRead(h->J, &j));
+  PetscCall(VecRestoreArray(a, &x));
+  PetscCheck(!singular, h->comm, PETSC_ERR_MAT_LU_ZRPVT, "The linearised harmonic-balance system is singular at %g Hz (a zero pivot): an undamped resonance or a rigid-body mode without -hbm_gamma or a stuck basis", (double)(w / (2 * PETSC_PI)));
   PetscFunctionReturn(0);
 }
 
@@ -2061,7 +2061,7 @@ PetscErrorCode JRHBMDestroy(JRHBM *hbm)
   PetscCall(PetscFree2(h->QQ, h->cb));
   PetscCall(PetscFree(h->pptab));
   PetscCall(PetscFree(h->jres));
-  PetscCall(KSPDestroy(&h->klin));
+  PetscCall(PetscFree2(h->llu, h->lpiv));
   PetscCall(PetscFree3(h->Q, h->QV, h->VF));
   PetscCall(PetscFree4(h->V, h->lamv, h->cv, h->G0));
   PetscCall(PetscFree2(h->Z0, h->piv0));
