@@ -1592,7 +1592,7 @@ static PetscErrorCode CondenseSetUp(JRHBM h, const JRElements *el)
   dd[1] = scale;
   PetscCall(MPIU_Allreduce(dd, da, 2, MPIU_REAL, MPIU_MAX, h->comm));
   if (da[0] > 1e-10 * da[1]) why = "the elements of a joint do not all move with the joint's rows";
-  else if (2 * nq > nm && !want) why = "more joint rows than half the modes (little to gain; -hbm_condense yes forces it)";
+  else if (nq >= nm && !want) why = "at least as many joint rows as modes (nothing to gain; -hbm_condense yes forces it)";
   if (!why) { /* (Kg, Mm) eigenvectors; the viscous damping must be diagonal in them */
     PetscCall(PetscMalloc4(nm * nm, &h->V, nm, &h->lamv, nm, &h->cv, nq * nq, &h->G0));
     PetscCall(PetscMalloc4(nm * nm, &A, nm * nm, &B, 8 * nm, &work, nm * PetscMax(nm, nq), &Y));
