@@ -83,7 +83,7 @@ struct _p_JRHBM {
   Vec               r;
   PetscReal         omega;        /* frequency seen by the SNES callbacks */
   PetscReal        *buf;          /* n + n*n reduction buffer */
-  PetscReal        *cache_a;      /* the unknowns of the element derivatives kept in the groups */
+  PetscReal        *cache_a;      /* the unknowns at which the groups' forces and derivatives were evaluated */
   PetscBool         cache_ok;
   char              damping[256];
   /* condensation onto the joints (-hbm_condense): the linear part is solved exactly for the joints' motions */
@@ -1187,7 +1187,7 @@ static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Pet
   PetscBool       reuse  = PETSC_FALSE;
 
   PetscFunctionBeginUser;
-  if (jac && h->cache_ok) reuse = (PetscBool)!memcmp(a, h->cache_a, sizeof(PetscReal) * n);
+  if (h->cache_ok) reuse = (PetscBool)!memcmp(a, h->cache_a, sizeof(PetscReal) * n); /* forces and derivatives kept from a call at this a (the Jacobian after the residual, the expansion after the accepted residual) */
   PetscCall(PetscArrayzero(loc, len));
   if (h->basis >= 1 && h->Kc && !h->cond) { /* stuck basis: less the stuck springs, which are in Km (this rank's share) */
     PetscCall(Gemm("N", "N", nm, nc, nm, -1.0, h->Kc, nm, a, nm, 1.0, loc, nm));
