@@ -365,7 +365,7 @@ PETSC_EXTERN PetscErrorCode SNESCreate_NewtonDense(SNES);
 PETSC_EXTERN PetscErrorCode JRDenseSolve(PetscInt, const PetscScalar *, PetscInt, PetscScalar *, PetscBLASInt *, PetscScalar *, PetscBool *);
 
 /* A dense matrix written through its array: assembled once; later writes only raise its state (MatDenseRestoreArray),
-   which is what a factorisation checks (MatAssemblyEnd's per-call options lookups cost more than an 19 x 19 LU) */
+   which is what a factorisation checks (MatAssemblyEnd's per-call options lookups cost more than a 19 x 19 LU) */
 PETSC_EXTERN PetscErrorCode JRMatDenseAssemble(Mat);
 
 /* 64-byte aligned allocations (whole cache lines) for large SoA batches */

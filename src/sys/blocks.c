@@ -41,7 +41,7 @@ PetscErrorCode JRMatCreateFromBlocks(Mat K, PetscInt nb, const PetscInt *bn, con
   PetscFunctionReturn(0);
 }
 
-
+/* see include/jointrom.h */
 PetscErrorCode JRMatDenseAssemble(Mat A)
 {
   PetscBool done;
