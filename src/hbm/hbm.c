@@ -300,25 +300,30 @@ static PetscErrorCode ProjectionRowsDir(JRHBM h, PetscInt nloc, const PetscInt e
   PetscFunctionReturn(0);
 }
 
-/* First reduction (4.4): every member of a joint moves with the joint, the average of its members' relative
-   motions; so each member's rows R (and S) become the average of the joint's rows over all ranks (collective) */
+/* First reduction (4.4): every member of a joint moves with the joint, the average of the relative motions of its
+   members in contact at rest (n0 > 0: those whose stuck springs the joint replaces; all members if none is); so each
+   member's rows R (and S) become that average of the joint's rows over all ranks (collective) */
 static PetscErrorCode JointAverage(JRHBM h, const JRElements *el, PetscInt nloc, const PetscInt eidx[], PetscReal R[], PetscReal S[])
 {
   const PetscInt nm = h->nm, nj = el->njoints, w = S ? 2 * nm + 1 : nm + 1;
   PetscReal     *loc, *sum;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscCalloc2(nj * w, &loc, nj * w, &sum));
+  PetscCall(PetscCalloc2(2 * nj * w, &loc, 2 * nj * w, &sum)); /* per joint: its members in contact at rest, then all */
   for (PetscInt e = 0; e < nloc; e++) {
-    PetscReal *r = loc + el->joint[eidx[e]] * w;
-    for (PetscInt i = 0; i < nm; i++) r[i] += R[e + i * nloc];
-    if (S)
-      for (PetscInt i = 0; i < nm; i++) r[nm + i] += S[e + i * nloc];
-    r[w - 1] += 1.0;
+    for (PetscInt a = 0; a < 2; a++) {
+      PetscReal *r = loc + (2 * el->joint[eidx[e]] + a) * w;
+      if (!a && !(el->n0[eidx[e]] > 0)) continue;
+      for (PetscInt i = 0; i < nm; i++) r[i] += R[e + i * nloc];
+      if (S)
+        for (PetscInt i = 0; i < nm; i++) r[nm + i] += S[e + i * nloc];
+      r[w - 1] += 1.0;
+    }
   }
-  PetscCall(MPIU_Allreduce(loc, sum, nj * w, MPIU_REAL, MPIU_SUM, h->comm));
+  PetscCall(MPIU_Allreduce(loc, sum, 2 * nj * w, MPIU_REAL, MPIU_SUM, h->comm));
   for (PetscInt e = 0; e < nloc; e++) {
-    const PetscReal *r = sum + el->joint[eidx[e]] * w;
+    const PetscReal *r = sum + 2 * el->joint[eidx[e]] * w;
+    if (!(r[w - 1] > 0)) r += w; /* no member in contact at rest: the average of all */
     for (PetscInt i = 0; i < nm; i++) R[e + i * nloc] = r[i] / r[w - 1];
     if (S)
       for (PetscInt i = 0; i < nm; i++) S[e + i * nloc] = r[nm + i] / r[w - 1];
@@ -348,18 +353,22 @@ static PetscErrorCode JointRows(JRHBM h, const JRElements *mem, PetscReal Rj[], 
   PetscCall(ProjectionRowsDir(h, nloc, eidx, mem->vdof_a, mem->vdof_b, mem->tdir, R));
   if (nv) PetscCall(ProjectionRowsDir(h, nloc, eidx, mem->vdof_a, mem->vdof_b, mem->ndir, S)); /* normal rows: jenkins_nv only */
   else PetscCall(PetscArrayzero(S, nloc * nm));
-  PetscCall(PetscCalloc2(nj * w, &loc, nj * w, &sum));
+  PetscCall(PetscCalloc2(2 * nj * w, &loc, 2 * nj * w, &sum)); /* per joint: its members in contact at rest, then all */
   for (PetscInt e = 0; e < nloc; e++) {
-    PetscReal *r = loc + mem->joint[eidx[e]] * w;
-    for (PetscInt i = 0; i < nm; i++) {
-      r[i] += R[e + i * nloc];
-      r[nm + i] += S[e + i * nloc];
+    for (PetscInt a = 0; a < 2; a++) {
+      PetscReal *r = loc + (2 * mem->joint[eidx[e]] + a) * w;
+      if (!a && !(mem->n0[eidx[e]] > 0)) continue;
+      for (PetscInt i = 0; i < nm; i++) {
+        r[i] += R[e + i * nloc];
+        r[nm + i] += S[e + i * nloc];
+      }
+      r[w - 1] += 1.0;
     }
-    r[w - 1] += 1.0;
   }
-  PetscCall(MPIU_Allreduce(loc, sum, nj * w, MPIU_REAL, MPIU_SUM, h->comm));
+  PetscCall(MPIU_Allreduce(loc, sum, 2 * nj * w, MPIU_REAL, MPIU_SUM, h->comm));
   for (PetscInt j = 0; j < nj; j++) {
-    const PetscReal *r = sum + j * w;
+    const PetscReal *r = sum + 2 * j * w;
+    if (!(r[w - 1] > 0)) r += w; /* no member in contact at rest: the average of all */
     PetscCheck(r[w - 1] > 0, h->comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no member element", j);
     for (PetscInt i = 0; i < nm; i++) {
       Rj[j * nm + i] = r[i] / r[w - 1];
