@@ -99,6 +99,13 @@ expect_error "overlapping regions" "the regions overlap" $J -task frf $brb -frf_
 expect_error "element in no region" "lies in no box" $J -task frf $brb -frf_force 1 -rom_joints boxes -rom_boxes 0,0.33,-1,1,0.37,1,-1,1 -frf_output_file ''
 expect_error "empty joint" "holds no element: an empty joint" $J -task frf $brb -frf_force 1 -rom_joints boxes -rom_boxes 0,0.36,-1,1,0.36001,1,-1,1,5,6,-1,1 -frf_output_file ''
 expect_error "compare without joints" "-task compare needs a reduced model" $J -task compare $brb -frf_force 1 -frf_output_file ''
+# jenkins_nv with open pairs (lap3, zones, first reduction): a joint moves with the average of its members in
+# contact at rest, whose springs it carries; then by Cauchy-Schwarz (k sum u_e^2 >= K (mean u)^2) the reduced
+# stuck mode can only be at or below node-to-node's (averaging over all members put it 16% above)
+o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -rom_elements 0 -frf_force 0.001 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
+c=$(echo "$o" | grep '^rom stiffness_correction'); fb=$(field "$c" rom_before_hz); fn=$(field "$c" n2n_hz)
+check "[ -n '$fb' ] && awk -v b='$fb' -v n='$fn' 'BEGIN{exit !(b <= n * (1 + 1e-9))}'" "jenkins_nv lap3, 12 zone joints over the pairs in contact at rest: reduced stuck mode $fb Hz <= node-to-node $fn Hz"
+
 expect_error "negative case weight" "-rom_fit_case_weight -1.: the weight must be non-negative" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_case_weight -1 -frf_output_file ''
 expect_error "negative total weight" "-rom_fit_total_weight -2.: the weight must be non-negative" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_total_weight -2 -frf_output_file ''
 expect_error "elements without joints" "-rom_elements needs joints" $J -task frf $brb -frf_force 1 -rom_elements 3 -frf_output_file ''
