@@ -150,6 +150,8 @@ typedef struct _JRElements {
   PetscReal *tdir, *ndir;
   PetscInt   njoints, *joint; /* first reduction (4.4), optional: element e belongs to joint joint[e] and moves
                                  with the joint, the average of its members' relative motions */
+  PetscReal *pos;              /* optional, 3 per element: where the element sits [m] (node-to-node: the pair's node);
+                                  with -hbm_joint_motion linear it takes its joint's linear motion field there */
   struct _JRElements *members; /* second reduction, optional: the joints' motions are those of these (node-to-node)
                                   elements' joints (members->joint), whose stuck springs also define a stuck basis;
                                   then the elements here need no DOFs (their rows are their joint's) */

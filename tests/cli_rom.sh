@@ -4,7 +4,8 @@
 # its own element): every element its own joint reproduces it exactly; the first reduction with mode-shape weights
 # and the second reduction (6 joints x 3, 4, 7 elements) within stated errors; the stiffness correction puts the
 # reduced model's stuck resonance on the node-to-node one; a saved reduced model reproduces the run that saved it
-# (also without the preload); 1 vs 2 ranks; bad regions and files.
+# (also without the preload); 1 vs 2 ranks; bad regions and files; the joints' linear motion field (-rom_joint_motion
+# linear) between the mean's and node-to-node's, and carrying lap1's bending.
 cd "$(dirname "$0")/.."
 . tests/cli_lib.sh
 brb="-model_type brb -model_mesh_h 0.01 -preload_force 11500 -interface_kt 1e6 -interface_mu 0.12 -hbm_modes 12 -hbm_gamma 0.002 -cont_monitor 0 -frf_plot 0 -frf_fmin 128 -frf_fmax 138"
@@ -17,6 +18,9 @@ lt() { awk -v a="$1" -v b="$2" 'BEGIN{exit !(a != "" && a < b)}'; }
 o=$(mpiexec -n 2 $J -task compare $brb -frf_force $lev -rom_joints each -frf_output_file '' 2>&1)
 read f a <<< "$(worst "$o")"
 check "lt '$f' 1e-9 && lt '$a' 1e-8" "-rom_joints each: reduced = node-to-node at 5 levels, worst peak frequency error $f, amplitude error $a"
+o=$(mpiexec -n 2 $J -task compare $brb -frf_force $lev -rom_joints each -rom_joint_motion linear -frf_output_file '' 2>&1)
+read f a <<< "$(worst "$o")"
+check "lt '$f' 1e-9 && lt '$a' 1e-8" "-rom_joints each -rom_joint_motion linear (a one-member joint's field is its own motion): reduced = node-to-node, worst peak frequency error $f, amplitude error $a"
 
 # 2. first reduction, 6 joints (each side of each bolt), members weighted by their motion in the stuck mode
 o=$(mpiexec -n 2 $J -task compare $brb -frf_force $lev -rom_joints sides -frf_output_file "$tmp/s0" 2>&1)
@@ -73,6 +77,11 @@ mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_joints sides -rom_eleme
 o=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_load "$tmp/rom.h5" -frf_output_file "$tmp/ld" 2>&1)
 read nm dm <<< "$(same "$tmp/sv.csv" "$tmp/ld.csv" 2>/dev/null)"
 check "[ '$nm' -ge 100 ] && lt '$dm' 1e-7 && ! echo \"\$o\" | grep -q '^preload total'" "-rom_load reproduces the saving run (no preload solved): amplitudes at $nm common frequencies within $dm (< 1e-7)"
+mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_joints sides -rom_elements 3 -rom_joint_motion linear -rom_save "$tmp/roml.h5" -frf_output_file "$tmp/svl" > /dev/null 2>&1
+o=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_load "$tmp/roml.h5" -frf_output_file "$tmp/ldl" 2>&1)
+read nm dm <<< "$(same "$tmp/svl.csv" "$tmp/ldl.csv" 2>/dev/null)"
+read n2 d2 <<< "$(same "$tmp/sv.csv" "$tmp/svl.csv" 2>/dev/null)"
+check "[ '$nm' -ge 100 ] && lt '$dm' 1e-7 && lt 1e-4 '$d2'" "-rom_load of a model reduced with -rom_joint_motion linear (its elements' points saved) reproduces the saving run: within $dm at $nm frequencies (it differs from the mean's by $d2)"
 # 1 vs 2 ranks: the fit is convex (slip displacements fixed, forces free), so its result moves only at round-off
 # with the modes; on a fixed frequency grid the peaks agree to 1e-8 (-rom_fit_refine, non-convex, is not checked so)
 c1=$($J -task frf $brb $fix -frf_force 1,50 -rom_joints sides -rom_elements 3 -frf_output_file '' 2>&1 | grep '^peak level' | awk '{print $5, $7}')
@@ -105,9 +114,25 @@ expect_error "compare without joints" "-task compare needs a reduced model" $J -
 o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -rom_elements 0 -frf_force 0.001 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
 c=$(echo "$o" | grep '^rom stiffness_correction'); fb=$(field "$c" rom_before_hz); fn=$(field "$c" n2n_hz)
 check "[ -n '$fb' ] && awk -v b='$fb' -v n='$fn' 'BEGIN{exit !(b <= n * (1 + 1e-9))}'" "jenkins_nv lap3, 12 zone joints over the pairs in contact at rest: reduced stuck mode $fb Hz <= node-to-node $fn Hz"
+# the joints' linear motion field (-rom_joint_motion linear: the mean plus the joint's rotation, fitted by least
+# squares over the members' positions) is a projection onto a larger space that holds the mean's: the stuck mode lies
+# between the mean's and node-to-node's (with equal kt per member)
+o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -rom_elements 0 -rom_joint_motion linear -frf_force 0.001 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
+fl=$(field "$(echo "$o" | grep '^rom stiffness_correction')" rom_before_hz)
+check "[ -n '$fl' ] && awk -v m='$fb' -v l='$fl' -v n='$fn' 'BEGIN{exit !(m < l && l <= n * (1 + 1e-9))}'" "jenkins_nv lap3, 12 zone joints, linear field: reduced stuck mode mean $fb < linear $fl <= node-to-node $fn Hz"
+# lap1 (one bolt, 4 zone joints): the mean motion makes the interface a hinge in bending (stuck mode at half the
+# node-to-node one, no stiffness correction can reach it); the linear field, with each fitted element spread over
+# three points with its members' second moment, carries the bending (3 elements per joint here)
+for jm in mean linear; do
+  o=$($J -options_file runs/lap1_rom.opts -model_mesh_h 0.008 -rom_elements 3 -rom_joint_motion $jm -frf_force 0.01 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
+  c=$(echo "$o" | grep '^rom stiffness_correction'); eval "f_$jm=\$(field \"\$c\" rom_before_hz)"; fn=$(field "$c" n2n_hz)
+  [ $jm = linear ] && ne=$(echo "$o" | awk '/^rom: second reduction/{print $4}')
+done
+check "[ -n '$f_linear' ] && awk -v m='$f_mean' -v l='$f_linear' -v n='$fn' 'BEGIN{exit !(m < 0.6 * n && l <= n * (1 + 1e-9) && l > 0.99 * n)}' && [ '$ne' -le 36 ]" "jenkins_nv lap1, 4 zone joints x 3 elements ($ne spread elements): stuck mode with the mean $f_mean Hz (a hinge), with the linear field $f_linear Hz, node-to-node $fn Hz (within 1%)"
 
 expect_error "negative case weight" "-rom_fit_case_weight -1.: the weight must be non-negative" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_case_weight -1 -frf_output_file ''
 expect_error "negative total weight" "-rom_fit_total_weight -2.: the weight must be non-negative" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_total_weight -2 -frf_output_file ''
 expect_error "elements without joints" "-rom_elements needs joints" $J -task frf $brb -frf_force 1 -rom_elements 3 -frf_output_file ''
+expect_error "bad -rom_joint_motion" "rotate" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_joint_motion rotate -frf_output_file ''
 expect_error "bad -hbm_condense" "maybe" $J -task frf $brb -frf_force 1 -rom_joints sides -hbm_condense maybe -frf_output_file ''
 expect_error "save a first reduction" "-rom_save saves a second-reduction model" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_save "$tmp/x.h5" -frf_output_file ''

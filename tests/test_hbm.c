@@ -9,6 +9,7 @@
      amplitude-frequency relation holds at every point;
    - the analytic Jacobian and dR/dw vs central finite differences (jenkins, jenkins_nv with separation,
      cubic; H = 1 and 3);
+   - the first reduction's joint fields (mean, linear) against stuck frequencies computed by hand;
    - H = 5 vs a long direct time integration of a friction oscillator (independent code below), and
      H = 1 close to H = 5.
    Runs on 1 and 2 ranks (elements are split across ranks).
@@ -17,6 +18,7 @@
 #include <slepcsys.h>
 #include <petscviewerhdf5.h>
 #include <complex.h>
+#include <petscblaslapack.h>
 
 /* n x n MPIAIJ from a dense row-major array */
 static PetscErrorCode DenseToMat(PetscInt n, const double *A, Mat *M)
@@ -75,6 +77,7 @@ static PetscErrorCode FreeElements(JRElements *el)
   PetscCall(PetscFree5(el->type, el->dof_a, el->dof_b, el->ndof_a, el->ndof_b));
   PetscCall(PetscFree4(el->kt, el->kn, el->mu, el->n0));
   PetscCall(PetscFree(el->joint));
+  PetscCall(PetscFree(el->pos));
   PetscFunctionReturn(0);
 }
 
@@ -91,6 +94,7 @@ static const El     E4[6]  = {
 
 static const PetscInt *jr_joints = NULL; /* ProblemCreate: the elements' joints (first reduction), if set */
 static PetscInt        jr_njoints = 0;
+static const double   *jr_pos     = NULL; /* ProblemCreate: the elements' positions (3 each), if set */
 
 /* a model + HBM (+ continuation) built from dense K, M, C and elements, options set beforehand */
 typedef struct {
@@ -117,6 +121,10 @@ static PetscErrorCode ProblemCreate(PetscInt n, const double *K, const double *M
       el.njoints = jr_njoints;
       PetscCall(PetscMalloc1(ne, &el.joint));
       PetscCall(PetscArraycpy(el.joint, jr_joints, ne));
+    }
+    if (jr_pos) {
+      PetscCall(PetscMalloc1(3 * ne, &el.pos));
+      for (PetscInt i = 0; i < 3 * ne; i++) el.pos[i] = jr_pos[i];
     }
     PetscCall(JRModelSetElements(p->model, &el));
     PetscCall(FreeElements(&el));
@@ -520,6 +528,62 @@ int main(int argc, char **argv)
     }
     PetscCall(VecDestroy(&a));
     PetscCall(ProblemDestroy(&p));
+  }
+
+  /* ---- first reduction with a linear joint field (-rom_joint_motion linear): three grounded jenkins members on DOFs
+     0, 1, 2 at x = 0, 1, 3 m on a line (y, z spread 0: the fit must drop those directions) form joint 0, a fourth on
+     DOF 3 is joint 1 alone. By hand: the stuck members' rows are e_a; the least-squares line through them evaluated at
+     x_e gives r_e = mean + (x_e - xbar) sum_f e_f (x_f - xbar) / sum_f (x_f - xbar)^2; the stuck frequencies are those
+     of K + kt sum_e r_e r_e^T with M (LAPACK sygv here). The mean field (4.4) is the same without the slope; nested
+     projections in the stiffness norm (equal kt) order the three: mean <= linear <= members on their own rows ---- */
+  {
+    const El       e3[4]    = {
+      {"jenkins", 0, -1, -1, -1, 1e6, 0, 0.1, 10},
+      {"jenkins", 1, -1, -1, -1, 1e6, 0, 0.1, 10},
+      {"jenkins", 2, -1, -1, -1, 1e6, 0, 0.1, 10},
+      {"jenkins", 3, -1, -1, -1, 1e6, 0, 0.1, 10}
+    };
+    const PetscInt joint[4] = {0, 0, 0, 1};
+    const double   pos[12]  = {0, 0, 0, 1, 0, 0, 3, 0, 0, 7, 0, 0}, x[3] = {0, 1, 3};
+    double         fl[4], fm[4], fo[4], err[2] = {0, 0};
+    PetscInt       nf;
+    for (PetscInt lin = 0; lin < 2; lin++) {
+      double       A[16], B[16], w[4], work[64], xbar = 0, sxx = 0, R[3][4];
+      PetscBLASInt n4 = 4, lwork = 64, info, itype = 1;
+      Problem      p;
+      for (PetscInt i = 0; i < 3; i++) xbar += x[i] / 3;
+      for (PetscInt i = 0; i < 3; i++) sxx += (x[i] - xbar) * (x[i] - xbar);
+      for (PetscInt i = 0; i < 3; i++)
+        for (PetscInt d = 0; d < 4; d++) R[i][d] = d < 3 ? 1.0 / 3 + (lin ? (x[i] - xbar) * (x[d] - xbar) / sxx : 0.0) : 0.0;
+      for (PetscInt i = 0; i < 16; i++) {
+        A[i] = K4[i];
+        B[i] = M4[i];
+      }
+      for (PetscInt i = 0; i < 3; i++)
+        for (PetscInt c = 0; c < 4; c++)
+          for (PetscInt d = 0; d < 4; d++) A[c + 4 * d] += e3[i].kt * R[i][c] * R[i][d];
+      A[15] += e3[3].kt;
+      PetscCallBLAS("LAPACKsygv", LAPACKsygv_(&itype, "N", "U", &n4, A, &n4, B, &n4, w, work, &lwork, &info));
+      jr_joints  = joint;
+      jr_njoints = 2;
+      jr_pos     = pos;
+      PetscCall(Options(lin ? "-hbm_physical -rom_joint_motion linear" : "-hbm_physical"));
+      PetscCall(ProblemCreate(4, K4, M4, NULL, 4, e3, &p));
+      PetscCall(JRHBMStickFrequencies(p.hbm, &nf, lin ? fl : fm));
+      PetscCall(ProblemDestroy(&p));
+      for (PetscInt i = 0; i < 4; i++) err[lin] = PetscMax(err[lin], PetscAbsReal((lin ? fl : fm)[i] / (PetscSqrtReal(w[i]) / (2 * M_PI)) - 1));
+    }
+    jr_joints = NULL;
+    jr_pos    = NULL;
+    {
+      Problem p;
+      PetscCall(Options("-hbm_physical"));
+      PetscCall(ProblemCreate(4, K4, M4, NULL, 4, e3, &p));
+      PetscCall(JRHBMStickFrequencies(p.hbm, &nf, fo));
+      PetscCall(ProblemDestroy(&p));
+    }
+    CHECK(nf == 4 && err[1] < 1e-12 && err[0] < 1e-12, "first reduction, 3 members on a line in one joint: stuck frequencies with the linear field (-rom_joint_motion linear) = by hand within %.1e, with the mean within %.1e", err[1], err[0]);
+    CHECK(fm[0] <= fl[0] * (1 + 1e-12) && fl[0] <= fo[0] * (1 + 1e-12) && fl[0] > fm[0] * (1 + 1e-6), "nested projections: first stuck frequency mean %.6g <= linear %.6g <= own rows %.6g Hz (linear strictly above the mean)", fm[0], fl[0], fo[0]);
   }
 
   /* ---- condensation onto the joints (-hbm_condense): the modal equations with the modes eliminated exactly ---- */

@@ -88,6 +88,7 @@ struct _p_JRHBM {
   char              damping[256];
   /* condensation onto the joints (-hbm_condense): the linear part is solved exactly for the joints' motions */
   PetscInt          condense;     /* option: 0 auto, 1 yes, 2 no */
+  PetscInt          jmotion;      /* first reduction: a joint's members move with 0 its mean motion, 1 its linear field */
   PetscBool         cond;         /* in use: the solve space is the joints' motions */
   PetscInt          nq, ns;       /* condensed rows (nj tangential, then nj normal for jenkins_nv); solve-space size */
   PetscReal        *Q, *V, *lamv, *cv, *QV, *VF; /* rows (nq x nm row-major); (Kg, Mm) eigenvectors (col-major), values,
@@ -183,6 +184,10 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
   {
     const char *conds[] = {"auto", "yes", "no"};
     PetscCall(PetscOptionsEList("-hbm_condense", "Reduced models: eliminate the modes and solve for the joints' motions only (auto: when it is exact and smaller)", "JRHBMSetUp", conds, 3, conds[h->condense], &h->condense, NULL));
+  }
+  {
+    const char *jm[] = {"mean", "linear"};
+    PetscCall(PetscOptionsEList("-rom_joint_motion", "First reduction: a joint's members move with its mean motion (4.4) or with its linear motion field (the mean plus the joint's rotation: the least-squares fit over the members' positions; fitted elements are each split over three points with the spread of the members they stand for)", "JRHBMSetUp", jm, 2, jm[h->jmotion], &h->jmotion, NULL));
   }
   PetscCall(PetscOptionsBool("-hbm_physical", "Physical coordinates instead of modes (small systems: checks modal truncation)", "JRHBMSetUp", h->physical, &h->physical, NULL));
   PetscCall(PetscOptionsReal("-hbm_gamma", "Structural damping H = gamma K (2.17) [-]", "JRHBMSetUp", h->gamma, &h->gamma, NULL));
@@ -300,12 +305,51 @@ static PetscErrorCode ProjectionRowsDir(JRHBM h, PetscInt nloc, const PetscInt e
   PetscFunctionReturn(0);
 }
 
-/* First reduction (4.4): every member of a joint moves with the joint, the average of the relative motions of its
-   members in contact at rest (n0 > 0: those whose stuck springs the joint replaces; all members if none is); so each
-   member's rows R (and S) become that average of the joint's rows over all ranks (collective) */
-static PetscErrorCode JointAverage(JRHBM h, const JRElements *el, PetscInt nloc, const PetscInt eidx[], PetscReal R[], PetscReal S[])
+/* Pseudo-inverse of a symmetric positive semi-definite 3 x 3 matrix (directions with eigenvalues below 1e-10 of the
+   largest dropped: members on a line or at a point have no rotation about it) */
+static PetscErrorCode PseudoInverse3(PetscReal G[9])
 {
-  const PetscInt nm = h->nm, nj = el->njoints, w = S ? 2 * nm + 1 : nm + 1;
+  PetscBLASInt n = 3, lwork = 64, info;
+  PetscReal    lam[3], work[64], A[9];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArraycpy(A, G, 9));
+  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &n, A, &n, lam, work, &lwork, &info));
+  PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed (%d)", (int)info);
+  PetscCall(PetscArrayzero(G, 9));
+  for (PetscInt k = 0; k < 3; k++) {
+    if (!(lam[k] > 1e-10 * lam[2])) continue;
+    for (PetscInt a = 0; a < 3; a++)
+      for (PetscInt b = 0; b < 3; b++) G[3 * a + b] += A[3 * k + a] * A[3 * k + b] / lam[k];
+  }
+  PetscFunctionReturn(0);
+}
+
+/* A joint's motion field: fw = 4 + 4 nr nm numbers per joint: the members fitted, their centroid pbar [m] (3), then
+   per set of rows (tangential, then normal if nr = 2) the mean rows (nm) and the gradient rows B (3 nm, B[3 i + c]) */
+#define JR_FIELD_WIDTH(nr, nm) (4 + 4 * (nr) * (nm))
+
+/* The field of joint f at point p: rows X[i] = mean_i + B_i . (p - pbar) (the mean when P is NULL) */
+static inline void FieldAt(const PetscReal *f, PetscInt nm, PetscInt q, const PetscReal *p, PetscReal *X, PetscInt ldx)
+{
+  const PetscReal *ms = f + 4 + 4 * q * nm, *B = ms + nm;
+  PetscReal        dp[3] = {0, 0, 0};
+  if (p)
+    for (PetscInt c = 0; c < 3; c++) dp[c] = p[c] - f[1 + c];
+  for (PetscInt i = 0; i < nm; i++) X[i * ldx] = ms[i] + B[3 * i] * dp[0] + B[3 * i + 1] * dp[1] + B[3 * i + 2] * dp[2];
+}
+
+/* First reduction (4.4): the motion field of each joint, from the rows R (and S) of this rank's elements eidx[] of el
+   (nloc x nm, column-major), collective. The field is fitted to the members in contact at rest (n0 > 0: those whose
+   stuck springs the joint replaces; all members if none is). With -rom_joint_motion mean (the thesis) it is their
+   average motion; with linear, a linear field over their positions P (3 per element) fitted by least squares,
+   r_e ~ mean + B (p_e - pbar): the mean plus the joint's rotation (the interface's bending within the joint, which a
+   mean cannot carry). Either is an orthogonal projection of the members' motions (k sum u_e^2 >= the projection's),
+   so the reduced model is never stiffer than the node-to-node one */
+static PetscErrorCode JointFields(JRHBM h, const JRElements *el, PetscInt nloc, const PetscInt eidx[], const PetscReal R[], const PetscReal S[], const PetscReal P[], PetscReal field[])
+{
+  const PetscInt nm = h->nm, nj = el->njoints, nr = S ? 2 : 1, fw = JR_FIELD_WIDTH(nr, nm);
+  const PetscInt w = 13 + 4 * nr * nm; /* count, sum p, sum p p^T, then per set sum r, sum r p^T */
   PetscReal     *loc, *sum;
 
   PetscFunctionBeginUser;
@@ -314,32 +358,93 @@ static PetscErrorCode JointAverage(JRHBM h, const JRElements *el, PetscInt nloc,
     for (PetscInt a = 0; a < 2; a++) {
       PetscReal *r = loc + (2 * el->joint[eidx[e]] + a) * w;
       if (!a && !(el->n0[eidx[e]] > 0)) continue;
-      for (PetscInt i = 0; i < nm; i++) r[i] += R[e + i * nloc];
-      if (S)
-        for (PetscInt i = 0; i < nm; i++) r[nm + i] += S[e + i * nloc];
-      r[w - 1] += 1.0;
+      r[0] += 1.0;
+      if (P)
+        for (PetscInt c = 0; c < 3; c++) {
+          r[1 + c] += P[3 * e + c];
+          for (PetscInt d = 0; d < 3; d++) r[4 + 3 * c + d] += P[3 * e + c] * P[3 * e + d];
+        }
+      for (PetscInt q = 0; q < nr; q++) {
+        const PetscReal *X  = q ? S : R;
+        PetscReal       *rs = r + 13 + 4 * q * nm;
+        for (PetscInt i = 0; i < nm; i++) {
+          rs[i] += X[e + i * nloc];
+          if (P)
+            for (PetscInt c = 0; c < 3; c++) rs[nm + 3 * i + c] += X[e + i * nloc] * P[3 * e + c];
+        }
+      }
     }
   }
   PetscCall(MPIU_Allreduce(loc, sum, 2 * nj * w, MPIU_REAL, MPIU_SUM, h->comm));
-  for (PetscInt e = 0; e < nloc; e++) {
-    const PetscReal *r = sum + 2 * el->joint[eidx[e]] * w;
-    if (!(r[w - 1] > 0)) r += w; /* no member in contact at rest: the average of all */
-    for (PetscInt i = 0; i < nm; i++) R[e + i * nloc] = r[i] / r[w - 1];
-    if (S)
-      for (PetscInt i = 0; i < nm; i++) S[e + i * nloc] = r[nm + i] / r[w - 1];
+  PetscCall(PetscArrayzero(field, nj * fw));
+  for (PetscInt j = 0; j < nj; j++) {
+    const PetscReal *r = sum + 2 * j * w;
+    PetscReal       *f = field + j * fw, G[9];
+    if (!(r[0] > 0)) r += w; /* no member in contact at rest: the fit to all */
+    PetscCheck(r[0] > 0, h->comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no member element", j);
+    f[0] = r[0];
+    for (PetscInt c = 0; c < 3; c++) f[1 + c] = r[1 + c] / r[0];
+    for (PetscInt c = 0; c < 3; c++)
+      for (PetscInt d = 0; d < 3; d++) G[3 * c + d] = r[4 + 3 * c + d] - r[0] * f[1 + c] * f[1 + d];
+    if (P) PetscCall(PseudoInverse3(G)); /* B = sum_e r_e (p_e - pbar)^T G^+, G = sum_e (p_e - pbar)(p_e - pbar)^T */
+    for (PetscInt q = 0; q < nr; q++) {
+      const PetscReal *rs = r + 13 + 4 * q * nm;
+      PetscReal       *ms = f + 4 + 4 * q * nm, *B = ms + nm;
+      for (PetscInt i = 0; i < nm; i++) {
+        ms[i] = rs[i] / r[0];
+        if (!P) continue;
+        {
+          PetscReal m[3];
+          for (PetscInt c = 0; c < 3; c++) m[c] = rs[nm + 3 * i + c] - rs[i] * f[1 + c];
+          for (PetscInt c = 0; c < 3; c++) B[3 * i + c] = G[3 * c] * m[0] + G[3 * c + 1] * m[1] + G[3 * c + 2] * m[2];
+        }
+      }
+    }
   }
   PetscCall(PetscFree2(loc, sum));
   PetscFunctionReturn(0);
 }
 
-/* Second reduction: the joints' projection rows Rj, Sj (nj x nm, row-major, on every rank), the average of their
-   members' rows (4.4), the members split across the ranks; and, in a stuck basis, Kc += this rank's members'
-   stuck springs on their own rows (the springs the basis holds, which the reduced elements replace) */
-static PetscErrorCode JointRows(JRHBM h, const JRElements *mem, PetscReal Rj[], PetscReal Sj[], PetscReal Kc[])
+/* The positions of elements eidx[0..nloc) for a linear joint field (lin), or NULL for the mean */
+static PetscErrorCode JointPositions(JRHBM h, const JRElements *el, PetscInt nloc, const PetscInt eidx[], PetscBool lin, PetscReal **P)
 {
-  const PetscInt nm = h->nm, nj = mem->njoints, w = 2 * nm + 1;
+  PetscFunctionBeginUser;
+  *P = NULL;
+  if (!lin) PetscFunctionReturn(0);
+  PetscCheck(el->pos, h->comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion linear needs the elements' positions (node-to-node elements of an FE model)");
+  PetscCall(PetscMalloc1(3 * nloc + 1, P));
+  for (PetscInt e = 0; e < nloc; e++)
+    for (PetscInt c = 0; c < 3; c++) (*P)[3 * e + c] = el->pos[3 * eidx[e] + c];
+  PetscFunctionReturn(0);
+}
+
+/* First reduction (4.4): every member of a joint moves with the joint's field (JointFields) at its own position; so
+   each member's rows R (and S) become the joint's (collective) */
+static PetscErrorCode JointAverage(JRHBM h, const JRElements *el, PetscInt nloc, const PetscInt eidx[], PetscReal R[], PetscReal S[])
+{
+  const PetscInt nm = h->nm, nr = S ? 2 : 1, fw = JR_FIELD_WIDTH(nr, nm);
+  PetscReal     *P, *field;
+
+  PetscFunctionBeginUser;
+  PetscCall(JointPositions(h, el, nloc, eidx, (PetscBool)(h->jmotion == 1), &P));
+  PetscCall(PetscMalloc1(el->njoints * fw, &field));
+  PetscCall(JointFields(h, el, nloc, eidx, R, S, P, field));
+  for (PetscInt e = 0; e < nloc; e++)
+    for (PetscInt q = 0; q < nr; q++) FieldAt(field + el->joint[eidx[e]] * fw, nm, q, P ? P + 3 * e : NULL, (q ? S : R) + e, nloc);
+  PetscCall(PetscFree(field));
+  PetscCall(PetscFree(P));
+  PetscFunctionReturn(0);
+}
+
+/* Second reduction: the joints' fields (JointFields, nj x JR_FIELD_WIDTH(2, nm), tangential then normal, on every
+   rank) from their members' rows, the members split across the ranks (lin: the reduced elements have positions, so
+   the linear field of -rom_joint_motion linear is wanted; else the mean); and, in a stuck basis, Kc += this rank's
+   members' stuck springs on their own rows (the springs the basis holds, which the reduced elements replace) */
+static PetscErrorCode JointRows(JRHBM h, const JRElements *mem, PetscBool lin, PetscReal field[], PetscReal Kc[])
+{
+  const PetscInt nm = h->nm;
   PetscInt       nloc = PETSC_DECIDE, n = mem->n, start = 0, *eidx;
-  PetscReal     *R, *S, *loc, *sum;
+  PetscReal     *R, *S, *P;
   PetscBool      nv = PETSC_FALSE;
 
   PetscFunctionBeginUser;
@@ -353,28 +458,9 @@ static PetscErrorCode JointRows(JRHBM h, const JRElements *mem, PetscReal Rj[], 
   PetscCall(ProjectionRowsDir(h, nloc, eidx, mem->vdof_a, mem->vdof_b, mem->tdir, R));
   if (nv) PetscCall(ProjectionRowsDir(h, nloc, eidx, mem->vdof_a, mem->vdof_b, mem->ndir, S)); /* normal rows: jenkins_nv only */
   else PetscCall(PetscArrayzero(S, nloc * nm));
-  PetscCall(PetscCalloc2(2 * nj * w, &loc, 2 * nj * w, &sum)); /* per joint: its members in contact at rest, then all */
-  for (PetscInt e = 0; e < nloc; e++) {
-    for (PetscInt a = 0; a < 2; a++) {
-      PetscReal *r = loc + (2 * mem->joint[eidx[e]] + a) * w;
-      if (!a && !(mem->n0[eidx[e]] > 0)) continue;
-      for (PetscInt i = 0; i < nm; i++) {
-        r[i] += R[e + i * nloc];
-        r[nm + i] += S[e + i * nloc];
-      }
-      r[w - 1] += 1.0;
-    }
-  }
-  PetscCall(MPIU_Allreduce(loc, sum, 2 * nj * w, MPIU_REAL, MPIU_SUM, h->comm));
-  for (PetscInt j = 0; j < nj; j++) {
-    const PetscReal *r = sum + 2 * j * w;
-    if (!(r[w - 1] > 0)) r += w; /* no member in contact at rest: the average of all */
-    PetscCheck(r[w - 1] > 0, h->comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no member element", j);
-    for (PetscInt i = 0; i < nm; i++) {
-      Rj[j * nm + i] = r[i] / r[w - 1];
-      Sj[j * nm + i] = r[nm + i] / r[w - 1];
-    }
-  }
+  PetscCall(JointPositions(h, mem, nloc, eidx, lin, &P));
+  PetscCall(JointFields(h, mem, nloc, eidx, R, S, P, field));
+  PetscCall(PetscFree(P));
   if (Kc && nloc) {
     PetscReal *W;
     PetscCall(PetscMalloc1(nloc * nm, &W));
@@ -391,7 +477,6 @@ static PetscErrorCode JointRows(JRHBM h, const JRElements *mem, PetscReal Rj[], 
     }
     PetscCall(PetscFree(W));
   }
-  PetscCall(PetscFree2(loc, sum));
   PetscCall(PetscFree3(eidx, R, S));
   PetscFunctionReturn(0);
 }
@@ -527,7 +612,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
   Mat               K, M, C;
   PetscInt          ndof;
   const JRElements *el;
-  PetscReal        *Rj = NULL, *Sj = NULL;
+  PetscReal        *field = NULL; /* reduced models: the joints' motion fields (JointFields) */
 
   PetscFunctionBeginUser;
   if (h->setupcalled) PetscFunctionReturn(0);
@@ -673,8 +758,8 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
   PetscCall(PetscCalloc1(h->nm * h->nm, &h->Kc));
   if (el->members) {
     PetscCheck(el->joint && el->njoints == el->members->njoints, h->comm, PETSC_ERR_ARG_WRONG, "A reduced model needs a joint for every element, among its members' %" PetscInt_FMT " joints", el->members->njoints);
-    PetscCall(PetscMalloc2(el->njoints * h->nm, &Rj, el->njoints * h->nm, &Sj));
-    PetscCall(JointRows(h, el->members, Rj, Sj, h->basis >= 1 ? h->Kc : NULL));
+    PetscCall(PetscMalloc1(el->njoints * JR_FIELD_WIDTH(2, h->nm), &field));
+    PetscCall(JointRows(h, el->members, (PetscBool)(el->pos != NULL), field, h->basis >= 1 ? h->Kc : NULL));
   }
   /* element groups, one per type, split across the ranks */
   for (PetscInt t = 0; t < h->ngroups; t++) PetscCall(GroupDestroy(&h->g[t]));
@@ -724,7 +809,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc * nc, &g->DU));
     if (el->members)
       for (PetscInt e = 0; e < nloc; e++)
-        for (PetscInt i = 0; i < nm; i++) g->R[e + i * nloc] = Rj[el->joint[eidx[e]] * nm + i];
+        FieldAt(field + el->joint[eidx[e]] * JR_FIELD_WIDTH(2, nm), nm, 0, el->pos ? el->pos + 3 * eidx[e] : NULL, g->R + e, nloc);
     else if (el->vdof_a) PetscCall(ProjectionRowsDir(h, nloc, eidx, el->vdof_a, el->vdof_b, el->tdir, g->R));
     else PetscCall(ProjectionRows(h, nloc, ia, ib, g->R));
     if (g->normal) {
@@ -739,7 +824,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
       PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc * nc, &g->DN));
       if (el->members)
         for (PetscInt e = 0; e < nloc; e++)
-          for (PetscInt i = 0; i < nm; i++) g->S[e + i * nloc] = Sj[el->joint[eidx[e]] * nm + i];
+          FieldAt(field + el->joint[eidx[e]] * JR_FIELD_WIDTH(2, nm), nm, 1, el->pos ? el->pos + 3 * eidx[e] : NULL, g->S + e, nloc);
       else if (el->vdof_a) PetscCall(ProjectionRowsDir(h, nloc, eidx, el->vdof_a, el->vdof_b, el->ndir, g->S));
       else PetscCall(ProjectionRows(h, nloc, ia, ib, g->S));
     }
@@ -814,7 +899,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     PetscCall(PetscFree2(loc, all));
   }
 
-  PetscCall(PetscFree2(Rj, Sj));
+  PetscCall(PetscFree(field));
   /* a reduced model: the modes eliminated, the joints' motions the unknowns */
   PetscCall(CondenseSetUp(h, el));
   /* the nonlinear solver at fixed frequency: SNES on every rank, prefix hbm_ */

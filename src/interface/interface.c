@@ -183,6 +183,7 @@ PetscErrorCode JRInterfaceCreateElements(JRModel model, JRPreload pre, JRElement
   PetscCall(PetscMalloc5(n, &el->type, n, &el->dof_a, n, &el->dof_b, n, &el->ndof_a, n, &el->ndof_b));
   PetscCall(PetscMalloc4(n, &el->kt, n, &el->kn, n, &el->mu, n, &el->n0));
   PetscCall(PetscMalloc4(3 * n, &el->vdof_a, 3 * n, &el->vdof_b, 3 * n, &el->tdir, 3 * n, &el->ndir));
+  PetscCall(PetscMalloc1(3 * n, &el->pos));
   PetscCall(PetscMalloc1(n, pair));
   for (PetscInt p = 0, e = 0; p < np; p++) {
     if (!(type == 0 ? N[p] > 0 : (maxgap < 0 || gap[p] <= maxgap))) continue;
@@ -198,6 +199,7 @@ PetscErrorCode JRInterfaceCreateElements(JRModel model, JRPreload pre, JRElement
         el->vdof_b[3 * e + c] = P->dofB[3 * p + c];
         el->tdir[3 * e + c]   = P->t[3 * p + c];
         el->ndir[3 * e + c]   = P->nrm[3 * p + c];
+        el->pos[3 * e + c]    = P->x[3 * p + c];
       }
       (*pair)[e] = p;
     }

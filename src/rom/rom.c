@@ -403,7 +403,7 @@ static PetscErrorCode SearchDelta(TangentFit *t, PetscReal dmin, PetscReal dmax,
 {
   const PetscInt ngrid = NGRID, nc = ngrid + m;
   PetscReal     *dc, *G, *cg, bb = 0, best, yy[8];
-  PetscInt       sel[8], bsel[8];
+  PetscInt       sel[8] = {0}, bsel[8] = {0};
   double         combos = 1;
 
   PetscFunctionBeginUser;
@@ -776,6 +776,48 @@ static PetscErrorCode CaseAmplitudes(MPI_Comm comm, const JRElements *nn, const 
   PetscFunctionReturn(0);
 }
 
+/* -rom_joint_motion linear: where a joint's fitted elements take its linear motion field. Element g stands for a group
+   of the joint's members d[] (by slip force, as the fit's start); it is split into three equal parts at the points
+   c + sqrt(2) (s1 cos t e1 + s2 sin t e2), t = 0, 2 pi/3, 4 pi/3, where c is the group's stiffness-weighted centroid
+   and s_a^2, e_a the eigenpairs of its in-plane covariance: the three points have the group's centroid and second
+   moment, so the parts carry the joint's rotation with the members' stiffness (parallel axis theorem) and, moved
+   uniformly, act as the element itself. P: 9 per element (three points) */
+static PetscErrorCode SpreadPoints(const JRElements *nn, const MemberDelta *d, PetscInt nm, PetscInt mj, const PetscReal mk[], const PetscReal mf[], PetscReal ftot, PetscReal P[])
+{
+  PetscReal *acc; /* per group: weight, sum w p (3), sum w p p^T (9) */
+  PetscReal  c = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(13 * mj, &acc));
+  for (PetscInt i = 0; i < nm; i++, c += mf[d[i - 1].e]) {
+    const PetscInt   e = d[i].e;
+    const PetscReal *p = nn->pos + 3 * e;
+    const PetscInt   g = nm <= mj ? i : PetscMin(PetscMax((PetscInt)(mj * (c + 0.5 * mf[e]) / ftot), 0), mj - 1);
+    acc[13 * g] += mk[e];
+    for (PetscInt a = 0; a < 3; a++) {
+      acc[13 * g + 1 + a] += mk[e] * p[a];
+      for (PetscInt b = 0; b < 3; b++) acc[13 * g + 4 + 3 * a + b] += mk[e] * p[a] * p[b];
+    }
+  }
+  for (PetscInt g = 0; g < mj; g++) {
+    const PetscReal *r = acc + 13 * g;
+    PetscReal        c[3] = {0, 0, 0}, C[9], lam[3], work[64];
+    PetscBLASInt     n = 3, lwork = 64, info;
+    if (r[0] > 0)
+      for (PetscInt a = 0; a < 3; a++) c[a] = r[1 + a] / r[0];
+    for (PetscInt a = 0; a < 3; a++)
+      for (PetscInt b = 0; b < 3; b++) C[3 * a + b] = r[0] > 0 ? r[4 + 3 * a + b] / r[0] - c[a] * c[b] : 0.0;
+    PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &n, C, &n, lam, work, &lwork, &info));
+    PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed (%d)", (int)info);
+    for (PetscInt k = 0; k < 3; k++) { /* the two largest spreads: the interface's plane (the third is ~0) */
+      const PetscReal t = 2 * PETSC_PI * k / 3, s1 = PetscSqrtReal(2 * PetscMax(lam[2], 0)), s2 = PetscSqrtReal(2 * PetscMax(lam[1], 0));
+      for (PetscInt a = 0; a < 3; a++) P[9 * g + 3 * k + a] = c[a] + s1 * PetscCosReal(t) * C[6 + a] + s2 * PetscSinReal(t) * C[3 + a];
+    }
+  }
+  PetscCall(PetscFree(acc));
+  PetscFunctionReturn(0);
+}
+
 /* The fit coupled across joints (CoupledFit): the joints with more members than elements, from their own fits x,
    their slip displacements chosen together (CoupledSearch) and their forces fitted together by TAO; x, rms (each
    joint's own rows) and its updated. Joints whose members are their elements stay as they are (their energy is
@@ -883,7 +925,8 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   PetscBool    nv, frset;
   MemberDelta *md;
   PetscInt    *jn, *joff;
-  PetscReal   *ek, *ef, *ekn, *en0, *emu, *loops = NULL, *mk, *mf, **xj, *rmsv, *rms0v, *dlo, *dhi, *muv, *knv;
+  PetscBool    spread = PETSC_FALSE;
+  PetscReal   *ek, *ef, *ekn, *en0, *emu, *ep = NULL, *loops = NULL, *mk, *mf, **xj, *rmsv, *rms0v, *dlo, *dhi, *muv, *knv;
   PetscInt    *mjv, *itsv;
   TangentFit  *tf;
   FILE        *fp  = NULL;
@@ -904,6 +947,12 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   PetscCall(PetscOptionsReal("-fit_case_weight", "Weight of the energy dissipated per cycle at each joint's amplitude in the case (relative to the input energy at that level; 0: not fitted)", "JRROMReduce", wcase, &wcase, NULL));
   PetscCall(PetscOptionsReal("-fit_total_weight", "Weight of the energy all joints together dissipate per cycle at the case's amplitudes (relative to the input energy; a fit coupled across joints; 0: each joint fitted alone)", "JRROMReduce", wtotal, &wtotal, NULL));
   PetscCall(PetscOptionsReal("-fit_gross_weight", "Weight of the joint's total slip force (gross slip), relative", "JRROMReduce", wgross, &wgross, NULL));
+  {
+    const char *jm[] = {"mean", "linear"};
+    PetscInt    jmo  = 0;
+    PetscCall(PetscOptionsEList("-joint_motion", "First reduction: a joint's members move with its mean motion or its linear motion field; with linear, each fitted element is spread over three points of its members' spatial spread", "JRROMReduce", jm, 2, jm[jmo], &jmo, NULL));
+    spread = (PetscBool)(jmo == 1);
+  }
   PetscCall(PetscOptionsBool("-fit_search", "Choose the slip displacements among a grid over the members' range (best non-negative least squares of the forces); else those of the log-width groups of members", "JRROMReduce", search, &search, NULL));
   PetscOptionsEnd();
   PetscCheck(wgross >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_gross_weight %g: the weight must be non-negative", (double)wgross);
@@ -912,12 +961,13 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   if (!frset) nfr = 3;
   PetscCheck(nfr == 3 && fr[0] > 0 && fr[1] > fr[0] && fr[2] > fr[1] && fr[2] <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_fractions: three increasing fractions in (0, 1] (default 0.25,0.6,0.95)");
   PetscCheck(ns >= 8, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_samples %" PetscInt_FMT ": at least 8", ns);
+  PetscCheck(!spread || nn->pos, comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion linear needs the members' positions (node-to-node elements of an FE model)");
   /* every member as an element on its joint's motion: with the mode-shape weight w_e (its motion / the joint's in
      the mode of interest), a Jenkins element moving w u is one moving u with w^2 kt and |w| f (same forces, same
      energy); w = 1 is the plain first reduction (4.4) */
   PetscCall(PetscMalloc2(nn->n, &mk, nn->n, &mf));
   for (PetscInt e = 0; e < nn->n; e++) {
-    const PetscReal w = wt && !nv ? wt[e] : 1.0;
+    const PetscReal w = wt && !nv && !spread ? wt[e] : 1.0; /* linear: the members' own motions, no weights */
     mk[e]             = w * w * nn->kt[e];
     mf[e]             = PetscAbsReal(w) * nn->mu[e] * PetscMax(nn->n0[e], 0.0);
   }
@@ -934,8 +984,10 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
     for (PetscInt e = 0; e < nn->n; e++) cnt0 += (nv || mk[e] > 0);
     PetscCall(SetupList(rom, cnt0, nn->typename[0], PETSC_FALSE));
     rom->njoints = nj;
+    if (spread) PetscCall(PetscMalloc1(3 * cnt0 + 1, &rom->pos));
     for (PetscInt e = 0, i = 0; e < nn->n; e++) {
       if (!(nv || mk[e] > 0)) continue;
+      for (PetscInt c = 0; spread && c < 3; c++) rom->pos[3 * i + c] = nn->pos[3 * e + c];
       rom->kt[i]      = nv ? nn->kt[e] : mk[e];
       rom->kn[i]      = nn->kn[e];
       rom->mu[i]      = nn->mu[e];
@@ -970,6 +1022,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   }
   nmax = cnt;
   PetscCall(PetscMalloc5(nmax, &ek, nmax, &ef, nmax, &ekn, nmax, &en0, nmax, &emu));
+  if (spread) PetscCall(PetscMalloc1(9 * nmax + 1, &ep));
   if (base && base[0]) {
     PetscCall(PetscSNPrintf(csv, sizeof(csv), "%s_rom_loops.csv", base));
     PetscCall(JRFileOpenTemp(comm, csv, &fp, tmp, sizeof(tmp)));
@@ -1174,6 +1227,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
       emu[cnt + i] = mu;
       ekn[cnt + i] = 0;
     }
+    if (spread) PetscCall(SpreadPoints(nn, d, nm, mj, mk, mf, ftot, ep + 9 * cnt));
     if (nv) { /* normal stiffnesses: the joint's normal load against its normal motion */
       NormalFit nf;
       PetscReal vsep = 0, nmx = 0;
@@ -1250,23 +1304,31 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
       PetscCall(PetscPrintf(comm, "rom: wrote %s%s%s\n", csv, made ? ", " : "", made ? png : ""));
     } else PetscCall(PetscPrintf(comm, "rom: wrote %s\n", csv));
   }
-  /* the reduced elements, the first-reduction model as their members */
-  PetscCall(SetupList(rom, cnt, nn->typename[0], PETSC_FALSE));
-  rom->njoints = nj;
-  for (PetscInt j = 0, e = 0; j < nj; j++)
-    for (PetscInt i = 0; i < -jn[j] - 1; i++, e++) {
-      rom->kt[e]    = ek[e];
-      rom->kn[e]    = ekn[e];
-      rom->mu[e]    = emu[e];
-      rom->n0[e]    = en0[e];
-      rom->joint[e] = j;
-    }
+  /* the reduced elements, the first-reduction model as their members; spread: each a third at each of its points */
+  {
+    const PetscInt nc = spread ? 3 : 1;
+    PetscCall(SetupList(rom, nc * cnt, nn->typename[0], PETSC_FALSE));
+    if (spread) PetscCall(PetscMalloc1(9 * cnt, &rom->pos));
+    rom->njoints = nj;
+    for (PetscInt j = 0, e = 0; j < nj; j++)
+      for (PetscInt i = 0; i < -jn[j] - 1; i++, e++)
+        for (PetscInt c = 0; c < nc; c++) {
+          const PetscInt r = nc * e + c;
+          rom->kt[r]       = ek[e] / nc;
+          rom->kn[r]       = ekn[e] / nc;
+          rom->mu[r]       = emu[e];
+          rom->n0[r]       = en0[e] / nc;
+          rom->joint[r]    = j;
+          for (PetscInt k = 0; spread && k < 3; k++) rom->pos[3 * r + k] = ep[9 * e + 3 * c + k];
+        }
+  }
   PetscCall(PetscNew(&rom->members));
   PetscCall(JRElementsDuplicate(nn, rom->members));
   PetscCall(PetscFree(loops));
   PetscCall(PetscFree3(tf, xj, mjv));
   PetscCall(PetscFree7(itsv, rmsv, rms0v, dlo, dhi, muv, knv));
   PetscCall(PetscFree5(ek, ef, ekn, en0, emu));
+  PetscCall(PetscFree(ep));
   PetscCall(PetscFree(md));
   PetscCall(PetscFree2(jn, joff));
   PetscCall(PetscFree2(mk, mf));
@@ -1387,6 +1449,14 @@ PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, c
       }
     }
     PetscCall(WriteSeq(v, "members", mem->n, JR_ROM_MEM, a));
+    if (rom->pos && mem->pos) { /* -rom_joint_motion linear: the elements' points, then the members' */
+      PetscReal *p;
+      PetscCall(PetscMalloc1(3 * (rom->n + mem->n), &p));
+      PetscCall(PetscArraycpy(p, rom->pos, 3 * rom->n));
+      PetscCall(PetscArraycpy(p + 3 * rom->n, mem->pos, 3 * mem->n));
+      PetscCall(WriteSeq(v, "positions", rom->n + mem->n, 3, p));
+      PetscCall(PetscFree(p));
+    }
     PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "njoints", PETSC_INT, &nj));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "element_type", PETSC_STRING, rom->typename[0]));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "members", "element_type", PETSC_STRING, mem->typename[0]));
@@ -1435,9 +1505,9 @@ PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, Pets
 {
   MPI_Comm    comm;
   PetscViewer v;
-  PetscBool   exists;
-  PetscReal  *a, *b, *xc, lo[3], hi[3], size = 0, worst = 0;
-  PetscInt    ne, nmem, nj = 0, ndof, bad = -1;
+  PetscBool   exists, haspos;
+  PetscReal  *a, *b, *xc, *pos = NULL, lo[3], hi[3], size = 0, worst = 0;
+  PetscInt    ne, nmem, nj = 0, ndof, bad = -1, npos = 0;
   char       *ty = NULL, *mty = NULL;
   JRElements *mem;
 
@@ -1449,6 +1519,8 @@ PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, Pets
   PetscCall(PetscViewerHDF5PushGroup(v, "/rom"));
   PetscCall(ReadSeq(v, file, "elements", JR_ROM_EL, &ne, &a));
   PetscCall(ReadSeq(v, file, "members", JR_ROM_MEM, &nmem, &b));
+  PetscCall(PetscViewerHDF5HasDataset(v, "positions", &haspos));
+  if (haspos) PetscCall(ReadSeq(v, file, "positions", 3, &npos, &pos));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "njoints", PETSC_INT, NULL, &nj));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "element_type", PETSC_STRING, NULL, &ty));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "members", "element_type", PETSC_STRING, NULL, &mty));
@@ -1481,6 +1553,14 @@ PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, Pets
     }
   }
   rom->members = mem;
+  if (haspos) { /* a model reduced with -rom_joint_motion linear: the points where its elements and members sit */
+    PetscCheck(npos == ne + nmem, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: /rom/positions has %" PetscInt_FMT " points, not one per element and member (%" PetscInt_FMT ")", file, npos, ne + nmem);
+    PetscCall(PetscMalloc1(3 * ne, &rom->pos));
+    PetscCall(PetscMalloc1(3 * nmem, &mem->pos));
+    PetscCall(PetscArraycpy(rom->pos, pos, 3 * ne));
+    PetscCall(PetscArraycpy(mem->pos, pos + 3 * ne, 3 * nmem));
+    PetscCall(PetscFree(pos));
+  }
   PetscCall(PetscMalloc1(6 * nmem, &xc));
   PetscCall(MemberCoordinates(model, mem, xc));
   PetscCall(JRModelGetBoundingBox(model, lo, hi));

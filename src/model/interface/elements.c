@@ -100,6 +100,7 @@ PetscErrorCode JRElementsDestroy(JRElements *el)
   }
   PetscCall(PetscFree4(el->vdof_a, el->vdof_b, el->tdir, el->ndir));
   PetscCall(PetscFree(el->joint));
+  PetscCall(PetscFree(el->pos));
   if (el->members) {
     PetscCall(JRElementsDestroy(el->members));
     PetscCall(PetscFree(el->members));
@@ -140,6 +141,10 @@ PetscErrorCode JRElementsDuplicate(const JRElements *a, JRElements *b)
     PetscCall(PetscArraycpy(b->vdof_b, a->vdof_b, 3 * n));
     PetscCall(PetscArraycpy(b->tdir, a->tdir, 3 * n));
     PetscCall(PetscArraycpy(b->ndir, a->ndir, 3 * n));
+  }
+  if (a->pos) {
+    PetscCall(PetscMalloc1(3 * n, &b->pos));
+    PetscCall(PetscArraycpy(b->pos, a->pos, 3 * n));
   }
   if (a->members) {
     PetscCall(PetscNew(&b->members));
