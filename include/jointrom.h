@@ -151,7 +151,9 @@ typedef struct _JRElements {
   PetscInt   njoints, *joint; /* first reduction (4.4), optional: element e belongs to joint joint[e] and moves
                                  with the joint, the average of its members' relative motions */
   PetscReal *pos;              /* optional, 3 per element: where the element sits [m] (node-to-node: the pair's node);
-                                  with -hbm_joint_motion linear it takes its joint's linear motion field there */
+                                  with -rom_joint_motion linear or mode it takes its joint's motion field there */
+  PetscReal *phi;              /* optional, 2 per element: its tangential and normal motion in the stuck mode of
+                                  interest (scaled), its other coordinates in the field with -rom_joint_motion mode */
   struct _JRElements *members; /* second reduction, optional: the joints' motions are those of these (node-to-node)
                                   elements' joints (members->joint), whose stuck springs also define a stuck basis;
                                   then the elements here need no DOFs (their rows are their joint's) */
@@ -292,7 +294,7 @@ PETSC_EXTERN PetscErrorCode JRHBMElementStates(JRHBM, Vec, JRContactState[]);
 PETSC_EXTERN PetscErrorCode JRHBMKineticEnergy(JRHBM, PetscReal, Vec, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMSetExcitationDof(JRHBM, PetscInt, PetscInt, const PetscInt[]);
 PETSC_EXTERN PetscErrorCode JRHBMMatchStickFrequency(JRHBM, PetscInt, PetscReal, PetscReal *);
-PETSC_EXTERN PetscErrorCode JRHBMStuckModeMotion(JRHBM, PetscInt, PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRHBMStuckModeMotion(JRHBM, PetscInt, PetscReal[], PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMStuckModeBalance(JRHBM, PetscInt, PetscReal *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMSetModes(JRHBM, JRHBM);
 PETSC_EXTERN PetscErrorCode JRHBMSetBasis(JRHBM, PetscInt);

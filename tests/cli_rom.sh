@@ -5,7 +5,8 @@
 # and the second reduction (6 joints x 3, 4, 7 elements) within stated errors; the stiffness correction puts the
 # reduced model's stuck resonance on the node-to-node one; a saved reduced model reproduces the run that saved it
 # (also without the preload); 1 vs 2 ranks; bad regions and files; the joints' linear motion field (-rom_joint_motion
-# linear) between the mean's and node-to-node's, and carrying lap1's bending.
+# linear) between the mean's and node-to-node's, and carrying lap1's bending; with the stuck-mode coordinates
+# (-rom_joint_motion mode) the mode of interest kept exactly.
 cd "$(dirname "$0")/.."
 . tests/cli_lib.sh
 brb="-model_type brb -model_mesh_h 0.01 -preload_force 11500 -interface_kt 1e6 -interface_mu 0.12 -hbm_modes 12 -hbm_gamma 0.002 -cont_monitor 0 -frf_plot 0 -frf_fmin 128 -frf_fmax 138"
@@ -82,6 +83,11 @@ o=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_load "$tmp/roml.h5"
 read nm dm <<< "$(same "$tmp/svl.csv" "$tmp/ldl.csv" 2>/dev/null)"
 read n2 d2 <<< "$(same "$tmp/sv.csv" "$tmp/svl.csv" 2>/dev/null)"
 check "[ '$nm' -ge 100 ] && lt '$dm' 1e-7 && lt 1e-4 '$d2'" "-rom_load of a model reduced with -rom_joint_motion linear (its elements' points saved) reproduces the saving run: within $dm at $nm frequencies (it differs from the mean's by $d2)"
+mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_joints sides -rom_elements 3 -rom_joint_motion mode -rom_save "$tmp/romm.h5" -frf_output_file "$tmp/svm" > /dev/null 2>&1
+o=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_load "$tmp/romm.h5" -frf_output_file "$tmp/ldm" 2>&1)
+read nm dm <<< "$(same "$tmp/svm.csv" "$tmp/ldm.csv" 2>/dev/null)"
+read n2 d2 <<< "$(same "$tmp/sv.csv" "$tmp/svm.csv" 2>/dev/null)"
+check "[ '$nm' -ge 100 ] && lt '$dm' 1e-7 && lt 1e-4 '$d2'" "-rom_load of a model reduced with -rom_joint_motion mode (points and stuck-mode coordinates saved) reproduces the saving run: within $dm at $nm frequencies (it differs from the mean's by $d2)"
 # 1 vs 2 ranks: the fit is convex (slip displacements fixed, forces free), so its result moves only at round-off
 # with the modes; on a fixed frequency grid the peaks agree to 1e-8 (-rom_fit_refine, non-convex, is not checked so)
 c1=$($J -task frf $brb $fix -frf_force 1,50 -rom_joints sides -rom_elements 3 -frf_output_file '' 2>&1 | grep '^peak level' | awk '{print $5, $7}')
@@ -111,7 +117,7 @@ expect_error "compare without joints" "-task compare needs a reduced model" $J -
 # jenkins_nv with open pairs (lap3, zones, first reduction): a joint moves with the average of its members in
 # contact at rest, whose springs it carries; then by Cauchy-Schwarz (k sum u_e^2 >= K (mean u)^2) the reduced
 # stuck mode can only be at or below node-to-node's (averaging over all members put it 16% above)
-o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -rom_elements 0 -frf_force 0.001 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
+o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -rom_elements 0 -rom_joint_motion mean -frf_force 0.001 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
 c=$(echo "$o" | grep '^rom stiffness_correction'); fb=$(field "$c" rom_before_hz); fn=$(field "$c" n2n_hz)
 check "[ -n '$fb' ] && awk -v b='$fb' -v n='$fn' 'BEGIN{exit !(b <= n * (1 + 1e-9))}'" "jenkins_nv lap3, 12 zone joints over the pairs in contact at rest: reduced stuck mode $fb Hz <= node-to-node $fn Hz"
 # the joints' linear motion field (-rom_joint_motion linear: the mean plus the joint's rotation, fitted by least
@@ -120,6 +126,15 @@ check "[ -n '$fb' ] && awk -v b='$fb' -v n='$fn' 'BEGIN{exit !(b <= n * (1 + 1e-
 o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -rom_elements 0 -rom_joint_motion linear -frf_force 0.001 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
 fl=$(field "$(echo "$o" | grep '^rom stiffness_correction')" rom_before_hz)
 check "[ -n '$fl' ] && awk -v m='$fb' -v l='$fl' -v n='$fn' 'BEGIN{exit !(m < l && l <= n * (1 + 1e-9))}'" "jenkins_nv lap3, 12 zone joints, linear field: reduced stuck mode mean $fb < linear $fl <= node-to-node $fn Hz"
+# -rom_joint_motion mode: the field's coordinates also include each member's tangential and normal motion in the
+# stuck mode of interest; those motions then lie in the field's span, so (for equal springs per member) that mode is
+# an exact eigenvector of the first reduction, with the node-to-node frequency (no stiffness correction needed)
+for model in lap3 lap1; do
+  [ $model = lap3 ] && mo="-options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -frf_force 0.001" || mo="-options_file runs/lap1_rom.opts -model_mesh_h 0.008 -frf_force 0.01"
+  o=$($J $mo -rom_elements 0 -rom_joint_motion mode -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
+  c=$(echo "$o" | grep '^rom stiffness_correction'); fb=$(field "$c" rom_before_hz); fn=$(field "$c" n2n_hz)
+  check "[ -n '$fb' ] && close $fb $fn 1e-8" "jenkins_nv $model, first reduction with -rom_joint_motion mode: the stuck mode of interest kept exactly, $fb Hz = node-to-node $fn Hz"
+done
 # lap1 (one bolt, 4 zone joints): the mean motion makes the interface a hinge in bending (stuck mode at half the
 # node-to-node one, no stiffness correction can reach it); the linear field, with each fitted element spread over
 # three points with its members' second moment, carries the bending (3 elements per joint here)

@@ -78,6 +78,7 @@ static PetscErrorCode FreeElements(JRElements *el)
   PetscCall(PetscFree4(el->kt, el->kn, el->mu, el->n0));
   PetscCall(PetscFree(el->joint));
   PetscCall(PetscFree(el->pos));
+  PetscCall(PetscFree(el->phi));
   PetscFunctionReturn(0);
 }
 
@@ -95,6 +96,7 @@ static const El     E4[6]  = {
 static const PetscInt *jr_joints = NULL; /* ProblemCreate: the elements' joints (first reduction), if set */
 static PetscInt        jr_njoints = 0;
 static const double   *jr_pos     = NULL; /* ProblemCreate: the elements' positions (3 each), if set */
+static const double   *jr_phi     = NULL; /* ProblemCreate: the elements' stuck-mode coordinates (2 each), if set */
 
 /* a model + HBM (+ continuation) built from dense K, M, C and elements, options set beforehand */
 typedef struct {
@@ -125,6 +127,10 @@ static PetscErrorCode ProblemCreate(PetscInt n, const double *K, const double *M
     if (jr_pos) {
       PetscCall(PetscMalloc1(3 * ne, &el.pos));
       for (PetscInt i = 0; i < 3 * ne; i++) el.pos[i] = jr_pos[i];
+    }
+    if (jr_phi) {
+      PetscCall(PetscMalloc1(2 * ne, &el.phi));
+      for (PetscInt i = 0; i < 2 * ne; i++) el.phi[i] = jr_phi[i];
     }
     PetscCall(JRModelSetElements(p->model, &el));
     PetscCall(FreeElements(&el));
@@ -583,7 +589,26 @@ int main(int argc, char **argv)
       PetscCall(ProblemDestroy(&p));
     }
     CHECK(nf == 4 && err[1] < 1e-12 && err[0] < 1e-12, "first reduction, 3 members on a line in one joint: stuck frequencies with the linear field (-rom_joint_motion linear) = by hand within %.1e, with the mean within %.1e", err[1], err[0]);
-    CHECK(fm[0] <= fl[0] * (1 + 1e-12) && fl[0] <= fo[0] * (1 + 1e-12) && fl[0] > fm[0] * (1 + 1e-6), "nested projections: first stuck frequency mean %.6g <= linear %.6g <= own rows %.6g Hz (linear strictly above the mean)", fm[0], fl[0], fo[0]);
+    CHECK(fm[0] <= fl[0] * (1 + 1e-12) && fl[0] <= fo[0] * (1 + 1e-12) && fl[0] > fm[0] * (1 + 1e-6), "nested projections: first stuck frequency mean %.6g <= linear %.6g <= own rows %.6g Hz (linear strictly above the mean)", fm[0], fl[0], fo[0]);    { /* a third coordinate (-rom_joint_motion mode: the stuck-mode motion, here 0, 0, 1 on the three members) makes
+         1, x, phi independent over the three: the least-squares field then interpolates, every member keeps its own row,
+         and the stuck frequencies are the members' own */
+      const double phi[8] = {0, 0, 0, 0, 1, 0, 0, 0};
+      double       fp[4], dev = 0;
+      Problem      p;
+      jr_joints  = joint;
+      jr_njoints = 2;
+      jr_pos     = pos;
+      jr_phi     = phi;
+      PetscCall(Options("-hbm_physical -rom_joint_motion mode"));
+      PetscCall(ProblemCreate(4, K4, M4, NULL, 4, e3, &p));
+      PetscCall(JRHBMStickFrequencies(p.hbm, &nf, fp));
+      PetscCall(ProblemDestroy(&p));
+      jr_joints = NULL;
+      jr_pos    = NULL;
+      jr_phi    = NULL;
+      for (PetscInt i = 0; i < 4; i++) dev = PetscMax(dev, PetscAbsReal(fp[i] / fo[i] - 1));
+      CHECK(dev < 1e-12 && fp[0] > fl[0] * (1 + 1e-6), "first reduction, 3 members with 3 independent field coordinates (1, x, phi): the members' own stuck frequencies within %.1e (above the linear field's %.6g Hz: %.6g Hz)", dev, fl[0], fp[0]);
+    }
   }
 
   /* ---- condensation onto the joints (-hbm_condense): the modal equations with the modes eliminated exactly ---- */

@@ -88,7 +88,8 @@ struct _p_JRHBM {
   char              damping[256];
   /* condensation onto the joints (-hbm_condense): the linear part is solved exactly for the joints' motions */
   PetscInt          condense;     /* option: 0 auto, 1 yes, 2 no */
-  PetscInt          jmotion;      /* first reduction: a joint's members move with 0 its mean motion, 1 its linear field */
+  PetscInt          jmotion;      /* first reduction: a joint's members move with 0 its mean motion, 1-2 its linear field
+                                     over their coordinates (JRElements pos: 1 positions, 2 stuck-mode motions) */
   PetscBool         cond;         /* in use: the solve space is the joints' motions */
   PetscInt          nq, ns;       /* condensed rows (nj tangential, then nj normal for jenkins_nv); solve-space size */
   PetscReal        *Q, *V, *lamv, *cv, *QV, *VF; /* rows (nq x nm row-major); (Kg, Mm) eigenvectors (col-major), values,
@@ -186,8 +187,8 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
     PetscCall(PetscOptionsEList("-hbm_condense", "Reduced models: eliminate the modes and solve for the joints' motions only (auto: when it is exact and smaller)", "JRHBMSetUp", conds, 3, conds[h->condense], &h->condense, NULL));
   }
   {
-    const char *jm[] = {"mean", "linear"};
-    PetscCall(PetscOptionsEList("-rom_joint_motion", "First reduction: a joint's members move with its mean motion (4.4) or with its linear motion field (the mean plus the joint's rotation: the least-squares fit over the members' positions; fitted elements are each split over three points with the spread of the members they stand for)", "JRHBMSetUp", jm, 2, jm[h->jmotion], &h->jmotion, NULL));
+    const char *jm[] = {"mean", "linear", "mode"};
+    PetscCall(PetscOptionsEList("-rom_joint_motion", "How a joint's members move: with its mean motion (4.4), or with a linear field over their coordinates, fitted by least squares: their positions (linear: the mean plus the joint's rotation) or their motions in the stuck mode of interest (mode); the coordinates are the elements' (JRElements pos)", "JRHBMSetUp", jm, 3, jm[h->jmotion], &h->jmotion, NULL));
   }
   PetscCall(PetscOptionsBool("-hbm_physical", "Physical coordinates instead of modes (small systems: checks modal truncation)", "JRHBMSetUp", h->physical, &h->physical, NULL));
   PetscCall(PetscOptionsReal("-hbm_gamma", "Structural damping H = gamma K (2.17) [-]", "JRHBMSetUp", h->gamma, &h->gamma, NULL));
@@ -305,51 +306,61 @@ static PetscErrorCode ProjectionRowsDir(JRHBM h, PetscInt nloc, const PetscInt e
   PetscFunctionReturn(0);
 }
 
-/* Pseudo-inverse of a symmetric positive semi-definite 3 x 3 matrix (directions with eigenvalues below 1e-10 of the
-   largest dropped: members on a line or at a point have no rotation about it) */
-static PetscErrorCode PseudoInverse3(PetscReal G[9])
+/* Pseudo-inverse of a symmetric positive semi-definite n x n matrix G (n <= JR_NF), in place: directions with
+   eigenvalues below 1e-10 of the largest are dropped (members on a line have no rotation about it; coordinates that
+   do not vary within a joint carry nothing) */
+static PetscErrorCode PseudoInverse(PetscInt n, PetscReal G[])
 {
-  PetscBLASInt n = 3, lwork = 64, info;
-  PetscReal    lam[3], work[64], A[9];
+  PetscBLASInt bn, lwork = 64, info;
+  PetscReal    lam[8], work[64], A[64];
 
   PetscFunctionBeginUser;
-  PetscCall(PetscArraycpy(A, G, 9));
-  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &n, A, &n, lam, work, &lwork, &info));
+  PetscCall(PetscBLASIntCast(n, &bn));
+  PetscCall(PetscArraycpy(A, G, n * n));
+  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &bn, A, &bn, lam, work, &lwork, &info));
   PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed (%d)", (int)info);
-  PetscCall(PetscArrayzero(G, 9));
-  for (PetscInt k = 0; k < 3; k++) {
-    if (!(lam[k] > 1e-10 * lam[2])) continue;
-    for (PetscInt a = 0; a < 3; a++)
-      for (PetscInt b = 0; b < 3; b++) G[3 * a + b] += A[3 * k + a] * A[3 * k + b] / lam[k];
+  PetscCall(PetscArrayzero(G, n * n));
+  for (PetscInt k = 0; k < n; k++) {
+    if (!(lam[k] > 1e-10 * lam[n - 1])) continue;
+    for (PetscInt a = 0; a < n; a++)
+      for (PetscInt b = 0; b < n; b++) G[n * a + b] += A[n * k + a] * A[n * k + b] / lam[k];
   }
   PetscFunctionReturn(0);
 }
 
-/* A joint's motion field: fw = 4 + 4 nr nm numbers per joint: the members fitted, their centroid pbar [m] (3), then
-   per set of rows (tangential, then normal if nr = 2) the mean rows (nm) and the gradient rows B (3 nm, B[3 i + c]) */
-#define JR_FIELD_WIDTH(nr, nm) (4 + 4 * (nr) * (nm))
+/* A joint's field is linear in JR_NF coordinates of its members: their position x, y, z [m] (-rom_joint_motion
+   linear, mode) and their tangential and normal motions in the stuck mode of interest (mode; JRElements phi). Its
+   description, fw = 1 + nr (JR_NF + (1 + JR_NF) nm) numbers per joint: the members fitted, then per set of rows
+   (tangential, then normal if nr = 2) the members' mean coordinates cbar, the mean rows (nm) and the gradient rows B
+   (JR_NF nm, B[JR_NF i + c]) */
+#define JR_NF 5
+#define JR_FIELD_WIDTH(nr, nm) (1 + (nr) * (JR_NF + (1 + JR_NF) * (nm)))
 
-/* The field of joint f at point p: rows X[i] = mean_i + B_i . (p - pbar) (the mean when P is NULL) */
+/* The field of joint f at coordinates p: rows X[i] = mean_i + B_i . (p - cbar) (the mean when p is NULL) */
 static inline void FieldAt(const PetscReal *f, PetscInt nm, PetscInt q, const PetscReal *p, PetscReal *X, PetscInt ldx)
 {
-  const PetscReal *ms = f + 4 + 4 * q * nm, *B = ms + nm;
-  PetscReal        dp[3] = {0, 0, 0};
-  if (p)
-    for (PetscInt c = 0; c < 3; c++) dp[c] = p[c] - f[1 + c];
-  for (PetscInt i = 0; i < nm; i++) X[i * ldx] = ms[i] + B[3 * i] * dp[0] + B[3 * i + 1] * dp[1] + B[3 * i + 2] * dp[2];
+  const PetscReal *cb = f + 1 + q * (JR_NF + (1 + JR_NF) * nm), *ms = cb + JR_NF, *B = ms + nm;
+  PetscReal        dp[JR_NF];
+  for (PetscInt c = 0; c < JR_NF; c++) dp[c] = p ? p[c] - cb[c] : 0.0;
+  for (PetscInt i = 0; i < nm; i++) {
+    PetscReal x = ms[i];
+    for (PetscInt c = 0; c < JR_NF; c++) x += B[JR_NF * i + c] * dp[c];
+    X[i * ldx] = x;
+  }
 }
 
 /* First reduction (4.4): the motion field of each joint, from the rows R (and S) of this rank's elements eidx[] of el
    (nloc x nm, column-major), collective. The field is fitted to the members in contact at rest (n0 > 0: those whose
    stuck springs the joint replaces; all members if none is). With -rom_joint_motion mean (the thesis) it is their
-   average motion; with linear, a linear field over their positions P (3 per element) fitted by least squares,
-   r_e ~ mean + B (p_e - pbar): the mean plus the joint's rotation (the interface's bending within the joint, which a
-   mean cannot carry). Either is an orthogonal projection of the members' motions (k sum u_e^2 >= the projection's),
-   so the reduced model is never stiffer than the node-to-node one */
+   average motion; else a field linear in their coordinates P (JR_NF per element), fitted by least squares,
+   r_e ~ mean + B (p_e - cbar): with positions, the mean plus the joint's rotation (the interface's bending within
+   the joint, which a mean cannot carry); with the stuck-mode motions, the members' own motions in that mode. Either
+   is an orthogonal projection of the members' motions (k sum u_e^2 >= the projection's, for equal k), so the reduced
+   model is never stiffer than the node-to-node one */
 static PetscErrorCode JointFields(JRHBM h, const JRElements *el, PetscInt nloc, const PetscInt eidx[], const PetscReal R[], const PetscReal S[], const PetscReal P[], PetscReal field[])
 {
-  const PetscInt nm = h->nm, nj = el->njoints, nr = S ? 2 : 1, fw = JR_FIELD_WIDTH(nr, nm);
-  const PetscInt w = 13 + 4 * nr * nm; /* count, sum p, sum p p^T, then per set sum r, sum r p^T */
+  const PetscInt nm = h->nm, nj = el->njoints, nr = S ? 2 : 1, fw = JR_FIELD_WIDTH(nr, nm), NF = JR_NF;
+  const PetscInt w = 1 + NF + NF * NF + (1 + NF) * nr * nm; /* count, sum p, sum p p^T, then per set sum r, sum r p^T */
   PetscReal     *loc, *sum;
 
   PetscFunctionBeginUser;
@@ -360,17 +371,17 @@ static PetscErrorCode JointFields(JRHBM h, const JRElements *el, PetscInt nloc, 
       if (!a && !(el->n0[eidx[e]] > 0)) continue;
       r[0] += 1.0;
       if (P)
-        for (PetscInt c = 0; c < 3; c++) {
-          r[1 + c] += P[3 * e + c];
-          for (PetscInt d = 0; d < 3; d++) r[4 + 3 * c + d] += P[3 * e + c] * P[3 * e + d];
+        for (PetscInt c = 0; c < NF; c++) {
+          r[1 + c] += P[NF * e + c];
+          for (PetscInt d = 0; d < NF; d++) r[1 + NF + NF * c + d] += P[NF * e + c] * P[NF * e + d];
         }
       for (PetscInt q = 0; q < nr; q++) {
         const PetscReal *X  = q ? S : R;
-        PetscReal       *rs = r + 13 + 4 * q * nm;
+        PetscReal       *rs = r + 1 + NF + NF * NF + (1 + NF) * q * nm;
         for (PetscInt i = 0; i < nm; i++) {
           rs[i] += X[e + i * nloc];
           if (P)
-            for (PetscInt c = 0; c < 3; c++) rs[nm + 3 * i + c] += X[e + i * nloc] * P[3 * e + c];
+            for (PetscInt c = 0; c < NF; c++) rs[nm + NF * i + c] += X[e + i * nloc] * P[NF * e + c];
         }
       }
     }
@@ -379,24 +390,29 @@ static PetscErrorCode JointFields(JRHBM h, const JRElements *el, PetscInt nloc, 
   PetscCall(PetscArrayzero(field, nj * fw));
   for (PetscInt j = 0; j < nj; j++) {
     const PetscReal *r = sum + 2 * j * w;
-    PetscReal       *f = field + j * fw, G[9];
+    PetscReal       *f = field + j * fw, G[JR_NF * JR_NF], cbar[JR_NF];
     if (!(r[0] > 0)) r += w; /* no member in contact at rest: the fit to all */
     PetscCheck(r[0] > 0, h->comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no member element", j);
     f[0] = r[0];
-    for (PetscInt c = 0; c < 3; c++) f[1 + c] = r[1 + c] / r[0];
-    for (PetscInt c = 0; c < 3; c++)
-      for (PetscInt d = 0; d < 3; d++) G[3 * c + d] = r[4 + 3 * c + d] - r[0] * f[1 + c] * f[1 + d];
-    if (P) PetscCall(PseudoInverse3(G)); /* B = sum_e r_e (p_e - pbar)^T G^+, G = sum_e (p_e - pbar)(p_e - pbar)^T */
+    for (PetscInt c = 0; c < NF; c++) cbar[c] = r[1 + c] / r[0];
+    for (PetscInt c = 0; c < NF; c++)
+      for (PetscInt d = 0; d < NF; d++) G[NF * c + d] = r[1 + NF + NF * c + d] - r[0] * cbar[c] * cbar[d];
+    if (P) PetscCall(PseudoInverse(NF, G)); /* B = sum_e r_e (p_e - cbar)^T G^+, G = sum_e (p_e - cbar)(p_e - cbar)^T */
     for (PetscInt q = 0; q < nr; q++) {
-      const PetscReal *rs = r + 13 + 4 * q * nm;
-      PetscReal       *ms = f + 4 + 4 * q * nm, *B = ms + nm;
+      const PetscReal *rs = r + 1 + NF + NF * NF + (1 + NF) * q * nm;
+      PetscReal       *cb = f + 1 + q * (NF + (1 + NF) * nm), *ms = cb + NF, *B = ms + nm;
+      for (PetscInt c = 0; c < NF; c++) cb[c] = cbar[c];
       for (PetscInt i = 0; i < nm; i++) {
         ms[i] = rs[i] / r[0];
         if (!P) continue;
         {
-          PetscReal m[3];
-          for (PetscInt c = 0; c < 3; c++) m[c] = rs[nm + 3 * i + c] - rs[i] * f[1 + c];
-          for (PetscInt c = 0; c < 3; c++) B[3 * i + c] = G[3 * c] * m[0] + G[3 * c + 1] * m[1] + G[3 * c + 2] * m[2];
+          PetscReal m[JR_NF];
+          for (PetscInt c = 0; c < NF; c++) m[c] = rs[nm + NF * i + c] - rs[i] * cbar[c];
+          for (PetscInt c = 0; c < NF; c++) {
+            PetscReal x = 0;
+            for (PetscInt d = 0; d < NF; d++) x += G[NF * c + d] * m[d];
+            B[NF * i + c] = x;
+          }
         }
       }
     }
@@ -405,17 +421,29 @@ static PetscErrorCode JointFields(JRHBM h, const JRElements *el, PetscInt nloc, 
   PetscFunctionReturn(0);
 }
 
-/* The positions of elements eidx[0..nloc) for a linear joint field (lin), or NULL for the mean */
-static PetscErrorCode JointPositions(JRHBM h, const JRElements *el, PetscInt nloc, const PetscInt eidx[], PetscBool lin, PetscReal **P)
+/* The field coordinates (JR_NF each) of elements eidx[0..nloc) of el: positions if el has them and lin, stuck-mode
+   motions if el has them (else 0); P = NULL (the mean) when there are none */
+static PetscErrorCode JointCoordinates(JRHBM h, const JRElements *el, PetscInt nloc, const PetscInt eidx[], PetscBool lin, PetscReal **P)
 {
   PetscFunctionBeginUser;
   *P = NULL;
   if (!lin) PetscFunctionReturn(0);
-  PetscCheck(el->pos, h->comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion linear needs the elements' positions (node-to-node elements of an FE model)");
-  PetscCall(PetscMalloc1(3 * nloc + 1, P));
-  for (PetscInt e = 0; e < nloc; e++)
-    for (PetscInt c = 0; c < 3; c++) (*P)[3 * e + c] = el->pos[3 * eidx[e] + c];
+  PetscCheck(el->pos, h->comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion linear or mode needs the elements' positions (node-to-node elements of an FE model)");
+  PetscCall(PetscCalloc1(JR_NF * nloc + 1, P));
+  for (PetscInt e = 0; e < nloc; e++) {
+    for (PetscInt c = 0; c < 3; c++) (*P)[JR_NF * e + c] = el->pos[3 * eidx[e] + c];
+    for (PetscInt c = 0; el->phi && c < 2; c++) (*P)[JR_NF * e + 3 + c] = el->phi[2 * eidx[e] + c];
+  }
   PetscFunctionReturn(0);
+}
+
+/* The field coordinates of element e of el (buffer p), or NULL */
+static inline const PetscReal *ElementCoordinates(const JRElements *el, PetscInt e, PetscReal p[JR_NF])
+{
+  if (!el->pos) return NULL;
+  for (PetscInt c = 0; c < 3; c++) p[c] = el->pos[3 * e + c];
+  for (PetscInt c = 0; c < 2; c++) p[3 + c] = el->phi ? el->phi[2 * e + c] : 0.0;
+  return p;
 }
 
 /* First reduction (4.4): every member of a joint moves with the joint's field (JointFields) at its own position; so
@@ -426,11 +454,11 @@ static PetscErrorCode JointAverage(JRHBM h, const JRElements *el, PetscInt nloc,
   PetscReal     *P, *field;
 
   PetscFunctionBeginUser;
-  PetscCall(JointPositions(h, el, nloc, eidx, (PetscBool)(h->jmotion == 1), &P));
+  PetscCall(JointCoordinates(h, el, nloc, eidx, (PetscBool)(h->jmotion >= 1), &P));
   PetscCall(PetscMalloc1(el->njoints * fw, &field));
   PetscCall(JointFields(h, el, nloc, eidx, R, S, P, field));
   for (PetscInt e = 0; e < nloc; e++)
-    for (PetscInt q = 0; q < nr; q++) FieldAt(field + el->joint[eidx[e]] * fw, nm, q, P ? P + 3 * e : NULL, (q ? S : R) + e, nloc);
+    for (PetscInt q = 0; q < nr; q++) FieldAt(field + el->joint[eidx[e]] * fw, nm, q, P ? P + JR_NF * e : NULL, (q ? S : R) + e, nloc);
   PetscCall(PetscFree(field));
   PetscCall(PetscFree(P));
   PetscFunctionReturn(0);
@@ -458,7 +486,7 @@ static PetscErrorCode JointRows(JRHBM h, const JRElements *mem, PetscBool lin, P
   PetscCall(ProjectionRowsDir(h, nloc, eidx, mem->vdof_a, mem->vdof_b, mem->tdir, R));
   if (nv) PetscCall(ProjectionRowsDir(h, nloc, eidx, mem->vdof_a, mem->vdof_b, mem->ndir, S)); /* normal rows: jenkins_nv only */
   else PetscCall(PetscArrayzero(S, nloc * nm));
-  PetscCall(JointPositions(h, mem, nloc, eidx, lin, &P));
+  PetscCall(JointCoordinates(h, mem, nloc, eidx, lin, &P));
   PetscCall(JointFields(h, mem, nloc, eidx, R, S, P, field));
   PetscCall(PetscFree(P));
   if (Kc && nloc) {
@@ -613,6 +641,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
   PetscInt          ndof;
   const JRElements *el;
   PetscReal        *field = NULL; /* reduced models: the joints' motion fields (JointFields) */
+  PetscReal         pc[JR_NF];     /* an element's field coordinates */
 
   PetscFunctionBeginUser;
   if (h->setupcalled) PetscFunctionReturn(0);
@@ -809,7 +838,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc * nc, &g->DU));
     if (el->members)
       for (PetscInt e = 0; e < nloc; e++)
-        FieldAt(field + el->joint[eidx[e]] * JR_FIELD_WIDTH(2, nm), nm, 0, el->pos ? el->pos + 3 * eidx[e] : NULL, g->R + e, nloc);
+        FieldAt(field + el->joint[eidx[e]] * JR_FIELD_WIDTH(2, nm), nm, 0, ElementCoordinates(el, eidx[e], pc), g->R + e, nloc);
     else if (el->vdof_a) PetscCall(ProjectionRowsDir(h, nloc, eidx, el->vdof_a, el->vdof_b, el->tdir, g->R));
     else PetscCall(ProjectionRows(h, nloc, ia, ib, g->R));
     if (g->normal) {
@@ -824,7 +853,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
       PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc * nc, &g->DN));
       if (el->members)
         for (PetscInt e = 0; e < nloc; e++)
-          FieldAt(field + el->joint[eidx[e]] * JR_FIELD_WIDTH(2, nm), nm, 1, el->pos ? el->pos + 3 * eidx[e] : NULL, g->S + e, nloc);
+          FieldAt(field + el->joint[eidx[e]] * JR_FIELD_WIDTH(2, nm), nm, 1, ElementCoordinates(el, eidx[e], pc), g->S + e, nloc);
       else if (el->vdof_a) PetscCall(ProjectionRowsDir(h, nloc, eidx, el->vdof_a, el->vdof_b, el->ndir, g->S));
       else PetscCall(ProjectionRows(h, nloc, ia, ib, g->S));
     }
@@ -1026,9 +1055,10 @@ PetscErrorCode JRHBMMatchStickFrequency(JRHBM h, PetscInt k, PetscReal target, P
 
 /*
   JRHBMStuckModeMotion - the k-th stuck mode (JRHBMStickFrequencies, M-normalised in the basis) as every element's
-  tangential relative motion u[e] (e in the model's element list, on every rank; collective)
+  tangential relative motion u[e] (e in the model's element list, on every rank; collective) and, if v is not NULL,
+  normal relative motion v[e] (0 for elements without a normal direction)
 */
-PetscErrorCode JRHBMStuckModeMotion(JRHBM h, PetscInt k, PetscReal u[])
+PetscErrorCode JRHBMStuckModeMotion(JRHBM h, PetscInt k, PetscReal u[], PetscReal v[])
 {
   const JRElements *el;
   PetscReal        *f, *q, *loc;
@@ -1040,16 +1070,20 @@ PetscErrorCode JRHBMStuckModeMotion(JRHBM h, PetscInt k, PetscReal u[])
   PetscCheck(k >= 0 && k < h->nm, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Stuck mode %" PetscInt_FMT ": the basis has %" PetscInt_FMT, k, h->nm);
   PetscCall(PetscMalloc2(h->nm, &f, h->nm, &q));
   PetscCall(StickEig(h, 1.0, &nf, f, k, q));
-  PetscCall(PetscCalloc1(el->n, &loc));
+  PetscCall(PetscCalloc1(2 * el->n, &loc));
   for (PetscInt t = 0; t < h->ngroups; t++) {
     HBMGroup *g = &h->g[t];
     for (PetscInt e = 0; e < g->nloc; e++) {
-      PetscReal s = 0;
+      PetscReal s = 0, sn = 0;
       for (PetscInt i = 0; i < h->nm; i++) s += g->R[e + i * g->nloc] * q[i];
-      loc[g->eidx[e]] = s;
+      for (PetscInt i = 0; g->normal && i < h->nm; i++) sn += g->S[e + i * g->nloc] * q[i];
+      loc[g->eidx[e]]         = s;
+      loc[el->n + g->eidx[e]] = sn;
     }
   }
-  PetscCall(MPIU_Allreduce(loc, u, el->n, MPIU_REAL, MPIU_SUM, h->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, loc, (PetscMPIInt)(2 * el->n), MPIU_REAL, MPIU_SUM, h->comm));
+  PetscCall(PetscArraycpy(u, loc, el->n));
+  if (v) PetscCall(PetscArraycpy(v, loc + el->n, el->n));
   PetscCall(PetscFree(loc));
   PetscCall(PetscFree2(f, q));
   PetscFunctionReturn(0);

@@ -724,6 +724,8 @@ typedef struct {
   PetscReal delta;
 } MemberDelta;
 
+#define JR_EP 15 /* per reduced element before the split: up to 3 points of 5 field coordinates (x, y, z [m], phi_t, phi_n) */
+
 static int CompareDelta(const void *a, const void *b)
 {
   const PetscReal x = ((const MemberDelta *)a)->delta, y = ((const MemberDelta *)b)->delta;
@@ -811,10 +813,98 @@ static PetscErrorCode SpreadPoints(const JRElements *nn, const MemberDelta *d, P
     PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed (%d)", (int)info);
     for (PetscInt k = 0; k < 3; k++) { /* the two largest spreads: the interface's plane (the third is ~0) */
       const PetscReal t = 2 * PETSC_PI * k / 3, s1 = PetscSqrtReal(2 * PetscMax(lam[2], 0)), s2 = PetscSqrtReal(2 * PetscMax(lam[1], 0));
-      for (PetscInt a = 0; a < 3; a++) P[9 * g + 3 * k + a] = c[a] + s1 * PetscCosReal(t) * C[6 + a] + s2 * PetscSinReal(t) * C[3 + a];
+      for (PetscInt a = 0; a < 3; a++) P[JR_EP * g + 5 * k + a] = c[a] + s1 * PetscCosReal(t) * C[6 + a] + s2 * PetscSinReal(t) * C[3 + a];
     }
   }
   PetscCall(PetscFree(acc));
+  PetscFunctionReturn(0);
+}
+
+/* -rom_joint_motion mode: where joint j's fitted elements take its field over the members' stuck-mode motions
+   (nn->pos: tangential phi_t, normal phi_n), and what they carry there. The fit saw the members weighted by
+   phi_t / its mean over the members in contact at rest (w^2 kt, |w| f): elements k, f moving with that mean. Element g,
+   which stands for a group of members d[] (by slip force, as the fit's start), moves with psi_t, the kt-weighted RMS
+   of the members' phi_t (signed as their slip-force-weighted mean), with k (mean / psi_t)^2 and f |mean / psi_t|: the
+   same loops in the mode, and a stiffness near the members' own total kt (so no stiffer in other motions); for
+   jenkins_nv it is split into two halves at psi_n = m -/+ s, the kn-weighted mean and spread of the members' phi_n,
+   with the members' total kn: the group's normal stiffness (sum kn phi_n^2) and normal load change (sum kn phi_n) in
+   the mode. P: 9 per element (two points used); ratio: mean / psi_t (k becomes k ratio^2, f becomes f |ratio|); kn */
+static PetscErrorCode ModePoints(const JRElements *nn, PetscInt j, const MemberDelta *d, PetscInt nm, PetscInt mj, const PetscReal mf[], PetscReal ftot, const PetscReal k[], PetscReal ratio[], PetscReal kn[], PetscReal P[])
+{
+  PetscReal mean = 0, cnt = 0, umax = 0, c = 0, *acc; /* per group: sum f phi_t, sum kt, sum kt phi_t^2, sum kn, sum kn phi_n, sum kn phi_n^2, sum kt x (3) */
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < nn->n; e++) { /* the mean the weights were taken over (as in JRTaskFRF) */
+    umax = PetscMax(umax, PetscAbsReal(nn->phi[2 * e]));
+    if (nn->joint[e] == j && nn->n0[e] > 0) {
+      mean += nn->phi[2 * e];
+      cnt += 1;
+    }
+  }
+  mean = cnt > 0 ? mean / cnt : 0;
+  PetscCall(PetscCalloc1(9 * mj, &acc));
+  for (PetscInt i = 0; i < nm; i++, c += mf[d[i - 1].e]) {
+    const PetscInt  e = d[i].e;
+    const PetscInt  g = nm <= mj ? i : PetscMin(PetscMax((PetscInt)(mj * (c + 0.5 * mf[e]) / ftot), 0), mj - 1);
+    const PetscReal pt = nn->phi[2 * e], pn = nn->phi[2 * e + 1];
+    acc[9 * g] += nn->mu[e] * nn->n0[e] * pt;
+    acc[9 * g + 1] += nn->kt[e];
+    acc[9 * g + 2] += nn->kt[e] * pt * pt;
+    acc[9 * g + 3] += nn->kn[e];
+    acc[9 * g + 4] += nn->kn[e] * pn;
+    acc[9 * g + 5] += nn->kn[e] * pn * pn;
+    for (PetscInt a = 0; a < 3; a++) acc[9 * g + 6 + a] += nn->kt[e] * nn->pos[3 * e + a];
+  }
+  for (PetscInt g = 0; g < mj; g++) {
+    const PetscReal *r = acc + 9 * g, m = r[3] > 0 ? r[4] / r[3] : 0, s = r[3] > 0 ? PetscSqrtReal(PetscMax(r[5] / r[3] - m * m, 0)) : 0;
+    PetscReal        psi = r[1] > 0 ? PetscAbsReal(mean) * PetscSqrtReal(k[g] / r[1]) : 0; /* so that k becomes sum kt */
+    if (r[0] < 0) psi = -psi;
+    if (!(PetscAbsReal(mean) > 1e-6 * umax) || !(PetscAbsReal(psi) > 1e-6 * umax)) psi = mean; /* no weights were used */
+    ratio[g] = psi != 0 ? mean / psi : 1.0;
+    kn[g]        = r[3];
+    for (PetscInt h = 0; h < 2; h++) {
+      for (PetscInt a = 0; a < 3; a++) P[JR_EP * g + 5 * h + a] = r[1] > 0 ? r[6 + a] / r[1] : 0;
+      P[JR_EP * g + 5 * h + 3] = psi;
+      P[JR_EP * g + 5 * h + 4] = h ? m + s : m - s;
+    }
+  }
+  PetscCall(PetscFree(acc));
+  PetscFunctionReturn(0);
+}
+
+/* -rom_joint_motion mode, jenkins_nv: a joint's open members od[] (n0 <= 0, sorted by gap -n0 / kn) in ng groups of
+   equal count, each an element with the group's total kt, kn and n0 (a gap that closes as the members' does on
+   average) at the members' mean phi_t and, in two halves, at psi_n = m -/+ s (kn-weighted mean and spread of phi_n) */
+static PetscErrorCode OpenPoints(const JRElements *nn, const MemberDelta *od, PetscInt no, PetscInt ng, PetscReal k[], PetscReal n0[], PetscReal kn[], PetscReal mu[], PetscReal P[])
+{
+  PetscFunctionBeginUser;
+  for (PetscInt g = 0; g < ng; g++) {
+    const PetscInt i0 = g * no / ng, i1 = (g + 1) * no / ng;
+    PetscReal      st = 0, sk = 0, skn = 0, sn0 = 0, smu = 0, s1 = 0, s2 = 0, sx[3] = {0, 0, 0}, m, s;
+    for (PetscInt i = i0; i < i1; i++) {
+      const PetscInt e = od[i].e;
+      const PetscReal pn = nn->phi[2 * e + 1];
+      st += nn->phi[2 * e];
+      for (PetscInt a = 0; a < 3; a++) sx[a] += nn->pos[3 * e + a];
+      sk += nn->kt[e];
+      skn += nn->kn[e];
+      sn0 += nn->n0[e];
+      smu += nn->mu[e];
+      s1 += nn->kn[e] * pn;
+      s2 += nn->kn[e] * pn * pn;
+    }
+    m            = s1 / skn;
+    s            = PetscSqrtReal(PetscMax(s2 / skn - m * m, 0));
+    k[g]         = sk;
+    kn[g]        = skn;
+    n0[g]        = sn0;
+    mu[g]        = smu / (i1 - i0);
+    for (PetscInt h = 0; h < 2; h++) {
+      for (PetscInt a = 0; a < 3; a++) P[JR_EP * g + 5 * h + a] = sx[a] / (i1 - i0);
+      P[JR_EP * g + 5 * h + 3] = st / (i1 - i0);
+      P[JR_EP * g + 5 * h + 4] = h ? m + s : m - s;
+    }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -925,8 +1015,8 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   PetscBool    nv, frset;
   MemberDelta *md;
   PetscInt    *jn, *joff;
-  PetscBool    spread = PETSC_FALSE;
-  PetscReal   *ek, *ef, *ekn, *en0, *emu, *ep = NULL, *loops = NULL, *mk, *mf, **xj, *rmsv, *rms0v, *dlo, *dhi, *muv, *knv;
+  PetscBool    spread = PETSC_FALSE, modef = PETSC_FALSE;
+  PetscReal   *ek, *ef, *ekn, *en0, *emu, *ep = NULL, *er = NULL, *loops = NULL, *mk, *mf, **xj, *rmsv, *rms0v, *dlo, *dhi, *muv, *knv;
   PetscInt    *mjv, *itsv;
   TangentFit  *tf;
   FILE        *fp  = NULL;
@@ -948,10 +1038,11 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   PetscCall(PetscOptionsReal("-fit_total_weight", "Weight of the energy all joints together dissipate per cycle at the case's amplitudes (relative to the input energy; a fit coupled across joints; 0: each joint fitted alone)", "JRROMReduce", wtotal, &wtotal, NULL));
   PetscCall(PetscOptionsReal("-fit_gross_weight", "Weight of the joint's total slip force (gross slip), relative", "JRROMReduce", wgross, &wgross, NULL));
   {
-    const char *jm[] = {"mean", "linear"};
+    const char *jm[] = {"mean", "linear", "mode"};
     PetscInt    jmo  = 0;
-    PetscCall(PetscOptionsEList("-joint_motion", "First reduction: a joint's members move with its mean motion or its linear motion field; with linear, each fitted element is spread over three points of its members' spatial spread", "JRROMReduce", jm, 2, jm[jmo], &jmo, NULL));
+    PetscCall(PetscOptionsEList("-joint_motion", "How a joint's members move: mean, linear (a field over their positions: each fitted element is spread over three points of its members' spread) or mode (a field over their motions in the stuck mode of interest: each fitted element sits at its members' motion)", "JRROMReduce", jm, 3, jm[jmo], &jmo, NULL));
     spread = (PetscBool)(jmo == 1);
+    modef  = (PetscBool)(jmo == 2);
   }
   PetscCall(PetscOptionsBool("-fit_search", "Choose the slip displacements among a grid over the members' range (best non-negative least squares of the forces); else those of the log-width groups of members", "JRROMReduce", search, &search, NULL));
   PetscOptionsEnd();
@@ -961,17 +1052,19 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   if (!frset) nfr = 3;
   PetscCheck(nfr == 3 && fr[0] > 0 && fr[1] > fr[0] && fr[2] > fr[1] && fr[2] <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_fractions: three increasing fractions in (0, 1] (default 0.25,0.6,0.95)");
   PetscCheck(ns >= 8, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_samples %" PetscInt_FMT ": at least 8", ns);
-  PetscCheck(!spread || nn->pos, comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion linear needs the members' positions (node-to-node elements of an FE model)");
+  PetscCheck(!(spread || modef) || (nn->pos && (!modef || nn->phi)), comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion %s needs the members' coordinates (node-to-node elements of an FE model)", spread ? "linear" : "mode");
   /* every member as an element on its joint's motion: with the mode-shape weight w_e (its motion / the joint's in
      the mode of interest), a Jenkins element moving w u is one moving u with w^2 kt and |w| f (same forces, same
      energy); w = 1 is the plain first reduction (4.4) */
   PetscCall(PetscMalloc2(nn->n, &mk, nn->n, &mf));
   for (PetscInt e = 0; e < nn->n; e++) {
-    const PetscReal w = wt && !nv && !spread ? wt[e] : 1.0; /* linear: the members' own motions, no weights */
+    /* linear, and mode's first reduction: the members on their own coordinates in the field, no weights; mode's
+       second reduction: weights for jenkins_nv too (the fit sees the members' loops in the mode) */
+    const PetscReal w = wt && (!nv || modef) && !spread && !(modef && m == 0) ? wt[e] : 1.0;
     mk[e]             = w * w * nn->kt[e];
     mf[e]             = PetscAbsReal(w) * nn->mu[e] * PetscMax(nn->n0[e], 0.0);
   }
-  if (cs && cs->nlev > 0 && m > 0 && !nv) {
+  if (cs && cs->nlev > 0 && m > 0 && (!nv || modef)) {
     PetscCall(CaseAmplitudes(comm, nn, mk, mf, cs, &amod));
     if (amod) amin = amax = amod[0];
     for (PetscInt l = 1; amod && l < cs->nlev; l++) {
@@ -984,10 +1077,12 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
     for (PetscInt e = 0; e < nn->n; e++) cnt0 += (nv || mk[e] > 0);
     PetscCall(SetupList(rom, cnt0, nn->typename[0], PETSC_FALSE));
     rom->njoints = nj;
-    if (spread) PetscCall(PetscMalloc1(3 * cnt0 + 1, &rom->pos));
+    if (spread || modef) PetscCall(PetscMalloc1(3 * cnt0 + 1, &rom->pos));
+    if (modef) PetscCall(PetscMalloc1(2 * cnt0 + 1, &rom->phi));
     for (PetscInt e = 0, i = 0; e < nn->n; e++) {
       if (!(nv || mk[e] > 0)) continue;
-      for (PetscInt c = 0; spread && c < 3; c++) rom->pos[3 * i + c] = nn->pos[3 * e + c];
+      for (PetscInt c = 0; rom->pos && c < 3; c++) rom->pos[3 * i + c] = nn->pos[3 * e + c];
+      for (PetscInt c = 0; rom->phi && c < 2; c++) rom->phi[2 * i + c] = nn->phi[2 * e + c];
       rom->kt[i]      = nv ? nn->kt[e] : mk[e];
       rom->kn[i]      = nn->kn[e];
       rom->mu[i]      = nn->mu[e];
@@ -1020,9 +1115,9 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
     qsort(md + joff[j], (size_t)jn[j], sizeof(MemberDelta), CompareDelta);
     cnt += PetscMin(m, jn[j]);
   }
-  nmax = cnt;
+  nmax = cnt + (modef && nv ? nj * m : 0); /* mode, jenkins_nv: up to m elements more per joint for its open members */
   PetscCall(PetscMalloc5(nmax, &ek, nmax, &ef, nmax, &ekn, nmax, &en0, nmax, &emu));
-  if (spread) PetscCall(PetscMalloc1(9 * nmax + 1, &ep));
+  if (spread || modef) PetscCall(PetscMalloc2(JR_EP * nmax + 1, &ep, nmax + 1, &er));
   if (base && base[0]) {
     PetscCall(PetscSNPrintf(csv, sizeof(csv), "%s_rom_loops.csv", base));
     PetscCall(JRFileOpenTemp(comm, csv, &fp, tmp, sizeof(tmp)));
@@ -1199,7 +1294,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
     muv[j]   = mu;
     knv[j]   = knsum;
   }
-  if (amod && wtotal > 0 && !nv) PetscCall(FitCoupled(comm, nn, mk, mf, cs, jn, m, wtotal, amin, amax, ncase, tf, xj, mjv, dlo, dhi, rmsv, itsv));
+  if (amod && wtotal > 0 && (!nv || modef)) PetscCall(FitCoupled(comm, nn, mk, mf, cs, jn, m, wtotal, amin, amax, ncase, tf, xj, mjv, dlo, dhi, rmsv, itsv));
   for (PetscInt j = 0; j < nj; j++) {
     const MemberDelta *d  = md + joff[j];
     const PetscInt     nm = jn[j];
@@ -1227,8 +1322,32 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
       emu[cnt + i] = mu;
       ekn[cnt + i] = 0;
     }
-    if (spread) PetscCall(SpreadPoints(nn, d, nm, mj, mk, mf, ftot, ep + 9 * cnt));
-    if (nv) { /* normal stiffnesses: the joint's normal load against its normal motion */
+    if (spread) PetscCall(SpreadPoints(nn, d, nm, mj, mk, mf, ftot, ep + JR_EP * cnt));
+    if (modef) PetscCall(ModePoints(nn, j, d, nm, mj, mf, ftot, ek + cnt, er + cnt, ekn + cnt, ep + JR_EP * cnt));
+    if (modef && nv) { /* the open members (a gap: n0 <= 0), which close at large amplitude: up to m elements by gap */
+      PetscInt no = 0, ng;
+      for (PetscInt e = 0; e < nn->n; e++) no += (nn->joint[e] == j && !(nn->n0[e] > 0) && nn->kn[e] > 0);
+      ng = PetscMin(m, no);
+      if (ng) {
+        MemberDelta *od;
+        PetscCall(PetscMalloc1(no, &od));
+        for (PetscInt e = 0, i = 0; e < nn->n; e++)
+          if (nn->joint[e] == j && !(nn->n0[e] > 0) && nn->kn[e] > 0) {
+            od[i].e       = e;
+            od[i++].delta = -nn->n0[e] / nn->kn[e];
+          }
+        qsort(od, (size_t)no, sizeof(MemberDelta), CompareDelta);
+        PetscCall(OpenPoints(nn, od, no, ng, ek + cnt + mj, en0 + cnt + mj, ekn + cnt + mj, emu + cnt + mj, ep + JR_EP * (cnt + mj)));
+        for (PetscInt g = 0; g < ng; g++) {
+          ef[cnt + mj + g] = 0;
+          er[cnt + mj + g] = 1;
+        }
+        PetscCall(PetscFree(od));
+        mj += ng;
+        jn[j] = -mj - 1;
+      }
+    }
+    if (nv && !modef) { /* normal stiffnesses: the joint's normal load against its normal motion */
       NormalFit nf;
       PetscReal vsep = 0, nmx = 0;
       PetscCall(PetscMemzero(&nf, sizeof(nf)));
@@ -1304,22 +1423,26 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
       PetscCall(PetscPrintf(comm, "rom: wrote %s%s%s\n", csv, made ? ", " : "", made ? png : ""));
     } else PetscCall(PetscPrintf(comm, "rom: wrote %s\n", csv));
   }
-  /* the reduced elements, the first-reduction model as their members; spread: each a third at each of its points */
+  /* the reduced elements, the first-reduction model as their members; spread: each a third at each of its points;
+     mode (jenkins_nv): each a half at each of its two points */
   {
-    const PetscInt nc = spread ? 3 : 1;
+    const PetscInt nc = spread ? 3 : (modef && nv ? 2 : 1);
     PetscCall(SetupList(rom, nc * cnt, nn->typename[0], PETSC_FALSE));
-    if (spread) PetscCall(PetscMalloc1(9 * cnt, &rom->pos));
+    if (spread || modef) PetscCall(PetscMalloc1(3 * nc * cnt, &rom->pos));
+    if (modef) PetscCall(PetscMalloc1(2 * nc * cnt, &rom->phi));
     rom->njoints = nj;
     for (PetscInt j = 0, e = 0; j < nj; j++)
       for (PetscInt i = 0; i < -jn[j] - 1; i++, e++)
         for (PetscInt c = 0; c < nc; c++) {
           const PetscInt r = nc * e + c;
-          rom->kt[r]       = ek[e] / nc;
+          const PetscReal q = modef ? er[e] : 1.0; /* mode: the element moved to psi_t */
+          rom->kt[r]       = ek[e] * q * q / nc;
           rom->kn[r]       = ekn[e] / nc;
           rom->mu[r]       = emu[e];
-          rom->n0[r]       = en0[e] / nc;
+          rom->n0[r]       = en0[e] * PetscAbsReal(q) / nc;
           rom->joint[r]    = j;
-          for (PetscInt k = 0; spread && k < 3; k++) rom->pos[3 * r + k] = ep[9 * e + 3 * c + k];
+          for (PetscInt k = 0; rom->pos && k < 3; k++) rom->pos[3 * r + k] = ep[JR_EP * e + 5 * c + k];
+          for (PetscInt k = 0; rom->phi && k < 2; k++) rom->phi[2 * r + k] = ep[JR_EP * e + 5 * c + 3 + k];
         }
   }
   PetscCall(PetscNew(&rom->members));
@@ -1328,7 +1451,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   PetscCall(PetscFree3(tf, xj, mjv));
   PetscCall(PetscFree7(itsv, rmsv, rms0v, dlo, dhi, muv, knv));
   PetscCall(PetscFree5(ek, ef, ekn, en0, emu));
-  PetscCall(PetscFree(ep));
+  PetscCall(PetscFree2(ep, er));
   PetscCall(PetscFree(md));
   PetscCall(PetscFree2(jn, joff));
   PetscCall(PetscFree2(mk, mf));
@@ -1449,12 +1572,17 @@ PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, c
       }
     }
     PetscCall(WriteSeq(v, "members", mem->n, JR_ROM_MEM, a));
-    if (rom->pos && mem->pos) { /* -rom_joint_motion linear: the elements' points, then the members' */
+    if (rom->pos && mem->pos) { /* -rom_joint_motion linear, mode: the elements' points, then the members' */
       PetscReal *p;
       PetscCall(PetscMalloc1(3 * (rom->n + mem->n), &p));
       PetscCall(PetscArraycpy(p, rom->pos, 3 * rom->n));
       PetscCall(PetscArraycpy(p + 3 * rom->n, mem->pos, 3 * mem->n));
       PetscCall(WriteSeq(v, "positions", rom->n + mem->n, 3, p));
+      if (rom->phi && mem->phi) { /* mode: their stuck-mode coordinates likewise */
+        PetscCall(PetscArraycpy(p, rom->phi, 2 * rom->n));
+        PetscCall(PetscArraycpy(p + 2 * rom->n, mem->phi, 2 * mem->n));
+        PetscCall(WriteSeq(v, "mode_coordinates", rom->n + mem->n, 2, p));
+      }
       PetscCall(PetscFree(p));
     }
     PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "njoints", PETSC_INT, &nj));
@@ -1505,9 +1633,9 @@ PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, Pets
 {
   MPI_Comm    comm;
   PetscViewer v;
-  PetscBool   exists, haspos;
-  PetscReal  *a, *b, *xc, *pos = NULL, lo[3], hi[3], size = 0, worst = 0;
-  PetscInt    ne, nmem, nj = 0, ndof, bad = -1, npos = 0;
+  PetscBool   exists, haspos, hasphi;
+  PetscReal  *a, *b, *xc, *pos = NULL, *phi = NULL, lo[3], hi[3], size = 0, worst = 0;
+  PetscInt    ne, nmem, nj = 0, ndof, bad = -1, npos = 0, nphi = 0;
   char       *ty = NULL, *mty = NULL;
   JRElements *mem;
 
@@ -1521,6 +1649,8 @@ PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, Pets
   PetscCall(ReadSeq(v, file, "members", JR_ROM_MEM, &nmem, &b));
   PetscCall(PetscViewerHDF5HasDataset(v, "positions", &haspos));
   if (haspos) PetscCall(ReadSeq(v, file, "positions", 3, &npos, &pos));
+  PetscCall(PetscViewerHDF5HasDataset(v, "mode_coordinates", &hasphi));
+  if (hasphi) PetscCall(ReadSeq(v, file, "mode_coordinates", 2, &nphi, &phi));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "njoints", PETSC_INT, NULL, &nj));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "element_type", PETSC_STRING, NULL, &ty));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "members", "element_type", PETSC_STRING, NULL, &mty));
@@ -1560,6 +1690,14 @@ PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, Pets
     PetscCall(PetscArraycpy(rom->pos, pos, 3 * ne));
     PetscCall(PetscArraycpy(mem->pos, pos + 3 * ne, 3 * nmem));
     PetscCall(PetscFree(pos));
+  }
+  if (hasphi) { /* reduced with -rom_joint_motion mode: their coordinates in the stuck mode of interest */
+    PetscCheck(haspos && nphi == ne + nmem, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: /rom/mode_coordinates has %" PetscInt_FMT " rows, not one per element and member (%" PetscInt_FMT ") with /rom/positions", file, nphi, ne + nmem);
+    PetscCall(PetscMalloc1(2 * ne, &rom->phi));
+    PetscCall(PetscMalloc1(2 * nmem, &mem->phi));
+    PetscCall(PetscArraycpy(rom->phi, phi, 2 * ne));
+    PetscCall(PetscArraycpy(mem->phi, phi + 2 * ne, 2 * nmem));
+    PetscCall(PetscFree(phi));
   }
   PetscCall(PetscMalloc1(6 * nmem, &xc));
   PetscCall(MemberCoordinates(model, mem, xc));

@@ -235,7 +235,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   JRCont          cont = NULL, contr = NULL, contc;
   const JRPairs  *P;
   const char     *damping;
-  PetscInt        nm, H, n, *pair = NULL, romm = 0, fdof = 0, nout = 0, odof[21];
+  PetscInt        nm, H, n, *pair = NULL, romm = 0, jmotion = 0, fdof = 0, nout = 0, odof[21];
   PetscBool       n2n, stickfe = PETSC_FALSE, plot = PETSC_TRUE, isrom = PETSC_FALSE, loaded = PETSC_FALSE, corr_on = PETSC_TRUE, weight = PETSC_TRUE;
   JRElements      el, elr, elj;
   char            base[PETSC_MAX_PATH_LEN] = "out/frf", romsave[PETSC_MAX_PATH_LEN] = "", romload[PETSC_MAX_PATH_LEN] = "";
@@ -269,6 +269,10 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     PetscCall(PetscOptionsBool("-frf_stick_fe", "Also the natural frequencies of the whole FE model with every element stuck (SLEPc): the modal truncation error", "JRTaskFRF", stickfe, &stickfe, NULL));
     PetscCall(PetscOptionsInt("-rom_elements", "Second reduction: fit this many elements per joint to its hysteresis loops (0: the first reduction only)", "JRROMReduce", romm, &romm, NULL));
     PetscCall(PetscOptionsBool("-rom_mode_weights", "Weight every member of a joint by its motion relative to the joint's in the stuck mode of interest (w^2 kt, |w| f; jenkins)", "JRROMReduce", weight, &weight, NULL));
+    {
+      const char *jm[] = {"mean", "linear", "mode"};
+      PetscCall(PetscOptionsEList("-rom_joint_motion", "How a joint's members move: mean (4.4), linear (a linear field over their positions) or mode (a linear field over their motions in the stuck mode of interest)", "JRROMReduce", jm, 3, jm[jmotion], &jmotion, NULL));
+    }
     PetscCall(PetscOptionsBool("-rom_stiffness_correction", "Scale the reduced elements' stiffness so that the stuck resonance is the node-to-node one", "JRHBMMatchStickFrequency", corr_on, &corr_on, NULL));
     PetscCall(PetscOptionsString("-rom_save", "Save the reduced model (second reduction) to this HDF5 file", "JRROMSave", romsave, romsave, sizeof(romsave), NULL));
     PetscCall(PetscOptionsString("-rom_load", "Run the reduced model of this HDF5 file (no preload, no fit)", "JRROMLoad", romload, romload, sizeof(romload), NULL));
@@ -398,21 +402,41 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     JRROMCase  cs;
     PetscCall(PetscMemzero(&cs, sizeof(cs)));
     PetscCall(PetscTime(&t0));
-    if (!strcmp(elj.typename[0], JRCONTACTJENKINS)) { /* the stuck mode of interest: each member's motion over its joint's (4.4), and the joints' amplitudes in the case */
+    if (!strcmp(elj.typename[0], JRCONTACTJENKINS) || jmotion == 2) { /* the stuck mode of interest: each member's motion over its joint's (4.4: over its members in contact at rest, all if none), and the joints' amplitudes in the case */
       PetscInt   k  = 0, nlev = 0;
-      PetscReal  ft = 0, *u, *cnt, umax = 0, om;
+      PetscReal  ft = 0, *u, *v, *cnt, umax = 0, smax = 0, om;
       PetscCall(TargetMode(comm, hbm, &k, &ft, &nlev, &lev));
-      PetscCall(PetscMalloc1(el.n, &u));
+      PetscCall(PetscMalloc2(el.n, &u, el.n, &v));
       PetscCall(PetscCalloc1(elj.njoints, &ubar));
       PetscCall(PetscCalloc1(elj.njoints, &cnt));
-      PetscCall(JRHBMStuckModeMotion(hbm, k, u));
+      PetscCall(JRHBMStuckModeMotion(hbm, k, u, v));
       for (PetscInt e = 0; e < el.n; e++) {
-        ubar[elj.joint[e]] += u[e];
-        cnt[elj.joint[e]] += 1;
+        if (elj.n0[e] > 0) {
+          ubar[elj.joint[e]] += u[e];
+          cnt[elj.joint[e]] += 1;
+        }
         umax = PetscMax(umax, PetscAbsReal(u[e]));
       }
-      for (PetscInt j = 0; j < elj.njoints; j++) ubar[j] /= cnt[j];
-      if (weight) {
+      for (PetscInt j = 0; j < elj.njoints; j++) cnt[j] = cnt[j] > 0 ? -cnt[j] : 0; /* joints with none: over all */
+      for (PetscInt e = 0; e < el.n; e++)
+        if (!(cnt[elj.joint[e]] < 0)) {
+          ubar[elj.joint[e]] += u[e];
+          cnt[elj.joint[e]] += 1;
+        }
+      for (PetscInt j = 0; j < elj.njoints; j++) ubar[j] /= PetscAbsReal(cnt[j]);
+      if (jmotion == 2) { /* -rom_joint_motion mode: each member's field coordinates are its position and its tangential
+                             and normal motions in this mode (scaled to at most 1); the fit weighs the members */
+        for (PetscInt e = 0; e < el.n; e++) smax = PetscMax(smax, PetscMax(PetscAbsReal(u[e]), PetscAbsReal(v[e])));
+        PetscCheck(smax > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion mode: the interface does not move in stuck mode %" PetscInt_FMT " (%g Hz)", k, (double)ft);
+        PetscCall(PetscFree(elj.phi));
+        PetscCall(PetscMalloc1(2 * el.n, &elj.phi));
+        for (PetscInt e = 0; e < el.n; e++) {
+          elj.phi[2 * e]     = u[e] / smax;
+          elj.phi[2 * e + 1] = v[e] / smax;
+        }
+        PetscCall(PetscPrintf(comm, "rom: joints move with a field linear in their members' positions and motions in stuck mode %" PetscInt_FMT " (%.6g Hz)\n", k, (double)ft));
+      }
+      if (weight || jmotion == 2) {
         PetscCall(PetscMalloc1(el.n, &w));
         for (PetscInt e = 0; e < el.n; e++) w[e] = PetscAbsReal(ubar[elj.joint[e]]) > 1e-6 * umax ? u[e] / ubar[elj.joint[e]] : 1.0;
         PetscCall(PetscPrintf(comm, "rom: members weighted by their motion in stuck mode %" PetscInt_FMT " (%.6g Hz) over their joint's\n", k, (double)ft));
@@ -422,7 +446,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
       cs.level  = lev;
       cs.ujoint = ubar;
       PetscCall(PetscFree(cnt));
-      PetscCall(PetscFree(u));
+      PetscCall(PetscFree2(u, v));
     }
     PetscCall(JRROMReduce(comm, &elj, romm, w, ubar ? &cs : NULL, base, plot, &elr));
     PetscCall(PetscFree(ubar));

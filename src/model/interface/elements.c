@@ -101,6 +101,7 @@ PetscErrorCode JRElementsDestroy(JRElements *el)
   PetscCall(PetscFree4(el->vdof_a, el->vdof_b, el->tdir, el->ndir));
   PetscCall(PetscFree(el->joint));
   PetscCall(PetscFree(el->pos));
+  PetscCall(PetscFree(el->phi));
   if (el->members) {
     PetscCall(JRElementsDestroy(el->members));
     PetscCall(PetscFree(el->members));
@@ -145,6 +146,10 @@ PetscErrorCode JRElementsDuplicate(const JRElements *a, JRElements *b)
   if (a->pos) {
     PetscCall(PetscMalloc1(3 * n, &b->pos));
     PetscCall(PetscArraycpy(b->pos, a->pos, 3 * n));
+  }
+  if (a->phi) {
+    PetscCall(PetscMalloc1(2 * n, &b->phi));
+    PetscCall(PetscArraycpy(b->phi, a->phi, 2 * n));
   }
   if (a->members) {
     PetscCall(PetscNew(&b->members));
