@@ -392,7 +392,7 @@ static PetscErrorCode JointFields(JRHBM h, const JRElements *el, PetscInt nloc, 
     const PetscReal *r = sum + 2 * j * w;
     PetscReal       *f = field + j * fw, G[JR_NF * JR_NF], cbar[JR_NF];
     if (!(r[0] > 0)) r += w; /* no member in contact at rest: the fit to all */
-    PetscCheck(r[0] > 0, h->comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no member element", j);
+    if (!(r[0] > 0)) continue; /* no member here (of this element type): f[0] = 0 */
     f[0] = r[0];
     for (PetscInt c = 0; c < NF; c++) cbar[c] = r[1 + c] / r[0];
     for (PetscInt c = 0; c < NF; c++)
@@ -489,6 +489,7 @@ static PetscErrorCode JointRows(JRHBM h, const JRElements *mem, PetscBool lin, P
   PetscCall(JointCoordinates(h, mem, nloc, eidx, lin, &P));
   PetscCall(JointFields(h, mem, nloc, eidx, R, S, P, field));
   PetscCall(PetscFree(P));
+  for (PetscInt j = 0; j < mem->njoints; j++) PetscCheck(field[j * JR_FIELD_WIDTH(2, nm)] > 0, h->comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no member element", j);
   if (Kc && nloc) {
     PetscReal *W;
     PetscCall(PetscMalloc1(nloc * nm, &W));
