@@ -88,6 +88,9 @@ struct _p_JRHBM {
   char              damping[256];
   /* condensation onto the joints (-hbm_condense): the linear part is solved exactly for the joints' motions */
   PetscInt          condense;     /* option: 0 auto, 1 yes, 2 no */
+  PetscBool         repl;         /* a reduced model on several ranks: every rank evaluates all its (few) elements, so
+                                     the per-iteration sum over the ranks is not needed */
+  MPI_Comm          ecomm;        /* the communicator of sums over the elements: h->comm, or PETSC_COMM_SELF if repl */
   PetscInt          jmotion;      /* first reduction: a joint's members move with 0 its mean motion, 1-2 its linear field
                                      over their coordinates (JRElements pos: 1 positions, 2 stuck-mode motions) */
   PetscBool         cond;         /* in use: the solve space is the joints' motions */
@@ -138,6 +141,7 @@ PetscErrorCode JRHBMCreate(MPI_Comm comm, JRHBM *hbm)
   PetscCall(JRInitializePackage());
   PetscCall(PetscNew(&h));
   h->comm       = comm;
+  h->ecomm      = comm;
   h->H          = 1;
   h->Ns         = 64;
   h->fdof       = 0;
@@ -791,7 +795,10 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     PetscCall(PetscMalloc1(el->njoints * JR_FIELD_WIDTH(2, h->nm), &field));
     PetscCall(JointRows(h, el->members, (PetscBool)(el->pos != NULL), field, h->basis >= 1 ? h->Kc : NULL));
   }
-  /* element groups, one per type, split across the ranks */
+  /* element groups, one per type, split across the ranks; a reduced model's few elements are on every rank instead
+     (each rank's Newton iteration then needs no sum over the ranks: the same numbers, bit for bit, everywhere) */
+  h->repl  = (PetscBool)(el->members && h->size > 1);
+  h->ecomm = h->repl ? PETSC_COMM_SELF : h->comm;
   for (PetscInt t = 0; t < h->ngroups; t++) PetscCall(GroupDestroy(&h->g[t]));
   PetscCall(PetscFree(h->g));
   h->ngroups = el->ntypes;
@@ -802,9 +809,12 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     PetscReal *kt, *kn, *mu, *n0;
     const PetscInt nc = h->nc, nm = h->nm;
     for (PetscInt e = 0; e < el->n; e++) ntot += el->type[e] == t;
-    PetscCall(PetscSplitOwnership(h->comm, &nloc, &ntot));
-    PetscCallMPI(MPI_Scan(&nloc, &start, 1, MPIU_INT, MPI_SUM, h->comm));
-    start -= nloc;
+    if (h->repl) nloc = ntot;
+    else {
+      PetscCall(PetscSplitOwnership(h->comm, &nloc, &ntot));
+      PetscCallMPI(MPI_Scan(&nloc, &start, 1, MPIU_INT, MPI_SUM, h->comm));
+      start -= nloc;
+    }
     g->nloc = nloc;
     PetscCall(PetscMalloc4(nloc, &kt, nloc, &kn, nloc, &mu, nloc, &n0));
     PetscCall(PetscMalloc2(nloc, &ia, nloc, &ib));
@@ -1082,7 +1092,7 @@ PetscErrorCode JRHBMStuckModeMotion(JRHBM h, PetscInt k, PetscReal u[], PetscRea
       loc[el->n + g->eidx[e]] = sn;
     }
   }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, loc, (PetscMPIInt)(2 * el->n), MPIU_REAL, MPIU_SUM, h->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, loc, (PetscMPIInt)(2 * el->n), MPIU_REAL, MPIU_SUM, h->ecomm));
   PetscCall(PetscArraycpy(u, loc, el->n));
   if (v) PetscCall(PetscArraycpy(v, loc + el->n, el->n));
   PetscCall(PetscFree(loc));
@@ -1141,7 +1151,7 @@ static PetscErrorCode StickEig(JRHBM h, PetscReal scale, PetscInt *nf, PetscReal
       PetscCall(Gemm("T", "N", nm, nm, g->nloc, scale, g->S, g->nloc, g->W, g->nloc, 1.0, loc, nm));
     }
   }
-  PetscCall(MPIU_Allreduce(loc, A, nm * nm, MPIU_REAL, MPIU_SUM, h->comm));
+  PetscCall(MPIU_Allreduce(loc, A, nm * nm, MPIU_REAL, MPIU_SUM, h->ecomm));
   for (PetscInt i = 0; i < nm; i++)
     for (PetscInt j = 0; j < nm; j++) {
       A[i + j * nm] += h->Kg[i * nm + j];
@@ -1443,7 +1453,7 @@ static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Pet
     PetscCall(PetscArraycpy(h->cache_a, a, n));
   }
   /* sum over the ranks on rank 0, then everyone gets the same numbers */
-  if (h->size > 1) {
+  if (h->size > 1 && !h->repl) {
     PetscCallMPI(MPI_Reduce(h->rank ? loc : MPI_IN_PLACE, loc, (PetscMPIInt)len, MPIU_REAL, MPIU_SUM, 0, h->comm));
     PetscCallMPI(MPI_Bcast(loc, (PetscMPIInt)len, MPIU_REAL, 0, h->comm));
   }
@@ -1695,7 +1705,7 @@ static PetscErrorCode CondenseSetUp(JRHBM h, const JRElements *el)
       r[wdt - 1] += 1.0;
     }
   }
-  PetscCall(MPIU_Allreduce(loc, sum, nj * wdt, MPIU_REAL, MPIU_SUM, h->comm));
+  PetscCall(MPIU_Allreduce(loc, sum, nj * wdt, MPIU_REAL, MPIU_SUM, h->ecomm));
   PetscCall(PetscCalloc3(nq * nm, &h->Q, nq * nm, &h->QV, nm, &h->VF));
   for (PetscInt j = 0; j < nj; j++) {
     const PetscReal *r = sum + j * wdt;
@@ -2047,8 +2057,11 @@ PetscErrorCode JRHBMEnergy(JRHBM h, PetscReal w, Vec a, PetscReal *Win, PetscRea
       }
   }
   PetscCall(VecRestoreArrayRead(a, &x));
-  PetscCallMPI(MPI_Reduce(&enl, &tot, 1, MPIU_REAL, MPIU_SUM, 0, h->comm));
-  PetscCallMPI(MPI_Bcast(&tot, 1, MPIU_REAL, 0, h->comm));
+  if (h->repl) tot = enl;
+  else {
+    PetscCallMPI(MPI_Reduce(&enl, &tot, 1, MPIU_REAL, MPIU_SUM, 0, h->comm));
+    PetscCallMPI(MPI_Bcast(&tot, 1, MPIU_REAL, 0, h->comm));
+  }
   *Win   = ein;
   *Edamp = ed;
   *Enl   = tot;
@@ -2146,7 +2159,7 @@ PetscErrorCode JRHBMContactStates(JRHBM h, Vec a, PetscInt count[4])
   PetscCall(EvaluateStates(h, a));
   for (PetscInt t = 0; t < h->ngroups; t++)
     for (PetscInt e = 0; e < h->g[t].nloc; e++) loc[h->g[t].state[e]]++;
-  PetscCall(MPIU_Allreduce(loc, count, 4, MPIU_INT, MPI_SUM, h->comm));
+  PetscCall(MPIU_Allreduce(loc, count, 4, MPIU_INT, MPI_SUM, h->ecomm));
   PetscFunctionReturn(0);
 }
 
@@ -2159,7 +2172,7 @@ PetscErrorCode JRHBMView(JRHBM h, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "  damping: %s\n", h->damping));
   for (PetscInt t = 0; t < h->ngroups; t++) {
     PetscInt nt;
-    PetscCall(MPIU_Allreduce(&h->g[t].nloc, &nt, 1, MPIU_INT, MPI_SUM, h->comm));
+    PetscCall(MPIU_Allreduce(&h->g[t].nloc, &nt, 1, MPIU_INT, MPI_SUM, h->ecomm));
     PetscCall(PetscViewerASCIIPrintf(viewer, "  %" PetscInt_FMT " %s elements\n", nt, h->g[t].c->type_name));
   }
   PetscFunctionReturn(0);
