@@ -934,6 +934,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     }
     PetscCall(PetscArraycpy(loc, h->Kc, nm * nm));
     PetscCall(MPIU_Allreduce(loc, all, nm * nm, MPIU_REAL, MPIU_SUM, h->comm));
+    if (h->repl) PetscCall(PetscArraycpy(h->Kc, all, nm * nm)); /* every rank has every element: the whole sum */
     for (PetscInt i = 0; i < nm; i++)
       for (PetscInt j = 0; j < nm; j++) h->Kg[i * nm + j] -= all[i + j * nm];
     PetscCall(PetscFree2(loc, all));
@@ -1328,7 +1329,7 @@ static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Pet
   PetscFunctionBeginUser;
   if (h->cache_ok) reuse = (PetscBool)!memcmp(a, h->cache_a, sizeof(PetscReal) * n); /* forces and derivatives kept from a call at this a (the Jacobian after the residual, the expansion after the accepted residual) */
   PetscCall(PetscArrayzero(loc, len));
-  if (h->basis >= 1 && h->Kc && !h->cond) { /* stuck basis: less the stuck springs, which are in Km (this rank's share) */
+  if (h->basis >= 1 && h->Kc && !h->cond) { /* stuck basis: less the stuck springs, which are in Km (this rank's share; all of them if repl) */
     PetscCall(Gemm("N", "N", nm, nc, nm, -1.0, h->Kc, nm, a, nm, 1.0, loc, nm));
     if (jac)
       for (PetscInt k = 0; k < nc; k++) {
