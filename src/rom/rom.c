@@ -783,7 +783,7 @@ static PetscErrorCode CaseAmplitudes(MPI_Comm comm, const JRElements *nn, const 
    c + sqrt(2) (s1 cos t e1 + s2 sin t e2), t = 0, 2 pi/3, 4 pi/3, where c is the group's stiffness-weighted centroid
    and s_a^2, e_a the eigenpairs of its in-plane covariance: the three points have the group's centroid and second
    moment, so the parts carry the joint's rotation with the members' stiffness (parallel axis theorem) and, moved
-   uniformly, act as the element itself. P: 9 per element (three points) */
+   uniformly, act as the element itself. P: JR_EP per element (three points; their positions only) */
 static PetscErrorCode SpreadPoints(const JRElements *nn, const MemberDelta *d, PetscInt nm, PetscInt mj, const PetscReal mk[], const PetscReal mf[], PetscReal ftot, PetscReal P[])
 {
   PetscReal *acc; /* per group: weight, sum w p (3), sum w p p^T (9) */
@@ -820,15 +820,16 @@ static PetscErrorCode SpreadPoints(const JRElements *nn, const MemberDelta *d, P
   PetscFunctionReturn(0);
 }
 
-/* -rom_joint_motion mode: where joint j's fitted elements take its field over the members' stuck-mode motions
-   (nn->pos: tangential phi_t, normal phi_n), and what they carry there. The fit saw the members weighted by
+/* -rom_joint_motion mode: where joint j's fitted elements take its field over the members' positions and stuck-mode
+   motions (nn->phi: tangential phi_t, normal phi_n), and what they carry there. The fit saw the members weighted by
    phi_t / its mean over the members in contact at rest (w^2 kt, |w| f): elements k, f moving with that mean. Element g,
-   which stands for a group of members d[] (by slip force, as the fit's start), moves with psi_t, the kt-weighted RMS
-   of the members' phi_t (signed as their slip-force-weighted mean), with k (mean / psi_t)^2 and f |mean / psi_t|: the
-   same loops in the mode, and a stiffness near the members' own total kt (so no stiffer in other motions); for
-   jenkins_nv it is split into two halves at psi_n = m -/+ s, the kn-weighted mean and spread of the members' phi_n,
-   with the members' total kn: the group's normal stiffness (sum kn phi_n^2) and normal load change (sum kn phi_n) in
-   the mode. P: 9 per element (two points used); ratio: mean / psi_t (k becomes k ratio^2, f becomes f |ratio|); kn */
+   which stands for a group of members d[] (by slip force, as the fit's start), moves with psi_t, chosen so that its
+   spring becomes its group's total kt (|psi_t| = |mean| sqrt(k / sum kt), signed as the group's slip-force-weighted
+   mean phi_t), with k (mean / psi_t)^2 and f |mean / psi_t|: the same loops in the mode, and no stiffer than its
+   members in other motions; it sits at the group's kt-weighted centroid, and is split into two halves at psi_n =
+   m -/+ s, the kn-weighted mean and spread of the members' phi_n, with the members' total kn: the group's normal
+   stiffness (sum kn phi_n^2) and normal load change (sum kn phi_n) in the mode. P: JR_EP per element (two points of
+   5 coordinates); ratio: mean / psi_t (k becomes k ratio^2, f becomes f |ratio|); kn: the group's total */
 static PetscErrorCode ModePoints(const JRElements *nn, PetscInt j, const MemberDelta *d, PetscInt nm, PetscInt mj, const PetscReal mf[], PetscReal ftot, const PetscReal k[], PetscReal ratio[], PetscReal kn[], PetscReal P[])
 {
   PetscReal mean = 0, cnt = 0, umax = 0, c = 0, *acc; /* per group: sum f phi_t, sum kt, sum kt phi_t^2, sum kn, sum kn phi_n, sum kn phi_n^2, sum kt x (3) */
