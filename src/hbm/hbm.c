@@ -92,7 +92,7 @@ struct _p_JRHBM {
                                      the per-iteration sum over the ranks is not needed */
   MPI_Comm          ecomm;        /* the communicator of sums over the elements: h->comm, or PETSC_COMM_SELF if repl */
   PetscInt          jmotion;      /* first reduction: a joint's members move with 0 its mean motion, 1-2 its linear field
-                                     over their coordinates (JRElements pos: 1 positions, 2 stuck-mode motions) */
+                                     over their coordinates (1: positions, JRElements pos; 2: and stuck-mode motions, phi) */
   PetscBool         cond;         /* in use: the solve space is the joints' motions */
   PetscInt          nq, ns;       /* condensed rows (nj tangential, then nj normal for jenkins_nv); solve-space size */
   PetscReal        *Q, *V, *lamv, *cv, *QV, *VF; /* rows (nq x nm row-major); (Kg, Mm) eigenvectors (col-major), values,
@@ -192,7 +192,7 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
   }
   {
     const char *jm[] = {"mean", "linear", "mode"};
-    PetscCall(PetscOptionsEList("-rom_joint_motion", "How a joint's members move: with its mean motion (4.4), or with a linear field over their coordinates, fitted by least squares: their positions (linear: the mean plus the joint's rotation) or their motions in the stuck mode of interest (mode); the coordinates are the elements' (JRElements pos)", "JRHBMSetUp", jm, 3, jm[h->jmotion], &h->jmotion, NULL));
+    PetscCall(PetscOptionsEList("-rom_joint_motion", "How a joint's members move: with its mean motion (4.4), or with a linear field over their coordinates, fitted by least squares: their positions (linear: the mean plus the joint's rotation) or their motions in the stuck mode of interest (mode); the coordinates are the elements' (JRElements pos, phi)", "JRHBMSetUp", jm, 3, jm[h->jmotion], &h->jmotion, NULL));
   }
   PetscCall(PetscOptionsBool("-hbm_physical", "Physical coordinates instead of modes (small systems: checks modal truncation)", "JRHBMSetUp", h->physical, &h->physical, NULL));
   PetscCall(PetscOptionsReal("-hbm_gamma", "Structural damping H = gamma K (2.17) [-]", "JRHBMSetUp", h->gamma, &h->gamma, NULL));

@@ -404,26 +404,23 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     PetscCall(PetscTime(&t0));
     if (!strcmp(elj.typename[0], JRCONTACTJENKINS) || jmotion == 2) { /* the stuck mode of interest: each member's motion over its joint's (4.4: over its members in contact at rest, all if none), and the joints' amplitudes in the case */
       PetscInt   k  = 0, nlev = 0;
-      PetscReal  ft = 0, *u, *v, *cnt, umax = 0, smax = 0, om;
+      PetscReal  ft = 0, *u, *v, *cnt, *ua, umax = 0, smax = 0, om;
       PetscCall(TargetMode(comm, hbm, &k, &ft, &nlev, &lev));
       PetscCall(PetscMalloc2(el.n, &u, el.n, &v));
       PetscCall(PetscCalloc1(elj.njoints, &ubar));
-      PetscCall(PetscCalloc1(elj.njoints, &cnt));
+      PetscCall(PetscCalloc2(2 * elj.njoints, &cnt, elj.njoints, &ua));
       PetscCall(JRHBMStuckModeMotion(hbm, k, u, v));
-      for (PetscInt e = 0; e < el.n; e++) {
+      for (PetscInt e = 0; e < el.n; e++) { /* per joint: sum and count over its members in contact at rest, then over all */
+        const PetscInt j = elj.joint[e];
         if (elj.n0[e] > 0) {
-          ubar[elj.joint[e]] += u[e];
-          cnt[elj.joint[e]] += 1;
+          ubar[j] += u[e];
+          cnt[2 * j] += 1;
         }
+        ua[j] += u[e];
+        cnt[2 * j + 1] += 1;
         umax = PetscMax(umax, PetscAbsReal(u[e]));
       }
-      for (PetscInt j = 0; j < elj.njoints; j++) cnt[j] = cnt[j] > 0 ? -cnt[j] : 0; /* joints with none: over all */
-      for (PetscInt e = 0; e < el.n; e++)
-        if (!(cnt[elj.joint[e]] < 0)) {
-          ubar[elj.joint[e]] += u[e];
-          cnt[elj.joint[e]] += 1;
-        }
-      for (PetscInt j = 0; j < elj.njoints; j++) ubar[j] /= PetscAbsReal(cnt[j]);
+      for (PetscInt j = 0; j < elj.njoints; j++) ubar[j] = cnt[2 * j] > 0 ? ubar[j] / cnt[2 * j] : ua[j] / cnt[2 * j + 1];
       if (jmotion == 2) { /* -rom_joint_motion mode: each member's field coordinates are its position and its tangential
                              and normal motions in this mode (scaled to at most 1); the fit weighs the members */
         for (PetscInt e = 0; e < el.n; e++) smax = PetscMax(smax, PetscMax(PetscAbsReal(u[e]), PetscAbsReal(v[e])));
@@ -445,7 +442,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
       cs.nlev   = nlev;
       cs.level  = lev;
       cs.ujoint = ubar;
-      PetscCall(PetscFree(cnt));
+      PetscCall(PetscFree2(cnt, ua));
       PetscCall(PetscFree2(u, v));
     }
     PetscCall(JRROMReduce(comm, &elj, romm, w, ubar ? &cs : NULL, base, plot, &elr));
