@@ -8,7 +8,7 @@
    f_i = mu N_i) by least squares (TAO, Gauss-Newton Hessian, bounds kt_i, f_i > 0) on
      - the loops under u = a cos(theta) at three amplitudes, each weighted by its own size (the cost 4.5): the
        slip displacements below which the fractions -rom_fit_fractions (0.25, 0.6, 0.95) of the slip force lie;
-     - a stuck loop (the joint's stiffness), weighted 10x;
+     - a stuck loop (the joint's stiffness), weighted 10x (-rom_fit_stiffness_weight);
      - the energy dissipated per cycle, relative, at 6 amplitudes from the first slips (2% of the slip force) to
        the largest loop amplitude, weighted 0.05 each;
      - the joint's total slip force (gross slip), -rom_fit_gross_weight 1;
@@ -36,11 +36,17 @@
    Each joint's own loops may give way (the rom joint lines give each joint's own residual).
    jenkins_nv joints (beyond the thesis): kt_i, f_i as above with the normal motion at rest (v = 0), n0_i = f_i / mu;
    then the normal stiffnesses kn_i (the thesis's kv) fitted to the joint's normal load-motion curve
-   sum_e max(n0_e + kn_e v, 0) over v from the separation of every member to as much compression.
+   sum_e max(n0_e + kn_e v, 0) over v from the separation of every member to as much compression. With
+   -rom_joint_motion mode the loops see each element under its normal load at rest; NormalVariation measures (AFT) what
+   the normal load's variation in the mode changes in the energy per cycle, for the members and for the fit, prints
+   the fit's error with it (rom case level F dissipation_error_normal_varying) and, with -rom_fit_normal_passes k,
+   fits k more times with that change added to the targets (a defect correction; off by default: on lap3 it moved
+   the peak amplitudes either way, README).
    Saved and loaded with -rom_save / -rom_load (HDF5, /rom/...): the reduced elements and the members that define
    the joints' motion, with the members' node coordinates to check that the file fits the model.
 */
 #include <jointrom/private/modelimpl.h>
+#include <jointrom/private/contactimpl.h>
 #include <petsctao.h>
 #include <petscviewerhdf5.h>
 #include <petscblaslapack.h>
@@ -732,6 +738,36 @@ static int CompareDelta(const void *a, const void *b)
   return x < y ? -1 : x > y ? 1 : (((const MemberDelta *)a)->e < ((const MemberDelta *)b)->e ? -1 : 1);
 }
 
+/* Energy per cycle of a jenkins_nv element moving ut cos(theta) tangentially and vn cos(theta) normally (AFT a, one
+   harmonic): W = pi Us Fc - ... of the first harmonic, exact for a motion of one harmonic */
+static PetscReal EnergyNV(JRAFT *a, PetscReal kt, PetscReal kn, PetscReal mu, PetscReal n0, PetscReal ut, PetscReal vn)
+{
+  PetscReal    U[3] = {0, 0, ut}, V[3] = {0, 0, vn}, F[3] = {0, 0, 0};
+  JRElementOut out;
+  if (!(kt > 0) || !(mu > 0)) return 0;
+  PetscMemzero(&out, sizeof(out));
+  out.F = F;
+  JRAFTElement(a, kt, kn, mu, n0, U, V, &out, NULL, NULL);
+  return PETSC_PI * (U[1] * F[2] - U[2] * F[1]);
+}
+
+/* PetscPrintf unless quiet (the passes before the last of the fit with the normal-load variation) */
+static PetscErrorCode Say(PetscBool quiet, MPI_Comm comm, const char fmt[], ...)
+{
+  PetscMPIInt rank;
+  va_list     ap;
+
+  PetscFunctionBeginUser;
+  if (quiet) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) {
+    va_start(ap, fmt);
+    PetscCall((*PetscVFPrintf)(PETSC_STDOUT, fmt, ap));
+    va_end(ap);
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The joints' dissipation at modal amplitude a of the case's mode: sum over members of the (weighted) Jenkins
    energy per cycle at their joint's motion |u_j| a */
 static PetscReal CaseDissipation(const JRElements *nn, const PetscReal mk[], const PetscReal mf[], const JRROMCase *cs, PetscReal a)
@@ -745,14 +781,14 @@ static PetscReal CaseDissipation(const JRElements *nn, const PetscReal mk[], con
 /* The modal amplitude a of the case's mode at resonance at every level F, by the energy balance of one cycle
    (single-mode, stuck mode shape): pi F force a = damp a^2 + D(a), where D (the joints' dissipation) grows faster
    than a, so the root is unique (bisection). Every rank the same. */
-static PetscErrorCode CaseAmplitudes(MPI_Comm comm, const JRElements *nn, const PetscReal mk[], const PetscReal mf[], const JRROMCase *cs, PetscReal **amod)
+static PetscErrorCode CaseAmplitudes(MPI_Comm comm, PetscBool quiet, const JRElements *nn, const PetscReal mk[], const PetscReal mf[], const JRROMCase *cs, PetscReal **amod)
 {
   PetscReal *a;
 
   PetscFunctionBeginUser;
   *amod = NULL;
   if (!(cs->force > 0)) {
-    PetscCall(PetscPrintf(comm, "rom: WARNING the excitation does not drive the mode of interest (stuck mode nearest the middle of the frequency range): the fit does not use the case's amplitudes\n"));
+    PetscCall(Say(quiet, comm, "rom: WARNING the excitation does not drive the mode of interest (stuck mode nearest the middle of the frequency range): the fit does not use the case's amplitudes\n"));
     PetscFunctionReturn(0);
   }
   PetscCall(PetscMalloc1(cs->nlev, &a));
@@ -772,7 +808,7 @@ static PetscErrorCode CaseAmplitudes(MPI_Comm comm, const JRElements *nn, const 
     }
     a[l] = 0.5 * (lo + hi);
     D    = CaseDissipation(nn, mk, mf, cs, a[l]);
-    PetscCall(PetscPrintf(comm, "rom case level %g modal_amplitude %.5e joint_amplitude_m %.4e joint_dissipation_share %.4f\n", (double)cs->level[l], (double)a[l], (double)(umax * a[l]), (double)(a[l] > 0 ? D / (win * a[l]) : 0.0)));
+    PetscCall(Say(quiet, comm, "rom case level %g modal_amplitude %.5e joint_amplitude_m %.4e joint_dissipation_share %.4f\n", (double)cs->level[l], (double)a[l], (double)(umax * a[l]), (double)(a[l] > 0 ? D / (win * a[l]) : 0.0)));
   }
   *amod = a;
   PetscFunctionReturn(0);
@@ -913,7 +949,7 @@ static PetscErrorCode OpenPoints(const JRElements *nn, const MemberDelta *od, Pe
    their slip displacements chosen together (CoupledSearch) and their forces fitted together by TAO; x, rms (each
    joint's own rows) and its updated. Joints whose members are their elements stay as they are (their energy is
    taken off the target). Prints one line. */
-static PetscErrorCode FitCoupled(MPI_Comm comm, const JRElements *nn, const PetscReal mk[], const PetscReal mf[], const JRROMCase *cs, const PetscInt jn[], PetscInt m, PetscReal wtotal, PetscReal amin, PetscReal amax, PetscInt na, TangentFit tf[], PetscReal *xj[], const PetscInt mjv[], const PetscReal dlo[], const PetscReal dhi[], PetscReal rmsv[], PetscInt itsv[])
+static PetscErrorCode FitCoupled(MPI_Comm comm, PetscBool quiet, const PetscReal nvin[], const JRElements *nn, const PetscReal mk[], const PetscReal mf[], const JRROMCase *cs, const PetscInt jn[], PetscInt m, PetscReal wtotal, PetscReal amin, PetscReal amax, PetscInt na, TangentFit tf[], PetscReal *xj[], const PetscInt mjv[], const PetscReal dlo[], const PetscReal dhi[], PetscReal rmsv[], PetscInt itsv[])
 {
   CoupledFit cf;
   PetscInt  *jl, ldmax = 0, mmax = 0, sweeps = 0, its = 0, nr;
@@ -959,6 +995,8 @@ static PetscErrorCode FitCoupled(MPI_Comm comm, const JRElements *nn, const Pets
     cf.Et[l] = D;
     for (PetscInt e = 0; e < nn->n; e++)
       if (!(jn[nn->joint[e]] > m) && mk[e] > 0 && mf[e] > 0) cf.Et[l] -= JenkinsEnergy(mk[e], mf[e], PetscAbsReal(cs->ujoint[nn->joint[e]]) * am, NULL, NULL);
+    for (PetscInt j = 0; nvin && j < nn->njoints; j++) /* the normal-load variation (NormalVariation) */
+      if (jn[j] > m) cf.Et[l] += nvin[j * na + l];
     if (!(cf.En[l] > 0)) cf.En[l] = 1;
   }
   PetscCall(PetscMalloc2(nr, &r, nr * cf.n, &J));
@@ -994,23 +1032,75 @@ static PetscErrorCode FitCoupled(MPI_Comm comm, const JRElements *nn, const Pets
     itsv[j] += its;
     PetscCall(PetscFree3(cf.fx[k].delta, cf.fx[k].x, cf.fx[k].J2));
   }
-  PetscCall(PetscPrintf(comm, "rom coupled joints %" PetscInt_FMT " elements %" PetscInt_FMT " all_joints_energy_residual %.3e each_alone %.3e own_rows_residual %.3e each_alone %.3e sweeps %" PetscInt_FMT " tao_its %" PetscInt_FMT "\n", cf.nj, cf.n, (double)tot1, (double)tot0, (double)own1, (double)own0, sweeps, its));
+  PetscCall(Say(quiet, comm, "rom coupled joints %" PetscInt_FMT " elements %" PetscInt_FMT " all_joints_energy_residual %.3e each_alone %.3e own_rows_residual %.3e each_alone %.3e sweeps %" PetscInt_FMT " tao_its %" PetscInt_FMT "\n", cf.nj, cf.n, (double)tot1, (double)tot0, (double)own1, (double)own0, sweeps, its));
   PetscCall(PetscFree2(r, J));
   PetscCall(PetscFree6(y, cf.am, cf.Et, cf.En, cf.rj, cf.Jj));
   PetscCall(PetscFree7(jl, cf.fx, cf.off, cf.roff, cf.u, dl, dh));
   PetscFunctionReturn(0);
 }
 
-/*
-  JRROMReduce - the second reduction of the first-reduction model nn (node-to-node elements with joints): m elements
-  per joint (fewer if a joint has fewer members in contact), fitted by TAO; rom gets the elements, with nn as their
-  members. Every rank computes the same fit. base: if not empty, BASE_rom_loops.csv (+ .png if plot) with the
-  loops of every joint, first reduction and fit, at the three amplitudes. Prints one line per joint.
-*/
-PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const JRROMCase *cs, const char base[], PetscBool plot, JRElements *rom)
+/* -rom_joint_motion mode, jenkins_nv: the fit sees every element's loops under its normal load at rest (JenkinsLoop,
+   JenkinsEnergy); in the model the normal load follows the normal motion, and separates. What that changes in the
+   energy per cycle, at the case's amplitudes am_l (as FitCoupled's), for the members and for the reduced elements rom
+   (each moving with its stuck-mode coordinates phi x the case's scale, by AFT, one harmonic, 256 samples):
+     nv[j na + l] = (D_members,nv - D_members,fixed) - (D_rom,nv - D_rom,fixed)   joint j
+   The next fit adds it to its energy targets: its elements' fixed-load energy then aims at what, with their normal
+   load varying, gives the members' energy with theirs varying (a defect correction: repeated, it converges when the
+   rom's share changes little from fit to fit). nvmax: the largest |sum_j nv| at any am_l, relative to the input
+   there. Unless quiet, prints the error of the rom's energy with the normal variation at the case's levels. */
+static PetscErrorCode NormalVariation(MPI_Comm comm, PetscBool quiet, const JRElements *nn, const JRElements *rom, const JRROMCase *cs, const PetscReal amod[], PetscReal amin, PetscReal amax, PetscInt na, PetscReal nv[], PetscReal *nvmax)
 {
-  PetscInt     nj = nn->njoints, ns = 128, nfr = 3, cnt = 0, nmax;
-  PetscReal    fr[3] = {0.25, 0.6, 0.95}, perturb = 0, efrom = 0.02, wcase = 10.0, wgross = 1.0, wtotal = 20.0, *amod = NULL, amin = 0, amax = 0;
+  const PetscInt nj = nn->njoints;
+  PetscReal      sc = 0, best = 0;
+  JRAFT         *af;
+
+  PetscFunctionBeginUser;
+  for (PetscInt j = 0; j < nj; j++) { /* phi is the mode's motion / its largest; the joints' motion in the case's units */
+    PetscReal mp = 0, c = 0;
+    for (PetscInt e = 0; e < nn->n; e++)
+      if (nn->joint[e] == j && nn->n0[e] > 0) {
+        mp += nn->phi[2 * e];
+        c += 1;
+      }
+    mp = c > 0 ? mp / c : 0;
+    if (PetscAbsReal(mp) > best) {
+      best = PetscAbsReal(mp);
+      sc   = PetscAbsReal(cs->ujoint[j] / mp);
+    }
+  }
+  PetscCall(JRAFTCreate(1, 256, &af));
+  *nvmax = 0;
+  for (PetscInt l = 0; l < na; l++) {
+    const PetscReal am = 0.5 * amin * PetscPowReal(4 * amax / amin, l / (PetscReal)(na - 1)), a = sc * am;
+    PetscReal       tot = 0, fixed = 0;
+    for (PetscInt j = 0; j < nj; j++) nv[j * na + l] = 0;
+    for (PetscInt e = 0; e < nn->n; e++) {
+      const PetscReal d0 = EnergyNV(af, nn->kt[e], nn->kn[e], nn->mu[e], nn->n0[e], nn->phi[2 * e] * a, 0);
+      nv[nn->joint[e] * na + l] += EnergyNV(af, nn->kt[e], nn->kn[e], nn->mu[e], nn->n0[e], nn->phi[2 * e] * a, nn->phi[2 * e + 1] * a) - d0;
+      fixed += d0;
+    }
+    for (PetscInt r = 0; r < rom->n; r++)
+      nv[rom->joint[r] * na + l] -= EnergyNV(af, rom->kt[r], rom->kn[r], rom->mu[r], rom->n0[r], rom->phi[2 * r] * a, rom->phi[2 * r + 1] * a) - EnergyNV(af, rom->kt[r], rom->kn[r], rom->mu[r], rom->n0[r], rom->phi[2 * r] * a, 0);
+    for (PetscInt j = 0; j < nj; j++) tot += nv[j * na + l];
+    *nvmax = PetscMax(*nvmax, PetscAbsReal(tot) / (cs->damp * am * am + fixed));
+  }
+  for (PetscInt l = 0; !quiet && l < cs->nlev; l++) {
+    const PetscReal a = sc * amod[l];
+    PetscReal       dm = 0, dr = 0;
+    for (PetscInt e = 0; e < nn->n; e++) dm += EnergyNV(af, nn->kt[e], nn->kn[e], nn->mu[e], nn->n0[e], nn->phi[2 * e] * a, nn->phi[2 * e + 1] * a);
+    for (PetscInt r = 0; r < rom->n; r++) dr += EnergyNV(af, rom->kt[r], rom->kn[r], rom->mu[r], rom->n0[r], rom->phi[2 * r] * a, rom->phi[2 * r + 1] * a);
+    PetscCall(Say(quiet, comm, "rom case level %g dissipation_error_normal_varying %+.4f (of the input per cycle; members %.4f)\n", (double)cs->level[l], (double)((dr - dm) / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * amod[l])), (double)(dm / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * amod[l]))));
+  }
+  PetscCall(JRAFTDestroy(&af));
+  PetscFunctionReturn(0);
+}
+
+/* One fit (JRROMReduce): quiet, it prints nothing; nvin (NULL: none) is added to the case's energy targets; nvout
+   (NULL: not wanted; mode, jenkins_nv, with a case) gets NormalVariation's correction of this fit, nvmax its size */
+static PetscErrorCode ReducePass(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const JRROMCase *cs, const char base[], PetscBool plot, PetscBool quiet, const PetscReal nvin[], PetscReal nvout[], PetscReal *nvmax, JRElements *rom)
+{
+  PetscInt     nj = nn->njoints, ns = 128, nfr = 3, cnt = 0, nmax, npass = 0;
+  PetscReal    fr[3] = {0.25, 0.6, 0.95}, perturb = 0, efrom = 0.02, wcase = 10.0, wgross = 1.0, wtotal = 20.0, wstiff = 10.0, *amod = NULL, amin = 0, amax = 0;
   const PetscInt ncase = 24;
   PetscBool    refine = PETSC_FALSE, search = PETSC_TRUE;
   PetscBool    nv, frset;
@@ -1038,6 +1128,8 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   PetscCall(PetscOptionsReal("-fit_case_weight", "Weight of the energy dissipated per cycle at each joint's amplitude in the case (relative to the input energy at that level; 0: not fitted)", "JRROMReduce", wcase, &wcase, NULL));
   PetscCall(PetscOptionsReal("-fit_total_weight", "Weight of the energy all joints together dissipate per cycle at the case's amplitudes (relative to the input energy; a fit coupled across joints; 0: each joint fitted alone)", "JRROMReduce", wtotal, &wtotal, NULL));
   PetscCall(PetscOptionsReal("-fit_gross_weight", "Weight of the joint's total slip force (gross slip), relative", "JRROMReduce", wgross, &wgross, NULL));
+  PetscCall(PetscOptionsReal("-fit_stiffness_weight", "Weight of the joint's stuck stiffness (its stuck loop), relative to one loop", "JRROMReduce", wstiff, &wstiff, NULL));
+  PetscCall(PetscOptionsInt("-fit_normal_passes", "-rom_joint_motion mode, jenkins_nv, with a case: fit again this many times, each with the change the normal-load variation makes to the energy per cycle (members' and the previous fit's) added to the energy targets (0: once, fixed normal loads)", "JRROMReduce", npass, &npass, NULL));
   {
     const char *jm[] = {"mean", "linear", "mode"};
     PetscInt    jmo  = 0;
@@ -1049,6 +1141,8 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   PetscOptionsEnd();
   PetscCheck(wgross >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_gross_weight %g: the weight must be non-negative", (double)wgross);
   PetscCheck(wtotal >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_total_weight %g: the weight must be non-negative (0: each joint fitted alone)", (double)wtotal);
+  PetscCheck(wstiff > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_stiffness_weight %g: the weight must be positive", (double)wstiff);
+  PetscCheck(npass >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_normal_passes %" PetscInt_FMT ": 0 or more", npass);
   PetscCheck(wcase >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_case_weight %g: the weight must be non-negative (0: the case is not fitted)", (double)wcase);
   if (!frset) nfr = 3;
   PetscCheck(nfr == 3 && fr[0] > 0 && fr[1] > fr[0] && fr[2] > fr[1] && fr[2] <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_fractions: three increasing fractions in (0, 1] (default 0.25,0.6,0.95)");
@@ -1066,7 +1160,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
     mf[e]             = PetscAbsReal(w) * nn->mu[e] * PetscMax(nn->n0[e], 0.0);
   }
   if (cs && cs->nlev > 0 && m > 0 && (!nv || modef)) {
-    PetscCall(CaseAmplitudes(comm, nn, mk, mf, cs, &amod));
+    PetscCall(CaseAmplitudes(comm, quiet, nn, mk, mf, cs, &amod));
     if (amod) amin = amax = amod[0];
     for (PetscInt l = 1; amod && l < cs->nlev; l++) {
       amin = PetscMin(amin, amod[l]);
@@ -1189,6 +1283,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
         t.Et[i] = 0;
         for (PetscInt q = 0; q < nm; q++) t.Et[i] += JenkinsEnergy(mk[d[q].e], mf[d[q].e], t.ae[i], NULL, NULL);
         if (i < 6) t.En[i] = t.Et[i];
+        else if (nvin) t.Et[i] += nvin[j * ncase + i - 6]; /* the normal-load variation (NormalVariation) */
         if (!(t.En[i] > 0) || !(t.ae[i] > 0)) { /* nothing dissipated, nothing put in: no row */
           t.En[i] = 1;
           t.we[i] = 0;
@@ -1201,7 +1296,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
       PetscReal fmax = 0;
       for (PetscInt i = 0; i < nm; i++) JenkinsLoop(mk[d[i].e], mf[d[i].e], t.amp[a], ns, t.target + a * ns, NULL, NULL);
       for (PetscInt s = 0; s < ns; s++) fmax = PetscMax(fmax, PetscAbsReal(t.target[a * ns + s]));
-      t.w[a] = (a == 3 ? 10.0 : 1.0) / (fmax * PetscSqrtReal(4.0 * ns)); /* the stiffness weighs most */
+      t.w[a] = (a == 3 ? wstiff : 1.0) / (fmax * PetscSqrtReal(4.0 * ns)); /* the stiffness weighs most */
     }
     /* start: m groups of members in equal steps of log(delta) (from the first slips to gross slip), each group one
        element with the group's sums of kt and f: exact at full stick and at gross slip */
@@ -1295,7 +1390,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
     muv[j]   = mu;
     knv[j]   = knsum;
   }
-  if (amod && wtotal > 0 && (!nv || modef)) PetscCall(FitCoupled(comm, nn, mk, mf, cs, jn, m, wtotal, amin, amax, ncase, tf, xj, mjv, dlo, dhi, rmsv, itsv));
+  if (amod && wtotal > 0 && (!nv || modef)) PetscCall(FitCoupled(comm, quiet, nvin, nn, mk, mf, cs, jn, m, wtotal, amin, amax, ncase, tf, xj, mjv, dlo, dhi, rmsv, itsv));
   for (PetscInt j = 0; j < nj; j++) {
     const MemberDelta *d  = md + joff[j];
     const PetscInt     nm = jn[j];
@@ -1386,9 +1481,9 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
       for (PetscInt i = 0; i < mj; i++) ekn[cnt + i] = nf.kns * xn[i];
       PetscCall(PetscFree3(nf.v, nf.target, xn));
     }
-    PetscCall(PetscPrintf(comm, "rom joint %" PetscInt_FMT " members %" PetscInt_FMT " elements %" PetscInt_FMT " amplitudes_m %.4e %.4e %.4e loop_residual %.3e start %.3e tao_its %" PetscInt_FMT, j, nm, mj, (double)t.amp[0], (double)t.amp[1], (double)t.amp[2], (double)rms, (double)rms0, its));
-    if (nv) PetscCall(PetscPrintf(comm, " normal_residual %.3e start %.3e tao_its %" PetscInt_FMT, (double)nrms, (double)nrms0, nits));
-    PetscCall(PetscPrintf(comm, "\n"));
+    PetscCall(Say(quiet, comm, "rom joint %" PetscInt_FMT " members %" PetscInt_FMT " elements %" PetscInt_FMT " amplitudes_m %.4e %.4e %.4e loop_residual %.3e start %.3e tao_its %" PetscInt_FMT, j, nm, mj, (double)t.amp[0], (double)t.amp[1], (double)t.amp[2], (double)rms, (double)rms0, its));
+    if (nv) PetscCall(Say(quiet, comm, " normal_residual %.3e start %.3e tao_its %" PetscInt_FMT, (double)nrms, (double)nrms0, nits));
+    PetscCall(Say(quiet, comm, "\n"));
     if (fp)
       for (PetscInt a = 0; a < 3; a++) {
         PetscReal *Fr = loops;
@@ -1411,7 +1506,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
         for (PetscInt i = 0; i < -jn[j] - 1; i++, e++) err += JenkinsEnergy(ek[e], ef[e], x, NULL, NULL);
       }
       err -= CaseDissipation(nn, mk, mf, cs, amod[l]);
-      PetscCall(PetscPrintf(comm, "rom case level %g dissipation_error %+.4f (of the input per cycle)\n", (double)cs->level[l], (double)(err / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * amod[l]))));
+      PetscCall(Say(quiet, comm, "rom case level %g dissipation_error %+.4f (of the input per cycle)\n", (double)cs->level[l], (double)(err / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * amod[l]))));
     }
   if (base && base[0]) {
     PetscCall(JRFileCommit(comm, &fp, tmp, csv));
@@ -1448,6 +1543,7 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   }
   PetscCall(PetscNew(&rom->members));
   PetscCall(JRElementsDuplicate(nn, rom->members));
+  if (nvout && amod && modef && nv) PetscCall(NormalVariation(comm, quiet, nn, rom, cs, amod, amin, amax, ncase, nvout, nvmax));
   PetscCall(PetscFree(loops));
   PetscCall(PetscFree3(tf, xj, mjv));
   PetscCall(PetscFree7(itsv, rmsv, rms0v, dlo, dhi, muv, knv));
@@ -1457,6 +1553,39 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   PetscCall(PetscFree2(jn, joff));
   PetscCall(PetscFree2(mk, mf));
   PetscCall(PetscFree(amod));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRROMReduce - the second reduction of the first-reduction model nn (node-to-node elements with joints): m elements
+  per joint (fewer if a joint has fewer members in contact), fitted by TAO; rom gets the elements, with nn as their
+  members. Every rank computes the same fit. base: if not empty, BASE_rom_loops.csv (+ .png if plot) with the
+  loops of every joint, first reduction and fit, at the three amplitudes. Prints one line per joint.
+  -rom_joint_motion mode, jenkins_nv, with a case: also prints the fit's error at every level with the normal loads
+  varying (NormalVariation); -rom_fit_normal_passes k fits k more times, each with the previous fit's correction.
+*/
+PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const JRROMCase *cs, const char base[], PetscBool plot, JRElements *rom)
+{
+  const char *jm[] = {"mean", "linear", "mode"};
+  const PetscInt na = 24; /* the case's amplitudes (ReducePass's ncase) */
+  PetscInt    jmo = 0, npass = 0;
+  PetscReal  *nvin, *nvout, nvmax = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetEList(NULL, NULL, "-rom_joint_motion", jm, 3, &jmo, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-rom_fit_normal_passes", &npass, NULL));
+  if (!(jmo == 2 && m > 0 && npass >= 0 && cs && cs->nlev > 0 && cs->force > 0 && nn->ntypes == 1 && !strcmp(nn->typename[0], JRCONTACTJENKINSNV))) {
+    PetscCall(ReducePass(comm, nn, m, wt, cs, base, plot, PETSC_FALSE, NULL, NULL, &nvmax, rom));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscCalloc2(na * nn->njoints, &nvin, na * nn->njoints, &nvout));
+  for (PetscInt p = 0; p <= npass; p++) {
+    if (p) PetscCall(JRElementsDestroy(rom));
+    PetscCall(ReducePass(comm, nn, m, wt, cs, p == npass ? base : NULL, plot, (PetscBool)(p < npass), p ? nvin : NULL, nvout, &nvmax, rom));
+    if (npass) PetscCall(PetscPrintf(comm, "rom normal_variation pass %" PetscInt_FMT " of %" PetscInt_FMT " largest_share %.4f (of the input per cycle at the case's amplitudes, the fit's next correction)\n", p, npass, (double)nvmax));
+    PetscCall(PetscArraycpy(nvin, nvout, na * nn->njoints));
+  }
+  PetscCall(PetscFree2(nvin, nvout));
   PetscFunctionReturn(0);
 }
 
