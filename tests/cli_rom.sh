@@ -153,6 +153,26 @@ for jm in mean linear; do
 done
 check "[ -n '$f_linear' ] && awk -v m='$f_mean' -v l='$f_linear' -v n='$fn' 'BEGIN{exit !(m < 0.6 * n && l <= n * (1 + 1e-9) && l > 0.99 * n)}' && [ '$ne' -le 36 ]" "jenkins_nv lap1, 4 zone joints x 3 elements ($ne spread elements): stuck mode with the mean $f_mean Hz (a hinge), with the linear field $f_linear Hz, node-to-node $fn Hz (within 1%)"
 
+# -rom_fit_stiffness_weight: each joint's stuck loop weighed enough holds its members' stuck stiffness (sum k_i = sum
+# w^2 kt), so the reduced model's stuck stiffness matrix is the first reduction's and so is its stuck resonance (same
+# basis, LAPACK); with the default weight (10) the fit gives a little of it away for the loops
+sf() { $J -task frf $brb -frf_force 0.01 -rom_joints sides "$@" -frf_output_file '' 2>&1 | grep '^rom stiffness_correction'; }
+f0=$(field "$(sf -rom_elements 0)" rom_before_hz); fd=$(field "$(sf -rom_elements 3)" rom_before_hz); fs=$(field "$(sf -rom_elements 3 -rom_fit_stiffness_weight 1e4)" rom_before_hz)
+check "[ -n '$f0' ] && close $fs $f0 1e-8 && ! close $fd $f0 1e-7" "-rom_fit_stiffness_weight 1e4: 6 x 3 stuck resonance $fs Hz = first reduction's $f0 Hz (default weight: $fd Hz)"
+# jenkins_nv, -rom_joint_motion mode: the fit's error with the normal loads varying in the mode (AFT, one harmonic),
+# printed per level, is zero when every member is its own element (the same elements, placed at their own stuck-mode
+# motions) and not when three elements stand for a joint's members
+l3c="-options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -task frf -frf_force 0.01,0.05 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file ''"
+nvw() { echo "$1" | awk '/dissipation_error_normal_varying/{e = $6; if (e < 0) e = -e; if (e > w) w = e; n++; m = $13} END{print w + 0, n + 0, m + 0}'; }
+read w1 n1 s1 <<< "$(nvw "$(eval $J $l3c -rom_elements 200)")"
+read w3 n3 s3 <<< "$(nvw "$(eval $J $l3c)")"
+check "[ '$n1' = 2 ] && lt '$w1' 1e-12 && lt 0.01 '$s1' && lt 1e-3 '$w3'" "jenkins_nv lap3 (coarse), mode: the fit's dissipation error with the normal load varying, every member its own element: $w1 (members dissipate $s1 of the input); 12 x 3: $w3"
+# -rom_fit_normal_passes 2 (defect correction): the fit's error with the normal load varying, which it aims at,
+# smaller than the plain fit's at both levels
+read w2 n2 s2 <<< "$(nvw "$(eval $J $l3c -rom_fit_normal_passes 2)")"
+check "[ '$n2' = 2 ] && lt '$w2' '$w3'" "jenkins_nv lap3 (coarse), -rom_fit_normal_passes 2: worst error with the normal load varying $w2 (plain fit: $w3)"
+expect_error "zero stiffness weight" "-rom_fit_stiffness_weight 0.: the weight must be positive" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_stiffness_weight 0 -frf_output_file ''
+expect_error "negative normal passes" "-rom_fit_normal_passes -1: 0 or more" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_normal_passes -1 -frf_output_file ''
 expect_error "negative case weight" "-rom_fit_case_weight -1.: the weight must be non-negative" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_case_weight -1 -frf_output_file ''
 expect_error "negative total weight" "-rom_fit_total_weight -2.: the weight must be non-negative" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_total_weight -2 -frf_output_file ''
 expect_error "elements without joints" "-rom_elements needs joints" $J -task frf $brb -frf_force 1 -rom_elements 3 -frf_output_file ''

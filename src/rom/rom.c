@@ -1089,7 +1089,7 @@ static PetscErrorCode NormalVariation(MPI_Comm comm, PetscBool quiet, const JREl
     PetscReal       dm = 0, dr = 0;
     for (PetscInt e = 0; e < nn->n; e++) dm += EnergyNV(af, nn->kt[e], nn->kn[e], nn->mu[e], nn->n0[e], nn->phi[2 * e] * a, nn->phi[2 * e + 1] * a);
     for (PetscInt r = 0; r < rom->n; r++) dr += EnergyNV(af, rom->kt[r], rom->kn[r], rom->mu[r], rom->n0[r], rom->phi[2 * r] * a, rom->phi[2 * r + 1] * a);
-    PetscCall(Say(quiet, comm, "rom case level %g dissipation_error_normal_varying %+.4f (of the input per cycle; members %.4f)\n", (double)cs->level[l], (double)((dr - dm) / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * amod[l])), (double)(dm / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * amod[l]))));
+    PetscCall(Say(quiet, comm, "rom case level %g dissipation_error_normal_varying %+.3e (of the input per cycle; members %.4f)\n", (double)cs->level[l], (double)((dr - dm) / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * amod[l])), (double)(dm / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * amod[l]))));
   }
   PetscCall(JRAFTDestroy(&af));
   PetscFunctionReturn(0);
