@@ -739,7 +739,8 @@ static int CompareDelta(const void *a, const void *b)
 }
 
 /* Energy per cycle of a jenkins_nv element moving ut cos(theta) tangentially and vn cos(theta) normally (AFT a, one
-   harmonic): W = pi Us Fc - ... of the first harmonic, exact for a motion of one harmonic */
+   harmonic, ordered mean, sin, cos): W = pi (Us Fc - Uc Fs) with the force's first harmonic, all of it for a motion of
+   one harmonic (JRHarmonicWork) */
 static PetscReal EnergyNV(JRAFT *a, PetscReal kt, PetscReal kn, PetscReal mu, PetscReal n0, PetscReal ut, PetscReal vn)
 {
   PetscReal    U[3] = {0, 0, ut}, V[3] = {0, 0, vn}, F[3] = {0, 0, 0};
