@@ -103,11 +103,13 @@ r1=$(rt "$o1"); r2=$(rt "$o2")
 check "[ -n \"\$r1\" ] && [ \$(echo \"\$r1\" | wc -l) = 2 ] && [ \"\$r1\" = \"\$r2\" ]" "reduced model (6 x 3, not condensed) on 1 and 2 ranks, every element on every rank: peak, amplitude, balance and contact states the same ($(echo $r1 | cut -c1-80))"
 
 # 4b. condensation onto the joints (-hbm_condense, on by default for reduced models): the modal equations with the
-# modes eliminated exactly, so on the frequencies both solve the amplitudes agree to round-off and solver tolerance
+# modes eliminated exactly, so on the frequencies both solve the amplitudes agree to round-off and solver tolerance.
+# At 0.1 and 50 N: at 1 N the peak bends over (a fold near 133.9 Hz, solutions 2.5% apart), where natural continuation
+# may land on either branch as the recomputed modes differ at round-off from run to run
 for r in "-rom_load $tmp/rom.h5" "-rom_joints sides"; do
   rm -f "$tmp"/cd_*.csv
   for c in yes no; do
-    o=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 $r -hbm_condense $c -frf_output_file "$tmp/cd_$c" 2>&1)
+    o=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 0.1,50 $r -hbm_condense $c -frf_output_file "$tmp/cd_$c" 2>&1)
     [ $c = yes ] && info=$(echo "$o" | grep -o 'condensed onto.*')
   done
   read nm dm <<< "$(same "$tmp/cd_no.csv" "$tmp/cd_yes.csv")"
@@ -153,12 +155,12 @@ for jm in mean linear; do
 done
 check "[ -n '$f_linear' ] && awk -v m='$f_mean' -v l='$f_linear' -v n='$fn' 'BEGIN{exit !(m < 0.6 * n && l <= n * (1 + 1e-9) && l > 0.99 * n)}' && [ '$ne' -le 36 ]" "jenkins_nv lap1, 4 zone joints x 3 elements ($ne spread elements): stuck mode with the mean $f_mean Hz (a hinge), with the linear field $f_linear Hz, node-to-node $fn Hz (within 1%)"
 
-# -rom_fit_stiffness_weight: each joint's stuck loop weighed enough holds its members' stuck stiffness (sum k_i = sum
-# w^2 kt), so the reduced model's stuck stiffness matrix is the first reduction's and so is its stuck resonance (same
-# basis, LAPACK); with the default weight (10) the fit gives a little of it away for the loops
+# -rom_fit_stiffness_weight (1e4): each joint's stuck loop weighed enough holds its members' stuck stiffness (sum k_i
+# = sum w^2 kt), so the reduced model's stuck stiffness matrix is the first reduction's and so is its stuck resonance
+# (same basis, LAPACK); with a weight of 10 (the default before stop 17) the fit gives a little of it away for the loops
 sf() { $J -task frf $brb -frf_force 0.01 -rom_joints sides "$@" -frf_output_file '' 2>&1 | grep '^rom stiffness_correction'; }
-f0=$(field "$(sf -rom_elements 0)" rom_before_hz); fd=$(field "$(sf -rom_elements 3)" rom_before_hz); fs=$(field "$(sf -rom_elements 3 -rom_fit_stiffness_weight 1e4)" rom_before_hz)
-check "[ -n '$f0' ] && close $fs $f0 1e-8 && ! close $fd $f0 1e-7" "-rom_fit_stiffness_weight 1e4: 6 x 3 stuck resonance $fs Hz = first reduction's $f0 Hz (default weight: $fd Hz)"
+f0=$(field "$(sf -rom_elements 0)" rom_before_hz); fd=$(field "$(sf -rom_elements 3 -rom_fit_stiffness_weight 10)" rom_before_hz); fs=$(field "$(sf -rom_elements 3)" rom_before_hz)
+check "[ -n '$f0' ] && close $fs $f0 1e-8 && ! close $fd $f0 1e-7" "-rom_fit_stiffness_weight 1e4 (default): 6 x 3 stuck resonance $fs Hz = first reduction's $f0 Hz (weight 10: $fd Hz)"
 # jenkins_nv, -rom_joint_motion mode: the fit's error with the normal loads varying in the mode (AFT, one harmonic),
 # printed per level, is zero when every member is its own element (the same elements, placed at their own stuck-mode
 # motions) and not when three elements stand for a joint's members

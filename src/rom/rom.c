@@ -1101,7 +1101,7 @@ static PetscErrorCode NormalVariation(MPI_Comm comm, PetscBool quiet, const JREl
 static PetscErrorCode ReducePass(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const JRROMCase *cs, const char base[], PetscBool plot, PetscBool quiet, const PetscReal nvin[], PetscReal nvout[], PetscReal *nvmax, JRElements *rom)
 {
   PetscInt     nj = nn->njoints, ns = 128, nfr = 3, cnt = 0, nmax, npass = 0;
-  PetscReal    fr[3] = {0.25, 0.6, 0.95}, perturb = 0, efrom = 0.02, wcase = 10.0, wgross = 1.0, wtotal = 20.0, wstiff = 10.0, *amod = NULL, amin = 0, amax = 0;
+  PetscReal    fr[3] = {0.25, 0.6, 0.95}, perturb = 0, efrom = 0.02, wcase = 10.0, wgross = 1.0, wtotal = 20.0, wstiff = 1e4, *amod = NULL, amin = 0, amax = 0;
   const PetscInt ncase = 24;
   PetscBool    refine = PETSC_FALSE, search = PETSC_TRUE;
   PetscBool    nv, frset;
