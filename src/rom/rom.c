@@ -8,7 +8,7 @@
    f_i = mu N_i) by least squares (TAO, Gauss-Newton Hessian, bounds kt_i, f_i > 0) on
      - the loops under u = a cos(theta) at three amplitudes, each weighted by its own size (the cost 4.5): the
        slip displacements below which the fractions -rom_fit_fractions (0.25, 0.6, 0.95) of the slip force lie;
-     - a stuck loop (the joint's stiffness), weighted 10x (-rom_fit_stiffness_weight);
+     - a stuck loop (the joint's stiffness), weighted 1e4: held (-rom_fit_stiffness_weight);
      - the energy dissipated per cycle, relative, at 6 amplitudes from the first slips (2% of the slip force) to
        the largest loop amplitude, weighted 0.05 each;
      - the joint's total slip force (gross slip), -rom_fit_gross_weight 1;
