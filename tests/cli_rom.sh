@@ -170,7 +170,7 @@ read w1 n1 s1 <<< "$(nvw "$(eval $J $l3c -rom_elements 200)")"
 read w3 n3 s3 <<< "$(nvw "$(eval $J $l3c)")"
 check "[ '$n1' = 2 ] && lt '$w1' 1e-12 && lt 0.01 '$s1' && lt 1e-3 '$w3'" "jenkins_nv lap3 (coarse), mode: the fit's dissipation error with the normal load varying, every member its own element: $w1 (members dissipate $s1 of the input); 12 x 3: $w3"
 # -rom_fit_normal_passes 2 (defect correction): the fit's error with the normal load varying, which it aims at,
-# smaller than the plain fit's at both levels
+# smaller than the plain fit's (the worst over both levels)
 read w2 n2 s2 <<< "$(nvw "$(eval $J $l3c -rom_fit_normal_passes 2)")"
 check "[ '$n2' = 2 ] && lt '$w2' '$w3'" "jenkins_nv lap3 (coarse), -rom_fit_normal_passes 2: worst error with the normal load varying $w2 (plain fit: $w3)"
 expect_error "zero stiffness weight" "-rom_fit_stiffness_weight 0.: the weight must be positive" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_stiffness_weight 0 -frf_output_file ''

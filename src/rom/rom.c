@@ -1567,15 +1567,14 @@ static PetscErrorCode ReducePass(MPI_Comm comm, const JRElements *nn, PetscInt m
 */
 PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const JRROMCase *cs, const char base[], PetscBool plot, JRElements *rom)
 {
-  const char *jm[] = {"mean", "linear", "mode"};
   const PetscInt na = 24; /* the case's amplitudes (ReducePass's ncase) */
-  PetscInt    jmo = 0, npass = 0;
+  PetscInt    npass = 0;
   PetscReal  *nvin, *nvout, nvmax = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsGetEList(NULL, NULL, "-rom_joint_motion", jm, 3, &jmo, NULL));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-rom_fit_normal_passes", &npass, NULL));
-  if (!(jmo == 2 && m > 0 && npass >= 0 && cs && cs->nlev > 0 && cs->force > 0 && nn->ntypes == 1 && !strcmp(nn->typename[0], JRCONTACTJENKINSNV))) {
+  /* nn->phi, the members' stuck-mode coordinates, is set (JRTaskFRF) for -rom_joint_motion mode only */
+  if (!(nn->phi && m > 0 && npass >= 0 && cs && cs->nlev > 0 && cs->force > 0 && nn->ntypes == 1 && !strcmp(nn->typename[0], JRCONTACTJENKINSNV))) {
     PetscCall(ReducePass(comm, nn, m, wt, cs, base, plot, PETSC_FALSE, NULL, NULL, &nvmax, rom));
     PetscFunctionReturn(0);
   }
