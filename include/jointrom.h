@@ -286,6 +286,7 @@ PETSC_EXTERN PetscErrorCode JRHBMSolve(JRHBM, PetscReal, Vec, PetscInt *, PetscB
 PETSC_EXTERN PetscErrorCode JRHBMLinearSolution(JRHBM, PetscReal, Vec);
 PETSC_EXTERN PetscErrorCode JRHBMGetSNES(JRHBM, SNES *);
 PETSC_EXTERN PetscErrorCode JRHBMGetJacobianType(JRHBM, JRHBMJacobianType *);
+PETSC_EXTERN PetscErrorCode JRHBMGetElementTime(JRHBM, PetscLogDouble *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMGetOutputs(JRHBM, PetscInt *, const PetscInt **);
 PETSC_EXTERN PetscErrorCode JRHBMResponse(JRHBM, Vec, PetscReal[], PetscReal[], PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMEnergy(JRHBM, PetscReal, Vec, PetscReal *, PetscReal *, PetscReal *);

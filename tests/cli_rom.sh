@@ -30,6 +30,10 @@ nj=$(echo "$o" | grep -c '^rom: joint'); ne=$(echo "$o" | awk '/^rom: joint/{s +
 check "[ $nj = 6 ] && [ '$ne' = 133 ] && lt '$f' 1e-4 && lt '$a' 1e-2" "first reduction, 6 joints (133 members), mode-shape weights: worst peak error $f (< 1e-4), amplitude $a (< 1%)"
 c=$(echo "$o" | grep '^rom stiffness_correction')
 check "[ -f '$tmp/s0_compare.csv' ] && [ \$(grep -c . '$tmp/s0_compare.csv') = 6 ] && [ \$(echo \"\$o\" | grep -c '^compare level') = 5 ]" "compare: BASE_compare.csv with 5 levels and 5 'compare level' lines"
+# where the solve time goes: the elements' part of each model's solve lies within that solve (no timing is compared)
+ts=$(echo "$o" | awk '/^compare time /{tn = $4; tr = $6} /^compare time_split/{en = $4; er = $8; print tn, tr, en, er, $12}')
+read tn tr en er cap <<< "$ts"
+check "[ -n '$cap' ] && awk 'BEGIN{exit !($en > 0 && $en <= $tn && $er > 0 && $er <= $tr && $cap >= $tn / $tr)}'" "compare time_split: the elements' time within each solve (node-to-node $en of $tn s, reduced $er of $tr s), speed-up cap $cap"
 o0=$(mpiexec -n 2 $J -task compare $brb -frf_force $lev -rom_joints sides -rom_mode_weights 0 -rom_stiffness_correction 0 -frf_output_file '' 2>&1)
 read f0 a0 <<< "$(worst "$o0")"
 check "lt '$a' '$a0'" "mode-shape weights help: amplitude error $a with, $a0 with the plain average (4.4)"

@@ -85,6 +85,8 @@ struct _p_JRHBM {
   PetscReal        *buf;          /* n + n*n reduction buffer */
   PetscReal        *cache_a;      /* the unknowns at which the groups' forces and derivatives were evaluated */
   PetscBool         cache_ok;
+  PetscLogDouble    telem;        /* wall time in Nonlinear(): the elements' forces and Jacobians, with their sums over ranks */
+  PetscInt          nelem, nelemjac; /* its calls, and those with a Jacobian */
   char              damping[256];
   /* condensation onto the joints (-hbm_condense): the linear part is solved exactly for the joints' motions */
   PetscInt          condense;     /* option: 0 auto, 1 yes, 2 no */
@@ -1326,7 +1328,10 @@ static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Pet
   const PetscBool derivs = (PetscBool)(jac || h->jtype == JR_HBM_JACOBIAN_ANALYTIC);
   PetscBool       reuse  = PETSC_FALSE;
 
+  PetscLogDouble  t0, t1;
+
   PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
   if (h->cache_ok) reuse = (PetscBool)!memcmp(a, h->cache_a, sizeof(PetscReal) * n); /* forces and derivatives kept from a call at this a (the Jacobian after the residual, the expansion after the accepted residual) */
   PetscCall(PetscArrayzero(loc, len));
   if (h->basis >= 1 && h->Kc && !h->cond) { /* stuck basis: less the stuck springs, which are in Km (this rank's share; all of them if repl) */
@@ -1460,6 +1465,10 @@ static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Pet
   }
   PetscCall(PetscArraycpy(res, loc, n));
   if (jac) PetscCall(PetscArraycpy(jac, loc + n, n * n));
+  PetscCall(PetscTime(&t1));
+  h->telem += t1 - t0;
+  h->nelem++;
+  if (jac) h->nelemjac++;
   PetscFunctionReturn(0);
 }
 
@@ -1958,6 +1967,21 @@ PetscErrorCode JRHBMGetJacobianType(JRHBM h, JRHBMJacobianType *jt)
 {
   PetscFunctionBeginUser;
   *jt = h->jtype;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMGetElementTime - the wall time [s] spent so far evaluating the contact elements (forces, their derivatives
+  projected into the Jacobian, and the sums over the ranks: everything whose cost grows with the elements), and how
+  many evaluations, of which with a Jacobian (any argument may be NULL). The rest of a solve is the linear
+  algebra on the unknowns and the continuation, the same for any number of elements.
+*/
+PetscErrorCode JRHBMGetElementTime(JRHBM h, PetscLogDouble *seconds, PetscInt *calls, PetscInt *jacobians)
+{
+  PetscFunctionBeginUser;
+  if (seconds) *seconds = h->telem;
+  if (calls) *calls = h->nelem;
+  if (jacobians) *jacobians = h->nelemjac;
   PetscFunctionReturn(0);
 }
 
