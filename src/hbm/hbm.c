@@ -39,13 +39,16 @@ typedef struct {
   PetscReal *W;                             /* nloc x nm scratch */
   PetscReal *nstatic;                       /* max(n0, 0) */
   JRContactState *state;
-  /* Jacobian split: stuck elements have dF/du = kt I (and dN/dv = kn I, dF/dv = 0) exactly; their part
-     sum_e kt r_e r_e^T (x) I is assembled once (Kst, Knn) and only the others are projected per iteration */
+  /* Jacobian split: an element in its state at rest has dF/du = pt I (and dN/dv = pn I, dF/dv = 0) exactly, with
+     (pt, pn) = (kt, kn) stuck if it is in contact at rest (n0 > 0) and 0 if open (a gap: no force while it stays
+     open); that part, sum_e pt r_e r_e^T (x) I, is assembled once (Kst, Knn) and only the elements out of their state
+     at rest are projected per iteration */
   PetscBool  split;
   PetscReal *Kst, *Knn;    /* nm x nm column-major, this rank's elements */
   PetscInt  *sel, nsel;    /* elements not in the stuck pattern */
   PetscReal *Rc, *Sc, *Dc; /* their projection rows (nsel x nm) and one derivative column */
   PetscReal *kt, *kn;
+  PetscReal *pt, *pn;      /* the state at rest's dF/du and dN/dv: kt, kn if n0 > 0, else 0 */
   PetscInt  *eidx;         /* the model's element number of each local element */
   PetscReal *Kc;           /* stuck basis: the stuck springs of this rank's elements in contact at rest (nm x nm) */
   PetscReal *R0, *S0;      /* joints in a stuck basis: the members' own rows until Kc is formed */
@@ -243,7 +246,7 @@ static PetscErrorCode GroupDestroy(HBMGroup *g)
   PetscCall(JRFreeAligned(&g->Rc));
   PetscCall(JRFreeAligned(&g->Sc));
   PetscCall(JRFreeAligned(&g->Dc));
-  PetscCall(PetscFree2(g->kt, g->kn));
+  PetscCall(PetscFree4(g->kt, g->kn, g->pt, g->pn));
   PetscCall(PetscFree(g->eidx));
   PetscCall(PetscFree(g->Kc));
   PetscCall(PetscFree(g->R0));
@@ -884,20 +887,24 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     /* friction elements: the stuck part of the Jacobian, once */
     g->split = (PetscBool)(!strcmp(el->typename[t], JRCONTACTJENKINS) || !strcmp(el->typename[t], JRCONTACTJENKINSNV));
     PetscCall(PetscCalloc2(nm * nm, &g->Kst, nm * nm, &g->Knn));
-    PetscCall(PetscMalloc2(nloc, &g->kt, nloc, &g->kn));
+    PetscCall(PetscMalloc4(nloc, &g->kt, nloc, &g->kn, nloc, &g->pt, nloc, &g->pn));
     PetscCall(PetscArraycpy(g->kt, kt, nloc));
     PetscCall(PetscArraycpy(g->kn, kn, nloc));
+    for (PetscInt e = 0; e < nloc; e++) {
+      g->pt[e] = g->nstatic[e] > 0 ? kt[e] : 0.0;
+      g->pn[e] = g->nstatic[e] > 0 ? kn[e] : 0.0;
+    }
     PetscCall(PetscMalloc1(nloc, &g->sel));
     PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nm, &g->Rc));
     PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc, &g->Dc));
     if (g->normal) PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nm, &g->Sc));
     if (g->split && nloc) {
       for (PetscInt i = 0; i < nm; i++)
-        for (PetscInt e = 0; e < nloc; e++) g->W[e + i * nloc] = kt[e] * g->R[e + i * nloc];
+        for (PetscInt e = 0; e < nloc; e++) g->W[e + i * nloc] = g->pt[e] * g->R[e + i * nloc];
       PetscCall(Gemm("T", "N", nm, nm, nloc, 1.0, g->R, nloc, g->W, nloc, 0.0, g->Kst, nm));
       if (g->normal) {
         for (PetscInt i = 0; i < nm; i++)
-          for (PetscInt e = 0; e < nloc; e++) g->W[e + i * nloc] = kn[e] * g->S[e + i * nloc];
+          for (PetscInt e = 0; e < nloc; e++) g->W[e + i * nloc] = g->pn[e] * g->S[e + i * nloc];
         PetscCall(Gemm("T", "N", nm, nm, nloc, 1.0, g->S, nloc, g->W, nloc, 0.0, g->Knn, nm));
       }
     }
@@ -1398,15 +1405,15 @@ static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Pet
       const PetscReal *Rj = GR, *Sj = GS;
       PetscCall(PetscLogEventBegin(JR_HBMJacobian, 0, 0, 0, 0));
       if (g->split) {
-        /* which elements differ from the stuck pattern dF/du = kt I, dF/dv = 0, dN/dv = kn I */
+        /* which elements differ from their state at rest dF/du = pt I, dF/dv = 0, dN/dv = pn I */
         nsel = 0;
         for (PetscInt e = 0; e < nloc; e++) {
           const PetscReal tol = 1e-12 * g->kt[e], toln = 1e-12 * PetscMax(g->kn[e], g->kt[e]);
           PetscBool       stuck = PETSC_TRUE;
           for (PetscInt q = 0; q < nc * nc && stuck; q++) {
             const PetscBool diag = (PetscBool)(q / nc == q % nc);
-            if (PetscAbsReal(g->DU[q * nloc + e] - (diag ? g->kt[e] : 0.0)) > tol) stuck = PETSC_FALSE;
-            if (g->normal && (PetscAbsReal(g->DV[q * nloc + e]) > toln || PetscAbsReal(g->DN[q * nloc + e] - (diag ? g->kn[e] : 0.0)) > toln)) stuck = PETSC_FALSE;
+            if (PetscAbsReal(g->DU[q * nloc + e] - (diag ? g->pt[e] : 0.0)) > tol) stuck = PETSC_FALSE;
+            if (g->normal && (PetscAbsReal(g->DV[q * nloc + e]) > toln || PetscAbsReal(g->DN[q * nloc + e] - (diag ? g->pn[e] : 0.0)) > toln)) stuck = PETSC_FALSE;
           }
           if (!stuck) g->sel[nsel++] = e;
         }
@@ -1418,7 +1425,7 @@ static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Pet
         }
         Rj = g->Rc;
         Sj = g->Sc;
-        /* the stuck part: Kst and Knn on the diagonal blocks */
+        /* the part at rest: Kst and Knn on the diagonal blocks */
         for (PetscInt k = 0; k < nc; k++) {
           PetscReal *blk = loc + n + (k * nm) + (k * nm) * n;
           for (PetscInt j = 0; j < nm; j++)
@@ -1437,7 +1444,7 @@ static PetscErrorCode Nonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Pet
               /* the selected elements' derivative, less the stuck part already counted */
               for (PetscInt s = 0; s < nsel; s++) {
                 const PetscInt e = g->split ? g->sel[s] : s;
-                d[s]             = dall[e] - (g->split && k == m ? (q == 0 ? g->kt[e] : q == 2 ? g->kn[e] : 0.0) : 0.0);
+                d[s]             = dall[e] - (g->split && k == m ? (q == 0 ? g->pt[e] : q == 2 ? g->pn[e] : 0.0) : 0.0);
                 dmax             = PetscMax(dmax, PetscAbsReal(d[s]));
               }
               if (dmax == 0.0) continue;
