@@ -235,7 +235,7 @@ typedef struct {
   PetscReal        damp;   /* linear damping energy per cycle / (modal amplitude)^2 */
   const PetscReal *ujoint; /* each joint's (average) motion per unit modal amplitude [m] */
 } JRROMCase;
-PETSC_EXTERN PetscErrorCode JRROMReduce(MPI_Comm, const JRElements *, PetscInt, const PetscReal[], const JRROMCase *, const char[], PetscBool, JRElements *);
+PETSC_EXTERN PetscErrorCode JRROMReduce(MPI_Comm, const JRElements *, PetscInt, const PetscReal[], const JRROMCase *, const char[], PetscBool, PetscBool, JRElements *);
 PETSC_EXTERN PetscErrorCode JRROMSave(JRModel, const JRElements *, PetscReal, const char[]);
 PETSC_EXTERN PetscErrorCode JRROMLoad(JRModel, const char[], JRElements *, PetscReal *);
 
@@ -329,6 +329,7 @@ PETSC_EXTERN PetscErrorCode JRContGetRange(JRCont, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRContSetOutputBase(JRCont, const char[]);
 PETSC_EXTERN PetscErrorCode JRContSetLevels(JRCont, PetscInt, const PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRContSolve(JRCont);
+PETSC_EXTERN PetscErrorCode JRContSetQuiet(JRCont, PetscBool);
 PETSC_EXTERN PetscErrorCode JRContGetNumLevels(JRCont, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRContGetBranch(JRCont, PetscInt, PetscInt *, const PetscReal **, const PetscReal **, const PetscReal **);
 PETSC_EXTERN PetscErrorCode JRContGetPeak(JRCont, PetscInt, PetscReal *, PetscReal *);

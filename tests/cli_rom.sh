@@ -68,6 +68,23 @@ done
 o=$($J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements 10 -rom_fit_search 0 -frf_output_file '' 2>&1)
 read f a <<< "$(worst "$o")"
 check "echo \"\$o\" | grep -q '^rom coupled' && lt '$f' 5e-3 && lt '$a' 0.1" "second reduction 6 x 10, no search (elements fitted to no force): coupled fit runs, worst peak frequency error $f, amplitude $a"
+# -rom_fit_select first: every pair of weights fitted and solved, the pair nearest the first reduction kept. Checked
+# against separate runs: the same weights given directly give the same reduced model, and its peaks against the first
+# reduction's (-rom_elements 0) give the error printed for that pair, the smallest printed (one rank: the same
+# model bit for bit; on two the modes, recomputed per run, differ at round-off)
+os=$($J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements 3 -rom_fit_select first -frf_output_file '' 2>&1)
+ns=$(echo "$os" | grep -c '^rom select ')
+cl=$(echo "$os" | grep '^rom: fit weights chosen')
+bt=$(field "$cl" -rom_fit_total_weight); bk=$(field "$cl" -rom_fit_case_weight)
+emin=$(echo "$os" | awk '/^rom select /{if (m == "" || $8 < m) {m = $8; t = $4; k = $6}} END{print m, t, k}')
+read em et ek <<< "$emin"
+check "[ '$ns' = 6 ] && [ -n '$bt' ] && awk 'BEGIN{exit !($bt == $et && $bk == $ek)}'" "-rom_fit_select first: 6 pairs fitted and solved, the one of the smallest error vs the first reduction chosen (total $bt, case $bk; error $em)"
+od=$($J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements 3 -rom_fit_total_weight $bt -rom_fit_case_weight $bk -frf_output_file '' 2>&1)
+o0=$($J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements 0 -frf_output_file '' 2>&1)
+amps() { echo "$1" | awk '/^compare level/{printf "%s ", $11}'; }
+dd=$(awk -v a="$(amps "$os")" -v b="$(amps "$od")" 'BEGIN{n = split(a, x); split(b, y); for (i = 1; i <= n; i++) {e = x[i] / y[i] - 1; if (e < 0) e = -e; if (e > m) m = e} print (n == 5 ? m + 0 : "none")}')
+e0=$(awk -v a="$(amps "$os")" -v b="$(amps "$o0")" 'BEGIN{n = split(a, x); split(b, y); for (i = 1; i <= n; i++) {e = x[i] / y[i] - 1; if (e < 0) e = -e; if (e > m) m = e} print (n == 5 ? m + 0 : "none")}')
+check "lt '$dd' 1e-12 && close '$e0' '$em' 1e-3" "-rom_fit_select first = the chosen weights given directly (peak amplitudes within $dd); its worst amplitude vs a separate first-reduction run $e0 = the printed $em"
 # the stiffness correction: the reduced model's stuck resonance (LAPACK, same basis) = the node-to-node one
 o=$($J -task frf $brb -frf_force 0.01 -rom_joints sides -rom_elements 3 -frf_output_file '' 2>&1)
 fr=$(field "$(echo "$o" | grep '^stick freq_hz')" freq_hz); fn=$(field "$(echo "$o" | grep '^rom stiffness_correction')" n2n_hz)
@@ -184,4 +201,7 @@ expect_error "negative total weight" "-rom_fit_total_weight -2.: the weight must
 expect_error "elements without joints" "-rom_elements needs joints" $J -task frf $brb -frf_force 1 -rom_elements 3 -frf_output_file ''
 expect_error "bad -rom_joint_motion" "rotate" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_joint_motion rotate -frf_output_file ''
 expect_error "bad -hbm_condense" "maybe" $J -task frf $brb -frf_force 1 -rom_joints sides -hbm_condense maybe -frf_output_file ''
+expect_error "negative selection weight" "-rom_fit_select_total: -1.: the weights must be non-negative" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_select first -rom_fit_select_total 20,-1 -frf_output_file ''
+expect_error "selection without a second reduction" "-rom_fit_select first chooses the second reduction's fit weights: it needs -rom_elements m" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_fit_select first -frf_output_file ''
+expect_error "bad -rom_fit_select" "best" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_select best -frf_output_file ''
 expect_error "save a first reduction" "-rom_save saves a second-reduction model" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_save "$tmp/x.h5" -frf_output_file ''

@@ -46,6 +46,7 @@ struct _p_JRCont {
   JRContConstraint constraint;
   PetscReal        wmin, wmax, step0, stepmin, stepmax;
   PetscBool        range_set, secant, plot, normalize, write;
+  PetscBool        quiet; /* JRContSetQuiet(): no progress, peak lines or summary */
   PetscInt         maxpts, target, monitor, nlev, n, nmod, nout, nc, npoints; /* n: the solve space; nmod: modal */
   PetscReal       *levels;
   Branch          *br;
@@ -243,7 +244,7 @@ static PetscErrorCode BranchAdd(JRCont c, Branch *b, PetscReal w, Vec a, PetscIn
 static PetscErrorCode Monitor(JRCont c, PetscInt lev, Branch *b, PetscBool force)
 {
   PetscFunctionBeginUser;
-  if (!c->monitor || !b->np) PetscFunctionReturn(0);
+  if (!c->monitor || c->quiet || !b->np) PetscFunctionReturn(0);
   if (c->monitor >= 2 || force || (b->np - 1) % 25 == 0) {
     const PetscInt k = b->np - 1;
     PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT "/%" PetscInt_FMT " F %g N  point %4" PetscInt_FMT "  f %.6g Hz  amp %.4e m  newton %" PetscInt_FMT "  step %.3g\n", lev + 1, c->nlev, (double)b->F, k, (double)(b->omega[k] / (2 * PETSC_PI)), (double)b->amp[k * c->nout], b->its[k], (double)b->step[k]));
@@ -656,10 +657,12 @@ PetscErrorCode JRContSolve(JRCont c)
     PetscCall(PetscTime(&t1));
     b->seconds = t1 - t0;
     PetscCall(Peak(c, lev, c->amod));
+    if (c->quiet) continue;
     if (c->monitor) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT "/%" PetscInt_FMT " F %g N done: %" PetscInt_FMT " points, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " retries, %.3g s%s\n", lev + 1, c->nlev, (double)b->F, b->np, b->newton, b->retries, (double)b->seconds, b->complete ? "" : " (incomplete: see above)"));
     PetscCall(PetscPrintf(c->comm, "peak level %g freq_hz %.8g amp %.8e amp_over_force %.8e\n", (double)b->F, (double)(b->wpeak / (2 * PETSC_PI)), (double)b->apeak, (double)(b->apeak / b->F)));
   }
   PetscCall(VecDestroy(&a));
+  if (c->quiet) PetscFunctionReturn(0);
   /* summary, one row per level */
   PetscCall(PetscPrintf(c->comm, "frf summary (%s continuation; peak of the first output DOF, refined by a parabola; zeta_eq = energy dissipated per cycle / (8 pi mean kinetic energy) at the peak;\n  energy balance: largest |W_in - W_damping - W_contact| / W_in over the curve; elements at the peak: full stick / stick-slip / separation with stick-slip / full separation)\n", JRContTypes[c->type]));
   PetscCall(PetscPrintf(c->comm, "  %10s %12s %13s %13s %10s %7s %7s %7s %9s %9s  %s\n", "F [N]", "peak [Hz]", "amp [m]", "amp/F [m/N]", "zeta_eq", "points", "newton", "retries", "time [s]", "balance", "states"));
@@ -667,6 +670,15 @@ PetscErrorCode JRContSolve(JRCont c)
     Branch *b = &c->br[lev];
     PetscCall(PetscPrintf(c->comm, "  %10.4g %12.6g %13.5e %13.5e %10.4e %7" PetscInt_FMT " %7" PetscInt_FMT " %7" PetscInt_FMT " %9.3g %9.2e  %" PetscInt_FMT " / %" PetscInt_FMT " / %" PetscInt_FMT " / %" PetscInt_FMT "%s\n", (double)b->F, (double)(b->wpeak / (2 * PETSC_PI)), (double)b->apeak, (double)(b->apeak / b->F), (double)b->zeta, b->np, b->newton, b->retries, (double)b->seconds, (double)b->ebal, b->states[0], b->states[1], b->states[2], b->states[3], b->complete ? "" : "  (incomplete)"));
   }
+  PetscFunctionReturn(0);
+}
+
+/* JRContSetQuiet - solve without printing progress, peak lines or the summary (a model solved as a means, e.g. to
+   choose among candidates); warnings still print */
+PetscErrorCode JRContSetQuiet(JRCont c, PetscBool quiet)
+{
+  PetscFunctionBeginUser;
+  c->quiet = quiet;
   PetscFunctionReturn(0);
 }
 

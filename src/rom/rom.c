@@ -33,7 +33,10 @@
    amplitude; the kinks of six joints, placed together, can follow their sum, which is what the peak amplitudes answer
    to. The slip displacements of all joints by coordinate descent (each element over its joint's candidates, every
    choice scored by the exact non-negative least squares of all forces, Lawson-Hanson), then all forces by TAO.
-   Each joint's own loops may give way (the rom joint lines give each joint's own residual).
+   Each joint's own loops may give way (the rom joint lines give each joint's own residual). Which total and case
+   weights give the best peaks depends on the case; -rom_fit_select first (src/task/frf.c) fits with several pairs
+   and keeps the one whose reduced model's peaks come nearest the first reduction's (quiet: JRROMReduce's last
+   argument).
    jenkins_nv joints (beyond the thesis): kt_i, f_i as above with the normal motion at rest (v = 0), n0_i = f_i / mu;
    then the normal stiffnesses kn_i (the thesis's kv) fitted to the joint's normal load-motion curve
    sum_e max(n0_e + kn_e v, 0) over v from the separation of every member to as much compression. With
@@ -1561,11 +1564,12 @@ static PetscErrorCode ReducePass(MPI_Comm comm, const JRElements *nn, PetscInt m
   JRROMReduce - the second reduction of the first-reduction model nn (node-to-node elements with joints): m elements
   per joint (fewer if a joint has fewer members in contact), fitted by TAO; rom gets the elements, with nn as their
   members. Every rank computes the same fit. base: if not empty, BASE_rom_loops.csv (+ .png if plot) with the
-  loops of every joint, first reduction and fit, at the three amplitudes. Prints one line per joint.
+  loops of every joint, first reduction and fit, at the three amplitudes. Prints one line per joint (quiet: nothing,
+  and no files).
   -rom_joint_motion mode, jenkins_nv, with a case: also prints the fit's error at every level with the normal loads
   varying (NormalVariation); -rom_fit_normal_passes k fits k more times, each with the previous fit's correction.
 */
-PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const JRROMCase *cs, const char base[], PetscBool plot, JRElements *rom)
+PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const JRROMCase *cs, const char base[], PetscBool plot, PetscBool quiet, JRElements *rom)
 {
   const PetscInt na = 24; /* the case's amplitudes (ReducePass's ncase) */
   PetscInt    npass = 0;
@@ -1575,14 +1579,14 @@ PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, cons
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-rom_fit_normal_passes", &npass, NULL));
   /* nn->phi, the members' stuck-mode coordinates, is set (JRTaskFRF) for -rom_joint_motion mode only */
   if (!(nn->phi && m > 0 && npass >= 0 && cs && cs->nlev > 0 && cs->force > 0 && nn->ntypes == 1 && !strcmp(nn->typename[0], JRCONTACTJENKINSNV))) {
-    PetscCall(ReducePass(comm, nn, m, wt, cs, base, plot, PETSC_FALSE, NULL, NULL, &nvmax, rom));
+    PetscCall(ReducePass(comm, nn, m, wt, cs, quiet ? NULL : base, plot, quiet, NULL, NULL, &nvmax, rom));
     PetscFunctionReturn(0);
   }
   PetscCall(PetscCalloc2(na * nn->njoints, &nvin, na * nn->njoints, &nvout));
   for (PetscInt p = 0; p <= npass; p++) {
     if (p) PetscCall(JRElementsDestroy(rom));
-    PetscCall(ReducePass(comm, nn, m, wt, cs, p == npass ? base : NULL, plot, (PetscBool)(p < npass), p ? nvin : NULL, nvout, &nvmax, rom));
-    if (npass) PetscCall(PetscPrintf(comm, "rom normal_variation pass %" PetscInt_FMT " of %" PetscInt_FMT " largest_share %.4f (of the input per cycle at the case's amplitudes, the fit's next correction)\n", p, npass, (double)nvmax));
+    PetscCall(ReducePass(comm, nn, m, wt, cs, p == npass && !quiet ? base : NULL, plot, (PetscBool)(quiet || p < npass), p ? nvin : NULL, nvout, &nvmax, rom));
+    if (npass && !quiet) PetscCall(PetscPrintf(comm, "rom normal_variation pass %" PetscInt_FMT " of %" PetscInt_FMT " largest_share %.4f (of the input per cycle at the case's amplitudes, the fit's next correction)\n", p, npass, (double)nvmax));
     PetscCall(PetscArraycpy(nvin, nvout, na * nn->njoints));
   }
   PetscCall(PetscFree2(nvin, nvout));

@@ -135,6 +135,142 @@ static PetscErrorCode Curves(MPI_Comm comm, JRHBM hbm, const char base[], JRCont
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode TargetMode(MPI_Comm, JRHBM, PetscInt *, PetscReal *, PetscInt *, PetscReal **);
+
+/* The reduced model elx as a JRHBM (*hbmx) on the modes of hbm (the node-to-node model's, shared; NULL: its own),
+   excited and observed at fdof and odof[]; with corr, every element's kt and kn are scaled so that the stuck mode of
+   interest is at hbm's frequency (the factor in *corr, 1 if none in [1e-3, 1e3] reaches it: a warning). quiet: no
+   lines printed. *setup: the set-up's wall time [s] */
+static PetscErrorCode ReducedHBM(MPI_Comm comm, JRModel model, JRHBM hbm, PetscInt fdof, PetscInt nout, const PetscInt odof[], PetscBool corr, PetscBool quiet, JRElements *elx, JRHBM *hbmx, PetscReal *factor, PetscReal *setup)
+{
+  JRHBM          hr;
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBeginUser;
+  *factor = 1.0;
+  PetscCall(JRHBMCreate(comm, &hr));
+  PetscCall(JRHBMSetExcitationDof(hr, fdof, nout, odof));
+  PetscCall(JRHBMSetBasis(hr, 2));
+  PetscCall(JRModelSetElements(model, elx));
+  PetscCall(JRHBMSetModel(hr, model));
+  PetscCall(JRHBMSetFromOptions(hr));
+  if (hbm) PetscCall(JRHBMSetModes(hr, hbm));
+  PetscCall(PetscTime(&t0));
+  PetscCall(JRHBMSetUp(hr));
+  PetscCall(PetscTime(&t1));
+  *setup = t1 - t0;
+  if (corr && hbm) { /* the stiffness correction: the reduced model's stuck resonance on the node-to-node one */
+    PetscInt   k = 0, nm, nf;
+    PetscReal  ft = 0, *fr, c;
+    PetscCall(TargetMode(comm, hbm, &k, &ft, NULL, NULL));
+    PetscCall(JRHBMGetSizes(hr, &nm, NULL, NULL));
+    PetscCall(PetscMalloc1(nm, &fr));
+    PetscCall(JRHBMStickFrequencies(hr, &nf, fr));
+    PetscCall(JRHBMMatchStickFrequency(hr, k, ft, &c));
+    if (c == 0) {
+      PetscCall(PetscPrintf(comm, "rom: WARNING no stiffness correction: no factor in [1e-3, 1e3] on the joints' springs brings stuck mode %" PetscInt_FMT " from %.6g Hz to the node-to-node %.6g Hz (the joints' averaged motion cannot carry the interface's stiffness in this mode: use more joints)\n", k, (double)fr[k], (double)ft));
+      c = 1.0;
+    }
+    if (!quiet) PetscCall(PetscPrintf(comm, "rom stiffness_correction %.8f stuck_mode %" PetscInt_FMT " n2n_hz %.8g rom_before_hz %.8g\n", (double)c, k, (double)ft, (double)fr[k]));
+    PetscCall(PetscFree(fr));
+    for (PetscInt e = 0; e < elx->n; e++) {
+      elx->kt[e] *= c;
+      elx->kn[e] *= c;
+    }
+    PetscCall(JRModelSetElements(model, elx));
+    PetscCall(JRHBMSetModel(hr, model));
+    PetscCall(PetscTime(&t0));
+    PetscCall(JRHBMSetUp(hr));
+    PetscCall(PetscTime(&t1));
+    *setup += t1 - t0;
+    *factor = c;
+  }
+  *hbmx = hr;
+  PetscFunctionReturn(0);
+}
+
+/* The peaks (w [rad/s], amplitude [m]) of hbm's curves at every level of the options, solved without output */
+static PetscErrorCode QuietPeaks(MPI_Comm comm, JRHBM hbm, PetscInt *nlev, PetscReal **w, PetscReal **a)
+{
+  JRCont c;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRContCreate(comm, &c));
+  PetscCall(JRContSetHBM(c, hbm));
+  PetscCall(JRContSetFromOptions(c));
+  PetscCall(JRContSetOutputBase(c, ""));
+  PetscCall(JRContSetQuiet(c, PETSC_TRUE));
+  PetscCall(JRContSolve(c));
+  PetscCall(JRContGetNumLevels(c, nlev));
+  PetscCall(PetscMalloc2(*nlev, w, *nlev, a));
+  for (PetscInt l = 0; l < *nlev; l++) PetscCall(JRContGetPeak(c, l, &(*w)[l], &(*a)[l]));
+  PetscCall(JRContDestroy(&c));
+  PetscFunctionReturn(0);
+}
+
+/*
+  -rom_fit_select first: the second reduction fitted with every pair of weights (-rom_fit_select_total x
+  -rom_fit_select_case), each reduced model's curves solved (quietly), and the pair whose peaks come nearest the
+  first reduction's kept (the smallest worst relative amplitude error over the levels): the first reduction is the
+  reference a user has without node-to-node, and it is close to it (lap3 mode field within 1.6%, BRB 0.6%). Sets
+  -rom_fit_total_weight and -rom_fit_case_weight to the pair chosen, for the fit that follows.
+*/
+static PetscErrorCode SelectWeights(MPI_Comm comm, JRModel model, JRHBM hbm, PetscInt fdof, PetscInt nout, const PetscInt odof[], PetscBool corr, const JRElements *elj, PetscInt romm, const PetscReal w[], const JRROMCase *cs, PetscInt nt, const PetscReal wtot[], PetscInt nk, const PetscReal wcas[])
+{
+  JRElements elf;
+  JRHBM      hf;
+  PetscReal  c, su, *wf, *af, best = PETSC_MAX_REAL, bt = 0, bk = 0;
+  PetscInt   nlev;
+  char       str[64];
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  PetscCall(PetscMemzero(&elf, sizeof(elf)));
+  PetscCall(JRROMReduce(comm, elj, 0, w, cs, NULL, PETSC_FALSE, PETSC_TRUE, &elf));
+  PetscCall(ReducedHBM(comm, model, hbm, fdof, nout, odof, corr, PETSC_TRUE, &elf, &hf, &c, &su));
+  PetscCall(QuietPeaks(comm, hf, &nlev, &wf, &af));
+  PetscCall(JRHBMDestroy(&hf));
+  PetscCall(JRElementsDestroy(&elf));
+  for (PetscInt i = 0; i < nt; i++)
+    for (PetscInt j = 0; j < nk; j++) {
+      JRElements elc;
+      JRHBM      hc;
+      PetscReal *wc, *ac, ea = 0, ef = 0;
+      PetscInt   nl;
+      PetscCall(PetscSNPrintf(str, sizeof(str), "%.17g", (double)wtot[i]));
+      PetscCall(PetscOptionsSetValue(NULL, "-rom_fit_total_weight", str));
+      PetscCall(PetscSNPrintf(str, sizeof(str), "%.17g", (double)wcas[j]));
+      PetscCall(PetscOptionsSetValue(NULL, "-rom_fit_case_weight", str));
+      PetscCall(PetscMemzero(&elc, sizeof(elc)));
+      PetscCall(JRROMReduce(comm, elj, romm, w, cs, NULL, PETSC_FALSE, PETSC_TRUE, &elc));
+      PetscCall(ReducedHBM(comm, model, hbm, fdof, nout, odof, corr, PETSC_TRUE, &elc, &hc, &c, &su));
+      PetscCall(QuietPeaks(comm, hc, &nl, &wc, &ac));
+      PetscCheck(nl == nlev, comm, PETSC_ERR_PLIB, "Different level counts");
+      for (PetscInt l = 0; l < nlev; l++) {
+        ea = PetscMax(ea, PetscAbsReal(ac[l] / af[l] - 1));
+        ef = PetscMax(ef, PetscAbsReal(wc[l] / wf[l] - 1));
+      }
+      PetscCall(PetscPrintf(comm, "rom select total_weight %g case_weight %g worst_amp_vs_first %.3e worst_freq_vs_first %.3e\n", (double)wtot[i], (double)wcas[j], (double)ea, (double)ef));
+      if (ea < best) { /* the first pair of the smallest error */
+        best = ea;
+        bt   = wtot[i];
+        bk   = wcas[j];
+      }
+      PetscCall(PetscFree2(wc, ac));
+      PetscCall(JRHBMDestroy(&hc));
+      PetscCall(JRElementsDestroy(&elc));
+    }
+  PetscCall(PetscFree2(wf, af));
+  PetscCall(PetscSNPrintf(str, sizeof(str), "%.17g", (double)bt));
+  PetscCall(PetscOptionsSetValue(NULL, "-rom_fit_total_weight", str));
+  PetscCall(PetscSNPrintf(str, sizeof(str), "%.17g", (double)bk));
+  PetscCall(PetscOptionsSetValue(NULL, "-rom_fit_case_weight", str));
+  PetscCall(PetscTime(&t1));
+  PetscCall(PetscPrintf(comm, "rom: fit weights chosen against the first reduction: -rom_fit_total_weight %g -rom_fit_case_weight %g (worst amplitude %.2f%% off the first reduction's peaks; %" PetscInt_FMT " pairs, %.3g s)\n", (double)bt, (double)bk, (double)(100 * best), nt * nk, (double)(t1 - t0)));
+  PetscFunctionReturn(0);
+}
+
 /* -task compare: per level the peaks of both models and their errors, the wall times, BASE_compare.csv and .png */
 static PetscErrorCode CompareReport(MPI_Comm comm, JRCont cn, JRCont cr, const JRElements *eln, const JRElements *elr, PetscReal tn, PetscReal tr, PetscReal en, PetscReal er, PetscReal setn, PetscReal setr, PetscReal tred, const char base[], PetscBool plot)
 {
@@ -242,7 +378,8 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   JRCont          cont = NULL, contr = NULL, contc;
   const JRPairs  *P;
   const char     *damping;
-  PetscInt        nm, H, n, *pair = NULL, romm = 0, jmotion = 0, fdof = 0, nout = 0, odof[21];
+  PetscInt        nm, H, n, *pair = NULL, romm = 0, jmotion = 0, fdof = 0, nout = 0, odof[21], select = 0, nst = 8, nsc = 8;
+  PetscReal       swt[8] = {20, 100, 1000}, swc[8] = {10, 0};
   PetscBool       n2n, stickfe = PETSC_FALSE, plot = PETSC_TRUE, isrom = PETSC_FALSE, loaded = PETSC_FALSE, corr_on = PETSC_TRUE, weight = PETSC_TRUE;
   JRElements      el, elr, elj;
   char            base[PETSC_MAX_PATH_LEN] = "out/frf", romsave[PETSC_MAX_PATH_LEN] = "", romload[PETSC_MAX_PATH_LEN] = "";
@@ -280,6 +417,18 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
       const char *jm[] = {"mean", "linear", "mode"};
       PetscCall(PetscOptionsEList("-rom_joint_motion", "How a joint's members move: mean (4.4), linear (a linear field over their positions) or mode (a linear field over their motions in the stuck mode of interest)", "JRROMReduce", jm, 3, jm[jmotion], &jmotion, NULL));
     }
+    {
+      const char *sel[] = {"none", "first"};
+      PetscBool   st, sc;
+      PetscCall(PetscOptionsEList("-rom_fit_select", "Second reduction: none (the fit weights as given) or first (fit with every pair of -rom_fit_select_total x -rom_fit_select_case and keep the pair whose peaks come nearest the first reduction's)", "JRROMReduce", sel, 2, sel[select], &select, NULL));
+      PetscCall(PetscOptionsRealArray("-rom_fit_select_total", "-rom_fit_select first: the -rom_fit_total_weight values tried", "JRROMReduce", swt, &nst, &st));
+      PetscCall(PetscOptionsRealArray("-rom_fit_select_case", "-rom_fit_select first: the -rom_fit_case_weight values tried", "JRROMReduce", swc, &nsc, &sc));
+      if (!st) nst = 3;
+      if (!sc) nsc = 2;
+      PetscCheck(nst > 0 && nsc > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_select_total and -rom_fit_select_case: at least one value each (at most 8)");
+      for (PetscInt i = 0; i < nst; i++) PetscCheck(swt[i] >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_select_total: %g: the weights must be non-negative", (double)swt[i]);
+      for (PetscInt i = 0; i < nsc; i++) PetscCheck(swc[i] >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_select_case: %g: the weights must be non-negative", (double)swc[i]);
+    }
     PetscCall(PetscOptionsBool("-rom_stiffness_correction", "Scale the reduced elements' stiffness so that the stuck resonance is the node-to-node one", "JRHBMMatchStickFrequency", corr_on, &corr_on, NULL));
     PetscCall(PetscOptionsString("-rom_save", "Save the reduced model (second reduction) to this HDF5 file", "JRROMSave", romsave, romsave, sizeof(romsave), NULL));
     PetscCall(PetscOptionsString("-rom_load", "Run the reduced model of this HDF5 file (no preload, no fit)", "JRROMLoad", romload, romload, sizeof(romload), NULL));
@@ -287,6 +436,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   PetscOptionsEnd();
   PetscCheck(n2n || !compare, comm, PETSC_ERR_ARG_WRONG, "-task compare needs an FE model with a contact interface (-model_type brb, lap1, lap3, lap, gmsh)");
   PetscCheck(romm >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_elements %" PetscInt_FMT ": 0 (first reduction only) or more", romm);
+  PetscCheck(!select || romm > 0, comm, PETSC_ERR_ARG_INCOMP, "-rom_fit_select first chooses the second reduction's fit weights: it needs -rom_elements m");
 
   if (n2n) {
     PetscInt         ndof, dir = 2, nd = 3, no = 63;
@@ -452,7 +602,8 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
       PetscCall(PetscFree2(cnt, ua));
       PetscCall(PetscFree2(u, v));
     }
-    PetscCall(JRROMReduce(comm, &elj, romm, w, ubar ? &cs : NULL, base, plot, &elr));
+    if (select && romm > 0) PetscCall(SelectWeights(comm, model, hbm, fdof, nout, odof, corr_on, &elj, romm, w, ubar ? &cs : NULL, nst, swt, nsc, swc));
+    PetscCall(JRROMReduce(comm, &elj, romm, w, ubar ? &cs : NULL, base, plot, PETSC_FALSE, &elr));
     PetscCall(PetscFree(ubar));
     PetscCall(PetscFree(lev));
     PetscCall(PetscTime(&t1));
@@ -461,42 +612,9 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     PetscCall(PetscFree(w));
   }
   if (isrom) {
-    PetscCall(JRHBMCreate(comm, &hbmr));
-    PetscCall(JRHBMSetExcitationDof(hbmr, fdof, nout, odof));
-    PetscCall(JRHBMSetBasis(hbmr, 2));
-    PetscCall(JRModelSetElements(model, &elr));
-    PetscCall(JRHBMSetModel(hbmr, model));
-    PetscCall(JRHBMSetFromOptions(hbmr));
-    if (hbm) PetscCall(JRHBMSetModes(hbmr, hbm));
-    PetscCall(PetscTime(&t0));
-    PetscCall(JRHBMSetUp(hbmr));
-    PetscCall(PetscTime(&t1));
-    setr = t1 - t0;
-    if (!loaded && corr_on) { /* the stiffness correction: the reduced model's stuck resonance on the node-to-node one */
-      PetscInt  k  = 0;
-      PetscReal ft = 0, *fr;
-      PetscCall(TargetMode(comm, hbm, &k, &ft, NULL, NULL));
-      PetscCall(JRHBMGetSizes(hbmr, &nm, NULL, NULL));
-      PetscCall(PetscMalloc1(nm, &fr));
-      PetscCall(JRHBMStickFrequencies(hbmr, &n, fr));
-      PetscCall(JRHBMMatchStickFrequency(hbmr, k, ft, &corr));
-      if (corr == 0) {
-        PetscCall(PetscPrintf(comm, "rom: WARNING no stiffness correction: no factor in [1e-3, 1e3] on the joints' springs brings stuck mode %" PetscInt_FMT " from %.6g Hz to the node-to-node %.6g Hz (the joints' averaged motion cannot carry the interface's stiffness in this mode: use more joints)\n", k, (double)fr[k], (double)ft));
-        corr = 1.0;
-      }
-      PetscCall(PetscPrintf(comm, "rom stiffness_correction %.8f stuck_mode %" PetscInt_FMT " n2n_hz %.8g rom_before_hz %.8g\n", (double)corr, k, (double)ft, (double)fr[k]));
-      PetscCall(PetscFree(fr));
-      for (PetscInt e = 0; e < elr.n; e++) {
-        elr.kt[e] *= corr;
-        elr.kn[e] *= corr;
-      }
-      PetscCall(JRModelSetElements(model, &elr));
-      PetscCall(JRHBMSetModel(hbmr, model));
-      PetscCall(PetscTime(&t0));
-      PetscCall(JRHBMSetUp(hbmr));
-      PetscCall(PetscTime(&t1));
-      setr += t1 - t0;
-    }
+    PetscReal c = 1.0;
+    PetscCall(ReducedHBM(comm, model, hbm, fdof, nout, odof, (PetscBool)(!loaded && corr_on), PETSC_FALSE, &elr, &hbmr, &c, &setr));
+    if (!loaded) corr = c;
     if (romsave[0]) PetscCall(JRROMSave(model, &elr, corr, romsave));
   }
   hbmc = isrom && !compare ? hbmr : hbm;
