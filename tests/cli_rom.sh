@@ -202,6 +202,5 @@ expect_error "elements without joints" "-rom_elements needs joints" $J -task frf
 expect_error "bad -rom_joint_motion" "rotate" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_joint_motion rotate -frf_output_file ''
 expect_error "bad -hbm_condense" "maybe" $J -task frf $brb -frf_force 1 -rom_joints sides -hbm_condense maybe -frf_output_file ''
 expect_error "negative selection weight" "-rom_fit_select_total: -1.: the weights must be non-negative" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_select first -rom_fit_select_total 20,-1 -frf_output_file ''
-expect_error "selection without a second reduction" "-rom_fit_select first chooses the second reduction's fit weights: it needs -rom_elements m" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_fit_select first -frf_output_file ''
 expect_error "bad -rom_fit_select" "best" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_select best -frf_output_file ''
 expect_error "save a first reduction" "-rom_save saves a second-reduction model" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_save "$tmp/x.h5" -frf_output_file ''

@@ -420,7 +420,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     {
       const char *sel[] = {"none", "first"};
       PetscBool   st, sc;
-      PetscCall(PetscOptionsEList("-rom_fit_select", "Second reduction: none (the fit weights as given) or first (fit with every pair of -rom_fit_select_total x -rom_fit_select_case and keep the pair whose peaks come nearest the first reduction's)", "JRROMReduce", sel, 2, sel[select], &select, NULL));
+      PetscCall(PetscOptionsEList("-rom_fit_select", "Second reduction: none (the fit weights as given) or first (fit with every pair of -rom_fit_select_total x -rom_fit_select_case and keep the pair whose peaks come nearest the first reduction's; nothing to choose with -rom_elements 0)", "JRROMReduce", sel, 2, sel[select], &select, NULL));
       PetscCall(PetscOptionsRealArray("-rom_fit_select_total", "-rom_fit_select first: the -rom_fit_total_weight values tried", "JRROMReduce", swt, &nst, &st));
       PetscCall(PetscOptionsRealArray("-rom_fit_select_case", "-rom_fit_select first: the -rom_fit_case_weight values tried", "JRROMReduce", swc, &nsc, &sc));
       if (!st) nst = 3;
@@ -436,7 +436,6 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   PetscOptionsEnd();
   PetscCheck(n2n || !compare, comm, PETSC_ERR_ARG_WRONG, "-task compare needs an FE model with a contact interface (-model_type brb, lap1, lap3, lap, gmsh)");
   PetscCheck(romm >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_elements %" PetscInt_FMT ": 0 (first reduction only) or more", romm);
-  PetscCheck(!select || romm > 0, comm, PETSC_ERR_ARG_INCOMP, "-rom_fit_select first chooses the second reduction's fit weights: it needs -rom_elements m");
 
   if (n2n) {
     PetscInt         ndof, dir = 2, nd = 3, no = 63;
