@@ -42,6 +42,28 @@ PetscErrorCode JRFileCommit(MPI_Comm comm, FILE **fp, const char tmp[], const ch
   PetscFunctionReturn(0);
 }
 
+/* The directory holding the plot script: $JOINTROM_SHARE if set; else ../share/jointrom beside the
+   executable (an installed jointrom, found through /proc/self/exe) if it holds the script; else the
+   source tree's share/ (JR_SHARE_DIR, fixed at compile time). */
+static const char *ShareDir(const char script[], char dir[], size_t len)
+{
+  const char *env = getenv("JOINTROM_SHARE");
+  char        f[PETSC_MAX_PATH_LEN], *s;
+  ssize_t     n;
+
+  if (env && env[0]) return env;
+  n = readlink("/proc/self/exe", dir, len - 1);
+  if (n > 0) {
+    dir[n] = 0;
+    for (int k = 0; k < 2 && (s = strrchr(dir, '/')); k++) *s = 0; /* <prefix>/bin/jointrom -> <prefix> */
+    if (s && (size_t)snprintf(f, sizeof(f), "%s/share/jointrom/%s", dir, script) < sizeof(f) && !access(f, R_OK)) {
+      strcat(dir, "/share/jointrom"); /* fits: f (longer) did */
+      return dir;
+    }
+  }
+  return JR_SHARE_DIR;
+}
+
 /* Run gnuplot on share/<script> to write the PNG png; the script reads the gnuplot variable 'out'
    (the output file) and any assignments in vars ("data='x.csv'; title='...'"). made: whether the
    PNG was written. A missing gnuplot is a warning, not an error: the data files are written anyway. */
@@ -53,8 +75,8 @@ PetscErrorCode JRPlot(MPI_Comm comm, const char script[], const char png[], cons
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (rank == 0) {
-    const char *share = getenv("JOINTROM_SHARE") ? getenv("JOINTROM_SHARE") : JR_SHARE_DIR;
-    char        tmp[PETSC_MAX_PATH_LEN], cmd[4 * PETSC_MAX_PATH_LEN];
+    char        tmp[PETSC_MAX_PATH_LEN], cmd[4 * PETSC_MAX_PATH_LEN], dir[PETSC_MAX_PATH_LEN];
+    const char *share = ShareDir(script, dir, sizeof(dir));
     if (system("command -v gnuplot > /dev/null 2>&1") != 0) {
       PetscCall(PetscFPrintf(PETSC_COMM_SELF, stderr, "jointrom: gnuplot not found, %s not drawn (install gnuplot-nox, or run share/install-deps.sh)\n", png));
     } else {
