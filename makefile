@@ -4,11 +4,16 @@
 #   make run      install missing dependencies, build, run runs/default.opts, write its plots to out/
 #   make test     install missing dependencies, build, run the test suite (ends "N passed, M failed")
 #   make bench    build and print the benchmark figures (1 and 2 MPI ranks)
-#   make install  copy bin/, lib/, include/ and share/ under PREFIX (default /usr/local)
+#   make install  install under PREFIX (default /usr/local): bin/jointrom, lib/libjointrom.a,
+#                 lib/pkgconfig/jointrom.pc, include/ (jointrom.h, jointrom/private/), and the plot
+#                 scripts in share/jointrom/ (which the installed bin/jointrom finds by itself);
+#                 DESTDIR=dir stages the files under dir$(PREFIX) (packaging), paths stay PREFIX-based
+#   make uninstall  remove those files from DESTDIR$(PREFIX)
 #   make clean    remove build/, lib/, bin/
 #
 # Variables: PETSC_DIR, SLEPC_DIR (Debian defaults), JR_OPT (optimisation flags),
-# WERROR=1 (warnings are errors, as in CI), NP (ranks for make run, default 2).
+# WERROR=1 (warnings are errors, as in CI), NP (ranks for make run, default 2), PREFIX and DESTDIR
+# (make install, make uninstall).
 
 # OpenMPI refuses root unless told otherwise; users should never have to.
 export OMPI_ALLOW_RUN_AS_ROOT := 1
@@ -42,7 +47,7 @@ TEST_BIN := $(TEST_SRC:tests/%.c=build/tests/%)
 BENCH_SRC := $(wildcard tests/bench/*.c)
 BENCH_BIN := $(BENCH_SRC:tests/bench/%.c=build/bench/%)
 
-.PHONY: all deps run test bench clean install jr-run jr-test jr-bench jr-tests-build
+.PHONY: all deps run test bench clean install uninstall jr-run jr-test jr-bench jr-tests-build
 PREFIX ?= /usr/local
 
 ifeq ($(HAVE_SLEPC),yes)
@@ -88,14 +93,34 @@ endif
 deps:
 	@bash share/install-deps.sh
 
+# The pkg-config file: the include and link flags of the PETSc/SLEPc that built the library (it calls
+# HDF5 and LAPACK directly, so SLEPc.pc/PETSc.pc's Libs alone would not link it); compile with ccompiler.
+JR_VERSION := $(shell sed -n 's/^.define JR_VERSION_MAJOR //p' include/jointrom.h).$(shell sed -n 's/^.define JR_VERSION_MINOR //p' include/jointrom.h)
+JR_DEST := $(DESTDIR)$(PREFIX)
+JR_PUBLIC_H := $(wildcard include/jointrom/*.h)
+
 install: all
-	install -d $(PREFIX)/bin $(PREFIX)/lib $(PREFIX)/include/jointrom/private $(PREFIX)/share/jointrom
-	install -m 755 bin/jointrom $(PREFIX)/bin/
-	install -m 644 lib/libjointrom.a $(PREFIX)/lib/
-	install -m 644 include/jointrom.h $(PREFIX)/include/
-	install -m 644 include/jointrom/private/*.h $(PREFIX)/include/jointrom/private/
-	install -m 644 share/*.gp $(PREFIX)/share/jointrom/
-	@echo "installed; set JOINTROM_SHARE=$(PREFIX)/share/jointrom so bin/jointrom finds its plot scripts" 
+	install -d $(JR_DEST)/bin $(JR_DEST)/lib/pkgconfig $(JR_DEST)/include/jointrom/private $(JR_DEST)/share/jointrom
+	install -m 755 bin/jointrom $(JR_DEST)/bin/
+	install -m 644 lib/libjointrom.a $(JR_DEST)/lib/
+	install -m 644 include/jointrom.h $(JR_DEST)/include/
+	$(if $(JR_PUBLIC_H),install -m 644 $(JR_PUBLIC_H) $(JR_DEST)/include/jointrom/)
+	install -m 644 include/jointrom/private/*.h $(JR_DEST)/include/jointrom/private/
+	install -m 644 share/*.gp $(JR_DEST)/share/jointrom/
+	printf '%s\n' 'prefix=$(PREFIX)' 'exec_prefix=$${prefix}' 'libdir=$${exec_prefix}/lib' \
+	  'includedir=$${prefix}/include' 'sharedir=$${prefix}/share/jointrom' 'ccompiler=$(PCC)' '' \
+	  'Name: jointrom' \
+	  'Description: Reduced-order models of bolted joints by harmonic balance with friction contact elements' \
+	  'Version: $(JR_VERSION)' \
+	  'Cflags: -I$${includedir} $(strip $(SLEPC_CC_INCLUDES))' \
+	  'Libs: -L$${libdir} -ljointrom $(strip $(SLEPC_LIB)) -lm' > $(JR_DEST)/lib/pkgconfig/jointrom.pc
+	chmod 644 $(JR_DEST)/lib/pkgconfig/jointrom.pc
+
+uninstall:
+	rm -f $(JR_DEST)/bin/jointrom $(JR_DEST)/lib/libjointrom.a $(JR_DEST)/lib/pkgconfig/jointrom.pc \
+	  $(JR_DEST)/include/jointrom.h $(addprefix $(JR_DEST)/,$(wildcard include/jointrom/*.h include/jointrom/private/*.h)) \
+	  $(addprefix $(JR_DEST)/share/jointrom/,$(notdir $(wildcard share/*.gp)))
+	rmdir $(JR_DEST)/include/jointrom/private $(JR_DEST)/include/jointrom $(JR_DEST)/share/jointrom 2>/dev/null || true
 
 run: deps
 	@$(MAKE) --no-print-directory jr-run
