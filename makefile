@@ -41,7 +41,7 @@ NP ?= 2
 MPIRUN ?= mpiexec
 
 LIB_SRC  := $(shell find src -name '*.c' ! -path src/jointrom.c | sort)
-LIB_OBJ  := $(LIB_SRC:%.c=build/%.o)
+LIB_OBJ  := $(LIB_SRC:%.c=build/%.o) build/optnames.o
 TEST_SRC := $(wildcard tests/*.c)
 TEST_BIN := $(TEST_SRC:tests/%.c=build/tests/%)
 BENCH_SRC := $(wildcard tests/bench/*.c)
@@ -56,6 +56,14 @@ all: lib/libjointrom.a bin/jointrom
 build/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(PCC) -c $(JR_CFLAGS) $(SLEPC_CC_INCLUDES) -o $@ $<
+
+# the option names, for "did you mean" (src/sys/options.c), generated from the sources
+build/optnames.c: $(LIB_SRC) src/sys/optnames.sh
+	@mkdir -p build
+	bash src/sys/optnames.sh $(LIB_SRC) > $@
+
+build/optnames.o: build/optnames.c
+	$(PCC) -c $(JR_CFLAGS) -o $@ $<
 
 lib/libjointrom.a: $(LIB_OBJ)
 	@mkdir -p lib

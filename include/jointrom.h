@@ -163,6 +163,7 @@ PETSC_EXTERN PetscFunctionList JRModelList;
 PETSC_EXTERN PetscErrorCode JRModelRegister(const char[], PetscErrorCode (*)(JRModel));
 PETSC_EXTERN PetscErrorCode JRModelCreate(MPI_Comm, JRModel *);
 PETSC_EXTERN PetscErrorCode JRModelSetType(JRModel, JRModelType);
+PETSC_EXTERN PetscErrorCode JRModelGetType(JRModel, JRModelType *);
 PETSC_EXTERN PetscErrorCode JRModelSetFromOptions(JRModel);
 PETSC_EXTERN PetscErrorCode JRModelSetUp(JRModel);
 PETSC_EXTERN PetscErrorCode JRModelSetMatrices(JRModel, Mat, Mat, Mat);
@@ -221,7 +222,18 @@ PETSC_EXTERN PetscErrorCode JRPreloadView(JRPreload, PetscViewer);
 PETSC_EXTERN PetscErrorCode JRPreloadDestroy(JRPreload *);
 
 /* The node-to-node interface: one friction element per facing node pair (options -interface_*) */
-PETSC_EXTERN PetscErrorCode JRInterfaceCreateElements(JRModel, JRPreload, JRElements *, PetscInt **);
+typedef struct {
+  PetscInt  element;                 /* -interface_element: 0 jenkins, 1 jenkins_nv */
+  PetscReal kt, kn, mu, max_gap;     /* -interface_kt, -interface_kn [N/m], -interface_mu, -interface_max_gap [m] */
+  PetscInt  split;                   /* -interface_split */
+  PetscInt  joints;                  /* -rom_joints: none, each, strips, bolts, between, sides, zones, boxes */
+  PetscInt  ncut, nbox;              /* -rom_strips, -rom_boxes: the values given */
+  PetscReal cut[64], box[256];       /* [m] */
+  PetscReal zone_fraction;           /* -rom_zone_fraction */
+  PetscBool split_width;             /* -rom_split_width */
+} JRInterfaceOptions;
+PETSC_EXTERN PetscErrorCode JRInterfaceSetFromOptions(MPI_Comm, JRInterfaceOptions *);
+PETSC_EXTERN PetscErrorCode JRInterfaceCreateElements(JRModel, JRPreload, const JRInterfaceOptions *, JRElements *, PetscInt **);
 PETSC_EXTERN PetscErrorCode JRElementsDestroy(JRElements *);
 PETSC_EXTERN PetscErrorCode JRElementsDuplicate(const JRElements *, JRElements *);
 PETSC_EXTERN PetscErrorCode JRElementsCreateStuckStiffness(Mat, const JRElements *, Mat *, PetscReal *);
@@ -235,7 +247,23 @@ typedef struct {
   PetscReal        damp;   /* linear damping energy per cycle / (modal amplitude)^2 */
   const PetscReal *ujoint; /* each joint's (average) motion per unit modal amplitude [m] */
 } JRROMCase;
-PETSC_EXTERN PetscErrorCode JRROMReduce(MPI_Comm, const JRElements *, PetscInt, const PetscReal[], const JRROMCase *, const char[], PetscBool, PetscBool, JRElements *);
+/* The second reduction's fit options (prefix rom_), read once by JRROMFitSetFromOptions */
+typedef struct {
+  PetscReal fr[3];   /* -rom_fit_fractions */
+  PetscReal efrom;   /* -rom_fit_energy_from */
+  PetscBool refine;  /* -rom_fit_refine */
+  PetscReal perturb; /* -rom_fit_perturb */
+  PetscInt  ns;      /* -rom_fit_samples */
+  PetscReal wcase;   /* -rom_fit_case_weight */
+  PetscReal wtotal;  /* -rom_fit_total_weight */
+  PetscReal wgross;  /* -rom_fit_gross_weight */
+  PetscReal wstiff;  /* -rom_fit_stiffness_weight */
+  PetscInt  npass;   /* -rom_fit_normal_passes */
+  PetscInt  jmotion; /* -rom_joint_motion: 0 mean, 1 linear, 2 mode */
+  PetscBool search;  /* -rom_fit_search */
+} JRROMFit;
+PETSC_EXTERN PetscErrorCode JRROMFitSetFromOptions(MPI_Comm, JRROMFit *);
+PETSC_EXTERN PetscErrorCode JRROMReduce(MPI_Comm, const JRElements *, PetscInt, const PetscReal[], const JRROMCase *, const JRROMFit *, const char[], PetscBool, PetscBool, JRElements *);
 PETSC_EXTERN PetscErrorCode JRROMSave(JRModel, const JRElements *, PetscReal, const char[]);
 PETSC_EXTERN PetscErrorCode JRROMLoad(JRModel, const char[], JRElements *, PetscReal *);
 
@@ -299,6 +327,7 @@ PETSC_EXTERN PetscErrorCode JRHBMStuckModeMotion(JRHBM, PetscInt, PetscReal[], P
 PETSC_EXTERN PetscErrorCode JRHBMStuckModeBalance(JRHBM, PetscInt, PetscReal *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMSetModes(JRHBM, JRHBM);
 PETSC_EXTERN PetscErrorCode JRHBMSetBasis(JRHBM, PetscInt);
+PETSC_EXTERN PetscErrorCode JRHBMSetModesFile(JRHBM, const char[]);
 PETSC_EXTERN PetscErrorCode JRHBMGetBasis(JRHBM, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMStickFrequencies(JRHBM, PetscInt *, PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMGetDampingDescription(JRHBM, const char **);
@@ -380,6 +409,15 @@ PETSC_EXTERN PetscErrorCode JRFreeAligned(void *);
 
 /* Run a gnuplot script from share/ to make a PNG (temporary name, then rename) */
 PETSC_EXTERN PetscErrorCode JRPlot(MPI_Comm, const char[], const char[], const char[], PetscBool *);
+
+/* User errors: one message, once, without PETSc's traceback (src/sys/error.c); exit status of a failed run */
+PETSC_EXTERN PetscErrorCode JRErrorHandlerPush(void);
+PETSC_EXTERN int            JRErrorExit(PetscErrorCode);
+/* Options nothing read: an error before the work (jointrom's own), a warning at the end (src/sys/options.c) */
+PETSC_EXTERN PetscErrorCode JROptionsCheck(MPI_Comm, const char[]);
+PETSC_EXTERN PetscErrorCode JROptionsWarnUnused(MPI_Comm);
+/* The directory of an output base name exists (created if missing) and is writable, else an error naming option */
+PETSC_EXTERN PetscErrorCode JRFileCheckOutput(MPI_Comm, const char[], const char[]);
 
 /* Driver tasks */
 PETSC_EXTERN PetscErrorCode JRTaskElement(MPI_Comm);

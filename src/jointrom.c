@@ -29,19 +29,16 @@ typedef enum {
 } Task;
 static const char *const Tasks[] = {"element", "frf", "modes", "preload", "compare", "Task", "TASK_", NULL};
 
-int main(int argc, char **argv)
+/* The task of -task, its objects' options read and checked before its work */
+static PetscErrorCode Run(MPI_Comm comm)
 {
-  MPI_Comm  comm;
-  PetscInt  task = TASK_ELEMENT;
-  PetscBool help_given;
+  PetscInt task = TASK_ELEMENT;
 
-  PetscCall(SlepcInitialize(&argc, &argv, NULL, help));
-  comm = PETSC_COMM_WORLD;
+  PetscFunctionBeginUser;
   PetscCall(JRInitializePackage());
   PetscOptionsBegin(comm, NULL, "jointrom driver", "jointrom");
   PetscCall(PetscOptionsEList("-task", "What to do", "jointrom", Tasks, 5, Tasks[task], &task, NULL));
   PetscOptionsEnd();
-  PetscCall(PetscOptionsHasHelp(NULL, &help_given));
   switch ((Task)task) {
   case TASK_ELEMENT:
     PetscCall(JRTaskElement(comm));
@@ -59,7 +56,18 @@ int main(int argc, char **argv)
     PetscCall(JRTaskCompare(comm));
     break;
   }
-  (void)help_given;
+  PetscCall(JROptionsWarnUnused(comm));
+  PetscFunctionReturn(0);
+}
+
+int main(int argc, char **argv)
+{
+  PetscErrorCode ierr;
+
+  PetscCall(SlepcInitialize(&argc, &argv, NULL, help));
+  PetscCall(JRErrorHandlerPush());
+  ierr = Run(PETSC_COMM_WORLD);
+  if (ierr) return JRErrorExit(ierr);
   PetscCall(SlepcFinalize());
   return 0;
 }

@@ -55,7 +55,7 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsSetValue(NULL, "-rom_fit_refine", "1")); /* the slip displacements free: exact recovery */
   /* 1. jenkins: recover the three elements */
   PetscCall(Members("jenkins", 3, k, f, NULL, 5, 1, &nn));
-  PetscCall(JRROMReduce(PETSC_COMM_WORLD, &nn, 3, NULL, NULL, "", PETSC_FALSE, PETSC_FALSE, &rom));
+  PetscCall(JRROMReduce(PETSC_COMM_WORLD, &nn, 3, NULL, NULL, NULL, "", PETSC_FALSE, PETSC_FALSE, &rom));
   {
     double pk[3][2], ex[3][2], worst = 0;
     CHECK(rom.n == 3 && rom.members && rom.members->n == 15, "second reduction of 15 members: 3 elements (%d), members kept", (int)rom.n);
@@ -102,7 +102,7 @@ int main(int argc, char **argv)
     double    w[15], U[3] = {0, 0, 7e-6}, u[128], fa[128], fb[128], d = 0, fmax = 0;
     JRContact c;
     for (int e = 0; e < 15; e++) w[e] = 0.4 + 0.1 * e * (e % 2 ? -0.3 : 1.0);
-    PetscCall(JRROMReduce(PETSC_COMM_WORLD, &nn, 0, w, NULL, "", PETSC_FALSE, PETSC_FALSE, &rom));
+    PetscCall(JRROMReduce(PETSC_COMM_WORLD, &nn, 0, w, NULL, NULL, "", PETSC_FALSE, PETSC_FALSE, &rom));
     CHECK(rom.n == 15, "first reduction with weights: one element per member (%d)", (int)rom.n);
     PetscCall(JRContactCreate(PETSC_COMM_SELF, &c));
     PetscCall(JRContactSetType(c, JRCONTACTJENKINS));
@@ -127,7 +127,7 @@ int main(int argc, char **argv)
   PetscCall(JRElementsDestroy(&nn));
   /* 4. jenkins_nv: kt, f and the normal stiffnesses */
   PetscCall(Members("jenkins_nv", 3, k, f, kn, 4, 1, &nn));
-  PetscCall(JRROMReduce(PETSC_COMM_WORLD, &nn, 3, NULL, NULL, "", PETSC_FALSE, PETSC_FALSE, &rom));
+  PetscCall(JRROMReduce(PETSC_COMM_WORLD, &nn, 3, NULL, NULL, NULL, "", PETSC_FALSE, PETSC_FALSE, &rom));
   {
     double worst = 0;
     for (int i = 0; i < 3; i++) {
@@ -156,7 +156,7 @@ int main(int argc, char **argv)
     cs.damp   = 3e5;
     cs.ujoint = uj;
     PetscCall(Members("jenkins", 3, k, f, NULL, 4, 2, &nn));
-    PetscCall(JRROMReduce(PETSC_COMM_WORLD, &nn, 3, NULL, &cs, "", PETSC_FALSE, PETSC_FALSE, &rom));
+    PetscCall(JRROMReduce(PETSC_COMM_WORLD, &nn, 3, NULL, &cs, NULL, "", PETSC_FALSE, PETSC_FALSE, &rom));
     for (PetscInt i = 0; i < rom.n; i++) {
       const PetscInt c = rom.joint[i];
       PetscInt       b = 0;

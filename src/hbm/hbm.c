@@ -73,6 +73,7 @@ struct _p_JRHBM {
   PetscReal        *Kg;           /* the structure's own stiffness in the basis (structural damping gamma Kg) */
   PetscReal        *Kc;           /* stuck basis: the stuck springs in Km of this rank's elements (or members), nm x nm */
   PetscBool         modes_shared; /* JRHBMSetModes(): the modes are another JRHBM's, not solved or destroyed here */
+  char              modes_file[PETSC_MAX_PATH_LEN]; /* JRHBMSetModesFile(): save the modes here unless -modes_load/-modes_save */
   PetscInt          fdof, nout, *outdof;
   PetscBool         fdof_set;      /* JRHBMSetExcitationDof() called: -frf_dof ignored */
   char              ffile[PETSC_MAX_PATH_LEN];
@@ -217,6 +218,12 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
     PetscCall(PetscMalloc1(nout, &h->outdof));
     PetscCall(PetscArraycpy(h->outdof, out, nout));
   } else if (!h->fdof_set) h->nout = 0;
+  if (!h->modes_shared && !h->physical) { /* the modes' options (-modes_*), read and checked now: JRHBMSetUp makes the modes */
+    JRModes md;
+    PetscCall(JRModesCreate(h->comm, &md));
+    PetscCall(JRModesSetFromOptions(md));
+    PetscCall(JRModesDestroy(&md));
+  }
   PetscCheck(h->H >= 1 && h->H <= JR_MAX_HARMONICS, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_harmonics %" PetscInt_FMT ": between 1 and %d", h->H, JR_MAX_HARMONICS);
   PetscCheck(h->Ns >= 2 * h->H + 1, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_samples %" PetscInt_FMT " must be at least 2H+1 = %" PetscInt_FMT " for -hbm_harmonics %" PetscInt_FMT, h->Ns, 2 * h->H + 1, h->H);
   PetscCheck(h->gamma >= 0.0 && !PetscIsInfOrNanReal(h->gamma), h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_gamma %g: the structural damping coefficient must be non-negative", (double)h->gamma);
@@ -706,6 +713,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
       PetscCall(JRModesSetNumber(h->modes, h->nm));
       PetscCall(JRModesSetFromOptions(h->modes));
       PetscCall(JRModesSetNumber(h->modes, h->nm)); /* -hbm_modes wins over -modes_nev */
+      if (h->modes_file[0] && !h->modes->load[0] && !h->modes->save[0]) PetscCall(PetscStrncpy(h->modes->save, h->modes_file, sizeof(h->modes->save)));
       {
         PetscInt nrb;
         Vec      rb[6];
@@ -1199,6 +1207,14 @@ PetscErrorCode JRHBMSetModes(JRHBM h, JRHBM from)
 }
 
 /* The modal basis: 0 free (modes of K), 1 stuck (modes of K with the stuck contact springs); -hbm_basis */
+/* The file the modes are saved to when neither -modes_load nor -modes_save is given ("": not saved) */
+PetscErrorCode JRHBMSetModesFile(JRHBM h, const char file[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(h->modes_file, file ? file : "", sizeof(h->modes_file)));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode JRHBMSetBasis(JRHBM h, PetscInt basis)
 {
   PetscFunctionBeginUser;

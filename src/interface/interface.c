@@ -18,6 +18,60 @@
 #include <jointrom/private/modelimpl.h>
 
 /*
+  JRInterfaceSetFromOptions - the interface's options, read and checked once, before any work: the elements
+  (-interface_element, -interface_kt, -interface_kn, -interface_mu, -interface_split, -interface_max_gap) and the
+  first reduction's joints (-rom_joints, -rom_strips, -rom_boxes, -rom_zone_fraction, -rom_split_width)
+*/
+PetscErrorCode JRInterfaceSetFromOptions(MPI_Comm comm, JRInterfaceOptions *o)
+{
+  const char *types[] = {JRCONTACTJENKINS, JRCONTACTJENKINSNV};
+  const char *kinds[] = {"none", "each", "strips", "bolts", "between", "sides", "zones", "boxes"};
+  PetscBool   set, bset;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(o, sizeof(*o)));
+  o->element       = 0;
+  o->kt            = 1e6;
+  o->kn            = -1;
+  o->mu            = 0.12;
+  o->max_gap       = -1;
+  o->split         = 1;
+  o->zone_fraction = 0.5;
+  o->ncut          = 64;
+  o->nbox          = 256;
+  PetscOptionsBegin(comm, "interface_", "Node-to-node interface: one friction element per facing node pair (prefix interface_)", "JRInterface");
+  PetscCall(PetscOptionsEList("-element", "Element: jenkins (constant normal load) or jenkins_nv (normal load variation, separation)", "JRInterfaceCreateElements", types, 2, types[o->element], &o->element, NULL));
+  PetscCall(PetscOptionsReal("-kt", "Tangential contact stiffness per element [N/m]", "JRInterfaceCreateElements", o->kt, &o->kt, NULL));
+  PetscCall(PetscOptionsReal("-kn", "Normal contact stiffness per element [N/m] (jenkins_nv; default kt)", "JRInterfaceCreateElements", o->kn, &o->kn, NULL));
+  PetscCall(PetscOptionsReal("-mu", "Friction coefficient [-]", "JRInterfaceCreateElements", o->mu, &o->mu, NULL));
+  PetscCall(PetscOptionsInt("-split", "Every element as this many identical elements in parallel (kt/k, kn/k, n0/k): the same forces, k times the work (benchmarks)", "JRInterfaceCreateElements", o->split, &o->split, NULL));
+  PetscCall(PetscOptionsReal("-max_gap", "jenkins_nv: leave out pairs whose preload gap exceeds this [m] (default: keep all)", "JRInterfaceCreateElements", o->max_gap, &o->max_gap, NULL));
+  PetscOptionsEnd();
+  if (o->kn < 0) o->kn = o->kt;
+  PetscCheck(PetscIsNormalReal(o->kt) && o->kt > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-interface_kt %g: the tangential stiffness must be positive [N/m]", (double)o->kt);
+  PetscCheck(PetscIsNormalReal(o->kn) && o->kn > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-interface_kn %g: the normal stiffness must be positive [N/m]", (double)o->kn);
+  PetscCheck(o->split >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-interface_split %" PetscInt_FMT ": at least 1", o->split);
+  PetscCheck(!PetscIsInfOrNanReal(o->mu) && o->mu > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-interface_mu %g: the friction coefficient must be positive", (double)o->mu);
+  PetscOptionsBegin(comm, "rom_", "Reduced-order joints, first reduction (prefix rom_)", "JRInterface");
+  PetscCall(PetscOptionsEList("-joints", "Joints: none (node-to-node), each, strips (-rom_strips cuts), bolts, between, sides, zones (per bolt side and load), boxes (-rom_boxes)", "JRInterfaceCreateElements", kinds, 8, kinds[o->joints], &o->joints, NULL));
+  PetscCall(PetscOptionsRealArray("-strips", "Cut positions along the beam axis x1,x2,... [m], increasing", "JRInterfaceCreateElements", o->cut, &o->ncut, &set));
+  PetscCall(PetscOptionsRealArray("-boxes", "Boxes x0,x1,y0,y1 per joint [m]", "JRInterfaceCreateElements", o->box, &o->nbox, &bset));
+  PetscCall(PetscOptionsReal("-zone_fraction", "-rom_joints zones: the high-load zone of a bolt side holds the members with n0 at least this fraction of the side's largest", "JRInterfaceCreateElements", o->zone_fraction, &o->zone_fraction, NULL));
+  PetscCall(PetscOptionsBool("-split_width", "Split every strip at mid-width into two joints", "JRInterfaceCreateElements", o->split_width, &o->split_width, NULL));
+  PetscOptionsEnd();
+  if (!set) o->ncut = 0;
+  if (!bset) o->nbox = 0;
+  PetscCheck(!set || o->joints == 2, comm, PETSC_ERR_ARG_INCOMP, "-rom_strips needs -rom_joints strips");
+  PetscCheck(!bset || o->joints == 7, comm, PETSC_ERR_ARG_INCOMP, "-rom_boxes needs -rom_joints boxes");
+  PetscCheck(!o->split_width || (o->joints >= 2 && o->joints <= 6), comm, PETSC_ERR_ARG_INCOMP, "-rom_split_width needs -rom_joints strips, bolts, between, sides or zones");
+  PetscCheck(o->zone_fraction > 0 && o->zone_fraction < 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_zone_fraction %g: between 0 and 1", (double)o->zone_fraction);
+  PetscCheck(o->joints != 2 || o->ncut > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints strips needs the cuts -rom_strips x1,x2,... [m]");
+  for (PetscInt k = 1; k < o->ncut; k++) PetscCheck(o->cut[k] > o->cut[k - 1], comm, PETSC_ERR_ARG_WRONG, "-rom_strips: the cuts must increase, but %g m follows %g m", (double)o->cut[k], (double)o->cut[k - 1]);
+  PetscCheck(o->joints != 7 || (o->nbox >= 4 && o->nbox % 4 == 0), comm, PETSC_ERR_ARG_WRONG, "-rom_boxes needs x0,x1,y0,y1 per joint [m], got %" PetscInt_FMT " values", o->nbox);
+  PetscFunctionReturn(0);
+}
+
+/*
   First reduction, joints from regions (options prefix rom_): -rom_joints
     none     node-to-node (default)
     each     every element its own joint: the node-to-node model again (a check)
@@ -34,28 +88,17 @@
   and -rom_split_width splits every strip-type region at mid-width. Each region must hold elements (else an error
   naming it); its members move with the average of their relative motions (4.4).
 */
-static PetscErrorCode AssignJoints(MPI_Comm comm, JRModel model, const JRPairs *P, JRElements *el, const PetscInt pair[])
+static PetscErrorCode AssignJoints(MPI_Comm comm, JRModel model, const JRPairs *P, const JRInterfaceOptions *o, JRElements *el, const PetscInt pair[])
 {
   const char *kinds[] = {"none", "each", "strips", "bolts", "between", "sides", "zones", "boxes"};
-  PetscInt    kind = 0, ncut = 64, nreg, nbox = 256;
-  PetscReal   cut[64], ylo = PETSC_MAX_REAL, yhi = -PETSC_MAX_REAL, box[256], zf = 0.5;
-  PetscBool   split = PETSC_FALSE, set, bset;
+  PetscInt    kind = o->joints, ncut = o->ncut, nreg, nbox = o->nbox;
+  PetscReal   cut[64], ylo = PETSC_MAX_REAL, yhi = -PETSC_MAX_REAL, box[256], zf = o->zone_fraction;
+  PetscBool   split = o->split_width;
   PetscInt   *cnt;
 
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, "rom_", "Reduced-order joints, first reduction (prefix rom_)", "JRInterface");
-  PetscCall(PetscOptionsEList("-joints", "Joints: none (node-to-node), each, strips (-rom_strips cuts), bolts, between, sides, zones (per bolt side and load), boxes (-rom_boxes)", "JRInterfaceCreateElements", kinds, 8, kinds[kind], &kind, NULL));
-  PetscCall(PetscOptionsRealArray("-strips", "Cut positions along the beam axis x1,x2,... [m], increasing", "JRInterfaceCreateElements", cut, &ncut, &set));
-  PetscCall(PetscOptionsRealArray("-boxes", "Boxes x0,x1,y0,y1 per joint [m]", "JRInterfaceCreateElements", box, &nbox, &bset));
-  PetscCall(PetscOptionsReal("-zone_fraction", "-rom_joints zones: the high-load zone of a bolt side holds the members with n0 at least this fraction of the side's largest", "JRInterfaceCreateElements", zf, &zf, NULL));
-  PetscCall(PetscOptionsBool("-split_width", "Split every strip at mid-width into two joints", "JRInterfaceCreateElements", split, &split, NULL));
-  PetscOptionsEnd();
-  if (!set) ncut = 0;
-  if (!bset) nbox = 0;
-  PetscCheck(!set || kind == 2, comm, PETSC_ERR_ARG_INCOMP, "-rom_strips needs -rom_joints strips");
-  PetscCheck(!bset || kind == 7, comm, PETSC_ERR_ARG_INCOMP, "-rom_boxes needs -rom_joints boxes");
-  PetscCheck(!split || (kind >= 2 && kind <= 6), comm, PETSC_ERR_ARG_INCOMP, "-rom_split_width needs -rom_joints strips, bolts, between, sides or zones");
-  PetscCheck(zf > 0 && zf < 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_zone_fraction %g: between 0 and 1", (double)zf);
+  PetscCall(PetscArraycpy(cut, o->cut, 64));
+  PetscCall(PetscArraycpy(box, o->box, 256));
   if (kind == 0) PetscFunctionReturn(0);
   if (kind == 1) {
     el->njoints = el->n;
@@ -145,30 +188,17 @@ static PetscErrorCode AssignJoints(MPI_Comm comm, JRModel model, const JRPairs *
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode JRInterfaceCreateElements(JRModel model, JRPreload pre, JRElements *el, PetscInt **pair)
+PetscErrorCode JRInterfaceCreateElements(JRModel model, JRPreload pre, const JRInterfaceOptions *o, JRElements *el, PetscInt **pair)
 {
   MPI_Comm         comm;
   const JRPairs   *P;
   const PetscReal *N, *gap;
-  PetscReal        kt = 1e6, kn = -1, mu = 0.12, maxgap = -1;
-  PetscInt         np, type = 0, n = 0, split = 1;
+  const PetscReal  kt = o->kt, kn = o->kn, mu = o->mu, maxgap = o->max_gap;
+  PetscInt         np, type = o->element, n = 0, split = o->split;
   const char      *types[] = {JRCONTACTJENKINS, JRCONTACTJENKINSNV};
 
   PetscFunctionBeginUser;
   PetscCall(JRModelGetComm(model, &comm));
-  PetscOptionsBegin(comm, "interface_", "Node-to-node interface: one friction element per facing node pair (prefix interface_)", "JRInterface");
-  PetscCall(PetscOptionsEList("-element", "Element: jenkins (constant normal load) or jenkins_nv (normal load variation, separation)", "JRInterfaceCreateElements", types, 2, types[type], &type, NULL));
-  PetscCall(PetscOptionsReal("-kt", "Tangential contact stiffness per element [N/m]", "JRInterfaceCreateElements", kt, &kt, NULL));
-  PetscCall(PetscOptionsReal("-kn", "Normal contact stiffness per element [N/m] (jenkins_nv; default kt)", "JRInterfaceCreateElements", kn, &kn, NULL));
-  PetscCall(PetscOptionsReal("-mu", "Friction coefficient [-]", "JRInterfaceCreateElements", mu, &mu, NULL));
-  PetscCall(PetscOptionsInt("-split", "Every element as this many identical elements in parallel (kt/k, kn/k, n0/k): the same forces, k times the work (benchmarks)", "JRInterfaceCreateElements", split, &split, NULL));
-  PetscCall(PetscOptionsReal("-max_gap", "jenkins_nv: leave out pairs whose preload gap exceeds this [m] (default: keep all)", "JRInterfaceCreateElements", maxgap, &maxgap, NULL));
-  PetscOptionsEnd();
-  if (kn < 0) kn = kt;
-  PetscCheck(PetscIsNormalReal(kt) && kt > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-interface_kt %g: the tangential stiffness must be positive [N/m]", (double)kt);
-  PetscCheck(PetscIsNormalReal(kn) && kn > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-interface_kn %g: the normal stiffness must be positive [N/m]", (double)kn);
-  PetscCheck(split >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-interface_split %" PetscInt_FMT ": at least 1", split);
-  PetscCheck(!PetscIsInfOrNanReal(mu) && mu > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-interface_mu %g: the friction coefficient must be positive", (double)mu);
   PetscCall(JRModelGetPairs(model, &P));
   PetscCheck(P && P->n > 0, comm, PETSC_ERR_ARG_WRONG, "The model has no contact interface (node pairs): -task frf builds the node-to-node elements of FE models (-model_type brb, lap1, lap3, lap, gmsh)");
   PetscCall(JRPreloadGetResults(pre, &np, &N, &gap));
@@ -204,7 +234,7 @@ PetscErrorCode JRInterfaceCreateElements(JRModel model, JRPreload pre, JRElement
       (*pair)[e] = p;
     }
   }
-  PetscCall(AssignJoints(comm, model, P, el, *pair));
+  PetscCall(AssignJoints(comm, model, P, o, el, *pair));
   PetscFunctionReturn(0);
 }
 

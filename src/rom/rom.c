@@ -1099,15 +1099,68 @@ static PetscErrorCode NormalVariation(MPI_Comm comm, PetscBool quiet, const JREl
   PetscFunctionReturn(0);
 }
 
+/*
+  JRROMFitSetFromOptions - the second reduction's fit options (prefix rom_), read and checked once: -rom_fit_fractions,
+  -rom_fit_energy_from, -rom_fit_refine, -rom_fit_perturb, -rom_fit_samples, -rom_fit_case_weight,
+  -rom_fit_total_weight, -rom_fit_gross_weight, -rom_fit_stiffness_weight, -rom_fit_normal_passes, -rom_fit_search and
+  -rom_joint_motion
+*/
+PetscErrorCode JRROMFitSetFromOptions(MPI_Comm comm, JRROMFit *f)
+{
+  PetscReal fr[3] = {0.25, 0.6, 0.95};
+  PetscInt  nfr = 3;
+  PetscBool frset;
+
+  PetscFunctionBeginUser;
+  f->efrom   = 0.02;
+  f->refine  = PETSC_FALSE;
+  f->perturb = 0;
+  f->ns      = 128;
+  f->wcase   = 10.0;
+  f->wtotal  = 20.0;
+  f->wgross  = 1.0;
+  f->wstiff  = 1e4;
+  f->npass   = 0;
+  f->jmotion = 0;
+  f->search  = PETSC_TRUE;
+  PetscOptionsBegin(comm, "rom_", "Second reduction: m elements per joint fitted to its hysteresis loops (prefix rom_)", "JRROMReduce");
+  PetscCall(PetscOptionsRealArray("-fit_fractions", "Loop amplitudes: the slip displacements below which these fractions of the joint's slip force lie (microslip to gross slip)", "JRROMReduce", fr, &nfr, &frset));
+  PetscCall(PetscOptionsReal("-fit_energy_from", "Energy per cycle matched from the amplitude where this fraction of the slip force has slipped", "JRROMReduce", f->efrom, &f->efrom, NULL));
+  PetscCall(PetscOptionsBool("-fit_refine", "After the convex fit on fixed slip displacements, free them too (a non-convex refinement: better loops, but its minimum can move with round-off)", "JRROMReduce", f->refine, &f->refine, NULL));
+  PetscCall(PetscOptionsReal("-fit_perturb", "Perturb the start of the fit by this fraction (tests: the fit must recover)", "JRROMReduce", f->perturb, &f->perturb, NULL));
+  PetscCall(PetscOptionsInt("-fit_samples", "Samples per loop", "JRROMReduce", f->ns, &f->ns, NULL));
+  PetscCall(PetscOptionsReal("-fit_case_weight", "Weight of the energy dissipated per cycle at each joint's amplitude in the case (relative to the input energy at that level; 0: not fitted)", "JRROMReduce", f->wcase, &f->wcase, NULL));
+  PetscCall(PetscOptionsReal("-fit_total_weight", "Weight of the energy all joints together dissipate per cycle at the case's amplitudes (relative to the input energy; a fit coupled across joints; 0: each joint fitted alone)", "JRROMReduce", f->wtotal, &f->wtotal, NULL));
+  PetscCall(PetscOptionsReal("-fit_gross_weight", "Weight of the joint's total slip force (gross slip), relative", "JRROMReduce", f->wgross, &f->wgross, NULL));
+  PetscCall(PetscOptionsReal("-fit_stiffness_weight", "Weight of the joint's stuck stiffness (its stuck loop), relative to one loop", "JRROMReduce", f->wstiff, &f->wstiff, NULL));
+  PetscCall(PetscOptionsInt("-fit_normal_passes", "-rom_joint_motion mode, jenkins_nv, with a case: fit again this many times, each with the change the normal-load variation makes to the energy per cycle (members' and the previous fit's) added to the energy targets (0: once, fixed normal loads)", "JRROMReduce", f->npass, &f->npass, NULL));
+  {
+    const char *jm[] = {"mean", "linear", "mode"};
+    PetscCall(PetscOptionsEList("-joint_motion", "How a joint's members move: mean (4.4), linear (a field over their positions: each fitted element is spread over three points of its members' spread) or mode (a field over their motions in the stuck mode of interest: each fitted element sits at its members' motion)", "JRROMReduce", jm, 3, jm[f->jmotion], &f->jmotion, NULL));
+  }
+  PetscCall(PetscOptionsBool("-fit_search", "Choose the slip displacements among a grid over the members' range (best non-negative least squares of the forces); else those of the log-width groups of members", "JRROMReduce", f->search, &f->search, NULL));
+  PetscOptionsEnd();
+  PetscCheck(f->wgross >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_gross_weight %g: the weight must be non-negative", (double)f->wgross);
+  PetscCheck(f->wtotal >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_total_weight %g: the weight must be non-negative (0: each joint fitted alone)", (double)f->wtotal);
+  PetscCheck(f->wstiff > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_stiffness_weight %g: the weight must be positive", (double)f->wstiff);
+  PetscCheck(f->npass >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_normal_passes %" PetscInt_FMT ": 0 or more", f->npass);
+  PetscCheck(f->wcase >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_case_weight %g: the weight must be non-negative (0: the case is not fitted)", (double)f->wcase);
+  if (!frset) nfr = 3;
+  PetscCheck(nfr == 3 && fr[0] > 0 && fr[1] > fr[0] && fr[2] > fr[1] && fr[2] <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_fractions: three increasing fractions in (0, 1] (default 0.25,0.6,0.95)");
+  PetscCheck(f->ns >= 8, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_samples %" PetscInt_FMT ": at least 8", f->ns);
+  for (PetscInt i = 0; i < 3; i++) f->fr[i] = fr[i];
+  PetscFunctionReturn(0);
+}
+
 /* One fit (JRROMReduce): quiet, it prints nothing; nvin (NULL: none) is added to the case's energy targets; nvout
    (NULL: not wanted; mode, jenkins_nv, with a case) gets NormalVariation's correction of this fit, nvmax its size */
-static PetscErrorCode ReducePass(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const JRROMCase *cs, const char base[], PetscBool plot, PetscBool quiet, const PetscReal nvin[], PetscReal nvout[], PetscReal *nvmax, JRElements *rom)
+static PetscErrorCode ReducePass(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const JRROMCase *cs, const JRROMFit *fit, const char base[], PetscBool plot, PetscBool quiet, const PetscReal nvin[], PetscReal nvout[], PetscReal *nvmax, JRElements *rom)
 {
-  PetscInt     nj = nn->njoints, ns = 128, nfr = 3, cnt = 0, nmax, npass = 0;
+  PetscInt     nj = nn->njoints, ns = 128, cnt = 0, nmax;
   PetscReal    fr[3] = {0.25, 0.6, 0.95}, perturb = 0, efrom = 0.02, wcase = 10.0, wgross = 1.0, wtotal = 20.0, wstiff = 1e4, *amod = NULL, amin = 0, amax = 0;
   const PetscInt ncase = 24;
   PetscBool    refine = PETSC_FALSE, search = PETSC_TRUE;
-  PetscBool    nv, frset;
+  PetscBool    nv;
   MemberDelta *md;
   PetscInt    *jn, *joff;
   PetscBool    spread = PETSC_FALSE, modef = PETSC_FALSE;
@@ -1123,34 +1176,18 @@ static PetscErrorCode ReducePass(MPI_Comm comm, const JRElements *nn, PetscInt m
   PetscCheck(nn->ntypes == 1, comm, PETSC_ERR_SUP, "The second reduction needs one element type in the interface");
   nv = (PetscBool)!strcmp(nn->typename[0], JRCONTACTJENKINSNV);
   PetscCheck(nv || !strcmp(nn->typename[0], JRCONTACTJENKINS), comm, PETSC_ERR_SUP, "The second reduction fits jenkins and jenkins_nv joints, not %s", nn->typename[0]);
-  PetscOptionsBegin(comm, "rom_", "Second reduction: m elements per joint fitted to its hysteresis loops (prefix rom_)", "JRROMReduce");
-  PetscCall(PetscOptionsRealArray("-fit_fractions", "Loop amplitudes: the slip displacements below which these fractions of the joint's slip force lie (microslip to gross slip)", "JRROMReduce", fr, &nfr, &frset));
-  PetscCall(PetscOptionsReal("-fit_energy_from", "Energy per cycle matched from the amplitude where this fraction of the slip force has slipped", "JRROMReduce", efrom, &efrom, NULL));
-  PetscCall(PetscOptionsBool("-fit_refine", "After the convex fit on fixed slip displacements, free them too (a non-convex refinement: better loops, but its minimum can move with round-off)", "JRROMReduce", refine, &refine, NULL));
-  PetscCall(PetscOptionsReal("-fit_perturb", "Perturb the start of the fit by this fraction (tests: the fit must recover)", "JRROMReduce", perturb, &perturb, NULL));
-  PetscCall(PetscOptionsInt("-fit_samples", "Samples per loop", "JRROMReduce", ns, &ns, NULL));
-  PetscCall(PetscOptionsReal("-fit_case_weight", "Weight of the energy dissipated per cycle at each joint's amplitude in the case (relative to the input energy at that level; 0: not fitted)", "JRROMReduce", wcase, &wcase, NULL));
-  PetscCall(PetscOptionsReal("-fit_total_weight", "Weight of the energy all joints together dissipate per cycle at the case's amplitudes (relative to the input energy; a fit coupled across joints; 0: each joint fitted alone)", "JRROMReduce", wtotal, &wtotal, NULL));
-  PetscCall(PetscOptionsReal("-fit_gross_weight", "Weight of the joint's total slip force (gross slip), relative", "JRROMReduce", wgross, &wgross, NULL));
-  PetscCall(PetscOptionsReal("-fit_stiffness_weight", "Weight of the joint's stuck stiffness (its stuck loop), relative to one loop", "JRROMReduce", wstiff, &wstiff, NULL));
-  PetscCall(PetscOptionsInt("-fit_normal_passes", "-rom_joint_motion mode, jenkins_nv, with a case: fit again this many times, each with the change the normal-load variation makes to the energy per cycle (members' and the previous fit's) added to the energy targets (0: once, fixed normal loads)", "JRROMReduce", npass, &npass, NULL));
-  {
-    const char *jm[] = {"mean", "linear", "mode"};
-    PetscInt    jmo  = 0;
-    PetscCall(PetscOptionsEList("-joint_motion", "How a joint's members move: mean, linear (a field over their positions: each fitted element is spread over three points of its members' spread) or mode (a field over their motions in the stuck mode of interest: each fitted element sits at its members' motion)", "JRROMReduce", jm, 3, jm[jmo], &jmo, NULL));
-    spread = (PetscBool)(jmo == 1);
-    modef  = (PetscBool)(jmo == 2);
-  }
-  PetscCall(PetscOptionsBool("-fit_search", "Choose the slip displacements among a grid over the members' range (best non-negative least squares of the forces); else those of the log-width groups of members", "JRROMReduce", search, &search, NULL));
-  PetscOptionsEnd();
-  PetscCheck(wgross >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_gross_weight %g: the weight must be non-negative", (double)wgross);
-  PetscCheck(wtotal >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_total_weight %g: the weight must be non-negative (0: each joint fitted alone)", (double)wtotal);
-  PetscCheck(wstiff > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_stiffness_weight %g: the weight must be positive", (double)wstiff);
-  PetscCheck(npass >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_normal_passes %" PetscInt_FMT ": 0 or more", npass);
-  PetscCheck(wcase >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_case_weight %g: the weight must be non-negative (0: the case is not fitted)", (double)wcase);
-  if (!frset) nfr = 3;
-  PetscCheck(nfr == 3 && fr[0] > 0 && fr[1] > fr[0] && fr[2] > fr[1] && fr[2] <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_fractions: three increasing fractions in (0, 1] (default 0.25,0.6,0.95)");
-  PetscCheck(ns >= 8, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_samples %" PetscInt_FMT ": at least 8", ns);
+  for (PetscInt i = 0; i < 3; i++) fr[i] = fit->fr[i];
+  efrom   = fit->efrom;
+  refine  = fit->refine;
+  perturb = fit->perturb;
+  ns      = fit->ns;
+  wcase   = fit->wcase;
+  wtotal  = fit->wtotal;
+  wgross  = fit->wgross;
+  wstiff  = fit->wstiff;
+  search  = fit->search;
+  spread  = (PetscBool)(fit->jmotion == 1);
+  modef   = (PetscBool)(fit->jmotion == 2);
   PetscCheck(!(spread || modef) || (nn->pos && (!modef || nn->phi)), comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion %s needs the members' coordinates (node-to-node elements of an FE model)", spread ? "linear" : "mode");
   /* every member as an element on its joint's motion: with the mode-shape weight w_e (its motion / the joint's in
      the mode of interest), a Jenkins element moving w u is one moving u with w^2 kt and |w| f (same forces, same
@@ -1569,23 +1606,29 @@ static PetscErrorCode ReducePass(MPI_Comm comm, const JRElements *nn, PetscInt m
   -rom_joint_motion mode, jenkins_nv, with a case: also prints the fit's error at every level with the normal loads
   varying (NormalVariation); -rom_fit_normal_passes k fits k more times, each with the previous fit's correction.
 */
-PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const JRROMCase *cs, const char base[], PetscBool plot, PetscBool quiet, JRElements *rom)
+PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const JRROMCase *cs, const JRROMFit *fitin, const char base[], PetscBool plot, PetscBool quiet, JRElements *rom)
 {
   const PetscInt na = 24; /* the case's amplitudes (ReducePass's ncase) */
-  PetscInt    npass = 0;
+  PetscInt    npass;
   PetscReal  *nvin, *nvout, nvmax = 0;
+  JRROMFit    own;
+  const JRROMFit *fit = fitin;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsGetInt(NULL, NULL, "-rom_fit_normal_passes", &npass, NULL));
+  if (!fit) { /* the options, read here */
+    PetscCall(JRROMFitSetFromOptions(comm, &own));
+    fit = &own;
+  }
+  npass = fit->npass;
   /* nn->phi, the members' stuck-mode coordinates, is set (JRTaskFRF) for -rom_joint_motion mode only */
   if (!(nn->phi && m > 0 && npass >= 0 && cs && cs->nlev > 0 && cs->force > 0 && nn->ntypes == 1 && !strcmp(nn->typename[0], JRCONTACTJENKINSNV))) {
-    PetscCall(ReducePass(comm, nn, m, wt, cs, quiet ? NULL : base, plot, quiet, NULL, NULL, &nvmax, rom));
+    PetscCall(ReducePass(comm, nn, m, wt, cs, fit, quiet ? NULL : base, plot, quiet, NULL, NULL, &nvmax, rom));
     PetscFunctionReturn(0);
   }
   PetscCall(PetscCalloc2(na * nn->njoints, &nvin, na * nn->njoints, &nvout));
   for (PetscInt p = 0; p <= npass; p++) {
     if (p) PetscCall(JRElementsDestroy(rom));
-    PetscCall(ReducePass(comm, nn, m, wt, cs, p == npass && !quiet ? base : NULL, plot, (PetscBool)(quiet || p < npass), p ? nvin : NULL, nvout, &nvmax, rom));
+    PetscCall(ReducePass(comm, nn, m, wt, cs, fit, p == npass && !quiet ? base : NULL, plot, (PetscBool)(quiet || p < npass), p ? nvin : NULL, nvout, &nvmax, rom));
     if (npass && !quiet) PetscCall(PetscPrintf(comm, "rom normal_variation pass %" PetscInt_FMT " of %" PetscInt_FMT " largest_share %.4f (of the input per cycle at the case's amplitudes, the fit's next correction)\n", p, npass, (double)nvmax));
     PetscCall(PetscArraycpy(nvin, nvout, na * nn->njoints));
   }

@@ -212,22 +212,21 @@ static PetscErrorCode QuietPeaks(MPI_Comm comm, JRHBM hbm, PetscInt *nlev, Petsc
   -rom_fit_select first: the second reduction fitted with every pair of weights (-rom_fit_select_total x
   -rom_fit_select_case), each reduced model's curves solved (quietly), and the pair whose peaks come nearest the
   first reduction's kept (the smallest worst relative amplitude error over the levels): the first reduction is the
-  reference a user has without node-to-node, and it is close to it (lap3 mode field within 1.6%, BRB 0.6%). Sets
-  -rom_fit_total_weight and -rom_fit_case_weight to the pair chosen, for the fit that follows.
+  reference a user has without node-to-node. fit gets the pair chosen (its wtotal and wcase), for the fit that
+  follows.
 */
-static PetscErrorCode SelectWeights(MPI_Comm comm, JRModel model, JRHBM hbm, PetscInt fdof, PetscInt nout, const PetscInt odof[], PetscBool corr, const JRElements *elj, PetscInt romm, const PetscReal w[], const JRROMCase *cs, PetscInt nt, const PetscReal wtot[], PetscInt nk, const PetscReal wcas[])
+static PetscErrorCode SelectWeights(MPI_Comm comm, JRModel model, JRHBM hbm, PetscInt fdof, PetscInt nout, const PetscInt odof[], PetscBool corr, const JRElements *elj, PetscInt romm, const PetscReal w[], const JRROMCase *cs, PetscInt nt, const PetscReal wtot[], PetscInt nk, const PetscReal wcas[], JRROMFit *fit)
 {
   JRElements elf;
   JRHBM      hf;
   PetscReal  c, su, *wf, *af, best = PETSC_MAX_REAL, bt = 0, bk = 0;
   PetscInt   nlev;
-  char       str[64];
   PetscLogDouble t0, t1;
 
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
   PetscCall(PetscMemzero(&elf, sizeof(elf)));
-  PetscCall(JRROMReduce(comm, elj, 0, w, cs, NULL, PETSC_FALSE, PETSC_TRUE, &elf));
+  PetscCall(JRROMReduce(comm, elj, 0, w, cs, fit, NULL, PETSC_FALSE, PETSC_TRUE, &elf));
   PetscCall(ReducedHBM(comm, model, hbm, fdof, nout, odof, corr, PETSC_TRUE, &elf, &hf, &c, &su));
   PetscCall(QuietPeaks(comm, hf, &nlev, &wf, &af));
   PetscCall(JRHBMDestroy(&hf));
@@ -238,12 +237,11 @@ static PetscErrorCode SelectWeights(MPI_Comm comm, JRModel model, JRHBM hbm, Pet
       JRHBM      hc;
       PetscReal *wc, *ac, ea = 0, ef = 0;
       PetscInt   nl;
-      PetscCall(PetscSNPrintf(str, sizeof(str), "%.17g", (double)wtot[i]));
-      PetscCall(PetscOptionsSetValue(NULL, "-rom_fit_total_weight", str));
-      PetscCall(PetscSNPrintf(str, sizeof(str), "%.17g", (double)wcas[j]));
-      PetscCall(PetscOptionsSetValue(NULL, "-rom_fit_case_weight", str));
+      JRROMFit   fc = *fit;
+      fc.wtotal     = wtot[i];
+      fc.wcase      = wcas[j];
       PetscCall(PetscMemzero(&elc, sizeof(elc)));
-      PetscCall(JRROMReduce(comm, elj, romm, w, cs, NULL, PETSC_FALSE, PETSC_TRUE, &elc));
+      PetscCall(JRROMReduce(comm, elj, romm, w, cs, &fc, NULL, PETSC_FALSE, PETSC_TRUE, &elc));
       PetscCall(ReducedHBM(comm, model, hbm, fdof, nout, odof, corr, PETSC_TRUE, &elc, &hc, &c, &su));
       PetscCall(QuietPeaks(comm, hc, &nl, &wc, &ac));
       PetscCheck(nl == nlev, comm, PETSC_ERR_PLIB, "Different level counts");
@@ -262,10 +260,8 @@ static PetscErrorCode SelectWeights(MPI_Comm comm, JRModel model, JRHBM hbm, Pet
       PetscCall(JRElementsDestroy(&elc));
     }
   PetscCall(PetscFree2(wf, af));
-  PetscCall(PetscSNPrintf(str, sizeof(str), "%.17g", (double)bt));
-  PetscCall(PetscOptionsSetValue(NULL, "-rom_fit_total_weight", str));
-  PetscCall(PetscSNPrintf(str, sizeof(str), "%.17g", (double)bk));
-  PetscCall(PetscOptionsSetValue(NULL, "-rom_fit_case_weight", str));
+  fit->wtotal = bt;
+  fit->wcase  = bk;
   PetscCall(PetscTime(&t1));
   PetscCall(PetscPrintf(comm, "rom: fit weights chosen against the first reduction: -rom_fit_total_weight %g -rom_fit_case_weight %g (worst amplitude %.2f%% off the first reduction's peaks; %" PetscInt_FMT " pairs, %.3g s)\n", (double)bt, (double)bk, (double)(100 * best), nt * nk, (double)(t1 - t0)));
   PetscFunctionReturn(0);
@@ -380,36 +376,33 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   const char     *damping;
   PetscInt        nm, H, n, *pair = NULL, romm = 0, jmotion = 0, fdof = 0, nout = 0, odof[21], select = 0, nst = 8, nsc = 8;
   PetscReal       swt[8] = {20, 100, 1000}, swc[8] = {10, 0};
-  PetscBool       n2n, stickfe = PETSC_FALSE, plot = PETSC_TRUE, isrom = PETSC_FALSE, loaded = PETSC_FALSE, corr_on = PETSC_TRUE, weight = PETSC_TRUE;
+  PetscBool       n2n, fe, help, set = PETSC_FALSE, oset = PETSC_FALSE, stickfe = PETSC_FALSE, plot = PETSC_TRUE, isrom = PETSC_FALSE, loaded = PETSC_FALSE, corr_on = PETSC_TRUE, weight = PETSC_TRUE;
   JRElements      el, elr, elj;
   char            base[PETSC_MAX_PATH_LEN] = "out/frf", romsave[PETSC_MAX_PATH_LEN] = "", romload[PETSC_MAX_PATH_LEN] = "";
   PetscLogDouble  t0, t1, tpre = 0, tmodel;
   PetscReal       corr = 1.0, tn = 0, tr = 0, en = 0, er = 0, setn = 0, setr = 0, tred = 0;
+  PetscInt        dir = 2, nd = 3, no = 63;
+  PetscReal       at[3] = {0, 0, 0}, oat[63] = {0};
+  const char     *dirs[] = {"x", "y", "z"};
+  JRInterfaceOptions iopt;
+  JRROMFit        fit;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(&el, sizeof(el)));
   PetscCall(PetscMemzero(&elr, sizeof(elr)));
   PetscCall(PetscMemzero(&elj, sizeof(elj)));
-  PetscCall(PetscTime(&t0));
+  /* every object's options, read and checked before any work */
   PetscCall(JRModelCreate(comm, &model));
   PetscCall(JRModelSetFromOptions(model));
-  PetscCall(JRModelSetUp(model));
-  PetscCall(PetscTime(&t1));
-  tmodel = t1 - t0;
-  P   = NULL;
-  n2n = PETSC_FALSE;
   {
-    DM dm;
-    PetscCall(JRModelGetDM(model, &dm));
-    if (dm) {
-      PetscCall(JRModelGetPairs(model, &P));
-      n2n = (PetscBool)(P && P->n > 0);
-    }
+    JRModelType mt;
+    PetscCall(JRModelGetType(model, &mt));
+    fe = (PetscBool)strcmp(mt, JRMODELMATRICES);
   }
   PetscOptionsBegin(comm, NULL, "Frequency response (-task frf, -task compare)", "JRTaskFRF");
   PetscCall(PetscOptionsString("-frf_output_file", "Output base name", "JRTaskFRF", base, base, sizeof(base), NULL));
   PetscCall(PetscOptionsBool("-frf_plot", "Draw the PNG plots", "JRTaskFRF", plot, &plot, NULL));
-  if (n2n) {
+  if (fe) {
     PetscCall(PetscOptionsBool("-frf_stick_fe", "Also the natural frequencies of the whole FE model with every element stuck (SLEPc): the modal truncation error", "JRTaskFRF", stickfe, &stickfe, NULL));
     PetscCall(PetscOptionsInt("-rom_elements", "Second reduction: fit this many elements per joint to its hysteresis loops (0: the first reduction only)", "JRROMReduce", romm, &romm, NULL));
     PetscCall(PetscOptionsBool("-rom_mode_weights", "Weight every member of a joint by its motion relative to the joint's in the stuck mode of interest (w^2 kt, |w| f; jenkins)", "JRROMReduce", weight, &weight, NULL));
@@ -434,22 +427,95 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     PetscCall(PetscOptionsString("-rom_load", "Run the reduced model of this HDF5 file (no preload, no fit)", "JRROMLoad", romload, romload, sizeof(romload), NULL));
   }
   PetscOptionsEnd();
-  PetscCheck(n2n || !compare, comm, PETSC_ERR_ARG_WRONG, "-task compare needs an FE model with a contact interface (-model_type brb, lap1, lap3, lap, gmsh)");
+  PetscCheck(fe || !compare, comm, PETSC_ERR_ARG_WRONG, "-task compare needs an FE model with a contact interface (-model_type brb, lap1, lap3, lap, gmsh)");
   PetscCheck(romm >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_elements %" PetscInt_FMT ": 0 (first reduction only) or more", romm);
+  if (fe) {
+    PetscBool d, o;
+    PetscOptionsBegin(comm, NULL, "Excitation and responses of an FE model (-task frf)", "JRTaskFRF");
+    PetscCall(PetscOptionsRealArray("-frf_at", "Excitation point x,y,z [m] (nearest node; default: the end x = xmin, mid-width, top)", "JRTaskFRF", at, &nd, &set));
+    PetscCall(PetscOptionsEList("-frf_dir", "Direction of the excitation force and of the responses", "JRTaskFRF", dirs, 3, dirs[dir], &dir, NULL));
+    PetscCall(PetscOptionsRealArray("-frf_output_at", "Response points x1,y1,z1,x2,... [m] (default: the other end, then the excitation point)", "JRTaskFRF", oat, &no, &oset));
+    PetscOptionsEnd();
+    PetscCheck(!set || nd == 3, comm, PETSC_ERR_ARG_WRONG, "-frf_at needs three coordinates x,y,z [m], got %" PetscInt_FMT, nd);
+    PetscCheck(!oset || (no % 3 == 0 && no > 0), comm, PETSC_ERR_ARG_WRONG, "-frf_output_at needs triples x,y,z [m], got %" PetscInt_FMT " values", no);
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-frf_dof", &d));
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-frf_output", &o));
+    PetscCheck(!d && !o, comm, PETSC_ERR_ARG_INCOMP, "%s: on an FE model the DOF numbers depend on the partition; give points instead: -frf_at x,y,z and -frf_output_at x,y,z,... [m] with -frf_dir x|y|z", d ? "-frf_dof" : "-frf_output");
+    PetscCall(JRPreloadCreate(comm, &pre));
+    PetscCall(JRPreloadSetModel(pre, model));
+    PetscCall(JRPreloadSetFromOptions(pre));
+    PetscCall(JRInterfaceSetFromOptions(comm, &iopt));
+    PetscCall(JRROMFitSetFromOptions(comm, &fit));
+    PetscCheck(!romm || iopt.joints > 0 || romload[0], comm, PETSC_ERR_ARG_INCOMP, "-rom_elements needs joints: -rom_joints strips|bolts|between|sides|zones");
+    PetscCheck(!compare || iopt.joints > 0 || romload[0], comm, PETSC_ERR_ARG_WRONG, "-task compare needs a reduced model: joints (-rom_joints ..., optionally -rom_elements m) or -rom_load FILE");
+    PetscCheck(!romsave[0] || (iopt.joints > 0 && romm > 0 && !(romload[0] && !compare)), comm, PETSC_ERR_ARG_INCOMP, "-rom_save saves a second-reduction model: it needs -rom_joints ... and -rom_elements m");
+  }
+  if (!(fe && romload[0] && !compare)) {
+    PetscCall(JRHBMCreate(comm, &hbm));
+    if (fe) PetscCall(JRHBMSetBasis(hbm, 2)); /* stuck + free-interface modes: -hbm_basis free for the thesis's */
+    PetscCall(JRHBMSetFromOptions(hbm));
+  }
+  { /* the continuation's options (-cont_*, -frf_force, the range) */
+    JRCont c;
+    PetscCall(JRContCreate(comm, &c));
+    PetscCall(JRContSetFromOptions(c));
+    PetscCall(JRContDestroy(&c));
+  }
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  if (help) { /* -help: the options listed, nothing done */
+    PetscCall(JRHBMDestroy(&hbm));
+    PetscCall(JRPreloadDestroy(&pre));
+    PetscCall(JRModelDestroy(&model));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(JROptionsCheck(comm, fe ? (compare ? "-task compare" : "-task frf on an FE model") : "-task frf on a matrices model"));
+  PetscCall(JRFileCheckOutput(comm, "-frf_output_file", base));
+
+  /* 1. model */
+  PetscCall(PetscTime(&t0));
+  PetscCall(JRModelSetUp(model));
+  PetscCall(PetscTime(&t1));
+  tmodel = t1 - t0;
+  P   = NULL;
+  n2n = PETSC_FALSE;
+  {
+    DM dm;
+    PetscCall(JRModelGetDM(model, &dm));
+    if (dm) {
+      PetscCall(JRModelGetPairs(model, &P));
+      n2n = (PetscBool)(P && P->n > 0);
+    }
+  }
+  PetscCheck(n2n || !fe, comm, PETSC_ERR_ARG_WRONG, "-task frf: the FE model has no contact interface (node pairs)");
 
   if (n2n) {
-    PetscInt         ndof, dir = 2, nd = 3, no = 63;
-    PetscReal        lo[3], hi[3], at[3], oat[63], dist;
-    PetscBool        set, oset;
+    PetscInt         ndof;
+    PetscReal        lo[3], hi[3], dist;
     JRPreloadSummary s;
-    const char      *dirs[] = {"x", "y", "z"};
     char             pbase[PETSC_MAX_PATH_LEN + 16], mfile[PETSC_MAX_PATH_LEN + 16];
 
-    {
-      PetscBool d, o;
-      PetscCall(PetscOptionsHasName(NULL, NULL, "-frf_dof", &d));
-      PetscCall(PetscOptionsHasName(NULL, NULL, "-frf_output", &o));
-      PetscCheck(!d && !o, comm, PETSC_ERR_ARG_INCOMP, "%s: on an FE model the DOF numbers depend on the partition; give points instead: -frf_at x,y,z and -frf_output_at x,y,z,... [m] with -frf_dir x|y|z", d ? "-frf_dof" : "-frf_output");
+    /* excitation and responses by position, checked before the preload */
+    PetscCall(JRModelGetBoundingBox(model, lo, hi));
+    if (!set) {
+      at[0] = lo[0];
+      at[1] = 0.5 * (lo[1] + hi[1]);
+      at[2] = hi[2];
+    }
+    PetscCall(JRModelFindDof(model, at, dir, &fdof, &dist));
+    PetscCheck(dist <= 0.05 * (hi[0] - lo[0]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_at (%g, %g, %g) m: the nearest node is %g m away: the point is outside the model (box x %g..%g, y %g..%g, z %g..%g m)", (double)at[0], (double)at[1], (double)at[2], (double)dist, (double)lo[0], (double)hi[0], (double)lo[1], (double)hi[1], (double)lo[2], (double)hi[2]);
+    if (!oset) {
+      oat[0] = hi[0];
+      oat[1] = 0.5 * (lo[1] + hi[1]);
+      oat[2] = hi[2];
+      oat[3] = at[0];
+      oat[4] = at[1];
+      oat[5] = at[2];
+      no     = 6;
+    }
+    nout = no / 3;
+    for (PetscInt o = 0; o < nout; o++) {
+      PetscCall(JRModelFindDof(model, oat + 3 * o, dir, &odof[o], &dist));
+      PetscCheck(dist <= 0.05 * (hi[0] - lo[0]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_output_at (%g, %g, %g) m: the nearest node is %g m away: the point is outside the model", (double)oat[3 * o], (double)oat[3 * o + 1], (double)oat[3 * o + 2], (double)dist);
     }
     PetscCall(JRModelGetNumDofs(model, &ndof));
     PetscCall(PetscPrintf(comm, "frf: node-to-node contact model, %" PetscInt_FMT " DOFs, %" PetscInt_FMT " interface pairs (model %.3g s)\n", ndof, P->n, (double)tmodel));
@@ -460,9 +526,6 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     } else {
       /* 2. preload */
       PetscCall(PetscTime(&t0));
-      PetscCall(JRPreloadCreate(comm, &pre));
-      PetscCall(JRPreloadSetModel(pre, model));
-      PetscCall(JRPreloadSetFromOptions(pre));
       PetscCall(JRPreloadSolve(pre));
       PetscCall(PetscTime(&t1));
       tpre = t1 - t0;
@@ -473,7 +536,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
         PetscCall(JRPreloadWrite(pre, pbase, plot));
       }
       /* 4. interface, and the reduced model from its joints */
-      PetscCall(JRInterfaceCreateElements(model, pre, &el, &pair));
+      PetscCall(JRInterfaceCreateElements(model, pre, &iopt, &el, &pair));
       {
         PetscReal nsum = 0, nmin = PETSC_MAX_REAL, nmax = -PETSC_MAX_REAL;
         for (PetscInt e = 0; e < el.n; e++) {
@@ -493,61 +556,22 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
         isrom  = PETSC_TRUE;
         loaded = PETSC_TRUE;
       }
-      PetscCheck(!romm || isrom, comm, PETSC_ERR_ARG_INCOMP, "-rom_elements needs joints: -rom_joints strips|bolts|between|sides|zones");
-      PetscCheck(!compare || isrom, comm, PETSC_ERR_ARG_WRONG, "-task compare needs a reduced model: joints (-rom_joints ..., optionally -rom_elements m) or -rom_load FILE");
     }
-    PetscCheck(!romsave[0] || (isrom && romm > 0 && !loaded), comm, PETSC_ERR_ARG_INCOMP, "-rom_save saves a second-reduction model: it needs -rom_joints ... and -rom_elements m");
-    /* excitation and responses by position */
-    PetscCall(JRModelGetBoundingBox(model, lo, hi));
-    at[0] = lo[0];
-    at[1] = 0.5 * (lo[1] + hi[1]);
-    at[2] = hi[2];
-    PetscOptionsBegin(comm, NULL, "Excitation and responses of an FE model (-task frf)", "JRTaskFRF");
-    PetscCall(PetscOptionsRealArray("-frf_at", "Excitation point x,y,z [m] (nearest node; default: the end x = xmin, mid-width, top)", "JRTaskFRF", at, &nd, &set));
-    PetscCall(PetscOptionsEList("-frf_dir", "Direction of the excitation force and of the responses", "JRTaskFRF", dirs, 3, dirs[dir], &dir, NULL));
-    PetscCall(PetscOptionsRealArray("-frf_output_at", "Response points x1,y1,z1,x2,... [m] (default: the other end, then the excitation point)", "JRTaskFRF", oat, &no, &oset));
-    PetscOptionsEnd();
-    PetscCheck(!set || nd == 3, comm, PETSC_ERR_ARG_WRONG, "-frf_at needs three coordinates x,y,z [m], got %" PetscInt_FMT, nd);
-    PetscCheck(!oset || (no % 3 == 0 && no > 0), comm, PETSC_ERR_ARG_WRONG, "-frf_output_at needs triples x,y,z [m], got %" PetscInt_FMT " values", no);
-    PetscCall(JRModelFindDof(model, at, dir, &fdof, &dist));
-    PetscCheck(dist <= 0.05 * (hi[0] - lo[0]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_at (%g, %g, %g) m: the nearest node is %g m away: the point is outside the model (box x %g..%g, y %g..%g, z %g..%g m)", (double)at[0], (double)at[1], (double)at[2], (double)dist, (double)lo[0], (double)hi[0], (double)lo[1], (double)hi[1], (double)lo[2], (double)hi[2]);
-    PetscCall(PetscPrintf(comm, "frf: excitation F sin(w t) along %s at (%g, %g, %g) m: DOF %" PetscInt_FMT " (node %.2g mm away)\n", dirs[dir], (double)at[0], (double)at[1], (double)at[2], fdof, (double)(dist * 1e3)));
-    if (!oset) {
-      oat[0] = hi[0];
-      oat[1] = 0.5 * (lo[1] + hi[1]);
-      oat[2] = hi[2];
-      oat[3] = at[0];
-      oat[4] = at[1];
-      oat[5] = at[2];
-      no     = 6;
-    }
-    nout = no / 3;
-    for (PetscInt o = 0; o < nout; o++) {
-      PetscCall(JRModelFindDof(model, oat + 3 * o, dir, &odof[o], &dist));
-      PetscCheck(dist <= 0.05 * (hi[0] - lo[0]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_output_at (%g, %g, %g) m: the nearest node is %g m away: the point is outside the model", (double)oat[3 * o], (double)oat[3 * o + 1], (double)oat[3 * o + 2], (double)dist);
-      PetscCall(PetscPrintf(comm, "frf: response %" PetscInt_FMT " along %s at (%g, %g, %g) m: DOF %" PetscInt_FMT "\n", o + 1, dirs[dir], (double)oat[3 * o], (double)oat[3 * o + 1], (double)oat[3 * o + 2], odof[o]));
-    }
-    /* the modes are saved for reuse unless they are read */
-    {
-      PetscBool ld, sv;
-      PetscCall(PetscOptionsHasName(NULL, NULL, "-modes_load", &ld));
-      PetscCall(PetscOptionsHasName(NULL, NULL, "-modes_save", &sv));
-      if (!ld && !sv && base[0]) {
-        PetscCall(PetscSNPrintf(mfile, sizeof(mfile), "%s_modes.h5", base));
-        PetscCall(PetscOptionsSetValue(NULL, "-modes_save", mfile));
-      }
+    PetscCall(PetscPrintf(comm, "frf: excitation F sin(w t) along %s at (%g, %g, %g) m: DOF %" PetscInt_FMT "\n", dirs[dir], (double)at[0], (double)at[1], (double)at[2], fdof));
+    for (PetscInt o = 0; o < nout; o++) PetscCall(PetscPrintf(comm, "frf: response %" PetscInt_FMT " along %s at (%g, %g, %g) m: DOF %" PetscInt_FMT "\n", o + 1, dirs[dir], (double)oat[3 * o], (double)oat[3 * o + 1], (double)oat[3 * o + 2], odof[o]));
+    /* the modes are saved for reuse unless they are read (-modes_load) or saved elsewhere (-modes_save) */
+    if (base[0] && hbm) {
+      PetscCall(PetscSNPrintf(mfile, sizeof(mfile), "%s_modes.h5", base));
+      PetscCall(JRHBMSetModesFile(hbm, mfile));
     }
   }
   /* the node-to-node (or matrices) model: its modes serve the reduced model too */
   if (!loaded) {
-    PetscCall(JRHBMCreate(comm, &hbm));
     if (n2n) {
       PetscCall(JRHBMSetExcitationDof(hbm, fdof, nout, odof));
-      PetscCall(JRHBMSetBasis(hbm, 2)); /* stuck + free-interface modes: -hbm_basis free for the thesis's */
       PetscCall(JRModelSetElements(model, &el));
     }
     PetscCall(JRHBMSetModel(hbm, model));
-    PetscCall(JRHBMSetFromOptions(hbm));
     PetscCall(PetscTime(&t0));
     PetscCall(JRHBMSetUp(hbm));
     PetscCall(PetscTime(&t1));
@@ -601,8 +625,8 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
       PetscCall(PetscFree2(cnt, ua));
       PetscCall(PetscFree2(u, v));
     }
-    if (select && romm > 0) PetscCall(SelectWeights(comm, model, hbm, fdof, nout, odof, corr_on, &elj, romm, w, ubar ? &cs : NULL, nst, swt, nsc, swc));
-    PetscCall(JRROMReduce(comm, &elj, romm, w, ubar ? &cs : NULL, base, plot, PETSC_FALSE, &elr));
+    if (select && romm > 0) PetscCall(SelectWeights(comm, model, hbm, fdof, nout, odof, corr_on, &elj, romm, w, ubar ? &cs : NULL, nst, swt, nsc, swc, &fit));
+    PetscCall(JRROMReduce(comm, &elj, romm, w, ubar ? &cs : NULL, &fit, base, plot, PETSC_FALSE, &elr));
     PetscCall(PetscFree(ubar));
     PetscCall(PetscFree(lev));
     PetscCall(PetscTime(&t1));

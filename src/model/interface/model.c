@@ -63,6 +63,14 @@ PetscErrorCode JRModelSetType(JRModel m, JRModelType type)
 }
 
 /* Options: -model_type, -model_view, and the type's own */
+/* The model's type name (JRMODELMATRICES, JRMODELBRB, ...; "" before JRModelSetType or JRModelSetFromOptions) */
+PetscErrorCode JRModelGetType(JRModel m, JRModelType *type)
+{
+  PetscFunctionBeginUser;
+  *type = m->type_name;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode JRModelSetFromOptions(JRModel m)
 {
   char      type[64];

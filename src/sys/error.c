@@ -1,0 +1,84 @@
+/*
+   Errors a user can read. A user error (a bad option, value, file or line: the argument, file and input error
+   codes) prints one message, once, as "jointrom: error: <message>", without PETSc's stack dump; the run then
+   ends with exit status 1 (JRErrorExit). Every other error is an internal one and keeps PETSc's full traceback.
+   -error_trace (or -on_error_attach_debugger, -start_in_debugger) keeps the traceback for user errors too.
+*/
+#include <jointrom.h>
+#include <slepcsys.h>
+
+static PetscBool      jr_error_trace = PETSC_FALSE; /* traceback for user errors too */
+static PetscErrorCode jr_user_error  = 0;           /* the code of the user error reported, 0 if none */
+static PetscBool      jr_collective  = PETSC_FALSE; /* raised on every rank (a communicator as large as the world's) */
+
+static PetscBool IsUserError(PetscErrorCode n)
+{
+  switch (n) {
+  case PETSC_ERR_ARG_SIZ:
+  case PETSC_ERR_ARG_WRONG:
+  case PETSC_ERR_ARG_OUTOFRANGE:
+  case PETSC_ERR_ARG_INCOMP:
+  case PETSC_ERR_ARG_UNKNOWN_TYPE:
+  case PETSC_ERR_ARG_WRONGSTATE:
+  case PETSC_ERR_FILE_OPEN:
+  case PETSC_ERR_FILE_READ:
+  case PETSC_ERR_FILE_WRITE:
+  case PETSC_ERR_FILE_UNEXPECTED:
+  case PETSC_ERR_USER_INPUT:
+  case PETSC_ERR_SUP:
+    return PETSC_TRUE;
+  default:
+    return PETSC_FALSE;
+  }
+}
+
+static PetscErrorCode Handler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+{
+  if (jr_user_error) return n; /* the error already reported, passing up the stack */
+  if (p == PETSC_ERROR_INITIAL && IsUserError(n) && !jr_error_trace) {
+    PetscMPIInt size = 1, rank = 0, wsize = 1, wrank = 0;
+    MPI_Comm_size(comm, &size);
+    MPI_Comm_rank(comm, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &wsize);
+    MPI_Comm_rank(MPI_COMM_WORLD, &wrank);
+    jr_user_error = n;
+    jr_collective = (PetscBool)(size == wsize);
+    if (!rank) {
+      if (jr_collective) fprintf(stderr, "jointrom: error: %s\n", mess ? mess : "(no message)");
+      else fprintf(stderr, "jointrom: error (rank %d): %s\n", wrank, mess ? mess : "(no message)");
+      fflush(stderr);
+    }
+    return n;
+  }
+  return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
+}
+
+/* Install the handler (after SlepcInitialize) */
+PetscErrorCode JRErrorHandlerPush(void)
+{
+  PetscBool dbg = PETSC_FALSE, sid = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-error_trace", &jr_error_trace, NULL));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-on_error_attach_debugger", &dbg));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-start_in_debugger", &sid));
+  if (dbg || sid) jr_error_trace = PETSC_TRUE;
+  PetscCall(PetscPushErrorHandler(Handler, NULL));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRErrorExit - the end of a run that failed with ierr: a user error raised on every rank finalises and exits 1; one
+  raised on some ranks only, or an internal error, aborts every rank (the others may wait in a collective call).
+*/
+int JRErrorExit(PetscErrorCode ierr)
+{
+  if (jr_user_error && jr_collective) {
+    (void)SlepcFinalize();
+    return 1;
+  }
+  fflush(stdout);
+  fflush(stderr);
+  MPI_Abort(MPI_COMM_WORLD, jr_user_error ? 1 : (int)ierr);
+  return (int)ierr;
+}

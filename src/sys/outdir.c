@@ -1,0 +1,63 @@
+/* Output locations checked before the work: the directory of an output base name, created if missing */
+#include <jointrom.h>
+#include <errno.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* mkdir -p of dir (modified in place, restored); 0 or an errno */
+static int MakeDirs(char dir[])
+{
+  struct stat st;
+  for (char *p = dir + 1; *p; p++) {
+    if (*p != '/') continue;
+    *p = 0;
+    if (stat(dir, &st) && mkdir(dir, 0777) && errno != EEXIST) {
+      const int e = errno;
+      *p          = '/';
+      return e;
+    }
+    *p = '/';
+  }
+  if (stat(dir, &st) && mkdir(dir, 0777) && errno != EEXIST) return errno;
+  if (stat(dir, &st)) return errno;
+  return S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
+}
+
+/*
+  JRFileCheckOutput - the directory of the output base name base (given by option opt, for the message) exists or
+  is created, and a file can be written in it; an empty base (no output) passes. Collective; rank 0 checks.
+*/
+PetscErrorCode JRFileCheckOutput(MPI_Comm comm, const char opt[], const char base[])
+{
+  PetscMPIInt rank;
+  int         err = 0;
+  char        dir[PETSC_MAX_PATH_LEN], probe[PETSC_MAX_PATH_LEN + 32];
+
+  PetscFunctionBeginUser;
+  if (!base || !base[0]) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(PetscStrncpy(dir, base, sizeof(dir)));
+  {
+    char *slash = strrchr(dir, '/');
+    if (slash) {
+      if (slash == dir) slash[1] = 0;
+      else *slash = 0;
+    } else PetscCall(PetscStrncpy(dir, ".", sizeof(dir)));
+  }
+  if (!rank) {
+    err = MakeDirs(dir);
+    if (!err) {
+      FILE *fp;
+      PetscCall(PetscSNPrintf(probe, sizeof(probe), "%s/.jointrom_probe%d", dir, (int)getpid()));
+      fp = fopen(probe, "w");
+      if (!fp) err = errno;
+      else {
+        fclose(fp);
+        remove(probe);
+      }
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+  PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "%s %s: cannot write in the directory %s: %s", opt, base, dir, strerror(err));
+  PetscFunctionReturn(0);
+}
