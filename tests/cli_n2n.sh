@@ -81,7 +81,7 @@ b=$(echo "$o" | awk '/^frf summary/{f=1; next} f && $1 ~ /^[0-9.e-]+$/ {if ($10 
 check "[ -n '$fs' ] && close $fp $fs 1e-3" "jenkins_nv lap1, 0.1 mN: FRF peak $fp Hz = stuck resonance (tangential and normal springs of the closed pairs) $fs Hz within 0.1%"
 check "awk -v b=$b 'BEGIN{exit !(b < 1e-10)}'" "jenkins_nv lap1: energy balance at every point, worst $b (< 1e-10)"
 
-# 7. first reduction (issue 7, in progress): every element its own joint reproduces the node-to-node
+# 7. first reduction: every element its own joint reproduces the node-to-node
 #    model exactly; six strips run; bad region definitions are refused
 r=$($J $brb -frf_force $lev -frf_fmin 128 -frf_fmax 138 -rom_joints each -frf_output_file '' 2>&1 | grep '^peak level')
 check "[ -n '$r' ] && [ \"\$r\" = \"\$a\" ]" "-rom_joints each: exactly the node-to-node peaks"

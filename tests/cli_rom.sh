@@ -44,7 +44,7 @@ for m in 3 4 7; do
   read f a <<< "$(worst "$o")"
   ne=$(echo "$o" | awk '/^rom joint/{s += $7} END{print s}')
   check "[ -n '$ne' ] && [ '$ne' -ge 6 ] && [ '$ne' -le $((6 * m)) ] && lt '$f' 5e-3" "second reduction 6 x $m: $ne elements (at most $((6 * m)): elements the fit leaves without force are dropped), worst peak frequency error $f (< 0.5%)"
-  # the amplitude at every level (0.1..200 N): the issue's 5% for 6 x 3. Measured with the fit coupled across joints
+  # the amplitude at every level (0.1..200 N): the 5% target for 6 x 3. Measured with the fit coupled across joints
   # (-rom_fit_total_weight 20): 2.6% (6 x 3), 1.3% (6 x 4), 2.2% (6 x 7); each joint alone: 9.2%, 4.5%, 2.2%
   case $m in 3) amax=0.05 ;; 4) amax=0.03 ;; 7) amax=0.04 ;; esac
   aw=$(echo "$o" | awk '/^compare level/ {e = $11 / $9 - 1; if (e < 0) e = -e; if (e > w) w = e} END{print w + 0}')
@@ -178,7 +178,7 @@ check "[ -n '$f_linear' ] && awk -v m='$f_mean' -v l='$f_linear' -v n='$fn' 'BEG
 
 # -rom_fit_stiffness_weight (1e4): each joint's stuck loop weighed enough holds its members' stuck stiffness (sum k_i
 # = sum w^2 kt), so the reduced model's stuck stiffness matrix is the first reduction's and so is its stuck resonance
-# (same basis, LAPACK); with a weight of 10 (the default before stop 17) the fit gives a little of it away for the loops
+# (same basis, LAPACK); with a weight of 10 the fit gives a little of it away for the loops
 sf() { $J -task frf $brb -frf_force 0.01 -rom_joints sides "$@" -frf_output_file '' 2>&1 | grep '^rom stiffness_correction'; }
 f0=$(field "$(sf -rom_elements 0)" rom_before_hz); fd=$(field "$(sf -rom_elements 3 -rom_fit_stiffness_weight 10)" rom_before_hz); fs=$(field "$(sf -rom_elements 3)" rom_before_hz)
 check "[ -n '$f0' ] && close $fs $f0 1e-8 && ! close $fd $f0 1e-7" "-rom_fit_stiffness_weight 1e4 (default): 6 x 3 stuck resonance $fs Hz = first reduction's $f0 Hz (weight 10: $fd Hz)"

@@ -4,7 +4,7 @@
 # measured side by side; 1 vs 2 ranks. Each run: natural continuation, 21 equally spaced points over
 # 0.8-1.2 of the first natural frequency, force 50 N at the free end (microslip: about 2 Newton iterations per point). Time = the solve stage only
 # (HBM + continuation, from the program's own per-level timer).
-# Targets (issue 3): analytic >= 20x faster than fd at 10^4 elements; 2 ranks >= 1.7x faster at 10^5.
+# Targets: analytic >= 20x faster than fd at 10^4 elements; 2 ranks >= 1.7x faster at 10^5.
 cd "$(dirname "$0")/../.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export OPENBLAS_NUM_THREADS=1
