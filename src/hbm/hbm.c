@@ -179,10 +179,11 @@ PetscErrorCode JRHBMSetModel(JRHBM h, JRModel model)
 PetscErrorCode JRHBMSetFromOptions(JRHBM h)
 {
   PetscInt  jt = h->jtype, nout = 64;
-  PetscInt  out[64];
+  PetscInt  out[64] = {0};
   PetscBool flg;
 
   PetscFunctionBeginUser;
+  out[0] = h->fdof; /* the default shown by -help */
   PetscOptionsBegin(h->comm, NULL, "Harmonic balance (JRHBM)", "JRHBM");
   PetscCall(PetscOptionsInt("-hbm_harmonics", "Harmonics H (plus the mean) in the response", "JRHBMSetUp", h->H, &h->H, NULL));
   PetscCall(PetscOptionsInt("-hbm_samples", "Time samples per cycle N for alternating frequency-time (N >= 2H+1)", "JRHBMSetUp", h->Ns, &h->Ns, NULL));

@@ -144,6 +144,16 @@ PetscErrorCode JRTaskElement(MPI_Comm comm)
   PetscCall(JRContactGetType(c, &type));
   PetscCall(JRContactUsesNormal(c, &normal));
   PetscCall(ElementOptions(comm, normal, &ctx));
+  {
+    PetscBool help;
+    PetscCall(PetscOptionsHasHelp(NULL, &help));
+    if (help) {
+      PetscCall(JRContactDestroy(&c));
+      PetscFunctionReturn(0);
+    }
+  }
+  PetscCall(JROptionsCheck(comm, "-task element"));
+  if (ctx.hasloop) PetscCall(JRFileCheckOutput(comm, "-element_loop", ctx.loop));
   PetscCall(JRContactSetHarmonics(c, ctx.H, ctx.N));
   if (ctx.hasjoint) PetscCall(ReadJoint(comm, ctx.joint, normal, c));
   else PetscCall(JRContactSetElements(c, 1, &ctx.kt, &ctx.kn, &ctx.mu, &ctx.n0));

@@ -391,7 +391,8 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   PetscCall(PetscMemzero(&el, sizeof(el)));
   PetscCall(PetscMemzero(&elr, sizeof(elr)));
   PetscCall(PetscMemzero(&elj, sizeof(elj)));
-  /* every object's options, read and checked before any work */
+  /* every object's options, read and checked before any work (with -help: listed, not checked) */
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
   PetscCall(JRModelCreate(comm, &model));
   PetscCall(JRModelSetFromOptions(model));
   {
@@ -402,7 +403,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   PetscOptionsBegin(comm, NULL, "Frequency response (-task frf, -task compare)", "JRTaskFRF");
   PetscCall(PetscOptionsString("-frf_output_file", "Output base name", "JRTaskFRF", base, base, sizeof(base), NULL));
   PetscCall(PetscOptionsBool("-frf_plot", "Draw the PNG plots", "JRTaskFRF", plot, &plot, NULL));
-  if (fe) {
+  if (fe || help) {
     PetscCall(PetscOptionsBool("-frf_stick_fe", "Also the natural frequencies of the whole FE model with every element stuck (SLEPc): the modal truncation error", "JRTaskFRF", stickfe, &stickfe, NULL));
     PetscCall(PetscOptionsInt("-rom_elements", "Second reduction: fit this many elements per joint to its hysteresis loops (0: the first reduction only)", "JRROMReduce", romm, &romm, NULL));
     PetscCall(PetscOptionsBool("-rom_mode_weights", "Weight every member of a joint by its motion relative to the joint's in the stuck mode of interest (w^2 kt, |w| f; jenkins)", "JRROMReduce", weight, &weight, NULL));
@@ -427,9 +428,9 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     PetscCall(PetscOptionsString("-rom_load", "Run the reduced model of this HDF5 file (no preload, no fit)", "JRROMLoad", romload, romload, sizeof(romload), NULL));
   }
   PetscOptionsEnd();
-  PetscCheck(fe || !compare, comm, PETSC_ERR_ARG_WRONG, "-task compare needs an FE model with a contact interface (-model_type brb, lap1, lap3, lap, gmsh)");
+  PetscCheck(help || fe || !compare, comm, PETSC_ERR_ARG_WRONG, "-task compare needs an FE model with a contact interface (-model_type brb, lap1, lap3, lap, gmsh)");
   PetscCheck(romm >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_elements %" PetscInt_FMT ": 0 (first reduction only) or more", romm);
-  if (fe) {
+  if (fe || help) {
     PetscBool d, o;
     PetscOptionsBegin(comm, NULL, "Excitation and responses of an FE model (-task frf)", "JRTaskFRF");
     PetscCall(PetscOptionsRealArray("-frf_at", "Excitation point x,y,z [m] (nearest node; default: the end x = xmin, mid-width, top)", "JRTaskFRF", at, &nd, &set));
@@ -440,14 +441,14 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     PetscCheck(!oset || (no % 3 == 0 && no > 0), comm, PETSC_ERR_ARG_WRONG, "-frf_output_at needs triples x,y,z [m], got %" PetscInt_FMT " values", no);
     PetscCall(PetscOptionsHasName(NULL, NULL, "-frf_dof", &d));
     PetscCall(PetscOptionsHasName(NULL, NULL, "-frf_output", &o));
-    PetscCheck(!d && !o, comm, PETSC_ERR_ARG_INCOMP, "%s: on an FE model the DOF numbers depend on the partition; give points instead: -frf_at x,y,z and -frf_output_at x,y,z,... [m] with -frf_dir x|y|z", d ? "-frf_dof" : "-frf_output");
+    PetscCheck(help || !fe || (!d && !o), comm, PETSC_ERR_ARG_INCOMP, "%s: on an FE model the DOF numbers depend on the partition; give points instead: -frf_at x,y,z and -frf_output_at x,y,z,... [m] with -frf_dir x|y|z", d ? "-frf_dof" : "-frf_output");
     PetscCall(JRPreloadCreate(comm, &pre));
     PetscCall(JRPreloadSetModel(pre, model));
     PetscCall(JRPreloadSetFromOptions(pre));
     PetscCall(JRInterfaceSetFromOptions(comm, &iopt));
     PetscCall(JRROMFitSetFromOptions(comm, &fit));
-    PetscCheck(!romm || iopt.joints > 0 || romload[0], comm, PETSC_ERR_ARG_INCOMP, "-rom_elements needs joints: -rom_joints strips|bolts|between|sides|zones");
-    PetscCheck(!compare || iopt.joints > 0 || romload[0], comm, PETSC_ERR_ARG_WRONG, "-task compare needs a reduced model: joints (-rom_joints ..., optionally -rom_elements m) or -rom_load FILE");
+    PetscCheck(help || !romm || iopt.joints > 0 || romload[0], comm, PETSC_ERR_ARG_INCOMP, "-rom_elements needs joints: -rom_joints strips|bolts|between|sides|zones");
+    PetscCheck(help || !compare || iopt.joints > 0 || romload[0], comm, PETSC_ERR_ARG_WRONG, "-task compare needs a reduced model: joints (-rom_joints ..., optionally -rom_elements m) or -rom_load FILE");
     PetscCheck(!romsave[0] || (iopt.joints > 0 && romm > 0 && !(romload[0] && !compare)), comm, PETSC_ERR_ARG_INCOMP, "-rom_save saves a second-reduction model: it needs -rom_joints ... and -rom_elements m");
   }
   if (!(fe && romload[0] && !compare)) {
@@ -461,7 +462,6 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     PetscCall(JRContSetFromOptions(c));
     PetscCall(JRContDestroy(&c));
   }
-  PetscCall(PetscOptionsHasHelp(NULL, &help));
   if (help) { /* -help: the options listed, nothing done */
     PetscCall(JRHBMDestroy(&hbm));
     PetscCall(JRPreloadDestroy(&pre));

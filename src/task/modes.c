@@ -81,7 +81,7 @@ PetscErrorCode JRTaskModes(MPI_Comm comm)
   const PetscReal *lam;
   Vec             *phi, rb[6];
   char             base[PETSC_MAX_PATH_LEN] = "out/modes";
-  PetscBool        plot = PETSC_TRUE;
+  PetscBool        plot = PETSC_TRUE, help;
   PetscMPIInt      rank;
   PetscLogDouble   t0, t1, t2;
 
@@ -92,17 +92,25 @@ PetscErrorCode JRTaskModes(MPI_Comm comm)
   PetscCall(PetscOptionsInt("-modes_plot", "Elastic modes drawn in BASE.png", "JRTaskModes", nplot, &nplot, NULL));
   PetscCall(PetscOptionsBool("-modes_plot_png", "Draw BASE.png", "JRTaskModes", plot, &plot, NULL));
   PetscOptionsEnd();
-  PetscCall(PetscTime(&t0));
   PetscCall(JRModelCreate(comm, &model));
   PetscCall(JRModelSetFromOptions(model));
+  PetscCall(JRModesCreate(comm, &modes));
+  PetscCall(JRModesSetNumber(modes, 12));
+  PetscCall(JRModesSetFromOptions(modes));
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  if (help) {
+    PetscCall(JRModesDestroy(&modes));
+    PetscCall(JRModelDestroy(&model));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(JROptionsCheck(comm, "-task modes"));
+  PetscCall(JRFileCheckOutput(comm, "-modes_output_file", base));
+  PetscCall(PetscTime(&t0));
   PetscCall(JRModelSetUp(model));
   PetscCall(PetscTime(&t1));
   PetscCall(JRModelGetMatrices(model, &K, &M, NULL));
   PetscCall(JRModelGetNumDofs(model, &ndof));
-  PetscCall(JRModesCreate(comm, &modes));
   PetscCall(JRModesSetOperators(modes, K, M));
-  PetscCall(JRModesSetNumber(modes, 12));
-  PetscCall(JRModesSetFromOptions(modes));
   PetscCall(JRModelGetRigidBasis(model, &nrb, rb));
   PetscCall(JRModesSetRigidBasis(modes, nrb, rb));
   for (PetscInt i = 0; i < nrb; i++) PetscCall(VecDestroy(&rb[i]));

@@ -11,7 +11,7 @@ PetscErrorCode JRTaskPreload(MPI_Comm comm)
   JRPreload        pre;
   JRPreloadSummary s;
   char             base[PETSC_MAX_PATH_LEN] = "out/preload";
-  PetscBool        plot = PETSC_TRUE;
+  PetscBool        plot = PETSC_TRUE, help;
   PetscInt         ndof;
   PetscLogDouble   t0, t1;
 
@@ -20,16 +20,24 @@ PetscErrorCode JRTaskPreload(MPI_Comm comm)
   PetscCall(PetscOptionsString("-preload_output_file", "Output base name: BASE.csv, BASE.h5, BASE.xdmf, BASE.png ('' for none)", "JRTaskPreload", base, base, sizeof(base), NULL));
   PetscCall(PetscOptionsBool("-preload_plot", "Draw BASE.png (pressure and gap maps, mid-section profile)", "JRTaskPreload", plot, &plot, NULL));
   PetscOptionsEnd();
-  PetscCall(PetscTime(&t0));
   PetscCall(JRModelCreate(comm, &model));
   PetscCall(JRModelSetFromOptions(model));
+  PetscCall(JRPreloadCreate(comm, &pre));
+  PetscCall(JRPreloadSetModel(pre, model));
+  PetscCall(JRPreloadSetFromOptions(pre));
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  if (help) {
+    PetscCall(JRPreloadDestroy(&pre));
+    PetscCall(JRModelDestroy(&model));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(JROptionsCheck(comm, "-task preload"));
+  PetscCall(JRFileCheckOutput(comm, "-preload_output_file", base));
+  PetscCall(PetscTime(&t0));
   PetscCall(JRModelSetUp(model));
   PetscCall(PetscTime(&t1));
   PetscCall(JRModelGetNumDofs(model, &ndof));
   PetscCall(PetscPrintf(comm, "preload: model %" PetscInt_FMT " DOFs in %.3g s\n", ndof, (double)(t1 - t0)));
-  PetscCall(JRPreloadCreate(comm, &pre));
-  PetscCall(JRPreloadSetModel(pre, model));
-  PetscCall(JRPreloadSetFromOptions(pre));
   PetscCall(JRPreloadSolve(pre));
   PetscCall(JRPreloadView(pre, NULL));
   PetscCall(JRPreloadGetSummary(pre, &s));
