@@ -29,7 +29,10 @@
 PETSC_EXTERN PetscErrorCode JRInitializePackage(void);
 PETSC_EXTERN PetscErrorCode JRFinalizePackage(void);
 
-/* Log events, one per costly phase (see -log_view) */
+/* Log stages, one per pipeline stage, and events, one per costly phase (see -log_view; src/sys/log.c) */
+PETSC_EXTERN PetscLogStage  JR_StageModel, JR_StagePreload, JR_StageInterface, JR_StageModes, JR_StageReduce, JR_StageSolve, JR_StagePost;
+PETSC_EXTERN PetscLogEvent  JR_InterfaceSetUp, JR_ReduceJoints, JR_ReduceSelect, JR_ReduceFit, JR_ReduceHBM;
+PETSC_EXTERN PetscErrorCode JRLogRegister(void);
 PETSC_EXTERN PetscClassId  JR_CONTACT_CLASSID, JR_MODEL_CLASSID, JR_HBM_CLASSID;
 PETSC_EXTERN PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep;
 
@@ -226,11 +229,6 @@ typedef struct {
   PetscInt  element;                 /* -interface_element: 0 jenkins, 1 jenkins_nv */
   PetscReal kt, kn, mu, max_gap;     /* -interface_kt, -interface_kn [N/m], -interface_mu, -interface_max_gap [m] */
   PetscInt  split;                   /* -interface_split */
-  PetscInt  joints;                  /* -rom_joints: none, each, strips, bolts, between, sides, zones, boxes */
-  PetscInt  ncut, nbox;              /* -rom_strips, -rom_boxes: the values given */
-  PetscReal cut[64], box[256];       /* [m] */
-  PetscReal zone_fraction;           /* -rom_zone_fraction */
-  PetscBool split_width;             /* -rom_split_width */
 } JRInterfaceOptions;
 PETSC_EXTERN PetscErrorCode JRInterfaceSetFromOptions(MPI_Comm, JRInterfaceOptions *);
 PETSC_EXTERN PetscErrorCode JRInterfaceCreateElements(JRModel, JRPreload, const JRInterfaceOptions *, JRElements *, PetscInt **);
@@ -335,6 +333,25 @@ PETSC_EXTERN PetscErrorCode JRHBMView(JRHBM, PetscViewer);
 PETSC_EXTERN PetscErrorCode JRHBMDestroy(JRHBM *);
 
 /* ------------------------------------------------------------------------------------------ */
+/* JRReduce: reduced-order joints, the first and the second reduction (prefix rom_)            */
+/* ------------------------------------------------------------------------------------------ */
+typedef struct _p_JRReduce *JRReduce;
+PETSC_EXTERN PetscErrorCode JRReduceCreate(MPI_Comm, JRReduce *);
+PETSC_EXTERN PetscErrorCode JRReduceSetFromOptions(JRReduce);
+PETSC_EXTERN PetscErrorCode JRReduceGetRequest(JRReduce, PetscBool *, PetscInt *, PetscInt *, const char **, const char **);
+PETSC_EXTERN PetscErrorCode JRReduceSetCase(JRReduce, PetscReal, PetscReal, PetscInt, const PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRReduceSetExcitation(JRReduce, PetscInt, PetscInt, const PetscInt[]);
+PETSC_EXTERN PetscErrorCode JRReduceSetOutput(JRReduce, const char[], PetscBool);
+PETSC_EXTERN PetscErrorCode JRReduceAssignJoints(JRReduce, JRModel, JRElements *, const PetscInt[]);
+PETSC_EXTERN PetscErrorCode JRReduceSetUp(JRReduce, JRModel, JRHBM, JRElements *, JRElements *, PetscReal *);
+PETSC_EXTERN PetscErrorCode JRReduceCreateHBM(JRReduce, JRModel, JRHBM, PetscBool, JRElements *, JRHBM *, PetscReal *);
+PETSC_EXTERN PetscErrorCode JRReduceSave(JRReduce, JRModel, const JRElements *);
+PETSC_EXTERN PetscErrorCode JRReduceLoad(JRReduce, JRModel, JRElements *);
+PETSC_EXTERN PetscErrorCode JRReduceGetStiffnessCorrection(JRReduce, PetscReal *);
+PETSC_EXTERN PetscErrorCode JRReduceView(JRReduce, PetscViewer);
+PETSC_EXTERN PetscErrorCode JRReduceDestroy(JRReduce *);
+
+/* ------------------------------------------------------------------------------------------ */
 /* JRCont: frequency-response curves by continuation (thesis 2.4.2-2.4.3), several force levels */
 /* ------------------------------------------------------------------------------------------ */
 typedef struct _p_JRCont *JRCont;
@@ -368,6 +385,21 @@ PETSC_EXTERN PetscErrorCode JRContGetDamping(JRCont, PetscInt, PetscReal *, Pets
 PETSC_EXTERN PetscErrorCode JRContGetLevelStats(JRCont, PetscInt, PetscReal *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRContWrite(JRCont);
 PETSC_EXTERN PetscErrorCode JRContDestroy(JRCont *);
+
+/* ------------------------------------------------------------------------------------------ */
+/* JRPost: contact maps at the peaks and the comparison of two models (BASE = -frf_output_file) */
+/* ------------------------------------------------------------------------------------------ */
+typedef struct _p_JRPost *JRPost;
+/* The wall times [s] of -task compare: the two solves, their parts in the contact elements, the two set-ups, the
+   reduction */
+typedef struct {
+  PetscReal n2n_solve, rom_solve, n2n_elements, rom_elements, n2n_setup, rom_setup, reduction;
+} JRCompareTimes;
+PETSC_EXTERN PetscErrorCode JRPostCreate(MPI_Comm, JRPost *);
+PETSC_EXTERN PetscErrorCode JRPostSetOutput(JRPost, const char[], PetscBool);
+PETSC_EXTERN PetscErrorCode JRPostWriteContactMaps(JRPost, JRModel, JRCont, const JRElements *, const PetscInt[]);
+PETSC_EXTERN PetscErrorCode JRPostCompareReport(JRPost, JRCont, JRCont, const JRElements *, const JRElements *, const JRCompareTimes *);
+PETSC_EXTERN PetscErrorCode JRPostDestroy(JRPost *);
 
 /* ------------------------------------------------------------------------------------------ */
 /* Small utilities                                                                            */
@@ -413,9 +445,12 @@ PETSC_EXTERN PetscErrorCode JRPlot(MPI_Comm, const char[], const char[], const c
 /* User errors: one message, once, without PETSc's traceback (src/sys/error.c); exit status of a failed run */
 PETSC_EXTERN PetscErrorCode JRErrorHandlerPush(void);
 PETSC_EXTERN int            JRErrorExit(PetscErrorCode);
+PETSC_EXTERN PetscErrorCode JRErrorContextPush(const char[]);
+PETSC_EXTERN PetscErrorCode JRErrorContextPop(void);
 /* Options nothing read: an error before the work (jointrom's own), a warning at the end (src/sys/options.c) */
 PETSC_EXTERN PetscErrorCode JROptionsCheck(MPI_Comm, const char[]);
 PETSC_EXTERN PetscErrorCode JROptionsWarnUnused(MPI_Comm);
+PETSC_EXTERN PetscErrorCode JROptionsHelpSolvers(MPI_Comm, PetscBool, PetscBool, PetscBool, PetscBool);
 /* The directory of an output base name exists (created if missing) and is writable, else an error naming option */
 PETSC_EXTERN PetscErrorCode JRFileCheckOutput(MPI_Comm, const char[], const char[]);
 

@@ -199,8 +199,14 @@ static PetscErrorCode ModesLoad(JRModes md, const char file[])
   PetscCallMPI(MPI_Comm_size(md->comm, &size));
   PetscCall(PetscTestFile(file, 'r', &has));
   PetscCheck(has, md->comm, PETSC_ERR_FILE_OPEN, "-modes_load %s: cannot read the file", file);
-  PetscCall(PetscViewerHDF5Open(md->comm, file, FILE_MODE_READ, &v));
-  PetscCall(PetscViewerHDF5HasAttribute(v, "/jointrom_modes", "modes", &has));
+  {
+    char what[PETSC_MAX_PATH_LEN + 32];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "-modes_load %s", file));
+    PetscCall(JRErrorContextPush(what));
+    PetscCall(PetscViewerHDF5Open(md->comm, file, FILE_MODE_READ, &v));
+    PetscCall(PetscViewerHDF5HasAttribute(v, "/jointrom_modes", "modes", &has));
+    PetscCall(JRErrorContextPop());
+  }
   PetscCheck(has, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: not a modes file of this program (no /jointrom_modes; write one with -modes_save)", file);
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "modes", PETSC_INT, NULL, &nm));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "ranks", PETSC_INT, NULL, &ranks));

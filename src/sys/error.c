@@ -10,6 +10,8 @@
 static PetscBool      jr_error_trace = PETSC_FALSE; /* traceback for user errors too */
 static PetscErrorCode jr_user_error  = 0;           /* the code of the user error reported, 0 if none */
 static PetscBool      jr_collective  = PETSC_FALSE; /* raised on every rank (a communicator as large as the world's) */
+static char           jr_context[4][PETSC_MAX_PATH_LEN + 64];          /* what is being read, for messages from libraries */
+static int            jr_ncontext    = 0;
 
 static PetscBool IsUserError(PetscErrorCode n)
 {
@@ -35,7 +37,7 @@ static PetscBool IsUserError(PetscErrorCode n)
 static PetscErrorCode Handler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
 {
   if (jr_user_error) return n; /* the error already reported, passing up the stack */
-  if (p == PETSC_ERROR_INITIAL && IsUserError(n) && !jr_error_trace) {
+  if (p == PETSC_ERROR_INITIAL && (IsUserError(n) || (jr_ncontext && n == PETSC_ERR_LIB)) && !jr_error_trace) { /* a library's error on a file being read: the file's fault */
     PetscMPIInt size = 1, rank = 0, wsize = 1, wrank = 0;
     MPI_Comm_size(comm, &size);
     MPI_Comm_rank(comm, &rank);
@@ -44,13 +46,31 @@ static PetscErrorCode Handler(MPI_Comm comm, int line, const char *fun, const ch
     jr_user_error = n;
     jr_collective = (PetscBool)(size == wsize);
     if (!rank) {
-      if (jr_collective) fprintf(stderr, "jointrom: error: %s\n", mess ? mess : "(no message)");
-      else fprintf(stderr, "jointrom: error (rank %d): %s\n", wrank, mess ? mess : "(no message)");
+      const char *ctx = jr_ncontext ? jr_context[jr_ncontext - 1] : "", *sep = jr_ncontext ? ": " : "";
+      if (jr_collective) fprintf(stderr, "jointrom: error: %s%s%s\n", ctx, sep, mess ? mess : "(no message)");
+      else fprintf(stderr, "jointrom: error (rank %d): %s%s%s\n", wrank, ctx, sep, mess ? mess : "(no message)");
       fflush(stderr);
     }
     return n;
   }
   return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
+}
+
+/* What is being read (a file and the option that names it), put before the message of a user error raised until
+   JRErrorContextPop: a library's message ("Unexpected data in file") then says which file */
+PetscErrorCode JRErrorContextPush(const char what[])
+{
+  PetscFunctionBeginUser;
+  if (jr_ncontext < 4) PetscCall(PetscStrncpy(jr_context[jr_ncontext], what, sizeof(jr_context[0])));
+  jr_ncontext++;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRErrorContextPop(void)
+{
+  PetscFunctionBeginUser;
+  if (jr_ncontext > 0) jr_ncontext--;
+  PetscFunctionReturn(0);
 }
 
 /* Install the handler (after SlepcInitialize) */

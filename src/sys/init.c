@@ -27,6 +27,7 @@ PetscErrorCode JRInitializePackage(void)
   PetscCall(PetscLogEventRegister("JR_Jacobian", JR_HBM_CLASSID, &JR_HBMJacobian));
   PetscCall(PetscLogEventRegister("JR_HBMSolve", JR_HBM_CLASSID, &JR_HBMSolve));
   PetscCall(PetscLogEventRegister("JR_ContStep", JR_HBM_CLASSID, &JR_ContStep));
+  PetscCall(JRLogRegister());
   PetscCall(SNESRegister(SNESNEWTONDENSE, SNESCreate_NewtonDense));
   PetscCall(JRModelRegisterAll());
   PetscCall(JRContactRegisterAll());

@@ -6,6 +6,8 @@
    run, warns about every other option nothing read (a nested solver's option is read only when that solver runs).
 */
 #include <jointrom.h>
+#include <slepceps.h>
+#include <petsctao.h>
 
 extern const char *const JROptionNames[]; /* generated from the sources by src/sys/optnames.sh */
 
@@ -122,5 +124,38 @@ PetscErrorCode JROptionsWarnUnused(MPI_Comm comm)
     PetscCall(PetscPrintf(comm, "jointrom: warning: %s\n", line));
   }
   PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  PetscFunctionReturn(0);
+}
+
+/* -help: the options of the nested solvers of a task (prefixes "hbm_", "preload_", "modes_", "rom_" as it has them):
+   a solver of each kind is made, reads its options (which -help lists) and is destroyed */
+PetscErrorCode JROptionsHelpSolvers(MPI_Comm comm, PetscBool hbm, PetscBool preload, PetscBool modes, PetscBool rom)
+{
+  PetscFunctionBeginUser;
+  if (hbm || preload) {
+    const char *pre[2] = {"hbm_", "preload_"};
+    for (PetscInt i = 0; i < 2; i++) {
+      SNES snes;
+      if (!(i ? preload : hbm)) continue;
+      PetscCall(SNESCreate(comm, &snes));
+      PetscCall(SNESSetOptionsPrefix(snes, pre[i]));
+      PetscCall(SNESSetFromOptions(snes));
+      PetscCall(SNESDestroy(&snes));
+    }
+  }
+  if (modes) {
+    EPS eps;
+    PetscCall(EPSCreate(comm, &eps));
+    PetscCall(EPSSetOptionsPrefix(eps, "modes_"));
+    PetscCall(EPSSetFromOptions(eps));
+    PetscCall(EPSDestroy(&eps));
+  }
+  if (rom) {
+    Tao tao;
+    PetscCall(TaoCreate(comm, &tao));
+    PetscCall(TaoSetOptionsPrefix(tao, "rom_"));
+    PetscCall(TaoSetFromOptions(tao));
+    PetscCall(TaoDestroy(&tao));
+  }
   PetscFunctionReturn(0);
 }

@@ -4,28 +4,21 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-/* mkdir -p of dir (modified in place, restored); 0 or an errno */
-static int MakeDirs(char dir[])
+/* dir exists, or is created if its parent exists (one level: a mistyped path does not grow a tree); 0 or an errno */
+static int MakeDir(const char dir[])
 {
   struct stat st;
-  for (char *p = dir + 1; *p; p++) {
-    if (*p != '/') continue;
-    *p = 0;
-    if (stat(dir, &st) && mkdir(dir, 0777) && errno != EEXIST) {
-      const int e = errno;
-      *p          = '/';
-      return e;
-    }
-    *p = '/';
+  if (stat(dir, &st)) {
+    if (mkdir(dir, 0777) && errno != EEXIST) return errno;
+    if (stat(dir, &st)) return errno;
   }
-  if (stat(dir, &st) && mkdir(dir, 0777) && errno != EEXIST) return errno;
-  if (stat(dir, &st)) return errno;
   return S_ISDIR(st.st_mode) ? 0 : ENOTDIR;
 }
 
 /*
   JRFileCheckOutput - the directory of the output base name base (given by option opt, for the message) exists or
-  is created, and a file can be written in it; an empty base (no output) passes. Collective; rank 0 checks.
+  is created (when its parent exists), and a file can be written in it; an empty base (no output) passes.
+  Collective; rank 0 checks.
 */
 PetscErrorCode JRFileCheckOutput(MPI_Comm comm, const char opt[], const char base[])
 {
@@ -45,7 +38,7 @@ PetscErrorCode JRFileCheckOutput(MPI_Comm comm, const char opt[], const char bas
     } else PetscCall(PetscStrncpy(dir, ".", sizeof(dir)));
   }
   if (!rank) {
-    err = MakeDirs(dir);
+    err = MakeDir(dir);
     if (!err) {
       FILE *fp;
       PetscCall(PetscSNPrintf(probe, sizeof(probe), "%s/.jointrom_probe%d", dir, (int)getpid()));

@@ -99,6 +99,7 @@ PetscErrorCode JRTaskModes(MPI_Comm comm)
   PetscCall(JRModesSetFromOptions(modes));
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   if (help) {
+    PetscCall(JROptionsHelpSolvers(comm, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE, PETSC_FALSE));
     PetscCall(JRModesDestroy(&modes));
     PetscCall(JRModelDestroy(&model));
     PetscFunctionReturn(0);

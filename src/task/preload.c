@@ -27,6 +27,7 @@ PetscErrorCode JRTaskPreload(MPI_Comm comm)
   PetscCall(JRPreloadSetFromOptions(pre));
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   if (help) {
+    PetscCall(JROptionsHelpSolvers(comm, PETSC_FALSE, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE));
     PetscCall(JRPreloadDestroy(&pre));
     PetscCall(JRModelDestroy(&model));
     PetscFunctionReturn(0);

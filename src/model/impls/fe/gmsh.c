@@ -54,7 +54,13 @@ PetscErrorCode JRFEGeometryGmsh(MPI_Comm comm, Model_FE *fe, DM *dm)
   PetscCall(PetscTestFile(fe->file, 'r', &ok));
   PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "Cannot open the Gmsh file %s (-model_file)", fe->file);
   PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
-  PetscCall(DMPlexCreateFromFile(comm, fe->file, "jointrom", PETSC_TRUE, dm));
+  {
+    char what[PETSC_MAX_PATH_LEN + 64];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "the Gmsh file %s (-model_file)", fe->file));
+    PetscCall(JRErrorContextPush(what));
+    PetscCall(DMPlexCreateFromFile(comm, fe->file, "jointrom", PETSC_TRUE, dm));
+    PetscCall(JRErrorContextPop());
+  }
   PetscCall(DMCreateLabel(*dm, JR_LABEL_BODY));
   PetscCall(DMCreateLabel(*dm, JR_LABEL_CONTACT));
   PetscCall(DMCreateLabel(*dm, JR_LABEL_BOLT));

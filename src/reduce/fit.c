@@ -1820,7 +1820,13 @@ PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, Pets
   PetscCall(JRModelGetComm(model, &comm));
   PetscCall(PetscTestFile(file, 'r', &exists));
   PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-rom_load %s: no such file (write one with -rom_save)", file);
-  PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, file, FILE_MODE_READ, &v));
+  {
+    char what[PETSC_MAX_PATH_LEN + 32];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "-rom_load %s", file));
+    PetscCall(JRErrorContextPush(what));
+    PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, file, FILE_MODE_READ, &v));
+    PetscCall(JRErrorContextPop());
+  }
   PetscCall(PetscViewerHDF5PushGroup(v, "/rom"));
   PetscCall(ReadSeq(v, file, "elements", JR_ROM_EL, &ne, &a));
   PetscCall(ReadSeq(v, file, "members", JR_ROM_MEM, &nmem, &b));

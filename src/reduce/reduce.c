@@ -1,0 +1,569 @@
+/*
+   JRReduce: the reduced-order joints, the whole of both reductions (thesis 4.1-4.5, 5.2-5.5; options prefix rom_).
+
+     JRReduceCreate -> JRReduceSetFromOptions -> JRReduceSetCase / JRReduceSetExcitation / JRReduceSetOutput
+       -> JRReduceAssignJoints (the first reduction's regions, on the node-to-node elements)
+       -> JRReduceSetUp (the mode of interest, the members' weights and the case, the fit weights' selection, the
+          second reduction's fit: src/reduce/fit.c) -> JRReduceCreateHBM (the reduced model's harmonic balance, with
+          the stiffness correction) -> JRReduceSave -> JRReduceDestroy
+   A saved model is read back by JRReduceLoad (-rom_load).
+*/
+#include <jointrom/private/reduceimpl.h>
+#include <jointrom/private/modelimpl.h>
+
+/*
+  First reduction, joints from regions (options prefix rom_): -rom_joints
+    none     node-to-node (default)
+    each     every element its own joint: the node-to-node model again (a check)
+    strips   cuts -rom_strips x1,x2,... [m] along the beam axis
+    bolts    one joint per bolt: cuts midway between neighbouring bolts (thesis Fig 4.13: the 3-joint BRB)
+    between  cuts at the bolts' axes: the outer side of each end bolt and the spans between bolts (Fig 4.15: the
+             4-joint BRB; Fig 5.25: the 2-joint single bolt, cut at its axis of symmetry)
+    sides    each side of each bolt (cuts at the axes and midway: Fig 4.17, the 6-joint BRB)
+    zones    each side of each bolt split by normal load (thesis 5.2.2, Fig 5.29, 5.61: 4 joints per bolt): a
+             high-load zone (members with n0 >= -rom_zone_fraction, default 0.5, of the largest n0 of that side)
+             and a low-load zone (the rest, gaps included)
+    boxes    boxes -rom_boxes x0,x1,y0,y1, x0,x1,y0,y1, ... [m], one joint each: every element must lie in exactly
+             one box
+  and -rom_split_width splits every strip-type region at mid-width. Each region must hold elements (else an error
+  naming it); its members move with the average of their relative motions (4.4).
+*/
+static PetscErrorCode AssignJoints(JRReduce o, JRModel model, const JRPairs *P, JRElements *el, const PetscInt pair[])
+{
+  const char *kinds[] = {"none", "each", "strips", "bolts", "between", "sides", "zones", "boxes"};
+  PetscInt    kind = o->joints, ncut = o->ncut, nreg, nbox = o->nbox;
+  PetscReal   cut[64], ylo = PETSC_MAX_REAL, yhi = -PETSC_MAX_REAL, box[256], zf = o->zone_fraction;
+  PetscBool   split = o->split_width;
+  PetscInt   *cnt;
+
+  MPI_Comm    comm = o->comm;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArraycpy(cut, o->cut, 64));
+  PetscCall(PetscArraycpy(box, o->box, 256));
+  if (kind == 0) PetscFunctionReturn(0);
+  if (kind == 1) {
+    el->njoints = el->n;
+    PetscCall(PetscMalloc1(el->n, &el->joint));
+    for (PetscInt e = 0; e < el->n; e++) el->joint[e] = e;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscMalloc1(el->n, &el->joint));
+  if (kind == 7) { /* boxes */
+    PetscCheck(nbox >= 4 && nbox % 4 == 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes needs x0,x1,y0,y1 per joint [m], got %" PetscInt_FMT " values", nbox);
+    nreg = nbox / 4;
+    for (PetscInt b = 0; b < nreg; b++) PetscCheck(box[4 * b + 1] > box[4 * b] && box[4 * b + 3] > box[4 * b + 2], comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: box %" PetscInt_FMT " (%g..%g, %g..%g m) is empty: x0 < x1 and y0 < y1", b, (double)box[4 * b], (double)box[4 * b + 1], (double)box[4 * b + 2], (double)box[4 * b + 3]);
+    PetscCall(PetscCalloc1(nreg, &cnt));
+    for (PetscInt e = 0; e < el->n; e++) {
+      const PetscReal *x  = P->x + 3 * pair[e];
+      PetscInt         in = -1;
+      for (PetscInt b = 0; b < nreg; b++) {
+        if (!(x[0] >= box[4 * b] && x[0] <= box[4 * b + 1] && x[1] >= box[4 * b + 2] && x[1] <= box[4 * b + 3])) continue;
+        PetscCheck(in < 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: the element at (%g, %g) m lies in box %" PetscInt_FMT " and in box %" PetscInt_FMT ": the regions overlap", (double)x[0], (double)x[1], in, b);
+        in = b;
+      }
+      PetscCheck(in >= 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: the element at (%g, %g) m lies in no box: every element must belong to a region", (double)x[0], (double)x[1]);
+      el->joint[e] = in;
+      cnt[in]++;
+    }
+    for (PetscInt b = 0; b < nreg; b++) PetscCheck(cnt[b] > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: box %" PetscInt_FMT " (%g..%g, %g..%g m) holds no element: an empty joint", b, (double)box[4 * b], (double)box[4 * b + 1], (double)box[4 * b + 2], (double)box[4 * b + 3]);
+  } else {
+    PetscInt nz = kind == 6 ? 2 : 1, nb = 0, *zone = NULL;
+    if (kind >= 3) { /* cuts from the bolts' positions along the beam axis */
+      const JRBolts *B;
+      PetscReal      xb[64];
+      PetscCall(JRModelGetBolts(model, &B));
+      PetscCheck(B && B->n > 0 && B->n <= 32, comm, PETSC_ERR_ARG_WRONG, "-rom_joints %s needs a model with bolts (1 to 32)", kinds[kind]);
+      nb = B->n;
+      for (PetscInt b = 0; b < nb; b++) xb[b] = B->x[3 * b];
+      for (PetscInt b = 1; b < nb; b++) /* sort */
+        for (PetscInt c = b; c > 0 && xb[c] < xb[c - 1]; c--) {
+          const PetscReal t = xb[c];
+          xb[c]             = xb[c - 1];
+          xb[c - 1]         = t;
+        }
+      ncut = 0;
+      for (PetscInt b = 0; b < nb; b++) {
+        if (kind != 3 && kind != 4 && b > 0) cut[ncut++] = 0.5 * (xb[b - 1] + xb[b]); /* sides, zones */
+        if (kind == 3 && b > 0) cut[ncut++] = 0.5 * (xb[b - 1] + xb[b]);                  /* bolts */
+        if (kind != 3) cut[ncut++] = xb[b];                                               /* between, sides, zones */
+      }
+    }
+    PetscCheck(kind != 2 || ncut > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints strips needs the cuts -rom_strips x1,x2,... [m]");
+    for (PetscInt k = 1; k < ncut; k++) PetscCheck(cut[k] > cut[k - 1], comm, PETSC_ERR_ARG_WRONG, "-rom_strips: the cuts must increase, but %g m follows %g m", (double)cut[k], (double)cut[k - 1]);
+    for (PetscInt e = 0; e < el->n; e++) {
+      ylo = PetscMin(ylo, P->x[3 * pair[e] + 1]);
+      yhi = PetscMax(yhi, P->x[3 * pair[e] + 1]);
+    }
+    nreg = (ncut + 1) * (split ? 2 : 1) * nz;
+    PetscCall(PetscCalloc1(nreg, &cnt));
+    for (PetscInt e = 0; e < el->n; e++) {
+      const PetscReal *x = P->x + 3 * pair[e];
+      PetscInt         k = 0;
+      while (k < ncut && x[0] >= cut[k]) k++;
+      el->joint[e] = (split ? 2 * k + (x[1] > 0.5 * (ylo + yhi) ? 1 : 0) : k) * nz;
+    }
+    if (kind == 6) { /* zones: high load (>= zf of the side's largest n0) and low load */
+      PetscReal *nmax;
+      PetscCall(PetscCalloc1(nreg, &nmax));
+      PetscCall(PetscMalloc1(el->n, &zone));
+      for (PetscInt e = 0; e < el->n; e++) nmax[el->joint[e]] = PetscMax(nmax[el->joint[e]], el->n0[e]);
+      for (PetscInt e = 0; e < el->n; e++) el->joint[e] += (nmax[el->joint[e]] > 0 && el->n0[e] >= zf * nmax[el->joint[e]]) ? 1 : 0;
+      PetscCall(PetscFree(nmax));
+      PetscCall(PetscFree(zone));
+    }
+    for (PetscInt e = 0; e < el->n; e++) cnt[el->joint[e]]++;
+    for (PetscInt r = 0; r < nreg; r++) {
+      const PetscInt k = (split ? r / (2 * nz) : r / nz);
+      PetscCheck(cnt[r] > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints %s: the region x %s%g .. %g%s m%s%s holds no element: an empty joint (%s)", kinds[kind], k ? "" : "< ", (double)(k ? cut[k - 1] : cut[0]), (double)(k < ncut ? cut[k] : cut[ncut - 1]), k < ncut ? "" : " and beyond", split ? ((r / nz) % 2 ? ", upper half of the width" : ", lower half of the width") : "", nz > 1 ? (r % 2 ? ", high-load zone" : ", low-load zone") : "", kind == 2 ? "move the cuts" : kind == 6 ? "change -rom_zone_fraction" : "fewer regions");
+    }
+  }
+  el->njoints = nreg;
+  {
+    PetscReal *n0s;
+    PetscCall(PetscCalloc1(nreg, &n0s));
+    for (PetscInt e = 0; e < el->n; e++) n0s[el->joint[e]] += el->n0[e];
+    for (PetscInt r = 0; r < nreg; r++) PetscCall(PetscPrintf(comm, "rom: joint %" PetscInt_FMT ": %" PetscInt_FMT " elements, normal load %.6g N\n", r, cnt[r], (double)n0s[r]));
+    PetscCall(PetscFree(n0s));
+  }
+  PetscCall(PetscFree(cnt));
+  PetscFunctionReturn(0);
+}
+
+/* The stuck mode of hbm nearest the middle of the case's frequency range (or, without one, the lowest elastic one):
+   the mode of interest of a reduced model; k its index, f its frequency [Hz] */
+static PetscErrorCode TargetMode(JRReduce red, JRHBM hbm, PetscInt *k, PetscReal *f)
+{
+  PetscReal      *fs;
+  const PetscReal wmin = red->wmin, wmax = red->wmax;
+  PetscInt        nm, nf;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMGetSizes(hbm, &nm, NULL, NULL));
+  PetscCall(PetscMalloc1(nm, &fs));
+  PetscCall(JRHBMStickFrequencies(hbm, &nf, fs));
+  *k = -1;
+  if (wmax > 0) {
+    const PetscReal fc = 0.25 * (wmin + wmax) / PETSC_PI;
+    for (PetscInt i = 0; i < nf; i++)
+      if (*k < 0 || PetscAbsReal(fs[i] - fc) < PetscAbsReal(fs[*k] - fc)) *k = i;
+  } else
+    for (PetscInt i = 0; i < nf && *k < 0; i++)
+      if (fs[i] > 1e-3 * fs[nf - 1]) *k = i;
+  *f = fs[*k];
+  PetscCall(PetscFree(fs));
+  PetscFunctionReturn(0);
+}
+
+/* The reduced model elx as a JRHBM (*hbmx) on the modes of hbm (the node-to-node model's, shared; NULL: its own),
+   excited and observed where red says; with corr, every element's kt and kn are scaled so that the stuck mode of
+   interest is at hbm's frequency (the factor in *factor, 1 if none in [1e-3, 1e3] reaches it: a warning). quiet: no
+   lines printed. *setup: the set-up's wall time [s] */
+static PetscErrorCode ReducedHBM(JRReduce red, JRModel model, JRHBM hbm, PetscBool corr, PetscBool quiet, JRElements *elx, JRHBM *hbmx, PetscReal *factor, PetscReal *setup)
+{
+  MPI_Comm       comm = red->comm;
+  JRHBM          hr;
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBeginUser;
+  *factor = 1.0;
+  PetscCall(JRHBMCreate(comm, &hr));
+  PetscCall(JRHBMSetExcitationDof(hr, red->fdof, red->nout, red->odof));
+  PetscCall(JRHBMSetBasis(hr, 2));
+  PetscCall(JRModelSetElements(model, elx));
+  PetscCall(JRHBMSetModel(hr, model));
+  PetscCall(JRHBMSetFromOptions(hr));
+  if (hbm) PetscCall(JRHBMSetModes(hr, hbm));
+  PetscCall(PetscTime(&t0));
+  PetscCall(JRHBMSetUp(hr));
+  PetscCall(PetscTime(&t1));
+  *setup = t1 - t0;
+  if (corr && hbm) { /* the stiffness correction: the reduced model's stuck resonance on the node-to-node one */
+    PetscInt   k = 0, nm, nf;
+    PetscReal  ft = 0, *fr, c;
+    PetscCall(TargetMode(red, hbm, &k, &ft));
+    PetscCall(JRHBMGetSizes(hr, &nm, NULL, NULL));
+    PetscCall(PetscMalloc1(nm, &fr));
+    PetscCall(JRHBMStickFrequencies(hr, &nf, fr));
+    PetscCall(JRHBMMatchStickFrequency(hr, k, ft, &c));
+    if (c == 0) {
+      PetscCall(PetscPrintf(comm, "rom: WARNING no stiffness correction: no factor in [1e-3, 1e3] on the joints' springs brings stuck mode %" PetscInt_FMT " from %.6g Hz to the node-to-node %.6g Hz (the joints' averaged motion cannot carry the interface's stiffness in this mode: use more joints)\n", k, (double)fr[k], (double)ft));
+      c = 1.0;
+    }
+    if (!quiet) PetscCall(PetscPrintf(comm, "rom stiffness_correction %.8f stuck_mode %" PetscInt_FMT " n2n_hz %.8g rom_before_hz %.8g\n", (double)c, k, (double)ft, (double)fr[k]));
+    PetscCall(PetscFree(fr));
+    for (PetscInt e = 0; e < elx->n; e++) {
+      elx->kt[e] *= c;
+      elx->kn[e] *= c;
+    }
+    PetscCall(JRModelSetElements(model, elx));
+    PetscCall(JRHBMSetModel(hr, model));
+    PetscCall(PetscTime(&t0));
+    PetscCall(JRHBMSetUp(hr));
+    PetscCall(PetscTime(&t1));
+    *setup += t1 - t0;
+    *factor = c;
+  }
+  *hbmx = hr;
+  PetscFunctionReturn(0);
+}
+
+/* The peaks (w [rad/s], amplitude [m]) of hbm's curves at every level of the options, solved without output */
+static PetscErrorCode QuietPeaks(MPI_Comm comm, JRHBM hbm, PetscInt *nlev, PetscReal **w, PetscReal **a)
+{
+  JRCont c;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRContCreate(comm, &c));
+  PetscCall(JRContSetHBM(c, hbm));
+  PetscCall(JRContSetFromOptions(c));
+  PetscCall(JRContSetOutputBase(c, ""));
+  PetscCall(JRContSetQuiet(c, PETSC_TRUE));
+  PetscCall(JRContSolve(c));
+  PetscCall(JRContGetNumLevels(c, nlev));
+  PetscCall(PetscMalloc2(*nlev, w, *nlev, a));
+  for (PetscInt l = 0; l < *nlev; l++) PetscCall(JRContGetPeak(c, l, &(*w)[l], &(*a)[l]));
+  PetscCall(JRContDestroy(&c));
+  PetscFunctionReturn(0);
+}
+
+/*
+  -rom_fit_select first: the second reduction fitted with every pair of weights (-rom_fit_select_total x
+  -rom_fit_select_case), each reduced model's curves solved (quietly), and the pair whose peaks come nearest the
+  first reduction's kept (the smallest worst relative amplitude error over the levels): the first reduction is the
+  reference a user has without node-to-node. fit gets the pair chosen (its wtotal and wcase), for the fit that
+  follows.
+*/
+static PetscErrorCode SelectWeights(JRReduce red, JRModel model, JRHBM hbm, const JRElements *elj, const PetscReal w[], const JRROMCase *cs)
+{
+  MPI_Comm         comm = red->comm;
+  const PetscBool  corr = red->corr_on;
+  const PetscInt   romm = red->m, nt = red->nst, nk = red->nsc;
+  const PetscReal *wtot = red->swt, *wcas = red->swc;
+  JRROMFit        *fit  = &red->fit;
+  JRElements elf;
+  JRHBM      hf;
+  PetscReal  c, su, *wf, *af, best = PETSC_MAX_REAL, bt = 0, bk = 0;
+  PetscInt   nlev;
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  PetscCall(PetscMemzero(&elf, sizeof(elf)));
+  PetscCall(JRROMReduce(comm, elj, 0, w, cs, fit, NULL, PETSC_FALSE, PETSC_TRUE, &elf));
+  PetscCall(ReducedHBM(red, model, hbm, corr, PETSC_TRUE, &elf, &hf, &c, &su));
+  PetscCall(QuietPeaks(comm, hf, &nlev, &wf, &af));
+  PetscCall(JRHBMDestroy(&hf));
+  PetscCall(JRElementsDestroy(&elf));
+  for (PetscInt i = 0; i < nt; i++)
+    for (PetscInt j = 0; j < nk; j++) {
+      JRElements elc;
+      JRHBM      hc;
+      PetscReal *wc, *ac, ea = 0, ef = 0;
+      PetscInt   nl;
+      JRROMFit   fc = *fit;
+      fc.wtotal     = wtot[i];
+      fc.wcase      = wcas[j];
+      PetscCall(PetscMemzero(&elc, sizeof(elc)));
+      PetscCall(JRROMReduce(comm, elj, romm, w, cs, &fc, NULL, PETSC_FALSE, PETSC_TRUE, &elc));
+      PetscCall(ReducedHBM(red, model, hbm, corr, PETSC_TRUE, &elc, &hc, &c, &su));
+      PetscCall(QuietPeaks(comm, hc, &nl, &wc, &ac));
+      PetscCheck(nl == nlev, comm, PETSC_ERR_PLIB, "Different level counts");
+      for (PetscInt l = 0; l < nlev; l++) {
+        ea = PetscMax(ea, PetscAbsReal(ac[l] / af[l] - 1));
+        ef = PetscMax(ef, PetscAbsReal(wc[l] / wf[l] - 1));
+      }
+      PetscCall(PetscPrintf(comm, "rom select total_weight %g case_weight %g worst_amp_vs_first %.3e worst_freq_vs_first %.3e\n", (double)wtot[i], (double)wcas[j], (double)ea, (double)ef));
+      if (ea < best) { /* the first pair of the smallest error */
+        best = ea;
+        bt   = wtot[i];
+        bk   = wcas[j];
+      }
+      PetscCall(PetscFree2(wc, ac));
+      PetscCall(JRHBMDestroy(&hc));
+      PetscCall(JRElementsDestroy(&elc));
+    }
+  PetscCall(PetscFree2(wf, af));
+  fit->wtotal = bt;
+  fit->wcase  = bk;
+  PetscCall(PetscTime(&t1));
+  PetscCall(PetscPrintf(comm, "rom: fit weights chosen against the first reduction: -rom_fit_total_weight %g -rom_fit_case_weight %g (worst amplitude %.2f%% off the first reduction's peaks; %" PetscInt_FMT " pairs, %.3g s)\n", (double)bt, (double)bk, (double)(100 * best), nt * nk, (double)(t1 - t0)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRReduceCreate(MPI_Comm comm, JRReduce *red)
+{
+  JRReduce r;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRInitializePackage());
+  PetscCall(PetscNew(&r));
+  r->comm          = comm;
+  r->zone_fraction = 0.5;
+  r->mode_weights  = PETSC_TRUE;
+  r->corr_on       = PETSC_TRUE;
+  r->nst           = 3;
+  r->nsc           = 2;
+  r->swt[0]        = 20;
+  r->swt[1]        = 100;
+  r->swt[2]        = 1000;
+  r->swc[0]        = 10;
+  r->swc[1]        = 0;
+  r->corr          = 1.0;
+  r->plot          = PETSC_TRUE;
+  *red             = r;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRReduceDestroy(JRReduce *red)
+{
+  PetscFunctionBeginUser;
+  if (!*red) PetscFunctionReturn(0);
+  PetscCall(PetscFree((*red)->lev));
+  PetscCall(PetscFree(*red));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRReduceSetFromOptions - every option of the reduction, read and checked once: the joints (-rom_joints, -rom_strips,
+  -rom_boxes, -rom_zone_fraction, -rom_split_width), -rom_elements, -rom_mode_weights, -rom_fit_select (with
+  -rom_fit_select_total, -rom_fit_select_case), -rom_stiffness_correction, -rom_save, -rom_load, and the fit's
+  (JRROMFitSetFromOptions: -rom_fit_*, -rom_joint_motion)
+*/
+PetscErrorCode JRReduceSetFromOptions(JRReduce r)
+{
+  const char *kinds[] = {"none", "each", "strips", "bolts", "between", "sides", "zones", "boxes"};
+  const char *sel[]   = {"none", "first"};
+  MPI_Comm    comm    = r->comm;
+  PetscBool   set, bset, st, sc;
+  PetscInt    nst = 8, nsc = 8;
+
+  PetscFunctionBeginUser;
+  r->ncut = 64;
+  r->nbox = 256;
+  PetscOptionsBegin(comm, "rom_", "Reduced-order joints (prefix rom_)", "JRReduce");
+  PetscCall(PetscOptionsEList("-joints", "First reduction, the joints: none (node-to-node), each, strips (-rom_strips cuts), bolts, between, sides, zones (per bolt side and load), boxes (-rom_boxes)", "JRReduceAssignJoints", kinds, 8, kinds[r->joints], &r->joints, NULL));
+  PetscCall(PetscOptionsRealArray("-strips", "Cut positions along the beam axis x1,x2,... [m], increasing", "JRReduceAssignJoints", r->cut, &r->ncut, &set));
+  PetscCall(PetscOptionsRealArray("-boxes", "Boxes x0,x1,y0,y1 per joint [m]", "JRReduceAssignJoints", r->box, &r->nbox, &bset));
+  PetscCall(PetscOptionsReal("-zone_fraction", "-rom_joints zones: the high-load zone of a bolt side holds the members with n0 at least this fraction of the side's largest", "JRReduceAssignJoints", r->zone_fraction, &r->zone_fraction, NULL));
+  PetscCall(PetscOptionsBool("-split_width", "Split every strip at mid-width into two joints", "JRReduceAssignJoints", r->split_width, &r->split_width, NULL));
+  PetscCall(PetscOptionsInt("-elements", "Second reduction: fit this many elements per joint to its hysteresis loops (0: the first reduction only)", "JRReduceSetUp", r->m, &r->m, NULL));
+  PetscCall(PetscOptionsBool("-mode_weights", "Weight every member of a joint by its motion relative to the joint's in the stuck mode of interest (w^2 kt, |w| f; jenkins)", "JRReduceSetUp", r->mode_weights, &r->mode_weights, NULL));
+  PetscCall(PetscOptionsEList("-fit_select", "Second reduction: none (the fit weights as given) or first (fit with every pair of -rom_fit_select_total x -rom_fit_select_case and keep the pair whose peaks come nearest the first reduction's; nothing to choose with -rom_elements 0)", "JRReduceSetUp", sel, 2, sel[r->select], &r->select, NULL));
+  PetscCall(PetscOptionsRealArray("-fit_select_total", "-rom_fit_select first: the -rom_fit_total_weight values tried", "JRReduceSetUp", r->swt, &nst, &st));
+  PetscCall(PetscOptionsRealArray("-fit_select_case", "-rom_fit_select first: the -rom_fit_case_weight values tried", "JRReduceSetUp", r->swc, &nsc, &sc));
+  PetscCall(PetscOptionsBool("-stiffness_correction", "Scale the reduced elements' stiffness so that the stuck resonance is the node-to-node one", "JRReduceCreateHBM", r->corr_on, &r->corr_on, NULL));
+  PetscCall(PetscOptionsString("-save", "Save the reduced model (second reduction) to this HDF5 file", "JRReduceSave", r->save, r->save, sizeof(r->save), NULL));
+  PetscCall(PetscOptionsString("-load", "Run the reduced model of this HDF5 file (no preload, no fit)", "JRReduceLoad", r->load, r->load, sizeof(r->load), NULL));
+  PetscOptionsEnd();
+  if (!set) r->ncut = 0;
+  if (!bset) r->nbox = 0;
+  if (st) r->nst = nst;
+  if (sc) r->nsc = nsc;
+  PetscCheck(!set || r->joints == 2, comm, PETSC_ERR_ARG_INCOMP, "-rom_strips needs -rom_joints strips");
+  PetscCheck(!bset || r->joints == 7, comm, PETSC_ERR_ARG_INCOMP, "-rom_boxes needs -rom_joints boxes");
+  PetscCheck(!r->split_width || (r->joints >= 2 && r->joints <= 6), comm, PETSC_ERR_ARG_INCOMP, "-rom_split_width needs -rom_joints strips, bolts, between, sides or zones");
+  PetscCheck(r->zone_fraction > 0 && r->zone_fraction < 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_zone_fraction %g: between 0 and 1", (double)r->zone_fraction);
+  PetscCheck(r->joints != 2 || r->ncut > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints strips needs the cuts -rom_strips x1,x2,... [m]");
+  for (PetscInt k = 1; k < r->ncut; k++) PetscCheck(r->cut[k] > r->cut[k - 1], comm, PETSC_ERR_ARG_WRONG, "-rom_strips: the cuts must increase, but %g m follows %g m", (double)r->cut[k], (double)r->cut[k - 1]);
+  PetscCheck(r->joints != 7 || (r->nbox >= 4 && r->nbox % 4 == 0), comm, PETSC_ERR_ARG_WRONG, "-rom_boxes needs x0,x1,y0,y1 per joint [m], got %" PetscInt_FMT " values", r->nbox);
+  PetscCheck(r->m >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_elements %" PetscInt_FMT ": 0 (first reduction only) or more", r->m);
+  PetscCheck(r->nst > 0 && r->nsc > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_select_total and -rom_fit_select_case: at least one value each (at most 8)");
+  for (PetscInt i = 0; i < r->nst; i++) PetscCheck(r->swt[i] >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_select_total: %g: the weights must be non-negative", (double)r->swt[i]);
+  for (PetscInt i = 0; i < r->nsc; i++) PetscCheck(r->swc[i] >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_select_case: %g: the weights must be non-negative", (double)r->swc[i]);
+  PetscCall(JRROMFitSetFromOptions(comm, &r->fit));
+  r->setfromoptions = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* What the options ask for: joints (a first reduction), m (-rom_elements), the joint motion (0 mean, 1 linear, 2
+   mode), the files of -rom_save and -rom_load ("" none); any argument may be NULL */
+PetscErrorCode JRReduceGetRequest(JRReduce r, PetscBool *joints, PetscInt *m, PetscInt *jmotion, const char **save, const char **load)
+{
+  PetscFunctionBeginUser;
+  if (joints) *joints = (PetscBool)(r->joints > 0);
+  if (m) *m = r->m;
+  if (jmotion) *jmotion = r->fit.jmotion;
+  if (save) *save = r->save;
+  if (load) *load = r->load;
+  PetscFunctionReturn(0);
+}
+
+/* The case the reduced model is for: the frequency range [rad/s] (the mode of interest is the stuck mode nearest its
+   middle; wmax 0: the lowest elastic mode) and the excitation levels [N] */
+PetscErrorCode JRReduceSetCase(JRReduce r, PetscReal wmin, PetscReal wmax, PetscInt nlev, const PetscReal lev[])
+{
+  PetscFunctionBeginUser;
+  r->wmin = wmin;
+  r->wmax = wmax;
+  PetscCall(PetscFree(r->lev));
+  r->nlev = nlev;
+  PetscCall(PetscMalloc1(nlev + 1, &r->lev));
+  PetscCall(PetscArraycpy(r->lev, lev, nlev));
+  PetscFunctionReturn(0);
+}
+
+/* The excitation DOF and the response DOFs of the reduced model's harmonic balance (as JRHBMSetExcitationDof) */
+PetscErrorCode JRReduceSetExcitation(JRReduce r, PetscInt fdof, PetscInt nout, const PetscInt odof[])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(nout >= 1 && nout <= 64, r->comm, PETSC_ERR_ARG_OUTOFRANGE, "1 to 64 response DOFs, not %" PetscInt_FMT, nout);
+  r->fdof = fdof;
+  r->nout = nout;
+  PetscCall(PetscArraycpy(r->odof, odof, nout));
+  PetscFunctionReturn(0);
+}
+
+/* BASE_rom_loops.csv (and .png with plot): the loops of the fit ("" for none) */
+PetscErrorCode JRReduceSetOutput(JRReduce r, const char base[], PetscBool plot)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(r->base, base ? base : "", sizeof(r->base)));
+  r->plot = plot;
+  PetscFunctionReturn(0);
+}
+
+/* JRReduceAssignJoints - the first reduction's regions: el->joint and el->njoints of the node-to-node elements el
+   (element e on pair pair[e] of the model); nothing with -rom_joints none */
+PetscErrorCode JRReduceAssignJoints(JRReduce r, JRModel model, JRElements *el, const PetscInt pair[])
+{
+  const JRPairs *P;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(JR_ReduceJoints, 0, 0, 0, 0));
+  PetscCall(JRModelGetPairs(model, &P));
+  PetscCall(AssignJoints(r, model, P, el, pair));
+  PetscCall(PetscLogEventEnd(JR_ReduceJoints, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+
+/*
+  JRReduceSetUp - the reduced model elr from the node-to-node elements elj whose joints JRReduceAssignJoints set:
+  the stuck mode of interest of hbm (the node-to-node model, set up), each member's motion over its joint's in it (the
+  mode-shape weights, 4.4 over its members in contact at rest, all if none) and the joints' amplitudes in the case
+  (jenkins, or -rom_joint_motion mode: then the members' field coordinates too, in elj->phi), the fit weights'
+  selection (-rom_fit_select first) and the fit (-rom_elements m; 0: the first reduction itself). *seconds: its wall
+  time.
+*/
+PetscErrorCode JRReduceSetUp(JRReduce r, JRModel model, JRHBM hbm, JRElements *elj, JRElements *elr, PetscReal *seconds)
+{
+  MPI_Comm       comm = r->comm;
+  PetscReal     *w = NULL, *ubar = NULL;
+  JRROMCase      cs;
+  PetscLogDouble t0, t1;
+  const PetscInt jmotion = r->fit.jmotion, n = elj->n;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(&cs, sizeof(cs)));
+  PetscCall(PetscTime(&t0));
+  if (!strcmp(elj->typename[0], JRCONTACTJENKINS) || jmotion == 2) {
+    PetscInt  k = 0;
+    PetscReal ft = 0, *u, *v, *cnt, *ua, umax = 0, smax = 0, om;
+    PetscCall(TargetMode(r, hbm, &k, &ft));
+    PetscCall(PetscMalloc2(n, &u, n, &v));
+    PetscCall(PetscCalloc1(elj->njoints, &ubar));
+    PetscCall(PetscCalloc2(2 * elj->njoints, &cnt, elj->njoints, &ua));
+    PetscCall(JRHBMStuckModeMotion(hbm, k, u, v));
+    for (PetscInt e = 0; e < n; e++) { /* per joint: sum and count over its members in contact at rest, then over all */
+      const PetscInt j = elj->joint[e];
+      if (elj->n0[e] > 0) {
+        ubar[j] += u[e];
+        cnt[2 * j] += 1;
+      }
+      ua[j] += u[e];
+      cnt[2 * j + 1] += 1;
+      umax = PetscMax(umax, PetscAbsReal(u[e]));
+    }
+    for (PetscInt j = 0; j < elj->njoints; j++) ubar[j] = cnt[2 * j] > 0 ? ubar[j] / cnt[2 * j] : ua[j] / cnt[2 * j + 1];
+    if (jmotion == 2) { /* -rom_joint_motion mode: each member's field coordinates are its position and its tangential
+                           and normal motions in this mode (scaled to at most 1); the fit weighs the members */
+      for (PetscInt e = 0; e < n; e++) smax = PetscMax(smax, PetscMax(PetscAbsReal(u[e]), PetscAbsReal(v[e])));
+      PetscCheck(smax > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion mode: the interface does not move in stuck mode %" PetscInt_FMT " (%g Hz)", k, (double)ft);
+      PetscCall(PetscFree(elj->phi));
+      PetscCall(PetscMalloc1(2 * n, &elj->phi));
+      for (PetscInt e = 0; e < n; e++) {
+        elj->phi[2 * e]     = u[e] / smax;
+        elj->phi[2 * e + 1] = v[e] / smax;
+      }
+      PetscCall(PetscPrintf(comm, "rom: joints move with a field linear in their members' positions and motions in stuck mode %" PetscInt_FMT " (%.6g Hz)\n", k, (double)ft));
+    }
+    if (r->mode_weights || jmotion == 2) {
+      PetscCall(PetscMalloc1(n, &w));
+      for (PetscInt e = 0; e < n; e++) w[e] = PetscAbsReal(ubar[elj->joint[e]]) > 1e-6 * umax ? u[e] / ubar[elj->joint[e]] : 1.0;
+      PetscCall(PetscPrintf(comm, "rom: members weighted by their motion in stuck mode %" PetscInt_FMT " (%.6g Hz) over their joint's\n", k, (double)ft));
+    }
+    PetscCall(JRHBMStuckModeBalance(hbm, k, &om, &cs.force, &cs.damp));
+    cs.nlev   = r->nlev;
+    cs.level  = r->lev;
+    cs.ujoint = ubar;
+    PetscCall(PetscFree2(cnt, ua));
+    PetscCall(PetscFree2(u, v));
+  }
+  if (r->select && r->m > 0) {
+    PetscCall(PetscLogEventBegin(JR_ReduceSelect, 0, 0, 0, 0));
+    PetscCall(SelectWeights(r, model, hbm, elj, w, ubar ? &cs : NULL));
+    PetscCall(PetscLogEventEnd(JR_ReduceSelect, 0, 0, 0, 0));
+  }
+  PetscCall(PetscLogEventBegin(JR_ReduceFit, 0, 0, 0, 0));
+  PetscCall(JRROMReduce(comm, elj, r->m, w, ubar ? &cs : NULL, &r->fit, r->base, r->plot, PETSC_FALSE, elr));
+  PetscCall(PetscLogEventEnd(JR_ReduceFit, 0, 0, 0, 0));
+  PetscCall(PetscFree(ubar));
+  PetscCall(PetscFree(w));
+  PetscCall(PetscTime(&t1));
+  *seconds = t1 - t0;
+  PetscCall(PetscPrintf(comm, "rom: %s reduction: %" PetscInt_FMT " elements in %" PetscInt_FMT " joints (%.3g s)\n", r->m ? "second" : "first", elr->n, elr->njoints, (double)*seconds));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRReduceCreateHBM - the reduced model elr's harmonic balance on the modes of hbm (NULL: its own), with the stiffness
+  correction (-rom_stiffness_correction, not for a loaded model: its factor is in its file) that puts its stuck mode
+  of interest on hbm's. *setup: the set-up's wall time [s]
+*/
+PetscErrorCode JRReduceCreateHBM(JRReduce r, JRModel model, JRHBM hbm, PetscBool loaded, JRElements *elr, JRHBM *hbmr, PetscReal *setup)
+{
+  PetscReal c = 1.0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(JR_ReduceHBM, 0, 0, 0, 0));
+  PetscCall(ReducedHBM(r, model, hbm, (PetscBool)(!loaded && r->corr_on), PETSC_FALSE, elr, hbmr, &c, setup));
+  PetscCall(PetscLogEventEnd(JR_ReduceHBM, 0, 0, 0, 0));
+  if (!loaded) r->corr = c;
+  PetscFunctionReturn(0);
+}
+
+/* -rom_save: the reduced model elr, with its stiffness correction (nothing without -rom_save) */
+PetscErrorCode JRReduceSave(JRReduce r, JRModel model, const JRElements *elr)
+{
+  PetscFunctionBeginUser;
+  if (r->save[0]) PetscCall(JRROMSave(model, elr, r->corr, r->save));
+  PetscFunctionReturn(0);
+}
+
+/* -rom_load: the reduced model of the file, for this FE model */
+PetscErrorCode JRReduceLoad(JRReduce r, JRModel model, JRElements *elr)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRROMLoad(model, r->load, elr, &r->corr));
+  PetscFunctionReturn(0);
+}
+
+/* The stiffness correction applied to the reduced model's springs (1: none) */
+PetscErrorCode JRReduceGetStiffnessCorrection(JRReduce r, PetscReal *c)
+{
+  PetscFunctionBeginUser;
+  *c = r->corr;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRReduceView(JRReduce r, PetscViewer viewer)
+{
+  const char *kinds[] = {"none", "each", "strips", "bolts", "between", "sides", "zones", "boxes"};
+  const char *jm[]    = {"mean", "linear", "mode"};
+
+  PetscFunctionBeginUser;
+  if (!viewer) viewer = PETSC_VIEWER_STDOUT_(r->comm);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "JRReduce: joints %s, %" PetscInt_FMT " elements per joint%s, joint motion %s, stiffness correction %s (%g)\n", kinds[r->joints], r->m, r->m ? "" : " (first reduction)", jm[r->fit.jmotion], r->corr_on ? "on" : "off", (double)r->corr));
+  PetscFunctionReturn(0);
+}
