@@ -1,7 +1,7 @@
 /*
    Reduced-order joints, second reduction (thesis 4.2, cost 4.5; options prefix rom_).
 
-   The first reduction (-rom_joints, src/interface/interface.c) lumps the node-to-node elements of a region into
+   The first reduction (-rom_joints, src/reduce/reduce.c) lumps the node-to-node elements of a region into
    one joint: its members move with the joint's average relative motion (4.4) and its force is the sum of theirs
    (4.1-4.2). A member weighted by w (its motion over the joint's in the mode of interest; -rom_mode_weights) acts
    on the joint as the element (w^2 kt, |w| f). Here each joint's members are replaced by m elements (kt_i,
@@ -34,7 +34,7 @@
    to. The slip displacements of all joints by coordinate descent (each element over its joint's candidates, every
    choice scored by the exact non-negative least squares of all forces, Lawson-Hanson), then all forces by TAO.
    Each joint's own loops may give way (the rom joint lines give each joint's own residual). Which total and case
-   weights give the best peaks depends on the case; -rom_fit_select first (src/task/frf.c) fits with several pairs
+   weights give the best peaks depends on the case; -rom_fit_select first (src/reduce/reduce.c) fits with several pairs
    and keeps the one whose reduced model's peaks come nearest the first reduction's (quiet: JRROMReduce's last
    argument).
    jenkins_nv joints (beyond the thesis): kt_i, f_i as above with the normal motion at rest (v = 0), n0_i = f_i / mu;
@@ -44,7 +44,7 @@
    the normal load's variation in the mode changes in the energy per cycle, for the members and for the fit, prints
    the fit's error with it (rom case level F dissipation_error_normal_varying) and, with -rom_fit_normal_passes k,
    fits k more times with that change added to the targets (a defect correction; off by default: on lap3 it moved
-   the peak amplitudes either way, README).
+   the peak amplitudes either way: docs/validation.md).
    Saved and loaded with -rom_save / -rom_load (HDF5, /rom/...): the reduced elements and the members that define
    the joints' motion, with the members' node coordinates to check that the file fits the model.
 */
