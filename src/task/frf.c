@@ -378,7 +378,8 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   JRCont          cont = NULL, contr = NULL, contc;
   const JRPairs  *P;
   const char     *damping;
-  PetscInt        nm, H, n, *pair = NULL, romm = 0, jmotion = 0, fdof = 0, nout = 0, odof[21], select = 0, nst = 8, nsc = 8;
+  PetscInt        nm, H, n, *pair = NULL, romm = 0, jmotion = 0, fdof = 0, nout = 0, odof[21], select = 0, nst = 8, nsc = 8, dir = 2;
+  PetscReal       oat[63]; /* FE models: the response points x, y, z [m] */
   PetscReal       swt[8] = {20, 100, 1000}, swc[8] = {10, 0};
   PetscBool       n2n, stickfe = PETSC_FALSE, plot = PETSC_TRUE, isrom = PETSC_FALSE, loaded = PETSC_FALSE, corr_on = PETSC_TRUE, weight = PETSC_TRUE;
   JRElements      el, elr, elj;
@@ -438,8 +439,8 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   PetscCheck(romm >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_elements %" PetscInt_FMT ": 0 (first reduction only) or more", romm);
 
   if (n2n) {
-    PetscInt         ndof, dir = 2, nd = 3, no = 63;
-    PetscReal        lo[3], hi[3], at[3], oat[63], dist;
+    PetscInt         ndof, nd = 3, no = 63;
+    PetscReal        lo[3], hi[3], at[3], dist;
     PetscBool        set, oset;
     JRPreloadSummary s;
     const char      *dirs[] = {"x", "y", "z"};
@@ -543,6 +544,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     PetscCall(JRHBMCreate(comm, &hbm));
     if (n2n) {
       PetscCall(JRHBMSetExcitationDof(hbm, fdof, nout, odof));
+      PetscCall(JRHBMSetOutputPoints(hbm, nout, oat, dir));
       PetscCall(JRHBMSetBasis(hbm, 2)); /* stuck + free-interface modes: -hbm_basis free for the thesis's */
       PetscCall(JRModelSetElements(model, &el));
     }
@@ -613,6 +615,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   if (isrom) {
     PetscReal c = 1.0;
     PetscCall(ReducedHBM(comm, model, hbm, fdof, nout, odof, (PetscBool)(!loaded && corr_on), PETSC_FALSE, &elr, &hbmr, &c, &setr));
+    PetscCall(JRHBMSetOutputPoints(hbmr, nout, oat, dir));
     if (!loaded) corr = c;
     if (romsave[0]) PetscCall(JRROMSave(model, &elr, corr, romsave));
   }
