@@ -19,7 +19,6 @@
 */
 #include <jointrom.h>
 #include <petscviewerhdf5.h>
-#include <unistd.h>
 
 const char *const JRContTypes[]       = {"natural", "arclength", "JRContType", "JR_CONT_", NULL};
 const char *const JRContConstraints[] = {"pseudo", "sphere", "JRContConstraint", "JR_CONT_", NULL};
@@ -895,8 +894,7 @@ PetscErrorCode JRContWrite(JRCont c)
   {
     PetscViewer v;
     char       *opts;
-    PetscCall(PetscSNPrintf(tmph5, sizeof(tmph5), "%s.tmp%d", h5, (int)getpid()));
-    PetscCallMPI(MPI_Bcast(tmph5, sizeof(tmph5), MPI_CHAR, 0, c->comm));
+    PetscCall(JRFileTempName(c->comm, h5, tmph5, sizeof(tmph5)));
     PetscCall(PetscViewerHDF5Open(c->comm, tmph5, FILE_MODE_WRITE, &v));
     PetscCall(PetscOptionsGetAll(NULL, &opts));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "options", PETSC_STRING, opts));
@@ -967,7 +965,7 @@ PetscErrorCode JRContWrite(JRCont c)
       PetscCall(PetscViewerHDF5PopGroup(v));
     }
     PetscCall(PetscViewerDestroy(&v));
-    if (rank == 0) PetscCheck(!rename(tmph5, h5), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write the file %s", h5);
+    PetscCall(JRFileRename(c->comm, tmph5, h5));
   }
   (void)nc;
 
