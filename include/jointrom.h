@@ -320,6 +320,8 @@ PETSC_EXTERN PetscErrorCode JRHBMContactStates(JRHBM, Vec, PetscInt[4]);
 PETSC_EXTERN PetscErrorCode JRHBMElementStates(JRHBM, Vec, JRContactState[]);
 PETSC_EXTERN PetscErrorCode JRHBMKineticEnergy(JRHBM, PetscReal, Vec, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMSetExcitationDof(JRHBM, PetscInt, PetscInt, const PetscInt[]);
+PETSC_EXTERN PetscErrorCode JRHBMSetOutputPoints(JRHBM, PetscInt, const PetscReal[], PetscInt);
+PETSC_EXTERN PetscErrorCode JRHBMGetOutputPoints(JRHBM, const PetscReal **, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMMatchStickFrequency(JRHBM, PetscInt, PetscReal, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMStuckModeMotion(JRHBM, PetscInt, PetscReal[], PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMStuckModeBalance(JRHBM, PetscInt, PetscReal *, PetscReal *, PetscReal *);
@@ -421,7 +423,12 @@ PETSC_EXTERN PetscErrorCode JRMatLoadFile(MPI_Comm, const char[], const char[], 
 PETSC_EXTERN PetscErrorCode JRMatSaveFile(Mat, const char[], const char[]);
 PETSC_EXTERN PetscErrorCode JRVecLoadFile(MPI_Comm, const char[], PetscInt, PetscReal[]);
 
-/* Write a file atomically: open a temporary beside it, rename on close */
+/* Write a file atomically: open a temporary beside it, rename on close. Temporary names come from
+   JRFileTempName (registered: removed if the run is stopped by SIGTERM, SIGINT or SIGHUP) and are
+   released by JRFileTempDone once renamed or removed (JRFileRename, JRFileCommit do it) */
+PETSC_EXTERN PetscErrorCode JRFileTempName(MPI_Comm, const char[], char[], size_t);
+PETSC_EXTERN PetscErrorCode JRFileTempDone(const char[]);
+PETSC_EXTERN PetscErrorCode JRFileRename(MPI_Comm, const char[], const char[]);
 PETSC_EXTERN PetscErrorCode JRFileOpenTemp(MPI_Comm, const char[], FILE **, char[], size_t);
 PETSC_EXTERN PetscErrorCode JRFileCommit(MPI_Comm, FILE **, const char[], const char[]);
 

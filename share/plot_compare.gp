@@ -1,12 +1,12 @@
 # Node-to-node against reduced-order joint model (-task compare): the FRF of every level, node-to-node solid,
-# reduced dashed, same colour per level (thesis Figs 4.14-4.25, 5.26-5.68). Variables: out (PNG), n2n and rom
-# (CSVs of -task frf: level,F_N,omega_rad_s,freq_hz,amp_<dof>,...), nlev, ttl.
+# reduced dashed, same colour per level (thesis Figs 4.14-4.25, 5.26-5.68), of response 1 (column amp_1).
+# Variables: out (PNG), n2n and rom (CSVs of -task frf: level,F_N,omega_rad_s,freq_hz,amp_1,...), nlev, ttl.
 set terminal pngcairo size 1100,680 enhanced font 'Sans,11'
 set output out
 set datafile separator ','
 set title ttl noenhanced
 set xlabel 'frequency [Hz]'
-set ylabel 'amplitude / force [m/N]'
+set ylabel 'response 1: amplitude / force [m/N]'
 set logscale y
 set format y '%.0e'
 set grid

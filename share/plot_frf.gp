@@ -1,6 +1,6 @@
-# Frequency-response curves of all excitation levels: first-harmonic amplitude at the first output
-# DOF vs frequency, log scale. Variables: out (PNG), data (CSV from -task frf: level,F_N,omega_rad_s,
-# freq_hz,amp_<dof>,...), nlev, normalize (1: amplitude / force), ttl.
+# Frequency-response curves of all excitation levels: first-harmonic amplitude of response 1 (column
+# amp_1) vs frequency, log scale. Variables: out (PNG), data (CSV from -task frf: level,F_N,omega_rad_s,
+# freq_hz,amp_1,...), nlev, normalize (1: amplitude / force), ttl (names the response and its point).
 set terminal pngcairo size 1000,650 enhanced font 'Sans,11'
 set output out
 set datafile separator ','

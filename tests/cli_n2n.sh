@@ -53,6 +53,14 @@ a=$(echo "$o" | grep '^peak level')
 b2=$(mpiexec -n 2 $J $brb -frf_force $lev -frf_fmin 128 -frf_fmax 138 -frf_output_file "$tmp/np2" 2>&1 | grep '^peak level')
 d=$(paste <(echo "$a") <(echo "$b2") | awk '{for (i = 5; i <= 9; i += 2) {x = $i; y = $(i+9); e = (x-y)/x; if (e < 0) e = -e; if (e > m) m = e}} END{printf "%.1e", m+0}')
 check "[ \$(echo \"\$b2\" | wc -l) = 5 ] && awk -v d=$d 'BEGIN{exit !(d < 1e-8)}'" "1 and 2 ranks: the same peaks (max relative difference $d)"
+# the responses are named by index and point, not by the DOF numbers of a partition
+h1=$(head -1 "$tmp/lev.csv"); h2=$(head -1 "$tmp/np2.csv")
+check "[ '$h1' = 'level,F_N,omega_rad_s,freq_hz,amp_1,amp_2' ] && [ '$h2' = '$h1' ]" "1 and 2 ranks: the same CSV header, responses by index: $h2"
+if command -v h5dump > /dev/null; then
+  n1=$(h5dump -a /response_1/name "$tmp/lev.h5" | grep -o '"response 1 [^"]*"'); n2=$(h5dump -a /response_1/name "$tmp/np2.h5" | grep -o '"response 1 [^"]*"')
+  x2=$(h5dump -a /response_1/x_m "$tmp/np2.h5" | awk '/\(0\):/{print $2}')
+  check "[ '$n1' = '\"response 1 along z at (0.72, 0.0127, 0.0254) m\"' ] && [ '$n2' = '$n1' ] && [ '$x2' = 0.72 ]" "1 and 2 ranks: HDF5 /response_1 the same point, $n2 (x_m $x2)"
+fi
 
 # -interface_split 70: 70 identical elements in parallel (kt/70, n0/70) per pair: the same curves (9,310 elements:
 # the projection rows are gathered in two chunks)

@@ -37,6 +37,7 @@ run cli_preload bash tests/cli_preload.sh
 run cli_n2n bash tests/cli_n2n.sh
 run cli_rom bash tests/cli_rom.sh
 run cli_install bash tests/cli_install.sh
+run cli_signal bash tests/cli_signal.sh
 rm -rf "$log"
 echo "$pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -19,7 +19,6 @@
 */
 #include <jointrom.h>
 #include <petscviewerhdf5.h>
-#include <unistd.h>
 
 const char *const JRContTypes[]       = {"natural", "arclength", "JRContType", "JR_CONT_", NULL};
 const char *const JRContConstraints[] = {"pseudo", "sphere", "JRContConstraint", "JR_CONT_", NULL};
@@ -664,7 +663,7 @@ PetscErrorCode JRContSolve(JRCont c)
   PetscCall(VecDestroy(&a));
   if (c->quiet) PetscFunctionReturn(0);
   /* summary, one row per level */
-  PetscCall(PetscPrintf(c->comm, "frf summary (%s continuation; peak of the first output DOF, refined by a parabola; zeta_eq = energy dissipated per cycle / (8 pi mean kinetic energy) at the peak;\n  energy balance: largest |W_in - W_damping - W_contact| / W_in over the curve; elements at the peak: full stick / stick-slip / separation with stick-slip / full separation)\n", JRContTypes[c->type]));
+  PetscCall(PetscPrintf(c->comm, "frf summary (%s continuation; peak of response 1, refined by a parabola; zeta_eq = energy dissipated per cycle / (8 pi mean kinetic energy) at the peak;\n  energy balance: largest |W_in - W_damping - W_contact| / W_in over the curve; elements at the peak: full stick / stick-slip / separation with stick-slip / full separation)\n", JRContTypes[c->type]));
   PetscCall(PetscPrintf(c->comm, "  %10s %12s %13s %13s %10s %7s %7s %7s %9s %9s  %s\n", "F [N]", "peak [Hz]", "amp [m]", "amp/F [m/N]", "zeta_eq", "points", "newton", "retries", "time [s]", "balance", "states"));
   for (PetscInt lev = 0; lev < c->nlev; lev++) {
     Branch *b = &c->br[lev];
@@ -834,20 +833,35 @@ static PetscErrorCode WriteRank0(MPI_Comm comm, PetscViewer v, const char name[]
   PetscFunctionReturn(0);
 }
 
-/* BASE.h5 (every point), BASE.csv (level,F_N,omega_rad_s,freq_hz,amp_<dof>..[,pp_<dof>..]), BASE.png */
+/* Response o (0-based) in words: "response 1 along z at (x, y, z) m" at a point (JRHBMSetOutputPoints), else "response 1 at DOF d" */
+static PetscErrorCode ResponseName(PetscInt o, const PetscReal xyz[], PetscInt dir, const PetscInt dofs[], char s[], size_t len)
+{
+  PetscFunctionBeginUser;
+  if (xyz) PetscCall(PetscSNPrintf(s, len, "response %" PetscInt_FMT " along %c at (%g, %g, %g) m", o + 1, "xyz"[dir], (double)xyz[3 * o], (double)xyz[3 * o + 1], (double)xyz[3 * o + 2]));
+  else PetscCall(PetscSNPrintf(s, len, "response %" PetscInt_FMT " at DOF %" PetscInt_FMT, o + 1, dofs[o]));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRContWrite - BASE.h5 (every point), BASE.csv (level,F_N,omega_rad_s,freq_hz,amp_1..amp_n[,pp_1..pp_n]: the
+  responses by their index, 1-based) and BASE.png (response 1). The HDF5 group /response_<i> names response i:
+  its point x_m, y_m, z_m and direction (JRHBMSetOutputPoints: an FE model) or its dof (a matrices model).
+*/
 PetscErrorCode JRContWrite(JRCont c)
 {
-  char            h5[PETSC_MAX_PATH_LEN + 8], csv[PETSC_MAX_PATH_LEN + 8], png[PETSC_MAX_PATH_LEN + 8], tmp[PETSC_MAX_PATH_LEN + 32], tmph5[PETSC_MAX_PATH_LEN + 32];
-  const PetscInt *dofs;
-  PetscInt        nm, H, nc;
-  FILE           *fp;
-  PetscMPIInt     rank;
-  const char     *damping;
+  char             h5[PETSC_MAX_PATH_LEN + 8], csv[PETSC_MAX_PATH_LEN + 8], png[PETSC_MAX_PATH_LEN + 8], tmp[PETSC_MAX_PATH_LEN + 32], tmph5[PETSC_MAX_PATH_LEN + 32];
+  const PetscInt  *dofs;
+  const PetscReal *xyz;
+  PetscInt         nm, H, nc, dir;
+  FILE            *fp;
+  PetscMPIInt      rank;
+  const char      *damping;
 
   PetscFunctionBeginUser;
   if (!c->write) PetscFunctionReturn(0);
   PetscCallMPI(MPI_Comm_rank(c->comm, &rank));
   PetscCall(JRHBMGetOutputs(c->hbm, &c->nout, &dofs));
+  PetscCall(JRHBMGetOutputPoints(c->hbm, &xyz, &dir));
   PetscCall(JRHBMGetSizes(c->hbm, &nm, &H, NULL));
   PetscCall(JRHBMGetDampingDescription(c->hbm, &damping));
   nc = 2 * H + 1;
@@ -859,9 +873,9 @@ PetscErrorCode JRContWrite(JRCont c)
   PetscCall(JRFileOpenTemp(c->comm, csv, &fp, tmp, sizeof(tmp)));
   if (fp) {
     fprintf(fp, "level,F_N,omega_rad_s,freq_hz");
-    for (PetscInt o = 0; o < c->nout; o++) fprintf(fp, ",amp_%" PetscInt_FMT, dofs[o]);
+    for (PetscInt o = 0; o < c->nout; o++) fprintf(fp, ",amp_%" PetscInt_FMT, o + 1);
     if (H > 1)
-      for (PetscInt o = 0; o < c->nout; o++) fprintf(fp, ",pp_%" PetscInt_FMT, dofs[o]);
+      for (PetscInt o = 0; o < c->nout; o++) fprintf(fp, ",pp_%" PetscInt_FMT, o + 1);
     fprintf(fp, "\n");
     for (PetscInt l = 0; l < c->nlev; l++) {
       Branch *b = &c->br[l];
@@ -880,8 +894,7 @@ PetscErrorCode JRContWrite(JRCont c)
   {
     PetscViewer v;
     char       *opts;
-    PetscCall(PetscSNPrintf(tmph5, sizeof(tmph5), "%s.tmp%d", h5, (int)getpid()));
-    PetscCallMPI(MPI_Bcast(tmph5, sizeof(tmph5), MPI_CHAR, 0, c->comm));
+    PetscCall(JRFileTempName(c->comm, h5, tmph5, sizeof(tmph5)));
     PetscCall(PetscViewerHDF5Open(c->comm, tmph5, FILE_MODE_WRITE, &v));
     PetscCall(PetscOptionsGetAll(NULL, &opts));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "options", PETSC_STRING, opts));
@@ -892,6 +905,18 @@ PetscErrorCode JRContWrite(JRCont c)
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "modes", PETSC_INT, &nm));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "layout_a", PETSC_STRING, "per point: [a0 | as_1 ac_1 | ... | as_H ac_H], each block over the modes"));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "continuation", PETSC_STRING, JRContTypes[c->type]));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "responses", PETSC_STRING, "amp and pp: one column per response, in order; /response_i: response i's point (x_m, y_m, z_m, direction) or, on a matrices model, its dof (0-based)"));
+    for (PetscInt o = 0; o < c->nout; o++) {
+      char grp[64], name[192];
+      PetscCall(PetscSNPrintf(grp, sizeof(grp), "/response_%" PetscInt_FMT, o + 1));
+      PetscCall(ResponseName(o, xyz, dir, dofs, name, sizeof(name)));
+      PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "name", PETSC_STRING, name));
+      if (xyz) {
+        const char *xn[] = {"x_m", "y_m", "z_m"}, *dn[] = {"x", "y", "z"};
+        for (PetscInt k = 0; k < 3; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, grp, xn[k], PETSC_REAL, &xyz[3 * o + k]));
+        PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "direction", PETSC_STRING, dn[dir]));
+      } else PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "dof", PETSC_INT, &dofs[o]));
+    }
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "peak_states", PETSC_STRING, "per level: every element's contact state at the peak, 0 full stick, 1 stick-slip without separation, 2 separation with stick-slip, 3 full separation"));
     for (PetscInt l = 0; l < c->nlev; l++) {
       Branch    *b = &c->br[l];
@@ -939,16 +964,16 @@ PetscErrorCode JRContWrite(JRCont c)
       }
       PetscCall(PetscViewerHDF5PopGroup(v));
     }
-    PetscCall(WriteRank0(c->comm, v, "output_dofs", c->nout, 1, NULL, dofs));
     PetscCall(PetscViewerDestroy(&v));
-    if (rank == 0) PetscCheck(!rename(tmph5, h5), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write the file %s", h5);
+    PetscCall(JRFileRename(c->comm, tmph5, h5));
   }
   (void)nc;
 
   if (c->plot) {
     PetscBool made;
-    char      vars[3 * PETSC_MAX_PATH_LEN];
-    PetscCall(PetscSNPrintf(vars, sizeof(vars), "data='%s'; nlev=%" PetscInt_FMT "; normalize=%d; ttl='frequency response at DOF %" PetscInt_FMT " (%s continuation, H = %" PetscInt_FMT ")'", csv, c->nlev, (int)c->normalize, dofs[0], JRContTypes[c->type], H));
+    char      vars[3 * PETSC_MAX_PATH_LEN], name[192];
+    PetscCall(ResponseName(0, xyz, dir, dofs, name, sizeof(name)));
+    PetscCall(PetscSNPrintf(vars, sizeof(vars), "data='%s'; nlev=%" PetscInt_FMT "; normalize=%d; ttl='%s (%s continuation, H = %" PetscInt_FMT ")'", csv, c->nlev, (int)c->normalize, name, JRContTypes[c->type], H));
     PetscCall(JRPlot(c->comm, "plot_frf.gp", png, vars, &made));
     PetscCall(PetscPrintf(c->comm, "frf: wrote %s, %s%s%s\n", h5, csv, made ? ", " : "", made ? png : ""));
   } else PetscCall(PetscPrintf(c->comm, "frf: wrote %s, %s\n", h5, csv));

@@ -76,6 +76,8 @@ struct _p_JRHBM {
   char              modes_file[PETSC_MAX_PATH_LEN]; /* JRHBMSetModesFile(): save the modes here unless -modes_load/-modes_save */
   PetscInt          fdof, nout, *outdof;
   PetscBool         fdof_set;      /* JRHBMSetExcitationDof() called: -frf_dof ignored */
+  PetscInt          npts, ptdir;   /* JRHBMSetOutputPoints(): the response points, for naming the outputs */
+  PetscReal        *ptxyz;        /* npts x 3 [m], NULL if none */
   char              ffile[PETSC_MAX_PATH_LEN];
   PetscReal        *fm, level;    /* modal force shape (unit level) and the level [N] */
   PetscReal        *Phiout;       /* nout x nm */
@@ -1005,6 +1007,35 @@ PetscErrorCode JRHBMSetExcitationDof(JRHBM h, PetscInt dof, PetscInt nout, const
   PetscCall(PetscMalloc1(nout, &h->outdof));
   PetscCall(PetscArraycpy(h->outdof, out, nout));
   h->setupcalled = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMSetOutputPoints - the positions [m] of the n response points (xyz: x, y, z of each) and the direction
+  of the responses (0 x, 1 y, 2 z), in the order of the response DOFs of JRHBMSetExcitationDof(). They name
+  the outputs (HDF5 attributes, plot titles) where a DOF number would depend on the partition of an FE
+  mesh; they do not change the solution. Without them an output is named by its DOF.
+*/
+PetscErrorCode JRHBMSetOutputPoints(JRHBM h, PetscInt n, const PetscReal xyz[], PetscInt dir)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(n >= 1 && dir >= 0 && dir < 3, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "JRHBMSetOutputPoints: %" PetscInt_FMT " points along direction %" PetscInt_FMT ": at least one point, direction 0 (x), 1 (y) or 2 (z)", n, dir);
+  PetscCall(PetscFree(h->ptxyz));
+  PetscCall(PetscMalloc1(3 * n, &h->ptxyz));
+  PetscCall(PetscArraycpy(h->ptxyz, xyz, 3 * n));
+  h->npts  = n;
+  h->ptdir = dir;
+  PetscFunctionReturn(0);
+}
+
+/* The response points of JRHBMSetOutputPoints() (xyz: 3 per response DOF, NULL if none were given) and their direction */
+PetscErrorCode JRHBMGetOutputPoints(JRHBM h, const PetscReal **xyz, PetscInt *dir)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCheck(!h->ptxyz || h->npts == h->nout, h->comm, PETSC_ERR_ARG_SIZ, "JRHBMSetOutputPoints gave %" PetscInt_FMT " points for %" PetscInt_FMT " response DOFs", h->npts, h->nout);
+  *xyz = h->ptxyz;
+  if (dir) *dir = h->ptdir;
   PetscFunctionReturn(0);
 }
 
@@ -2242,6 +2273,7 @@ PetscErrorCode JRHBMDestroy(JRHBM *hbm)
   PetscCall(PetscFree(h->Kg));
   PetscCall(PetscFree(h->Kc));
   PetscCall(PetscFree(h->outdof));
+  PetscCall(PetscFree(h->ptxyz));
   PetscCall(PetscFree(h->fm));
   PetscCall(PetscFree(h->Phiout));
   PetscCall(PetscFree(h->buf));

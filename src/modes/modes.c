@@ -9,7 +9,6 @@
 */
 #include <jointrom/private/modelimpl.h>
 #include <petscviewerhdf5.h>
-#include <unistd.h>
 
 PetscErrorCode JRModesCreate(MPI_Comm comm, JRModes *modes)
 {
@@ -147,8 +146,7 @@ PetscErrorCode JRModesSave(JRModes md, const char file[])
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(md->comm, &rank));
   PetscCallMPI(MPI_Comm_size(md->comm, &size));
-  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.tmp%d", file, (int)getpid()));
-  PetscCallMPI(MPI_Bcast(tmp, sizeof(tmp), MPI_CHAR, 0, md->comm));
+  PetscCall(JRFileTempName(md->comm, file, tmp, sizeof(tmp)));
   PetscCall(PetscViewerHDF5Open(md->comm, tmp, FILE_MODE_WRITE, &v));
   PetscCall(PetscViewerHDF5PushGroup(v, "/jointrom_modes"));
   PetscCall(VecCreateMPI(md->comm, rank ? 0 : nm, nm, &lam));
@@ -180,7 +178,7 @@ PetscErrorCode JRModesSave(JRModes md, const char file[])
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "stuck_signature", PETSC_REAL, &md->sig));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "units", PETSC_STRING, "omega2: rad^2/s^2; phi_i: mass-normalised modes over every DOF (kg^-1/2) in the model's parallel DOF numbering; coordinates: m"));
   PetscCall(PetscViewerDestroy(&v));
-  if (!rank) PetscCheck(!rename(tmp, file), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "-modes_save: cannot write the file %s", file);
+  PetscCall(JRFileRename(md->comm, tmp, file));
   PetscFunctionReturn(0);
 }
 

@@ -25,7 +25,6 @@
 */
 #include <jointrom/private/feimpl.h>
 #include <petscviewerhdf5.h>
-#include <unistd.h>
 
 const char *const JRPreloadMethods[]  = {"penalty", "augmented", "JRPreloadMethod", "JR_PRELOAD_", NULL};
 const char *const JRPreloadSupports[] = {"minimal", "clamp", "none", "JRPreloadSupport", "JR_PRELOAD_SUPPORT_", NULL};
@@ -1210,8 +1209,7 @@ PetscErrorCode JRPreloadWrite(JRPreload p, const char base[], PetscBool plot)
   { /* HDF5 */
     PetscViewer v;
     Vec         vv;
-    PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.tmp%d", h5, (int)getpid()));
-    PetscCallMPI(MPI_Bcast(tmp, sizeof(tmp), MPI_CHAR, 0, p->comm));
+    PetscCall(JRFileTempName(p->comm, h5, tmp, sizeof(tmp)));
     PetscCall(PetscViewerHDF5Open(p->comm, tmp, FILE_MODE_WRITE, &v));
     if (p->solved) {
       Vec gv;
@@ -1245,7 +1243,7 @@ PetscErrorCode JRPreloadWrite(JRPreload p, const char base[], PetscBool plot)
     }
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "units", PETSC_STRING, "SI: /preload/x_m pair positions m, area_m2 m^2 (the node's share of surface A), N_static_N N (normal load pressing the pair together), pressure_Pa Pa (N / area), v_gap_m m, closed 1/0, n0_N N (N_static - kv v_gap); /fields/preload: the preload displacement m"));
     PetscCall(PetscViewerDestroy(&v));
-    if (rank == 0) PetscCheck(!rename(tmp, h5), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write the file %s", h5);
+    PetscCall(JRFileRename(p->comm, tmp, h5));
   }
   { /* XDMF */
     const char *leaf = strrchr(h5, '/') ? strrchr(h5, '/') + 1 : h5;

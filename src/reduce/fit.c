@@ -1725,10 +1725,10 @@ PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, c
   PetscCall(MemberCoordinates(model, mem, xc));
   if (!rank) {
     PetscViewer v;
-    char        tmp[PETSC_MAX_PATH_LEN + 16];
+    char        tmp[PETSC_MAX_PATH_LEN + 32];
     PetscReal  *a;
     PetscInt    nj = rom->njoints;
-    PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.tmp", file));
+    PetscCall(JRFileTempName(PETSC_COMM_SELF, file, tmp, sizeof(tmp)));
     PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, tmp, FILE_MODE_WRITE, &v));
     PetscCall(PetscViewerHDF5PushGroup(v, "/rom"));
     PetscCall(PetscMalloc1(JR_ROM_MEM * PetscMax(mem->n, rom->n), &a));
@@ -1769,7 +1769,7 @@ PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, c
     PetscCall(PetscViewerHDF5PopGroup(v));
     PetscCall(PetscViewerDestroy(&v));
     PetscCall(PetscFree(a));
-    PetscCheck(!rename(tmp, file), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "-rom_save: cannot write %s", file);
+    PetscCall(JRFileRename(PETSC_COMM_SELF, tmp, file));
   }
   PetscCallMPI(MPI_Barrier(comm));
   PetscCall(PetscFree(xc));

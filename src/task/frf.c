@@ -277,6 +277,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   if (!loaded) {
     if (n2n) {
       PetscCall(JRHBMSetExcitationDof(hbm, fdof, nout, odof));
+      PetscCall(JRHBMSetOutputPoints(hbm, nout, oat, dir));
       PetscCall(JRModelSetElements(model, &el));
     }
     PetscCall(JRHBMSetModel(hbm, model));
@@ -296,6 +297,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   if (isrom) {
     if (loaded) PetscCall(JRReduceSetExcitation(red, fdof, nout, odof));
     PetscCall(JRReduceCreateHBM(red, model, hbm, loaded, &elr, &hbmr, &setr));
+    PetscCall(JRHBMSetOutputPoints(hbmr, nout, oat, dir));
     PetscCall(JRReduceSave(red, model, &elr));
   }
   PetscCall(PetscLogStagePop());

@@ -6,7 +6,6 @@
 */
 #include <jointrom/private/feimpl.h>
 #include <petscviewerhdf5.h>
-#include <unistd.h>
 #include <sys/resource.h>
 
 /* the vertices on the front face y = ymin: coordinates and first global DOF, on every rank */
@@ -154,8 +153,7 @@ PetscErrorCode JRTaskModes(MPI_Comm comm)
     PetscInt    nv, nc, cs, ce, vs, ve;
     /* HDF5: mesh and modes in PETSc's visualisation layout, frequencies */
     PetscCall(PetscSNPrintf(h5, sizeof(h5), "%s.h5", base));
-    PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.tmp%d", h5, (int)getpid()));
-    PetscCallMPI(MPI_Bcast(tmp, sizeof(tmp), MPI_CHAR, 0, comm));
+    PetscCall(JRFileTempName(comm, h5, tmp, sizeof(tmp)));
     PetscCall(PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &v));
     PetscCall(PetscViewerPushFormat(v, PETSC_VIEWER_HDF5_VIZ));
     PetscCall(DMView(dm, v));
@@ -185,7 +183,7 @@ PetscErrorCode JRTaskModes(MPI_Comm comm)
     }
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "units", PETSC_STRING, "SI: coordinates m; /fields/mode_i: every DOF of mode i (x, y, z per node), /vertex_fields: at the vertices, mass-normalised (kg^-1/2); omega_rad_s rad/s; frequency_hz Hz"));
     PetscCall(PetscViewerDestroy(&v));
-    if (rank == 0) PetscCheck(!rename(tmp, h5), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write the file %s", h5);
+    PetscCall(JRFileRename(comm, tmp, h5));
     /* XDMF for ParaView: the hexahedra and every mode as a nodal vector */
     PetscCall(DMPlexGetHeightStratum(dm, 0, &cs, &ce));
     PetscCall(DMPlexGetDepthStratum(dm, 0, &vs, &ve));
