@@ -54,8 +54,10 @@ stopped() {
   n=$((n + 1))
   d="$tmp/c$n"
   mkdir -p "$d"
-  if [ "$np" = 1 ]; then r=$(catch "$d" "$sig" "$pat" $J "$@" -frf_output_file "$d/out" -modes_output_file "$d/out")
-  else r=$(catch "$d" "$sig" "$pat" mpiexec -n "$np" $J "$@" -frf_output_file "$d/out" -modes_output_file "$d/out"); fi
+  local o=-frf_output_file
+  case " $* " in *" -task modes "*) o=-modes_output_file ;; esac # each task takes only its own output option
+  if [ "$np" = 1 ]; then r=$(catch "$d" "$sig" "$pat" $J "$@" $o "$d/out")
+  else r=$(catch "$d" "$sig" "$pat" mpiexec -n "$np" $J "$@" $o "$d/out"); fi
   check "[ '${r% *}' = caught ] && [ '${r#* }' != 0 ] && [ -z \"\$(left '$d')\" ]" "SIG$sig on $np rank(s) while writing $pat (run ${r% *}, exit ${r#* }): temporary files left: [$(left "$d")]"
 }
 stopped TERM '*.h5.tmp*' 1 $modes

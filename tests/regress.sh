@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Behaviour preserved: runs every runs/*.opts case (2 ranks) and compares the lines scripts read (peaks, contact-state
 # counts, stuck frequencies, compare errors, modes, preload totals, the reduction's choices) with a table recorded
-# from an earlier build, numbers to a relative 1e-8 (times left out). Not a test of correctness: a check that a change
+# from an earlier build, numbers to a relative 5e-8 (RTOL=...; times left out): the unchanged program varies by up to
+# 1.4e-8 between two runs on 2 ranks (lap3_n2n peaks). Not a test of correctness: a check that a change
 # meant to keep the answers did keep them.
 #   tests/regress.sh record [case ...]   write tests/regress/<case>.txt from this build
 #   tests/regress.sh check  [case ...]   compare this build with them; ends "N passed, M failed"
@@ -18,7 +19,7 @@ extract() {
 }
 # two extracted files equal, numbers to rtol
 same() {
-  awk -v rtol=1e-8 'NR == FNR { a[FNR] = $0; n = FNR; next }
+  awk -v rtol=${RTOL:-5e-8} 'NR == FNR { a[FNR] = $0; n = FNR; next }
     { m = FNR; if (!(FNR in a)) { print "extra line: " $0; bad = 1; next }
       split(a[FNR], x, /[ ,=]+/); k = split($0, y, /[ ,=]+/)
       if (length(x) != k) { print "was: " a[FNR]; print "now: " $0; bad = 1; next }
