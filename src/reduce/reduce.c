@@ -371,6 +371,11 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
   PetscCheck(r->nst > 0 && r->nsc > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_select_total and -rom_fit_select_case: at least one value each (at most 8)");
   for (PetscInt i = 0; i < r->nst; i++) PetscCheck(r->swt[i] >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_select_total: %g: the weights must be non-negative", (double)r->swt[i]);
   for (PetscInt i = 0; i < r->nsc; i++) PetscCheck(r->swc[i] >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_select_case: %g: the weights must be non-negative", (double)r->swc[i]);
+  if (r->load[0]) {
+    PetscBool ok;
+    PetscCall(PetscTestFile(r->load, 'r', &ok));
+    PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "-rom_load %s: no such file (write one with -rom_save)", r->load);
+  }
   PetscCall(JRROMFitSetFromOptions(comm, &r->fit));
   r->setfromoptions = PETSC_TRUE;
   PetscFunctionReturn(0);

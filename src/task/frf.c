@@ -142,11 +142,10 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     PetscCheck(help || !compare || joints || romload[0], comm, PETSC_ERR_ARG_WRONG, "-task compare needs a reduced model: joints (-rom_joints ..., optionally -rom_elements m) or -rom_load FILE");
     PetscCheck(!romsave[0] || (joints && romm > 0 && !(romload[0] && !compare)), comm, PETSC_ERR_ARG_INCOMP, "-rom_save saves a second-reduction model: it needs -rom_joints ... and -rom_elements m");
   }
-  if (!(fe && romload[0] && !compare)) {
-    PetscCall(JRHBMCreate(comm, &hbm));
-    if (fe) PetscCall(JRHBMSetBasis(hbm, 2)); /* stuck + free-interface modes: -hbm_basis free for the thesis's */
-    PetscCall(JRHBMSetFromOptions(hbm));
-  }
+  /* the harmonic balance's options; a loaded reduced model alone (-rom_load) has its own JRHBM, made later with these */
+  PetscCall(JRHBMCreate(comm, &hbm));
+  if (fe) PetscCall(JRHBMSetBasis(hbm, 2)); /* stuck + free-interface modes: -hbm_basis free for the thesis's */
+  PetscCall(JRHBMSetFromOptions(hbm));
   { /* the continuation's options (-cont_*, -frf_force, the range): the case of a reduced model */
     JRCont    c;
     PetscInt  nl;
@@ -171,6 +170,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   PetscCall(JRPostSetOutput(post, base, plot));
   PetscCall(JROptionsCheck(comm, fe ? (compare ? "-task compare" : "-task frf on an FE model") : "-task frf on a matrices model"));
   PetscCall(JRFileCheckOutput(comm, "-frf_output_file", base));
+  if (fe && romload[0] && !compare) PetscCall(JRHBMDestroy(&hbm));
 
   /* 1. model */
   PetscCall(PetscLogStagePush(JR_StageModel));
