@@ -64,92 +64,132 @@ static PetscErrorCode FileReadable(MPI_Comm comm, const char file[], const char 
   PetscFunctionReturn(0);
 }
 
-/* Matrix Market coordinate file -> MPIAIJ */
-static PetscErrorCode LoadMtx(MPI_Comm comm, const char file[], Mat *A)
+/* ---- Matrix Market ---- */
+
+/* a Matrix Market file's contents: size, symmetry and the entries (0-based indices) */
+typedef struct {
+  PetscInt   m, n, nz, sym;
+  PetscInt  *ii, *jj;
+  PetscReal *vv;
+} MtxData;
+
+/* what went wrong reading the file on rank 0 (LoadMtx turns it into an error on every rank) */
+enum {
+  MTX_OK,
+  MTX_OPEN,   /* the file does not open */
+  MTX_EMPTY,  /* no first line */
+  MTX_BANNER, /* the first line is not a coordinate-matrix banner */
+  MTX_KIND,   /* complex or pattern, or neither general nor symmetric */
+  MTX_SIZE,   /* a bad size line */
+  MTX_ENTRY,  /* a bad entry line */
+  MTX_SHORT   /* fewer entries than the size line announces */
+};
+
+/* The banner line (%%MatrixMarket matrix coordinate real|integer general|symmetric) and the size line
+   (rows columns entries): d->sym, d->m, d->n, d->nz */
+static PetscInt MtxReadHeader(FILE *fp, long *lineno, MtxData *d)
 {
-  PetscMPIInt rank;
-  PetscInt    m = 0, n = 0, nz = 0, sym = 0, err = 0, errline = 0;
-  PetscInt   *ii = NULL, *jj = NULL, rstart, rend, *dnz, *onz, cstart, cend;
-  PetscReal  *vv = NULL;
-  char        msg[256] = "";
+  char line[1024];
+
+  if (!fgets(line, sizeof(line), fp)) return MTX_EMPTY;
+  *lineno = 1;
+  for (char *c = line; *c; c++) *c = (char)tolower((unsigned char)*c);
+  if (strncmp(line, "%%matrixmarket", 14) || !strstr(line, "matrix") || !strstr(line, "coordinate")) return MTX_BANNER;
+  if (strstr(line, "complex") || strstr(line, "pattern")) return MTX_KIND;
+  if (strstr(line, "symmetric")) d->sym = 1;
+  else if (!strstr(line, "general")) return MTX_KIND;
+  while (fgets(line, sizeof(line), fp)) {
+    (*lineno)++;
+    if (line[0] == '%' || line[0] == '\n') continue;
+    if (sscanf(line, "%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT, &d->m, &d->n, &d->nz) != 3 || d->m < 0 || d->n < 0 || d->nz < 0) return MTX_SIZE;
+    break;
+  }
+  return MTX_OK;
+}
+
+/* The d->nz entry lines "i j value" (1-based indices within the size, finite values) into d->ii, jj, vv;
+   a bad line's number and text in errline, msg */
+static PetscInt MtxReadEntries(FILE *fp, long *lineno, MtxData *d, PetscInt *errline, char msg[], size_t len)
+{
+  char     line[1024];
+  PetscInt k = 0;
+
+  while (k < d->nz && fgets(line, sizeof(line), fp)) {
+    long   i, j;
+    double v;
+    char  *end;
+    (*lineno)++;
+    if (line[0] == '%' || line[0] == '\n') continue;
+    errno = 0;
+    i     = strtol(line, &end, 10);
+    j     = strtol(end, &end, 10);
+    v     = strtod(end, &end);
+    if (errno || i < 1 || i > d->m || j < 1 || j > d->n || !isfinite(v)) {
+      *errline = *lineno;
+      snprintf(msg, len, "%.200s", line);
+      return MTX_ENTRY;
+    }
+    d->ii[k] = i - 1;
+    d->jj[k] = j - 1;
+    d->vv[k] = v;
+    k++;
+  }
+  return k < d->nz ? MTX_SHORT : MTX_OK;
+}
+
+static PetscErrorCode MtxAlloc(MtxData *d)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc3(d->nz ? d->nz : 1, &d->ii, d->nz ? d->nz : 1, &d->jj, d->nz ? d->nz : 1, &d->vv));
+  PetscFunctionReturn(0);
+}
+
+/* rank 0: the file into d; *err an MTX_ code */
+static PetscErrorCode MtxRead(const char file[], MtxData *d, PetscInt *err, PetscInt *errline, char msg[], size_t len)
+{
+  FILE *fp     = fopen(file, "r");
+  long  lineno = 0;
 
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rank == 0) {
-    FILE *fp = fopen(file, "r");
-    char  line[1024];
-    long  lineno = 0;
-    if (!fp) err = 1;
-    else {
-      if (!fgets(line, sizeof(line), fp)) err = 2;
-      else {
-        lineno = 1;
-        for (char *c = line; *c; c++) *c = (char)tolower((unsigned char)*c);
-        if (strncmp(line, "%%matrixmarket", 14) || !strstr(line, "matrix") || !strstr(line, "coordinate")) err = 3;
-        else if (strstr(line, "complex") || strstr(line, "pattern")) err = 4;
-        else if (strstr(line, "symmetric")) sym = 1;
-        else if (!strstr(line, "general")) err = 4;
-      }
-      while (!err && fgets(line, sizeof(line), fp)) {
-        lineno++;
-        if (line[0] == '%' || line[0] == '\n') continue;
-        if (sscanf(line, "%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT, &m, &n, &nz) != 3 || m < 0 || n < 0 || nz < 0) err = 5;
-        break;
-      }
-      if (!err) {
-        PetscInt k = 0;
-        ii         = (PetscInt *)malloc(sizeof(PetscInt) * (nz ? nz : 1));
-        jj         = (PetscInt *)malloc(sizeof(PetscInt) * (nz ? nz : 1));
-        vv         = (PetscReal *)malloc(sizeof(PetscReal) * (nz ? nz : 1));
-        while (k < nz && fgets(line, sizeof(line), fp)) {
-          long   i, j;
-          double v;
-          char  *end;
-          lineno++;
-          if (line[0] == '%' || line[0] == '\n') continue;
-          errno = 0;
-          i     = strtol(line, &end, 10);
-          j     = strtol(end, &end, 10);
-          v     = strtod(end, &end);
-          if (errno || i < 1 || i > m || j < 1 || j > n || !isfinite(v)) {
-            err     = 6;
-            errline = lineno;
-            snprintf(msg, sizeof(msg), "%.200s", line);
-            break;
-          }
-          ii[k] = i - 1;
-          jj[k] = j - 1;
-          vv[k] = v;
-          k++;
-        }
-        if (!err && k < nz) err = 7;
-      }
-      fclose(fp);
-    }
+  if (!fp) {
+    *err = MTX_OPEN;
+    PetscFunctionReturn(0);
   }
-  PetscCallMPI(MPI_Bcast(&err, 1, MPIU_INT, 0, comm));
-  PetscCallMPI(MPI_Bcast(&errline, 1, MPIU_INT, 0, comm));
-  PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
-  PetscCheck(err != 1, comm, PETSC_ERR_FILE_OPEN, "Cannot open the Matrix Market file %s", file);
-  PetscCheck(err != 2 && err != 3, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: the first line must be '%%%%MatrixMarket matrix coordinate real general' (or symmetric)", file);
-  PetscCheck(err != 4, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: only real or integer coordinate matrices, general or symmetric, are supported", file);
-  PetscCheck(err != 5, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: bad size line (expected 'rows columns entries')", file);
-  PetscCheck(err != 6, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s line %" PetscInt_FMT ": bad entry '%s' (indices are 1-based within the size, values finite)", file, errline, msg);
-  PetscCheck(err != 7, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: fewer entries than the size line announces", file);
-  PetscCallMPI(MPI_Bcast(&m, 1, MPIU_INT, 0, comm));
-  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
-  PetscCallMPI(MPI_Bcast(&nz, 1, MPIU_INT, 0, comm));
-  PetscCallMPI(MPI_Bcast(&sym, 1, MPIU_INT, 0, comm));
-  if (rank) {
-    ii = (PetscInt *)malloc(sizeof(PetscInt) * (nz ? nz : 1));
-    jj = (PetscInt *)malloc(sizeof(PetscInt) * (nz ? nz : 1));
-    vv = (PetscReal *)malloc(sizeof(PetscReal) * (nz ? nz : 1));
+  *err = MtxReadHeader(fp, &lineno, d);
+  if (!*err) {
+    PetscCall(MtxAlloc(d));
+    *err = MtxReadEntries(fp, &lineno, d, errline, msg, len);
   }
-  PetscCallMPI(MPI_Bcast(ii, (PetscMPIInt)nz, MPIU_INT, 0, comm));
-  PetscCallMPI(MPI_Bcast(jj, (PetscMPIInt)nz, MPIU_INT, 0, comm));
-  PetscCallMPI(MPI_Bcast(vv, (PetscMPIInt)nz, MPIU_REAL, 0, comm));
+  fclose(fp);
+  PetscFunctionReturn(0);
+}
+
+/* rank 0's d on every rank */
+static PetscErrorCode MtxBcast(MPI_Comm comm, PetscMPIInt rank, MtxData *d)
+{
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Bcast(&d->m, 1, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(&d->n, 1, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(&d->nz, 1, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(&d->sym, 1, MPIU_INT, 0, comm));
+  if (rank) PetscCall(MtxAlloc(d));
+  PetscCallMPI(MPI_Bcast(d->ii, (PetscMPIInt)d->nz, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(d->jj, (PetscMPIInt)d->nz, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(d->vv, (PetscMPIInt)d->nz, MPIU_REAL, 0, comm));
+  PetscFunctionReturn(0);
+}
+
+/* d (on every rank) -> MPIAIJ: each rank inserts its rows (and, symmetric, the mirrored entries) with
+   exact preallocation; duplicates are summed */
+static PetscErrorCode MtxAssemble(MPI_Comm comm, const MtxData *d, Mat *A)
+{
+  const PetscInt  nz = d->nz, sym = d->sym, *ii = d->ii, *jj = d->jj;
+  const PetscReal *vv = d->vv;
+  PetscInt         rstart, rend, cstart, cend, *dnz, *onz;
+
+  PetscFunctionBeginUser;
   PetscCall(MatCreate(comm, A));
-  PetscCall(MatSetSizes(*A, PETSC_DECIDE, PETSC_DECIDE, m, n));
+  PetscCall(MatSetSizes(*A, PETSC_DECIDE, PETSC_DECIDE, d->m, d->n));
   PetscCall(MatSetType(*A, MATAIJ));
   PetscCall(MatSetUp(*A));
   PetscCall(MatGetOwnershipRange(*A, &rstart, &rend));
@@ -173,9 +213,32 @@ static PetscErrorCode LoadMtx(MPI_Comm comm, const char file[], Mat *A)
   PetscCall(MatAssemblyBegin(*A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(*A, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscFree2(dnz, onz));
-  free(ii);
-  free(jj);
-  free(vv);
+  PetscFunctionReturn(0);
+}
+
+/* Matrix Market coordinate file -> MPIAIJ (read on rank 0, broadcast) */
+static PetscErrorCode LoadMtx(MPI_Comm comm, const char file[], Mat *A)
+{
+  PetscMPIInt rank;
+  MtxData     d   = {0, 0, 0, 0, NULL, NULL, NULL};
+  PetscInt    err = MTX_OK, errline = 0;
+  char        msg[256] = "";
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) PetscCall(MtxRead(file, &d, &err, &errline, msg, sizeof(msg)));
+  PetscCallMPI(MPI_Bcast(&err, 1, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(&errline, 1, MPIU_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
+  PetscCheck(err != MTX_OPEN, comm, PETSC_ERR_FILE_OPEN, "Cannot open the Matrix Market file %s", file);
+  PetscCheck(err != MTX_EMPTY && err != MTX_BANNER, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: the first line must be '%%%%MatrixMarket matrix coordinate real general' (or symmetric)", file);
+  PetscCheck(err != MTX_KIND, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: only real or integer coordinate matrices, general or symmetric, are supported", file);
+  PetscCheck(err != MTX_SIZE, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: bad size line (expected 'rows columns entries')", file);
+  PetscCheck(err != MTX_ENTRY, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s line %" PetscInt_FMT ": bad entry '%s' (indices are 1-based within the size, values finite)", file, errline, msg);
+  PetscCheck(err != MTX_SHORT, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: fewer entries than the size line announces", file);
+  PetscCall(MtxBcast(comm, rank, &d));
+  PetscCall(MtxAssemble(comm, &d, A));
+  PetscCall(PetscFree3(d.ii, d.jj, d.vv));
   PetscFunctionReturn(0);
 }
 

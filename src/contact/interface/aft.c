@@ -170,88 +170,110 @@ static inline void AnchorSlip(const JRAFT *a, PetscInt j, PetscReal sgn, PetscRe
   }
 }
 
-void JRAFTElement(JRAFT *a, PetscReal kt, PetscReal kn, PetscReal mu, PetscReal n0, const PetscReal Ue[], const PetscReal Ve[], JRElementOut *out, PetscReal ftime[], PetscReal ntime[])
+/* The slip's stick band: u_j = B_j . U, the normal gap g_j = n0 + kn v_j (n0 without a normal motion) and
+   L_j = u_j - r n_j <= w <= U_j = u_j + r n_j, n_j = max(g_j, 0), which collapses to w = u_j (f = 0) on
+   separated samples. Returns the number of separated samples. */
+static inline PetscInt StickBand(JRAFT *a, PetscReal r, PetscReal kn, PetscReal n0, const PetscReal Ue[], const PetscReal Ve[])
 {
-  const PetscInt   N = a->N, nc = a->nc;
-  const PetscReal *Bt = a->Bt, *wd = a->wdft;
-  PetscReal       *u = a->u, *v = a->v, *g = a->g, *f = a->f, *lam = a->lam, *Lb = a->Lb, *Ub = a->Ub, *uc = a->uc;
-  PetscInt        *code = a->code, *rc = a->rc;
-  const PetscReal  r      = mu / kt;
-  const PetscBool  normal = Ve ? PETSC_TRUE : PETSC_FALSE;
-  const PetscBool  wantJ  = (out->dFdU || out->dFdV || out->dNdV) ? PETSC_TRUE : PETSC_FALSE;
-  PetscInt         j, k, t, nsep = 0, s = 0, jl = 0, jh = 0, anchor = 0; /* anchor for full stick: 0 none, 1 L, -1 U */
-  PetscReal        w = 0.0, lo = PETSC_NINFINITY, hi = PETSC_INFINITY;
-  PetscBool        fullstick = PETSC_FALSE, anyslip = PETSC_FALSE;
+  const PetscInt N = a->N;
+  PetscReal     *u = a->u, *v = a->v, *g = a->g, *Lb = a->Lb, *Ub = a->Ub;
+  PetscInt       nsep = 0;
 
-  /* synthesis u_j = B_j . U (and v_j), vectorised over samples */
-  Synthesis(N, nc, Bt, Ue, u);
-  if (normal) {
-    Synthesis(N, nc, Bt, Ve, v);
-    for (j = 0; j < N; j++) g[j] = n0 + kn * v[j];
+  Synthesis(N, a->nc, a->Bt, Ue, u); /* vectorised over samples */
+  if (Ve) {
+    Synthesis(N, a->nc, a->Bt, Ve, v);
+    for (PetscInt j = 0; j < N; j++) g[j] = n0 + kn * v[j];
   } else {
-    for (j = 0; j < N; j++) g[j] = n0;
+    for (PetscInt j = 0; j < N; j++) g[j] = n0;
   }
-  /* stick band of the slip, L_j = u_j - r n_j <= w <= U_j = u_j + r n_j, n_j = max(g_j, 0): it
-     collapses to w = u_j (f = 0) on separated samples */
-  for (j = 0; j < N; j++) {
+  for (PetscInt j = 0; j < N; j++) {
     const PetscReal nj = PetscMax(g[j], 0.0);
     Lb[j]              = u[j] - r * nj;
     Ub[j]              = u[j] + r * nj;
     nsep += (g[j] <= 0.0);
   }
+  return nsep;
+}
 
-  if (nsep == N) { /* full separation: no force at all */
-    if (out->F) Zero(nc, out->F);
-    if (out->N) Zero(nc, out->N);
-    if (out->dFdU) Zero(nc * nc, out->dFdU);
-    if (out->dFdV) Zero(nc * nc, out->dFdV);
-    if (out->dNdV) Zero(nc * nc, out->dNdV);
-    if (ftime) Zero(N, ftime);
-    if (ntime) Zero(N, ntime);
-    out->state = JR_CONTACT_FULL_SEPARATION;
-    return;
-  }
+/* full separation: no force at all */
+static inline void ZeroOutputs(PetscInt N, PetscInt nc, JRElementOut *out, PetscReal ftime[], PetscReal ntime[])
+{
+  if (out->F) Zero(nc, out->F);
+  if (out->N) Zero(nc, out->N);
+  if (out->dFdU) Zero(nc * nc, out->dFdU);
+  if (out->dFdV) Zero(nc * nc, out->dFdV);
+  if (out->dNdV) Zero(nc * nc, out->dNdV);
+  if (ftime) Zero(N, ftime);
+  if (ntime) Zero(N, ntime);
+  out->state = JR_CONTACT_FULL_SEPARATION;
+}
 
-  /* where the periodic march starts, and in which state */
+/* where the periodic march starts, and in which state */
+typedef struct {
+  PetscInt  s;         /* the march's first sample */
+  PetscInt  jl, jh;    /* without separation: argmax L, argmin U */
+  PetscBool fullstick; /* the element sticks all cycle, at slip w ... */
+  PetscReal w;
+  PetscInt  anchor; /* ... anchored at max L (1), min U (-1) or nowhere (0, w = 0) */
+} MarchStart;
+
+static inline void FindMarchStart(JRAFT *a, PetscInt nsep, MarchStart *ms)
+{
+  const PetscInt   N = a->N;
+  const PetscReal *u = a->u, *g = a->g, *Lb = a->Lb, *Ub = a->Ub;
+  PetscReal        lo = PETSC_NINFINITY, hi = PETSC_INFINITY;
+
+  ms->s = ms->jl = ms->jh = ms->anchor = 0;
+  ms->fullstick                        = PETSC_FALSE;
+  ms->w                                = 0.0;
   if (nsep) {
     /* first contact samples: the slip restarts from the interpolated contact point u_c */
-    s = -1;
-    for (j = 0; j < N; j++) {
+    ms->s = -1;
+    for (PetscInt j = 0; j < N; j++) {
       const PetscInt jp = j ? j - 1 : N - 1;
-      rc[j]             = g[j] > 0.0 && g[jp] <= 0.0;
-      if (rc[j]) {
-        lam[j] = g[jp] / (g[jp] - g[j]);
-        uc[j]  = u[jp] + lam[j] * (u[j] - u[jp]);
-        if (s < 0) s = j;
+      a->rc[j]          = g[j] > 0.0 && g[jp] <= 0.0;
+      if (a->rc[j]) {
+        a->lam[j] = g[jp] / (g[jp] - g[j]);
+        a->uc[j]  = u[jp] + a->lam[j] * (u[j] - u[jp]);
+        if (ms->s < 0) ms->s = j;
       }
     }
-  } else {
-    for (j = 0; j < N; j++) {
-      if (Lb[j] > lo) {
-        lo = Lb[j];
-        jl = j;
-      }
-      if (Ub[j] < hi) {
-        hi = Ub[j];
-        jh = j;
-      }
+    return;
+  }
+  for (PetscInt j = 0; j < N; j++) {
+    if (Lb[j] > lo) {
+      lo     = Lb[j];
+      ms->jl = j;
     }
-    if (lo > hi) s = jl;
-    else {
-      fullstick = PETSC_TRUE;
-      w         = 0.0;
-      if (lo > 0.0) {
-        w      = lo;
-        anchor = 1;
-      } else if (hi < 0.0) {
-        w      = hi;
-        anchor = -1;
-      }
+    if (Ub[j] < hi) {
+      hi     = Ub[j];
+      ms->jh = j;
     }
   }
+  if (lo > hi) ms->s = ms->jl;
+  else {
+    ms->fullstick = PETSC_TRUE;
+    if (lo > 0.0) {
+      ms->w      = lo;
+      ms->anchor = 1;
+    } else if (hi < 0.0) {
+      ms->w      = hi;
+      ms->anchor = -1;
+    }
+  }
+}
 
-  if (fullstick) {
-    for (j = 0; j < N; j++) f[j] = kt * (u[j] - w);
+/* f_j over the cycle, and code[t] (state at march position t, from sample s) */
+static inline void March(JRAFT *a, PetscReal kt, PetscInt nsep, const MarchStart *ms)
+{
+  const PetscInt   N = a->N, s = ms->s;
+  const PetscReal *u = a->u, *g = a->g, *Lb = a->Lb, *Ub = a->Ub, *uc = a->uc;
+  const PetscInt  *rc   = a->rc;
+  PetscInt        *code = a->code, j, t;
+  PetscReal       *f = a->f, w;
+
+  if (ms->fullstick) {
+    for (j = 0; j < N; j++) f[j] = kt * (u[j] - ms->w);
   } else if (!nsep) {
     /* branch-free march: w_j = clamp(w_{j-1}, L_j, U_j), from positive slip at s */
     w = Lb[s];
@@ -264,6 +286,7 @@ void JRAFTElement(JRAFT *a, PetscReal kt, PetscReal kn, PetscReal mu, PetscReal 
     code[0] = JR_CODE_SLIPP;
   } else {
     /* the same with separation: at a first contact the slip restarts from u_c */
+    w = 0.0;
     for (t = 0, j = s; t < N; t++, j = j + 1 == N ? 0 : j + 1) {
       const PetscReal wp = rc[j] ? uc[j] : w;
       const PetscReal wn = PetscMin(PetscMax(wp, Lb[j]), Ub[j]);
@@ -272,15 +295,23 @@ void JRAFTElement(JRAFT *a, PetscReal kt, PetscReal kn, PetscReal mu, PetscReal 
       w                  = wn;
     }
   }
+}
 
-  /* DFT of the force (and of the normal load: without separation n = n0 + kn v exactly) */
+/* DFT of the force (and of the normal load: without separation n = n0 + kn v exactly); the time series */
+static inline void Transform(JRAFT *a, PetscReal kn, PetscReal n0, const PetscReal Ve[], PetscInt nsep, JRElementOut *out, PetscReal ftime[], PetscReal ntime[])
+{
+  const PetscInt   N = a->N, nc = a->nc;
+  const PetscReal *Bt = a->Bt, *wd = a->wdft, *f = a->f, *g = a->g;
+  PetscReal       *v = a->v;
+  PetscInt         j, k;
+
   if (out->F)
     for (k = 0; k < nc; k++) out->F[k] = wd[k] * Dot(N, f, Bt + k * N);
   if (out->N) {
-    if (normal && nsep) {
+    if (Ve && nsep) {
       for (j = 0; j < N; j++) v[j] = PetscMax(g[j], 0.0); /* n_j; v is not needed any more */
       for (k = 0; k < nc; k++) out->N[k] = wd[k] * Dot(N, v, Bt + k * N);
-    } else if (normal) {
+    } else if (Ve) {
       out->N[0] = n0 + kn * Ve[0];
       for (k = 1; k < nc; k++) out->N[k] = kn * Ve[k];
     } else {
@@ -292,83 +323,131 @@ void JRAFTElement(JRAFT *a, PetscReal kt, PetscReal kn, PetscReal mu, PetscReal 
     for (j = 0; j < N; j++) ftime[j] = f[j];
   if (ntime)
     for (j = 0; j < N; j++) ntime[j] = PetscMax(g[j], 0.0);
+}
 
-  /* contact state over the cycle */
+/* contact state over the cycle */
+static inline JRContactState CycleState(const JRAFT *a, PetscInt nsep, PetscBool fullstick)
+{
+  PetscBool anyslip = PETSC_FALSE;
+
   if (!fullstick)
-    for (t = 0; t < N; t++)
-      if ((code[t] & 3) == JR_CODE_SLIPP || (code[t] & 3) == JR_CODE_SLIPN) anyslip = PETSC_TRUE;
-  out->state = nsep ? JR_CONTACT_SEPARATION_STICK_SLIP : (anyslip ? JR_CONTACT_STICK_SLIP : JR_CONTACT_FULL_STICK);
+    for (PetscInt t = 0; t < a->N; t++)
+      if ((a->code[t] & 3) == JR_CODE_SLIPP || (a->code[t] & 3) == JR_CODE_SLIPN) anyslip = PETSC_TRUE;
+  return nsep ? JR_CONTACT_SEPARATION_STICK_SLIP : (anyslip ? JR_CONTACT_STICK_SLIP : JR_CONTACT_FULL_STICK);
+}
 
-  if (!wantJ) return;
+/* Anchor derivatives of a first-contact sample jc: X = u_c, interpolated between jp = jc - 1 and jc at
+   lam = g_p / (g_p - g_c) */
+static inline void AnchorContact(const JRAFT *a, PetscInt jc, PetscReal kn, PetscBool normal)
+{
+  const PetscInt   N = a->N, nc = a->nc, jp = jc ? jc - 1 : N - 1;
+  const PetscReal *Bt = a->Bt, gp = a->g[jp], gc = a->g[jc], den = gp - gc, du = a->u[jc] - a->u[jp];
+
+  for (PetscInt k = 0; k < nc; k++) {
+    a->dXU[k] = (1.0 - a->lam[jc]) * Bt[k * N + jp] + a->lam[jc] * Bt[k * N + jc];
+    a->dXV[k] = normal ? du * kn * (gp * Bt[k * N + jc] - gc * Bt[k * N + jp]) / (den * den) : 0.0;
+  }
+}
+
+/* full stick: f_j = kt (u_j - w), w = 0 or an anchor at max L / min U: dF/dU = kt (I - e0 dX^T) */
+static inline void JacobianFullStick(JRAFT *a, PetscReal kt, PetscReal r, PetscReal kn, PetscBool normal, const MarchStart *ms)
+{
+  const PetscInt nc = a->nc, N = a->N;
+  PetscReal     *MU = a->DU, *MV = a->DV;
+
+  for (PetscInt k = 0; k < nc; k++) MU[k * nc + k] = kt / a->wdft[k];
+  if (ms->anchor) {
+    AnchorSlip(a, ms->anchor > 0 ? ms->jl : ms->jh, ms->anchor > 0 ? 1.0 : -1.0, r, kn, normal);
+    for (PetscInt k = 0; k < nc; k++) {
+      MU[k] -= kt * N * a->dXU[k];
+      MV[k] -= kt * N * a->dXV[k];
+    }
+  }
+}
+
+/* march with slip or separation: the sums over runs of equal state, from the prefix tables */
+static inline void JacobianRuns(JRAFT *a, PetscReal kt, PetscReal r, PetscReal kn, PetscReal mu, PetscBool normal, PetscInt s)
+{
+  const PetscInt  N = a->N, nc = a->nc;
+  const PetscInt *code = a->code;
+  PetscInt        t0   = 0;
+
+  while (t0 < N) {
+    const PetscInt c0 = code[t0] & 3;
+    PetscInt       t1 = t0 + 1;
+    while (t1 < N && code[t1] == c0) t1++; /* a first-contact sample carries a flag: it starts a run */
+    t1--;
+    if (c0 == JR_CODE_STICK) {
+      /* anchor of this stick run: the sample before it in march order, or the contact point */
+      if (code[t0] & JR_CODE_RECONTACT) AnchorContact(a, s + t0 >= N ? s + t0 - N : s + t0, kn, normal);
+      else {
+        const PetscInt ta = t0 - 1; /* t0 > 0: a stick run not at a contact follows a slip sample */
+        PetscInt       ja = s + ta;
+        ja                = ja >= N ? ja - N : ja;
+        AnchorSlip(a, ja, (code[ta] & 3) == JR_CODE_SLIPP ? 1.0 : -1.0, r, kn, normal);
+      }
+      GramAdd(a, s, t0, t1, kt, a->DU, PETSC_TRUE);
+      Rank1(nc, -kt, a->S, a->dXU, a->DU, normal ? a->dXV : NULL, a->DV);
+    } else if (c0 == JR_CODE_SEP) {
+      if (normal) GramAdd(a, s, t0, t1, -kn, a->DN, PETSC_FALSE);
+    } else if (normal) {
+      GramAdd(a, s, t0, t1, c0 == JR_CODE_SLIPP ? mu * kn : -mu * kn, a->DV, PETSC_FALSE);
+    }
+    t0 = t1 + 1;
+#if defined(JR_COUNT_RUNS)
+    jr_runs++;
+#endif
+  }
+}
+
+/* the derivatives: unweighted sums in a->DU, DV, DN, then dX/dY = diag(wdft) M;
+   dN/dV = kn W sum_contact B B^T = kn (I - W sum_separated B B^T) */
+static inline void Jacobian(JRAFT *a, PetscReal kt, PetscReal r, PetscReal kn, PetscReal mu, PetscBool normal, const MarchStart *ms, JRElementOut *out)
+{
+  const PetscInt nc = a->nc, nc2 = nc * nc;
+  PetscInt       k;
+
+  Zero(nc2, a->DU);
+  Zero(nc2, a->DV);
+  Zero(nc2, a->DN);
+  if (ms->fullstick) JacobianFullStick(a, kt, r, kn, normal, ms);
+  else JacobianRuns(a, kt, r, kn, mu, normal, ms->s);
+  if (out->dFdU)
+    for (k = 0; k < nc2; k++) out->dFdU[k] = a->wflat[k] * a->DU[k];
+  if (out->dFdV)
+    for (k = 0; k < nc2; k++) out->dFdV[k] = a->wflat[k] * a->DV[k];
+  if (out->dNdV) {
+    for (k = 0; k < nc2; k++) out->dNdV[k] = a->wflat[k] * a->DN[k];
+    if (normal)
+      for (k = 0; k < nc; k++) out->dNdV[k * nc + k] += kn;
+  }
+}
+
+/*
+  JRAFTElement - one friction element by AFT (see the top of this file): its force F and normal load N
+  (harmonic coefficients), the derivatives dF/dU, dF/dV, dN/dV that out asks for (non-NULL), its contact
+  state over the cycle, and if asked the force and normal load at the N samples (ftime, ntime).
+  Ve NULL: a constant normal load n0 (kn unused).
+*/
+void JRAFTElement(JRAFT *a, PetscReal kt, PetscReal kn, PetscReal mu, PetscReal n0, const PetscReal Ue[], const PetscReal Ve[], JRElementOut *out, PetscReal ftime[], PetscReal ntime[])
+{
+  const PetscReal r      = mu / kt;
+  const PetscBool normal = Ve ? PETSC_TRUE : PETSC_FALSE;
+  PetscInt        nsep;
+  MarchStart      ms;
+
+  nsep = StickBand(a, r, kn, n0, Ue, Ve);
+  if (nsep == a->N) {
+    ZeroOutputs(a->N, a->nc, out, ftime, ntime);
+    return;
+  }
+  FindMarchStart(a, nsep, &ms);
+  March(a, kt, nsep, &ms);
+  Transform(a, kn, n0, Ve, nsep, out, ftime, ntime);
+  out->state = CycleState(a, nsep, ms.fullstick);
+  if (!(out->dFdU || out->dFdV || out->dNdV)) return;
 #if defined(JR_COUNT_RUNS)
   jr_elems++;
 #endif
-  {
-    const PetscInt nc2 = nc * nc;
-    PetscReal     *MU = a->DU, *MV = a->DV, *MN = a->DN; /* unweighted sums; dX/dY = diag(wdft) M */
-    Zero(nc2, MU);
-    Zero(nc2, MV);
-    Zero(nc2, MN);
-    if (fullstick) {
-      /* f_j = kt (u_j - w), w = 0 or an anchor at max L / min U: dF/dU = kt (I - e0 dX^T) */
-      for (k = 0; k < nc; k++) MU[k * nc + k] = kt / wd[k];
-      if (anchor) {
-        AnchorSlip(a, anchor > 0 ? jl : jh, anchor > 0 ? 1.0 : -1.0, r, kn, normal);
-        for (k = 0; k < nc; k++) {
-          MU[k] -= kt * N * a->dXU[k];
-          MV[k] -= kt * N * a->dXV[k];
-        }
-      }
-    } else {
-      PetscInt t0 = 0;
-      while (t0 < N) {
-        const PetscInt c0 = code[t0] & 3;
-        PetscInt       t1 = t0 + 1;
-        while (t1 < N && code[t1] == c0) t1++; /* a first-contact sample carries a flag: it starts a run */
-        t1--;
-        if (c0 == JR_CODE_STICK) {
-          /* anchor of this stick run: the sample before it in march order, or the contact point */
-          if (code[t0] & JR_CODE_RECONTACT) {
-            PetscInt  jc = s + t0, jp;
-            PetscReal gp, gc, den, du;
-            jc  = jc >= N ? jc - N : jc;
-            jp  = jc ? jc - 1 : N - 1;
-            gp  = g[jp];
-            gc  = g[jc];
-            den = gp - gc;
-            du  = u[jc] - u[jp];
-            for (k = 0; k < nc; k++) {
-              a->dXU[k] = (1.0 - lam[jc]) * Bt[k * N + jp] + lam[jc] * Bt[k * N + jc];
-              a->dXV[k] = normal ? du * kn * (gp * Bt[k * N + jc] - gc * Bt[k * N + jp]) / (den * den) : 0.0;
-            }
-          } else {
-            const PetscInt ta = t0 - 1; /* t0 > 0: a stick run not at a contact follows a slip sample */
-            PetscInt       ja = s + ta;
-            ja                = ja >= N ? ja - N : ja;
-            AnchorSlip(a, ja, (code[ta] & 3) == JR_CODE_SLIPP ? 1.0 : -1.0, r, kn, normal);
-          }
-          GramAdd(a, s, t0, t1, kt, MU, PETSC_TRUE);
-          Rank1(nc, -kt, a->S, a->dXU, MU, normal ? a->dXV : NULL, MV);
-        } else if (c0 == JR_CODE_SEP) {
-          if (normal) GramAdd(a, s, t0, t1, -kn, MN, PETSC_FALSE);
-        } else if (normal) {
-          GramAdd(a, s, t0, t1, c0 == JR_CODE_SLIPP ? mu * kn : -mu * kn, MV, PETSC_FALSE);
-        }
-        t0 = t1 + 1;
-#if defined(JR_COUNT_RUNS)
-        jr_runs++;
-#endif
-      }
-    }
-    /* apply the DFT weights; dN/dV = kn W sum_contact B B^T = kn (I - W sum_separated B B^T) */
-    if (out->dFdU)
-      for (k = 0; k < nc2; k++) out->dFdU[k] = a->wflat[k] * MU[k];
-    if (out->dFdV)
-      for (k = 0; k < nc2; k++) out->dFdV[k] = a->wflat[k] * MV[k];
-    if (out->dNdV) {
-      for (k = 0; k < nc2; k++) out->dNdV[k] = a->wflat[k] * MN[k];
-      if (normal)
-        for (k = 0; k < nc; k++) out->dNdV[k * nc + k] += kn;
-    }
-  }
+  Jacobian(a, kt, r, kn, mu, normal, &ms, out);
 }
