@@ -7,7 +7,7 @@
    motion closest to the footprint nodes' displacements (an RBE3-like distributing coupling), so the bolt
    stiffness enters K as T^T K_beam T over the footprint DOFs. The washers, head and nut are not meshed:
    the footprints are not stiffened by them, which makes the joint slightly softer than a solid tied bolt
-   (a few per cent on the modes that bend the lap; see the README). The assembly holds together through
+   (a few per cent on the modes that bend the lap; docs/validation.md). The assembly holds together through
    the bolts alone, with no contact, as in the thesis's modal analysis.
 */
 #include <jointrom/private/feimpl.h>
