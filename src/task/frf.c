@@ -193,7 +193,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
 
   if (n2n) {
     PetscInt         ndof;
-    PetscReal        lo[3], hi[3], dist;
+    PetscReal        lo[3], hi[3], dist, fdist;
     JRPreloadSummary s;
     char             pbase[PETSC_MAX_PATH_LEN + 16], mfile[PETSC_MAX_PATH_LEN + 16];
 
@@ -205,6 +205,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
       at[2] = hi[2];
     }
     PetscCall(JRModelFindDof(model, at, dir, &fdof, &dist));
+    fdist = dist;
     PetscCheck(dist <= 0.05 * (hi[0] - lo[0]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_at (%g, %g, %g) m: the nearest node is %g m away: the point is outside the model (box x %g..%g, y %g..%g, z %g..%g m)", (double)at[0], (double)at[1], (double)at[2], (double)dist, (double)lo[0], (double)hi[0], (double)lo[1], (double)hi[1], (double)lo[2], (double)hi[2]);
     if (!oset) {
       oat[0] = hi[0];
@@ -265,7 +266,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
         loaded = PETSC_TRUE;
       }
     }
-    PetscCall(PetscPrintf(comm, "frf: excitation F sin(w t) along %s at (%g, %g, %g) m: DOF %" PetscInt_FMT "\n", dirs[dir], (double)at[0], (double)at[1], (double)at[2], fdof));
+    PetscCall(PetscPrintf(comm, "frf: excitation F sin(w t) along %s at (%g, %g, %g) m: DOF %" PetscInt_FMT " (node %.2g mm away)\n", dirs[dir], (double)at[0], (double)at[1], (double)at[2], fdof, (double)(fdist * 1e3)));
     for (PetscInt o = 0; o < nout; o++) PetscCall(PetscPrintf(comm, "frf: response %" PetscInt_FMT " along %s at (%g, %g, %g) m: DOF %" PetscInt_FMT "\n", o + 1, dirs[dir], (double)oat[3 * o], (double)oat[3 * o + 1], (double)oat[3 * o + 2], odof[o]));
     /* the modes are saved for reuse unless they are read (-modes_load) or saved elsewhere (-modes_save) */
     if (base[0] && hbm) {
