@@ -297,6 +297,12 @@ typedef enum {
   JR_HBM_JACOBIAN_FD
 } JRHBMJacobianType;
 PETSC_EXTERN const char *const JRHBMJacobianTypes[];
+typedef enum {
+  JR_HBM_BASIS_FREE,  /* the modes of K: the interface held by the bolts only */
+  JR_HBM_BASIS_STUCK, /* the modes of K plus every element in contact at rest stuck */
+  JR_HBM_BASIS_MIXED  /* Ritz vectors of the stuck structure in the span of the stuck and free-interface modes */
+} JRHBMBasis;
+PETSC_EXTERN const char *const JRHBMBases[];
 
 PETSC_EXTERN PetscErrorCode JRHBMCreate(MPI_Comm, JRHBM *);
 PETSC_EXTERN PetscErrorCode JRHBMSetModel(JRHBM, JRModel);
@@ -326,7 +332,7 @@ PETSC_EXTERN PetscErrorCode JRHBMMatchStickFrequency(JRHBM, PetscInt, PetscReal,
 PETSC_EXTERN PetscErrorCode JRHBMStuckModeMotion(JRHBM, PetscInt, PetscReal[], PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMStuckModeBalance(JRHBM, PetscInt, PetscReal *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMSetModes(JRHBM, JRHBM);
-PETSC_EXTERN PetscErrorCode JRHBMSetBasis(JRHBM, PetscInt);
+PETSC_EXTERN PetscErrorCode JRHBMSetBasis(JRHBM, JRHBMBasis);
 PETSC_EXTERN PetscErrorCode JRHBMSetModesFile(JRHBM, const char[]);
 PETSC_EXTERN PetscErrorCode JRHBMGetBasis(JRHBM, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMStickFrequencies(JRHBM, PetscInt *, PetscReal[]);
