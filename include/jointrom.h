@@ -198,6 +198,13 @@ typedef enum {
   JR_PRELOAD_SUPPORT_NONE     /* only JRPreloadAddSupport() */
 } JRPreloadSupport;
 PETSC_EXTERN const char *const JRPreloadSupports[];
+/* Solvers of the contact problem (-preload_solver), registered types */
+typedef const char *JRPreloadSolverType;
+#define JRPRELOADCONDENSED "condensed" /* one factorisation of K, Newton on the interface's dense flexibility */
+#define JRPRELOADFULL      "full"      /* Newton on all DOFs, a factorisation per change of the closed set */
+PETSC_EXTERN PetscFunctionList JRPreloadSolverList;
+PETSC_EXTERN PetscErrorCode JRPreloadSolverRegister(const char[], PetscErrorCode (*)(JRPreload));
+PETSC_EXTERN PetscErrorCode JRPreloadSolverRegisterAll(void);
 typedef struct {
   PetscInt  pairs, in_contact, bolts, newton, updates, factorisations;
   PetscReal total_force, bolt_force_sum;        /* sum of the pairs' normal loads, of the pretensions [N] */
@@ -212,6 +219,8 @@ PETSC_EXTERN PetscErrorCode JRPreloadSetForces(JRPreload, PetscInt, const PetscR
 PETSC_EXTERN PetscErrorCode JRPreloadSetExternalForce(JRPreload, Vec);
 PETSC_EXTERN PetscErrorCode JRPreloadAddSupport(JRPreload, PetscInt, const PetscReal[3]);
 PETSC_EXTERN PetscErrorCode JRPreloadSetFromOptions(JRPreload);
+PETSC_EXTERN PetscErrorCode JRPreloadSetSolverType(JRPreload, JRPreloadSolverType);
+PETSC_EXTERN PetscErrorCode JRPreloadGetSolverType(JRPreload, JRPreloadSolverType *);
 PETSC_EXTERN PetscErrorCode JRPreloadSolve(JRPreload);
 PETSC_EXTERN PetscErrorCode JRPreloadGetResults(JRPreload, PetscInt *, const PetscReal **, const PetscReal **);
 PETSC_EXTERN PetscErrorCode JRPreloadGetN0(JRPreload, PetscReal, PetscReal[]);
