@@ -98,7 +98,7 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
   PetscCall(PetscOptionsString("-frf_force_file", "Excitation shape from a file instead (one value per DOF: .csv/.txt, .bin, .h5)", "JRHBMSetUp", h->ffile, h->ffile, sizeof(h->ffile), NULL));
   PetscCall(PetscOptionsIntArray("-frf_output", "Response DOFs (default: the excitation DOF)", "JRHBMResponse", out, &nout, &flg));
   PetscOptionsEnd();
-  if (h->nout && h->fdof_set) flg = PETSC_FALSE; /* JRHBMSetOutputDofs() called */
+  if (h->nout && h->fdof_set) flg = PETSC_FALSE; /* JRHBMSetExcitationDof() called */
   else PetscCall(PetscFree(h->outdof));
   if (flg) {
     PetscCheck(nout > 0, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_output needs at least one DOF");
