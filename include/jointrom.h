@@ -201,6 +201,13 @@ typedef enum {
   JR_PRELOAD_SUPPORT_NONE     /* only JRPreloadAddSupport() */
 } JRPreloadSupport;
 PETSC_EXTERN const char *const JRPreloadSupports[];
+/* Solvers of the contact problem (-preload_solver), registered types */
+typedef const char *JRPreloadSolverType;
+#define JRPRELOADCONDENSED "condensed" /* one factorisation of K, Newton on the interface's dense flexibility */
+#define JRPRELOADFULL      "full"      /* Newton on all DOFs, a factorisation per change of the closed set */
+PETSC_EXTERN PetscFunctionList JRPreloadSolverList;
+PETSC_EXTERN PetscErrorCode JRPreloadSolverRegister(const char[], PetscErrorCode (*)(JRPreload));
+PETSC_EXTERN PetscErrorCode JRPreloadSolverRegisterAll(void);
 typedef struct {
   PetscInt  pairs, in_contact, bolts, newton, updates, factorisations;
   PetscReal total_force, bolt_force_sum;        /* sum of the pairs' normal loads, of the pretensions [N] */
@@ -215,6 +222,8 @@ PETSC_EXTERN PetscErrorCode JRPreloadSetForces(JRPreload, PetscInt, const PetscR
 PETSC_EXTERN PetscErrorCode JRPreloadSetExternalForce(JRPreload, Vec);
 PETSC_EXTERN PetscErrorCode JRPreloadAddSupport(JRPreload, PetscInt, const PetscReal[3]);
 PETSC_EXTERN PetscErrorCode JRPreloadSetFromOptions(JRPreload);
+PETSC_EXTERN PetscErrorCode JRPreloadSetSolverType(JRPreload, JRPreloadSolverType);
+PETSC_EXTERN PetscErrorCode JRPreloadGetSolverType(JRPreload, JRPreloadSolverType *);
 PETSC_EXTERN PetscErrorCode JRPreloadSolve(JRPreload);
 PETSC_EXTERN PetscErrorCode JRPreloadGetResults(JRPreload, PetscInt *, const PetscReal **, const PetscReal **);
 PETSC_EXTERN PetscErrorCode JRPreloadGetN0(JRPreload, PetscReal, PetscReal[]);
@@ -295,6 +304,12 @@ typedef enum {
   JR_HBM_JACOBIAN_FD
 } JRHBMJacobianType;
 PETSC_EXTERN const char *const JRHBMJacobianTypes[];
+typedef enum {
+  JR_HBM_BASIS_FREE,  /* the modes of K: the interface held by the bolts only */
+  JR_HBM_BASIS_STUCK, /* the modes of K plus every element in contact at rest stuck */
+  JR_HBM_BASIS_MIXED  /* Ritz vectors of the stuck structure in the span of the stuck and free-interface modes */
+} JRHBMBasis;
+PETSC_EXTERN const char *const JRHBMBases[];
 
 PETSC_EXTERN PetscErrorCode JRHBMCreate(MPI_Comm, JRHBM *);
 PETSC_EXTERN PetscErrorCode JRHBMSetModel(JRHBM, JRModel);
@@ -326,7 +341,7 @@ PETSC_EXTERN PetscErrorCode JRHBMMatchStickFrequency(JRHBM, PetscInt, PetscReal,
 PETSC_EXTERN PetscErrorCode JRHBMStuckModeMotion(JRHBM, PetscInt, PetscReal[], PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMStuckModeBalance(JRHBM, PetscInt, PetscReal *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMSetModes(JRHBM, JRHBM);
-PETSC_EXTERN PetscErrorCode JRHBMSetBasis(JRHBM, PetscInt);
+PETSC_EXTERN PetscErrorCode JRHBMSetBasis(JRHBM, JRHBMBasis);
 PETSC_EXTERN PetscErrorCode JRHBMSetModesFile(JRHBM, const char[]);
 PETSC_EXTERN PetscErrorCode JRHBMGetBasis(JRHBM, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMStickFrequencies(JRHBM, PetscInt *, PetscReal[]);

@@ -31,6 +31,7 @@ PetscErrorCode JRInitializePackage(void)
   PetscCall(SNESRegister(SNESNEWTONDENSE, SNESCreate_NewtonDense));
   PetscCall(JRModelRegisterAll());
   PetscCall(JRContactRegisterAll());
+  PetscCall(JRPreloadSolverRegisterAll());
   PetscCall(PetscRegisterFinalize(JRFinalizePackage));
   PetscFunctionReturn(0);
 }
@@ -40,6 +41,7 @@ PetscErrorCode JRFinalizePackage(void)
   PetscFunctionBeginUser;
   PetscCall(JRContactRegisterAllReset());
   PetscCall(PetscFunctionListDestroy(&JRModelList));
+  PetscCall(PetscFunctionListDestroy(&JRPreloadSolverList));
   JRPackageInitialized = PETSC_FALSE;
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,738 @@
+/*
+   JRHBM's modal basis (-hbm_basis free, stuck or mixed; -hbm_physical) and its linear modal matrices, the excitation
+   and the outputs in it, the element groups (one per contact type, split across the ranks) with their projection rows
+   r_e = phi(a_e) - phi(b_e) (4.3) and the constant part of their Jacobian, the stuck springs a stuck basis holds, and
+   the natural frequencies and modes of the stuck structure in the basis.
+*/
+#include <jointrom/private/hbmimpl.h>
+
+/* Dense copy of a (small) distributed matrix on every rank, row-major */
+static PetscErrorCode DenseAll(Mat A, PetscReal D[])
+{
+  Mat     *sub;
+  IS       all;
+  PetscInt n;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetSize(A, &n, NULL));
+  PetscCall(ISCreateStride(PETSC_COMM_SELF, n, 0, 1, &all));
+  PetscCall(MatCreateSubMatrices(A, 1, &all, &all, MAT_INITIAL_MATRIX, &sub));
+  PetscCall(PetscArrayzero(D, n * n));
+  for (PetscInt i = 0; i < n; i++) {
+    PetscInt           nz;
+    const PetscInt    *cols;
+    const PetscScalar *v;
+    PetscCall(MatGetRow(sub[0], i, &nz, &cols, &v));
+    for (PetscInt k = 0; k < nz; k++) D[i * n + cols[k]] = PetscRealPart(v[k]);
+    PetscCall(MatRestoreRow(sub[0], i, &nz, &cols, &v));
+  }
+  PetscCall(MatDestroySubMatrices(1, &sub));
+  PetscCall(ISDestroy(&all));
+  PetscFunctionReturn(0);
+}
+
+/*
+  Mixed basis: the stuck modes of h->modes (operators K + Ks, M) and the elastic free-interface modes of (K, M),
+  M-orthonormalised (dependent vectors dropped), then the Ritz vectors of (K + Ks, M) in their span, which
+  replace h->modes' modes: exact for the stuck structure and for the structure with the interface free.
+*/
+static PetscErrorCode MixBasis(JRHBM h, Mat K, Mat M)
+{
+  JRModes       fm, md = h->modes;
+  PetscInt      nrb, nf, nq = 0, ncand;
+  Vec           rb[6], *Q, *MQ, *cand, Mv;
+  PetscScalar  *d;
+  PetscReal    *A, *lam, *work;
+  PetscBLASInt  bn, lwork, info;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetRigidBasis(h->model, &nrb, rb));
+  nf = h->nfree >= 0 ? h->nfree : h->nm;
+  PetscCall(JRModesCreate(h->comm, &fm));
+  PetscCall(JRModesSetOperators(fm, K, M));
+  PetscCall(JRModesSetFromOptions(fm));
+  fm->load[0] = fm->save[0] = 0;
+  fm->view                  = PETSC_FALSE;
+  PetscCall(JRModesSetNumber(fm, nf + nrb));
+  PetscCall(JRModesSetRigidBasis(fm, nrb, rb));
+  for (PetscInt i = 0; i < nrb; i++) PetscCall(VecDestroy(&rb[i]));
+  PetscCall(JRModesSolve(fm));
+  ncand = md->nm + nf;
+  PetscCall(PetscMalloc2(ncand, &cand, ncand, &Q));
+  for (PetscInt i = 0; i < md->nm; i++) cand[i] = md->phi[i];
+  for (PetscInt i = 0; i < nf; i++) cand[md->nm + i] = fm->phi[nrb + i];
+  PetscCall(VecDuplicate(md->phi[0], &Mv));
+  PetscCall(PetscMalloc1(ncand, &d));
+  PetscCall(PetscMalloc1(ncand, &MQ));
+  for (PetscInt c = 0; c < ncand; c++) { /* Gram-Schmidt in the M inner product, twice, against M Q kept */
+    PetscScalar nn;
+    PetscReal   n0;
+    PetscCall(VecDuplicate(cand[c], &Q[nq]));
+    PetscCall(VecCopy(cand[c], Q[nq]));
+    PetscCall(MatMult(M, Q[nq], Mv));
+    PetscCall(VecDot(Q[nq], Mv, &nn));
+    n0 = PetscSqrtReal(PetscRealPart(nn));
+    for (PetscInt pass = 0; pass < 2 && nq; pass++) {
+      PetscCall(VecMDot(Q[nq], nq, MQ, d));
+      for (PetscInt j = 0; j < nq; j++) d[j] = -d[j];
+      PetscCall(VecMAXPY(Q[nq], nq, d, Q));
+    }
+    PetscCall(MatMult(M, Q[nq], Mv));
+    PetscCall(VecDot(Q[nq], Mv, &nn));
+    if (PetscSqrtReal(PetscRealPart(nn)) < 1e-6 * n0) {
+      PetscCall(VecDestroy(&Q[nq]));
+      continue;
+    }
+    PetscCall(VecScale(Q[nq], 1.0 / PetscSqrtReal(PetscRealPart(nn))));
+    PetscCall(VecDuplicate(Q[nq], &MQ[nq]));
+    PetscCall(VecAXPBY(MQ[nq], 1.0 / PetscSqrtReal(PetscRealPart(nn)), 0.0, Mv));
+    nq++;
+  }
+  /* Ritz: A = Q^T (K + Ks) Q, eigenvectors ascending */
+  PetscCall(PetscMalloc3(nq * nq, &A, nq, &lam, 8 * nq, &work));
+  for (PetscInt j = 0; j < nq; j++) {
+    PetscCall(MatMult(md->K, Q[j], Mv));
+    PetscCall(VecMDot(Mv, nq, Q, d));
+    for (PetscInt i = 0; i < nq; i++) A[i + j * nq] = PetscRealPart(d[i]);
+  }
+  for (PetscInt j = 0; j < nq; j++)
+    for (PetscInt i = 0; i < j; i++) A[i + j * nq] = A[j + i * nq] = 0.5 * (A[i + j * nq] + A[j + i * nq]);
+  PetscCall(PetscBLASIntCast(nq, &bn));
+  PetscCall(PetscBLASIntCast(8 * nq, &lwork));
+  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &bn, A, &bn, lam, work, &lwork, &info));
+  PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed: info %d", (int)info);
+  PetscCall(VecDestroyVecs(md->nm, &md->phi));
+  PetscCall(PetscFree(md->lambda));
+  PetscCall(VecDuplicateVecs(Q[0], nq, &md->phi));
+  PetscCall(PetscMalloc1(nq, &md->lambda));
+  for (PetscInt i = 0; i < nq; i++) {
+    PetscCall(VecZeroEntries(md->phi[i]));
+    for (PetscInt j = 0; j < nq; j++) d[j] = A[j + i * nq];
+    PetscCall(VecMAXPY(md->phi[i], nq, d, Q));
+    md->lambda[i] = PetscAbsReal(lam[i]) <= 1e-10 * PetscAbsReal(lam[nq - 1]) ? 0.0 : lam[i];
+  }
+  md->nm = nq;
+  PetscCall(PetscInfo(NULL, "Mixed basis: %" PetscInt_FMT " stuck + %" PetscInt_FMT " free modes -> %" PetscInt_FMT " Ritz vectors\n", md->nev, nf, nq));
+  PetscCall(PetscFree3(A, lam, work));
+  PetscCall(PetscFree(d));
+  PetscCall(VecDestroy(&Mv));
+  for (PetscInt i = 0; i < nq; i++) {
+    PetscCall(VecDestroy(&Q[i]));
+    PetscCall(VecDestroy(&MQ[i]));
+  }
+  PetscCall(PetscFree(MQ));
+  PetscCall(PetscFree2(cand, Q));
+  PetscCall(JRModesDestroy(&fm));
+  PetscFunctionReturn(0);
+}
+
+/* Physical coordinates (-hbm_physical): K, M and C dense on every rank */
+static PetscErrorCode SetUpPhysical(JRHBM h, Mat K, Mat M, Mat C, PetscInt ndof)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(ndof <= 2000, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_physical is for small systems (%" PetscInt_FMT " DOFs here, at most 2000): use modes", ndof);
+  PetscCheck(h->zeta == 0.0, h->comm, PETSC_ERR_ARG_INCOMP, "-hbm_zeta (modal damping) needs modal coordinates, not -hbm_physical: give a damping matrix with -model_damping");
+  PetscCheck(h->basis == JR_HBM_BASIS_FREE, h->comm, PETSC_ERR_ARG_INCOMP, "-hbm_basis stuck needs modal coordinates, not -hbm_physical");
+  h->nm = ndof;
+  PetscCall(PetscCalloc3(h->nm * h->nm, &h->Km, h->nm * h->nm, &h->Mm, h->nm * h->nm, &h->Cm));
+  PetscCall(DenseAll(K, h->Km));
+  PetscCall(DenseAll(M, h->Mm));
+  if (C) PetscCall(DenseAll(C, h->Cm));
+  PetscCall(PetscMalloc1(0, &h->omega_r));
+  PetscFunctionReturn(0);
+}
+
+/* The modes of the basis: of K (free), of K plus the stuck springs of the elements el (stuck), or the mixed basis made
+   from those and the free-interface modes; -modes_* options, saved and loaded (-modes_save, -modes_load) */
+static PetscErrorCode SolveModes(JRHBM h, Mat K, Mat M, const JRElements *el)
+{
+  char save[PETSC_MAX_PATH_LEN] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModesDestroy(&h->modes));
+  PetscCall(JRModesCreate(h->comm, &h->modes));
+  if (h->basis != JR_HBM_BASIS_FREE) {
+    Mat       Ks, KK;
+    PetscReal sig;
+    PetscCall(JRElementsCreateStuckStiffness(K, el, &Ks, &sig));
+    PetscCall(MatDuplicate(K, MAT_COPY_VALUES, &KK));
+    PetscCall(MatAXPY(KK, 1.0, Ks, DIFFERENT_NONZERO_PATTERN));
+    PetscCall(JRModesSetOperators(h->modes, KK, M));
+    PetscCall(JRModesSetSignature(h->modes, sig));
+    PetscCall(MatDestroy(&KK));
+    PetscCall(MatDestroy(&Ks));
+  } else PetscCall(JRModesSetOperators(h->modes, K, M));
+  PetscCall(JRModesSetNumber(h->modes, h->nm));
+  PetscCall(JRModesSetFromOptions(h->modes));
+  PetscCall(JRModesSetNumber(h->modes, h->nm)); /* -hbm_modes wins over -modes_nev */
+  if (h->modes_file[0] && !h->modes->load[0] && !h->modes->save[0]) PetscCall(PetscStrncpy(h->modes->save, h->modes_file, sizeof(h->modes->save)));
+  {
+    PetscInt nrb;
+    Vec      rb[6];
+    PetscCall(JRModelGetRigidBasis(h->model, &nrb, rb));
+    PetscCall(JRModesSetRigidBasis(h->modes, nrb, rb));
+    for (PetscInt i = 0; i < nrb; i++) PetscCall(VecDestroy(&rb[i]));
+    if (nrb) { /* an FE model: its coordinates go with saved modes */
+      Vec X;
+      PetscCall(JRModelGetCoordinates(h->model, &X));
+      PetscCall(JRModesSetCoordinates(h->modes, X));
+      PetscCall(VecDestroy(&X));
+    }
+  }
+  if (h->basis == JR_HBM_BASIS_MIXED) { /* the saved or loaded basis is the mixed one, marked by the signature's sign */
+    PetscCall(PetscStrncpy(save, h->modes->save, sizeof(save)));
+    h->modes->save[0]  = 0;
+    h->modes->load_all = PETSC_TRUE;
+    h->modes->sig      = -h->modes->sig - 1.0;
+  }
+  PetscCall(JRModesSolve(h->modes));
+  if (h->basis == JR_HBM_BASIS_MIXED && !h->modes->load[0]) {
+    PetscCall(MixBasis(h, K, M));
+    if (save[0]) PetscCall(JRModesSave(h->modes, save));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The linear modal matrices of the modes: Km = diag(omega_r^2), Mm = I, Cm = Phi^T C Phi + diag(2 zeta omega_r);
+   rigid-body modes pinned */
+static PetscErrorCode ModalMatrices(JRHBM h, Mat C)
+{
+  const PetscReal *lam;
+
+  PetscFunctionBeginUser;
+  h->nm = h->modes->nm;
+  PetscCall(JRModesGetEigenvalues(h->modes, &lam));
+  PetscCall(PetscCalloc3(h->nm * h->nm, &h->Km, h->nm * h->nm, &h->Mm, h->nm * h->nm, &h->Cm));
+  PetscCall(PetscMalloc1(h->nm, &h->omega_r));
+  PetscCall(PetscCalloc1(h->nm, &h->pin));
+  for (PetscInt i = 0; i < h->nm; i++) {
+    h->Km[i * h->nm + i] = lam[i];
+    h->Mm[i * h->nm + i] = 1.0;
+    h->omega_r[i]        = PetscSqrtReal(PetscMax(lam[i], 0.0));
+  }
+  /* A free-free structure's rigid-body modes stretch no element (their projection rows vanish) and no
+     spring: their mean has no equation. It is zero (the excitation is harmonic), so pin it. */
+  for (PetscInt i = 0; i < h->nm; i++)
+    if (lam[i] <= 1e-8 * lam[h->nm - 1]) h->pin[i] = lam[h->nm - 1];
+  if (C) PetscCall(JRModesProject(h->modes, C, h->Cm));
+  for (PetscInt i = 0; i < h->nm; i++) h->Cm[i * h->nm + i] += 2.0 * h->zeta * h->omega_r[i];
+  PetscFunctionReturn(0);
+}
+
+/* The linear part: the modes (or physical coordinates) and the modal matrices Km, Mm, Cm; h->nm is their number */
+PetscErrorCode JRHBMSetUpBasis(JRHBM h, Mat K, Mat M, Mat C, PetscInt ndof, const JRElements *el)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree3(h->Km, h->Mm, h->Cm));
+  PetscCall(PetscFree(h->omega_r));
+  PetscCall(PetscFree(h->pin));
+  if (h->physical) PetscCall(SetUpPhysical(h, K, M, C, ndof));
+  else {
+    h->nm = h->nmodes_opt > 0 ? h->nmodes_opt : (ndof <= 200 ? ndof : 10);
+    PetscCheck(h->nm <= ndof, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_modes %" PetscInt_FMT ": the model has only %" PetscInt_FMT " DOFs", h->nm, ndof);
+    if (!h->modes_shared) PetscCall(SolveModes(h, K, M, el));
+    PetscCall(ModalMatrices(h, C));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The excitation shape in the basis, fm (-frf_dof or -frf_force_file), and the output DOFs' rows, Phiout */
+PetscErrorCode JRHBMSetUpExcitation(JRHBM h, PetscInt ndof)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(h->fm));
+  PetscCall(PetscCalloc1(h->nm, &h->fm));
+  PetscCall(PetscFree(h->Phiout));
+  PetscCall(PetscMalloc1(h->nout * h->nm, &h->Phiout));
+  if (h->ffile[0]) {
+    PetscReal *f;
+    PetscCall(PetscMalloc1(ndof, &f));
+    PetscCall(JRVecLoadFile(h->comm, h->ffile, ndof, f));
+    if (h->physical) PetscCall(PetscArraycpy(h->fm, f, ndof));
+    else {
+      Vec          fv;
+      PetscInt     lo, hi;
+      PetscScalar *d;
+      PetscCall(VecDuplicate(h->modes->phi[0], &fv));
+      PetscCall(VecGetOwnershipRange(fv, &lo, &hi));
+      for (PetscInt i = lo; i < hi; i++) PetscCall(VecSetValue(fv, i, f[i], INSERT_VALUES));
+      PetscCall(VecAssemblyBegin(fv));
+      PetscCall(VecAssemblyEnd(fv));
+      PetscCall(PetscMalloc1(h->nm, &d));
+      PetscCall(VecMDot(fv, h->nm, h->modes->phi, d));
+      for (PetscInt i = 0; i < h->nm; i++) h->fm[i] = PetscRealPart(d[i]);
+      PetscCall(PetscFree(d));
+      PetscCall(VecDestroy(&fv));
+    }
+    PetscCall(PetscFree(f));
+  } else if (h->physical) h->fm[h->fdof] = 1.0;
+  else PetscCall(JRModesGetRows(h->modes, 1, &h->fdof, h->fm));
+  if (h->physical) {
+    PetscCall(PetscArrayzero(h->Phiout, h->nout * h->nm));
+    for (PetscInt i = 0; i < h->nout; i++) h->Phiout[i * h->nm + h->outdof[i]] = 1.0;
+  } else PetscCall(JRModesGetRows(h->modes, h->nout, h->outdof, h->Phiout));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRHBMGroupDestroy(JRHBMGroup *g)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRContactDestroy(&g->c));
+  PetscCall(JRFreeAligned(&g->R));
+  PetscCall(JRFreeAligned(&g->S));
+  PetscCall(JRFreeAligned(&g->U));
+  PetscCall(JRFreeAligned(&g->V));
+  PetscCall(JRFreeAligned(&g->F));
+  PetscCall(JRFreeAligned(&g->N));
+  PetscCall(JRFreeAligned(&g->DU));
+  PetscCall(JRFreeAligned(&g->DV));
+  PetscCall(JRFreeAligned(&g->DN));
+  PetscCall(JRFreeAligned(&g->W));
+  PetscCall(PetscFree(g->nstatic));
+  PetscCall(PetscFree(g->state));
+  PetscCall(PetscFree2(g->Kst, g->Knn));
+  PetscCall(PetscFree(g->sel));
+  PetscCall(JRFreeAligned(&g->Rc));
+  PetscCall(JRFreeAligned(&g->Sc));
+  PetscCall(JRFreeAligned(&g->Dc));
+  PetscCall(PetscFree4(g->kt, g->kn, g->pt, g->pn));
+  PetscCall(PetscFree(g->eidx));
+  PetscCall(PetscFree(g->Kc));
+  PetscCall(PetscFree(g->R0));
+  PetscCall(PetscFree(g->S0));
+  PetscCall(PetscFree2(g->qt, g->qn));
+  PetscFunctionReturn(0);
+}
+
+/* Projection rows of a list of DOF pairs: rows[e*nm + i] = phi_i(a_e) - phi_i(b_e), col-major R */
+static PetscErrorCode ProjectionRows(JRHBM h, PetscInt nloc, const PetscInt da[], const PetscInt db[], PetscReal R[])
+{
+  PetscInt  *dofs;
+  PetscReal *rows;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(2 * nloc, &dofs, 2 * nloc * h->nm, &rows));
+  for (PetscInt e = 0; e < nloc; e++) {
+    dofs[2 * e]     = da[e];
+    dofs[2 * e + 1] = db[e];
+  }
+  if (h->physical) {
+    PetscCall(PetscArrayzero(rows, 2 * nloc * h->nm));
+    for (PetscInt k = 0; k < 2 * nloc; k++)
+      if (dofs[k] >= 0) rows[k * h->nm + dofs[k]] = 1.0;
+  } else PetscCall(JRModesGetRows(h->modes, 2 * nloc, dofs, rows));
+  for (PetscInt e = 0; e < nloc; e++)
+    for (PetscInt i = 0; i < h->nm; i++) R[e + i * nloc] = rows[(2 * e) * h->nm + i] - rows[(2 * e + 1) * h->nm + i];
+  PetscCall(PetscFree2(dofs, rows));
+  PetscFunctionReturn(0);
+}
+
+/* Projection rows of node-to-node elements (4.3): R[e + i nloc] = sum_c dir_c (phi_i(A_c) - phi_i(B_c)) for the
+   elements eidx[e] of the model's list, whose nodes' x, y, z DOFs are va[3 eidx..], vb[3 eidx..] */
+PetscErrorCode JRHBMProjectionRowsDir(JRHBM h, PetscInt nloc, const PetscInt eidx[], const PetscInt va[], const PetscInt vb[], const PetscReal dir[], PetscReal R[])
+{
+  const PetscInt nm = h->nm, chunk = 8192; /* elements per gather: bounds the work arrays (6 chunk nm values) */
+  PetscInt      *dofs, nch, nchmax;
+  PetscReal     *rows;
+
+  PetscFunctionBeginUser;
+  nch = (nloc + chunk - 1) / chunk;
+  PetscCall(MPIU_Allreduce(&nch, &nchmax, 1, MPIU_INT, MPI_MAX, h->comm)); /* the gather is collective */
+  PetscCall(PetscMalloc2(6 * chunk, &dofs, 6 * chunk * nm, &rows));
+  for (PetscInt c0 = 0, ch = 0; ch < PetscMax(nchmax, 1); ch++, c0 += chunk) {
+    const PetscInt n = PetscMax(0, PetscMin(chunk, nloc - c0));
+    for (PetscInt e = 0; e < n; e++)
+      for (PetscInt c = 0; c < 3; c++) {
+        dofs[6 * e + c]     = va[3 * eidx[c0 + e] + c];
+        dofs[6 * e + 3 + c] = vb[3 * eidx[c0 + e] + c];
+      }
+    if (h->physical) {
+      PetscCall(PetscArrayzero(rows, 6 * n * nm));
+      for (PetscInt k = 0; k < 6 * n; k++)
+        if (dofs[k] >= 0) rows[k * nm + dofs[k]] = 1.0;
+    } else PetscCall(JRModesGetRows(h->modes, 6 * n, dofs, rows));
+    for (PetscInt e = 0; e < n; e++) {
+      const PetscReal *d = dir + 3 * eidx[c0 + e];
+      for (PetscInt i = 0; i < nm; i++) {
+        PetscReal r = 0.0;
+        for (PetscInt c = 0; c < 3; c++) r += d[c] * (rows[(6 * e + c) * nm + i] - rows[(6 * e + 3 + c) * nm + i]);
+        R[c0 + e + i * nloc] = r;
+      }
+    }
+  }
+  PetscCall(PetscFree2(dofs, rows));
+  PetscFunctionReturn(0);
+}
+
+
+/* One group's set-up work: its elements' numbers in the model's list, DOF pairs and parameters */
+typedef struct {
+  PetscInt  *eidx, *ia, *ib;
+  PetscReal *kt, *kn, *mu, *n0;
+} GroupInput;
+
+/* The elements of type t on this rank (a contiguous share of them; all of them if h->repl) and their contact batch */
+static PetscErrorCode GroupElements(JRHBM h, const JRElements *el, PetscInt t, JRHBMGroup *g, GroupInput *in)
+{
+  PetscInt ntot = 0, nloc = PETSC_DECIDE, start = 0, k = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < el->n; e++) ntot += el->type[e] == t;
+  if (h->repl) nloc = ntot;
+  else {
+    PetscCall(PetscSplitOwnership(h->comm, &nloc, &ntot));
+    PetscCallMPI(MPI_Scan(&nloc, &start, 1, MPIU_INT, MPI_SUM, h->comm));
+    start -= nloc;
+  }
+  g->nloc = nloc;
+  PetscCall(PetscMalloc4(nloc, &in->kt, nloc, &in->kn, nloc, &in->mu, nloc, &in->n0));
+  PetscCall(PetscMalloc2(nloc, &in->ia, nloc, &in->ib));
+  PetscCall(PetscMalloc1(nloc, &g->nstatic));
+  PetscCall(PetscMalloc1(nloc, &g->state));
+  PetscCall(PetscMalloc1(nloc, &in->eidx));
+  for (PetscInt e = 0, cnt = 0; e < el->n; e++) {
+    if (el->type[e] != t) continue;
+    if (cnt >= start && cnt < start + nloc) {
+      in->eidx[k]   = e;
+      in->ia[k]     = el->dof_a[e];
+      in->ib[k]     = el->dof_b[e];
+      in->kt[k]     = el->kt[e];
+      in->kn[k]     = el->kn[e];
+      in->mu[k]     = el->mu[e];
+      in->n0[k]     = el->n0[e];
+      g->nstatic[k] = PetscMax(el->n0[e], 0.0);
+      k++;
+    }
+    cnt++;
+  }
+  PetscCall(JRContactCreate(PETSC_COMM_SELF, &g->c));
+  PetscCall(JRContactSetType(g->c, el->typename[t]));
+  PetscCall(JRContactSetHarmonics(g->c, h->H, h->Ns));
+  PetscCall(JRContactSetElements(g->c, nloc, in->kt, in->kn, in->mu, in->n0));
+  PetscCall(JRContactSetUp(g->c));
+  PetscCall(JRContactUsesNormal(g->c, &g->normal));
+  PetscFunctionReturn(0);
+}
+
+/* The group's projection rows R (tangential) and, for elements with a normal direction, S: a reduced model's from its
+   joints' fields (field), node-to-node elements' along their directions (4.3), others' of their DOF pairs; the members
+   of joints (first reduction, 4.4) then move with their joint's field. Collective. */
+static PetscErrorCode GroupRows(JRHBM h, const JRElements *el, JRHBMGroup *g, GroupInput *in, const PetscReal field[])
+{
+  const PetscInt nc = h->nc, nm = h->nm, nloc = g->nloc;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nm, &g->R));
+  PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nm, &g->W));
+  PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc, &g->U));
+  PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc, &g->F));
+  PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc * nc, &g->DU));
+  if (el->members) PetscCall(JRJointFieldRows(h, el, nloc, in->eidx, field, 0, g->R));
+  else if (el->vdof_a) PetscCall(JRHBMProjectionRowsDir(h, nloc, in->eidx, el->vdof_a, el->vdof_b, el->tdir, g->R));
+  else PetscCall(ProjectionRows(h, nloc, in->ia, in->ib, g->R));
+  if (g->normal) {
+    for (PetscInt k = 0; k < nloc; k++) {
+      in->ia[k] = el->ndof_a[in->eidx[k]];
+      in->ib[k] = el->ndof_b[in->eidx[k]];
+    }
+    PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nm, &g->S));
+    PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc, &g->V));
+    PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc, &g->N));
+    PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc * nc, &g->DV));
+    PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nc * nc, &g->DN));
+    if (el->members) PetscCall(JRJointFieldRows(h, el, nloc, in->eidx, field, 1, g->S));
+    else if (el->vdof_a) PetscCall(JRHBMProjectionRowsDir(h, nloc, in->eidx, el->vdof_a, el->vdof_b, el->ndir, g->S));
+    else PetscCall(ProjectionRows(h, nloc, in->ia, in->ib, g->S));
+  }
+  if (el->joint && !el->members) {
+    if (h->basis != JR_HBM_BASIS_FREE) { /* the basis holds the members' own stuck springs: Kc must cancel exactly those */
+      PetscCall(PetscMalloc1(nloc * nm, &g->R0));
+      PetscCall(PetscArraycpy(g->R0, g->R, nloc * nm));
+      if (g->normal) {
+        PetscCall(PetscMalloc1(nloc * nm, &g->S0));
+        PetscCall(PetscArraycpy(g->S0, g->S, nloc * nm));
+      }
+    }
+    PetscCall(JRJointAverage(h, el, nloc, in->eidx, g->R, g->normal ? g->S : NULL));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Friction elements (jenkins, jenkins_nv): the Jacobian of the elements in their state at rest, once,
+   Kst = sum_e pt_e r_e r_e^T and Knn = sum_e pn_e s_e s_e^T; and the work arrays of the rest's projection */
+static PetscErrorCode GroupRestJacobian(JRHBM h, const JRElements *el, PetscInt t, JRHBMGroup *g, const GroupInput *in)
+{
+  const PetscInt nm = h->nm, nloc = g->nloc;
+
+  PetscFunctionBeginUser;
+  g->split = (PetscBool)(!strcmp(el->typename[t], JRCONTACTJENKINS) || !strcmp(el->typename[t], JRCONTACTJENKINSNV));
+  PetscCall(PetscCalloc2(nm * nm, &g->Kst, nm * nm, &g->Knn));
+  PetscCall(PetscMalloc4(nloc, &g->kt, nloc, &g->kn, nloc, &g->pt, nloc, &g->pn));
+  PetscCall(PetscArraycpy(g->kt, in->kt, nloc));
+  PetscCall(PetscArraycpy(g->kn, in->kn, nloc));
+  for (PetscInt e = 0; e < nloc; e++) {
+    g->pt[e] = g->nstatic[e] > 0 ? in->kt[e] : 0.0;
+    g->pn[e] = g->nstatic[e] > 0 ? in->kn[e] : 0.0;
+  }
+  PetscCall(PetscMalloc1(nloc, &g->sel));
+  PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nm, &g->Rc));
+  PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc, &g->Dc));
+  if (g->normal) PetscCall(JRMallocAligned(sizeof(PetscReal) * nloc * nm, &g->Sc));
+  if (g->split && nloc) {
+    for (PetscInt i = 0; i < nm; i++)
+      for (PetscInt e = 0; e < nloc; e++) g->W[e + i * nloc] = g->pt[e] * g->R[e + i * nloc];
+    PetscCall(JRGemm("T", "N", nm, nm, nloc, 1.0, g->R, nloc, g->W, nloc, 0.0, g->Kst, nm));
+    if (g->normal) {
+      for (PetscInt i = 0; i < nm; i++)
+        for (PetscInt e = 0; e < nloc; e++) g->W[e + i * nloc] = g->pn[e] * g->S[e + i * nloc];
+      PetscCall(JRGemm("T", "N", nm, nm, nloc, 1.0, g->S, nloc, g->W, nloc, 0.0, g->Knn, nm));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Element groups, one per contact type, split across the ranks (or, if h->repl, all of a reduced model's elements on
+   every rank): their contact batches, projection rows and constant Jacobian (field: a reduced model's joint fields).
+   Collective. */
+PetscErrorCode JRHBMSetUpGroups(JRHBM h, const JRElements *el, const PetscReal field[])
+{
+  PetscFunctionBeginUser;
+  for (PetscInt t = 0; t < h->ngroups; t++) PetscCall(JRHBMGroupDestroy(&h->g[t]));
+  PetscCall(PetscFree(h->g));
+  h->ngroups = el->ntypes;
+  PetscCall(PetscCalloc1(h->ngroups, &h->g));
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    JRHBMGroup *g = &h->g[t];
+    GroupInput  in;
+    PetscCall(GroupElements(h, el, t, g, &in));
+    PetscCall(GroupRows(h, el, g, &in, field));
+    PetscCall(GroupRestJacobian(h, el, t, g, &in));
+    PetscCall(PetscFree4(in.kt, in.kn, in.mu, in.n0));
+    PetscCall(PetscFree2(in.ia, in.ib));
+    g->eidx = in.eidx;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Stuck basis: each element's stuck spring is in Km already, so the element adds F - kt u (its deviation from
+   stuck); structural damping acts on the structure's own stiffness Kg = Km - Phi^T Ks Phi only. Kc: the stuck springs
+   of this rank's elements (all of them if h->repl). Collective. */
+PetscErrorCode JRHBMSetUpStuckSprings(JRHBM h, const JRElements *el)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(h->Kg));
+  PetscCall(PetscMalloc1(h->nm * h->nm, &h->Kg));
+  PetscCall(PetscArraycpy(h->Kg, h->Km, h->nm * h->nm));
+  if (h->basis != JR_HBM_BASIS_FREE) {
+    const PetscInt nm = h->nm;
+    PetscReal     *loc, *all;
+    PetscCall(PetscCalloc2(nm * nm, &loc, nm * nm, &all));
+    for (PetscInt t = 0; t < h->ngroups && !el->members; t++) {
+      JRHBMGroup *g = &h->g[t];
+      PetscCall(PetscCalloc1(nm * nm, &g->Kc));
+      if (!g->split || !g->nloc) continue;
+      {
+        const PetscReal *Rk = g->R0 ? g->R0 : g->R, *Sk = g->S0 ? g->S0 : g->S;
+        for (PetscInt i = 0; i < nm; i++)
+          for (PetscInt e = 0; e < g->nloc; e++) g->W[e + i * g->nloc] = (g->nstatic[e] > 0 ? g->kt[e] : 0.0) * Rk[e + i * g->nloc];
+        PetscCall(JRGemm("T", "N", nm, nm, g->nloc, 1.0, Rk, g->nloc, g->W, g->nloc, 0.0, g->Kc, nm));
+        if (g->normal) {
+          for (PetscInt i = 0; i < nm; i++)
+            for (PetscInt e = 0; e < g->nloc; e++) g->W[e + i * g->nloc] = (g->nstatic[e] > 0 ? g->kn[e] : 0.0) * Sk[e + i * g->nloc];
+          PetscCall(JRGemm("T", "N", nm, nm, g->nloc, 1.0, Sk, g->nloc, g->W, g->nloc, 1.0, g->Kc, nm));
+        }
+      }
+      PetscCall(PetscFree(g->R0));
+      PetscCall(PetscFree(g->S0));
+      for (PetscInt i = 0; i < nm * nm; i++) h->Kc[i] += g->Kc[i];
+    }
+    PetscCall(PetscArraycpy(loc, h->Kc, nm * nm));
+    PetscCall(MPIU_Allreduce(loc, all, nm * nm, MPIU_REAL, MPIU_SUM, h->comm));
+    if (h->repl) PetscCall(PetscArraycpy(h->Kc, all, nm * nm)); /* every rank has every element: the whole sum */
+    for (PetscInt i = 0; i < nm; i++)
+      for (PetscInt j = 0; j < nm; j++) h->Kg[i * nm + j] -= all[i + j * nm];
+    PetscCall(PetscFree2(loc, all));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The natural frequencies [Hz] of the structure with the elements in contact at rest stuck, their springs scaled by
+   scale, in the basis; and, if vec is not NULL, the kvec-th mode (M-normalised) */
+static PetscErrorCode StickEig(JRHBM h, PetscReal scale, PetscInt *nf, PetscReal freq[], PetscInt kvec, PetscReal vec[])
+{
+  const PetscInt nm = h->nm;
+  PetscReal     *A, *B, *loc, *w, *work;
+  PetscBLASInt   n, lwork, info, itype = 1;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(PetscCalloc5(nm * nm, &A, nm * nm, &B, nm * nm, &loc, nm, &w, 8 * nm, &work));
+  for (PetscInt t = 0; t < h->ngroups; t++) { /* the elements in contact at rest (n0 > 0), stuck, on the structure's own Kg */
+    JRHBMGroup *g = &h->g[t];
+    PetscCheck(g->split || !g->nloc, PETSC_COMM_SELF, PETSC_ERR_SUP, "Stuck frequencies need friction elements (jenkins, jenkins_nv)");
+    if (!g->nloc) continue;
+    for (PetscInt i = 0; i < nm; i++)
+      for (PetscInt e = 0; e < g->nloc; e++) g->W[e + i * g->nloc] = (g->nstatic[e] > 0 ? g->kt[e] : 0.0) * g->R[e + i * g->nloc];
+    PetscCall(JRGemm("T", "N", nm, nm, g->nloc, scale, g->R, g->nloc, g->W, g->nloc, 1.0, loc, nm));
+    if (g->normal) {
+      for (PetscInt i = 0; i < nm; i++)
+        for (PetscInt e = 0; e < g->nloc; e++) g->W[e + i * g->nloc] = (g->nstatic[e] > 0 ? g->kn[e] : 0.0) * g->S[e + i * g->nloc];
+      PetscCall(JRGemm("T", "N", nm, nm, g->nloc, scale, g->S, g->nloc, g->W, g->nloc, 1.0, loc, nm));
+    }
+  }
+  PetscCall(MPIU_Allreduce(loc, A, nm * nm, MPIU_REAL, MPIU_SUM, h->ecomm));
+  for (PetscInt i = 0; i < nm; i++)
+    for (PetscInt j = 0; j < nm; j++) {
+      A[i + j * nm] += h->Kg[i * nm + j];
+      B[i + j * nm] = h->Mm[i * nm + j];
+    }
+  PetscCall(PetscBLASIntCast(nm, &n));
+  PetscCall(PetscBLASIntCast(8 * nm, &lwork));
+  PetscCallBLAS("LAPACKsygv", LAPACKsygv_(&itype, vec ? "V" : "N", "U", &n, A, &n, B, &n, w, work, &lwork, &info));
+  PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK sygv failed: info %d", (int)info);
+  for (PetscInt i = 0; i < nm; i++) freq[i] = PetscSqrtReal(PetscMax(w[i], 0.0)) / (2 * PETSC_PI);
+  if (vec)
+    for (PetscInt i = 0; i < nm; i++) vec[i] = A[i + kvec * nm];
+  *nf = nm;
+  PetscCall(PetscFree5(A, B, loc, w, work));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMStickFrequencies - natural frequencies [Hz] of the linear structure with every element stuck
+  (tangential springs kt and, for jenkins_nv, normal springs kn; only the elements in contact at rest,
+  n0 > 0) in the modal basis of the HBM: eigenvalues of Phi^T (K + sum_e kt r_e r_e^T + kn s_e s_e^T) Phi
+  (collective; freq has room for nm).
+*/
+PetscErrorCode JRHBMStickFrequencies(JRHBM h, PetscInt *nf, PetscReal freq[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(StickEig(h, 1.0, nf, freq, -1, NULL));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMMatchStickFrequency - the factor c on every element's stiffness (kt, kn) that puts the k-th stuck natural
+  frequency (JRHBMStickFrequencies) at target [Hz]: the stiffness correction of a reduced model, by a bracketed
+  secant (Illinois) solve on the eigenvalue in the modal basis, to 1e-12 relative (collective; the model is not
+  changed: scale its elements by c and set it up again). c = 0 if no factor in [1e-3, 1e3] reaches the target (the
+  elements cannot carry that much stiffness in that mode).
+*/
+PetscErrorCode JRHBMMatchStickFrequency(JRHBM h, PetscInt k, PetscReal target, PetscReal *c)
+{
+  PetscReal *f, lo = 1.0, hi = 1.0, glo, ghi, x = 1.0, gx;
+  PetscInt   nf, side = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCheck(k >= 0 && k < h->nm, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Stuck mode %" PetscInt_FMT ": the basis has %" PetscInt_FMT, k, h->nm);
+  PetscCall(PetscMalloc1(h->nm, &f));
+  PetscCall(StickEig(h, 1.0, &nf, f, -1, NULL));
+  glo = ghi = f[k] - target;
+  for (PetscInt it = 0; glo > 0 && it < 10; it++) {
+    hi  = lo;
+    ghi = glo;
+    lo *= 0.5;
+    PetscCall(StickEig(h, lo, &nf, f, -1, NULL));
+    glo = f[k] - target;
+  }
+  for (PetscInt it = 0; ghi < 0 && it < 10; it++) {
+    lo  = hi;
+    glo = ghi;
+    hi *= 2.0;
+    PetscCall(StickEig(h, hi, &nf, f, -1, NULL));
+    ghi = f[k] - target;
+  }
+  if (!(glo <= 0 && ghi >= 0)) {
+    *c = 0;
+    PetscCall(PetscFree(f));
+    PetscFunctionReturn(0);
+  }
+  x = lo;
+  for (PetscInt it = 0; it < 200 && hi - lo > 1e-13 * hi; it++) {
+    x = (lo * ghi - hi * glo) / (ghi - glo);
+    PetscCall(StickEig(h, x, &nf, f, -1, NULL));
+    gx = f[k] - target;
+    if (PetscAbsReal(gx) <= 1e-12 * target) break;
+    if (gx < 0) {
+      lo  = x;
+      glo = gx;
+      if (side == -1) ghi *= 0.5;
+      side = -1;
+    } else {
+      hi  = x;
+      ghi = gx;
+      if (side == 1) glo *= 0.5;
+      side = 1;
+    }
+  }
+  *c = x;
+  PetscCall(PetscFree(f));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMStuckModeMotion - the k-th stuck mode (JRHBMStickFrequencies, M-normalised in the basis) as every element's
+  tangential relative motion u[e] (e in the model's element list, on every rank; collective) and, if v is not NULL,
+  normal relative motion v[e] (0 for elements without a normal direction)
+*/
+PetscErrorCode JRHBMStuckModeMotion(JRHBM h, PetscInt k, PetscReal u[], PetscReal v[])
+{
+  const JRElements *el;
+  PetscReal        *f, *q, *loc;
+  PetscInt          nf;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(JRModelGetElements(h->model, &el));
+  PetscCheck(k >= 0 && k < h->nm, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Stuck mode %" PetscInt_FMT ": the basis has %" PetscInt_FMT, k, h->nm);
+  PetscCall(PetscMalloc2(h->nm, &f, h->nm, &q));
+  PetscCall(StickEig(h, 1.0, &nf, f, k, q));
+  PetscCall(PetscCalloc1(2 * el->n, &loc));
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    JRHBMGroup *g = &h->g[t];
+    for (PetscInt e = 0; e < g->nloc; e++) {
+      PetscReal s = 0, sn = 0;
+      for (PetscInt i = 0; i < h->nm; i++) s += g->R[e + i * g->nloc] * q[i];
+      for (PetscInt i = 0; g->normal && i < h->nm; i++) sn += g->S[e + i * g->nloc] * q[i];
+      loc[g->eidx[e]]         = s;
+      loc[el->n + g->eidx[e]] = sn;
+    }
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, loc, (PetscMPIInt)(2 * el->n), MPIU_REAL, MPIU_SUM, h->ecomm));
+  PetscCall(PetscArraycpy(u, loc, el->n));
+  if (v) PetscCall(PetscArraycpy(v, loc + el->n, el->n));
+  PetscCall(PetscFree(loc));
+  PetscCall(PetscFree2(f, q));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMStuckModeBalance - the energy balance of the k-th stuck mode q (M-normalised) at resonance, for the modal
+  amplitude a: per cycle the excitation of level F puts in pi F |q.fm| a and the linear damping takes out
+  damp a^2 = pi (gamma q^T Kg q + omega q^T Cm q) a^2. omega [rad/s], force = |q.fm| (per unit level). Collective.
+*/
+PetscErrorCode JRHBMStuckModeBalance(JRHBM h, PetscInt k, PetscReal *omega, PetscReal *force, PetscReal *damp)
+{
+  PetscReal *f, *q, fq = 0, kq = 0, cq = 0;
+  PetscInt   nf;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCheck(k >= 0 && k < h->nm, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Stuck mode %" PetscInt_FMT ": the basis has %" PetscInt_FMT, k, h->nm);
+  PetscCall(PetscMalloc2(h->nm, &f, h->nm, &q));
+  PetscCall(StickEig(h, 1.0, &nf, f, k, q));
+  *omega = 2 * PETSC_PI * f[k];
+  for (PetscInt i = 0; i < h->nm; i++) {
+    fq += h->fm[i] * q[i];
+    for (PetscInt j = 0; j < h->nm; j++) {
+      kq += q[i] * h->Kg[i * h->nm + j] * q[j];
+      cq += q[i] * h->Cm[i * h->nm + j] * q[j];
+    }
+  }
+  *force = PetscAbsReal(fq);
+  *damp  = PETSC_PI * (h->gamma * kq + *omega * cq);
+  PetscCall(PetscFree2(f, q));
+  PetscFunctionReturn(0);
+}
+

@@ -1,0 +1,412 @@
+/*
+   JRHBM's residual and analytic Jacobian (thesis 2.18 generalised to H harmonics): the contact elements' forces and
+   derivatives projected onto the basis (JRHBMNonlinear) and the linear structure (Linear), or condensed onto the joints
+   (src/hbm/condense.c); the SNES at fixed frequency (prefix hbm_) and the linearised solution.
+*/
+#include <jointrom/private/hbmimpl.h>
+
+/* C = alpha op(A) op(B) + beta C, column-major, by BLAS gemm; k = 0 only scales C (BLAS would not be called) */
+PetscErrorCode JRGemm(const char *ta, const char *tb, PetscInt m, PetscInt n, PetscInt k, PetscReal alpha, const PetscReal *A, PetscInt lda, const PetscReal *B, PetscInt ldb, PetscReal beta, PetscReal *C, PetscInt ldc)
+{
+  PetscBLASInt bm, bn, bk, la, lb, lc;
+
+  PetscFunctionBeginUser;
+  if (!m || !n) PetscFunctionReturn(0);
+  PetscCall(PetscBLASIntCast(m, &bm));
+  PetscCall(PetscBLASIntCast(n, &bn));
+  PetscCall(PetscBLASIntCast(k, &bk));
+  PetscCall(PetscBLASIntCast(PetscMax(lda, 1), &la));
+  PetscCall(PetscBLASIntCast(PetscMax(ldb, 1), &lb));
+  PetscCall(PetscBLASIntCast(PetscMax(ldc, 1), &lc));
+  if (!k) {
+    if (beta != 1.0)
+      for (PetscInt j = 0; j < n; j++)
+        for (PetscInt i = 0; i < m; i++) C[i + j * ldc] *= beta;
+    PetscFunctionReturn(0);
+  }
+  PetscCallBLAS("BLASgemm", BLASgemm_(ta, tb, &bm, &bn, &bk, &alpha, A, &la, B, &lb, &beta, C, &lc));
+  PetscFunctionReturn(0);
+}
+
+/* The vectors and dense Jacobian of the solve space (JRHBMGetSolveSize), sequential (either may be NULL) */
+PetscErrorCode JRHBMCreateVecs(JRHBM h, Vec *x, Mat *J)
+{
+  PetscFunctionBeginUser;
+  if (x) PetscCall(VecCreateSeq(PETSC_COMM_SELF, h->ns, x));
+  if (J) {
+    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, h->ns, h->ns, NULL, J));
+    PetscCall(MatSetOption(*J, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Condensed: every element of group g moves with one joint row (and one normal row): gathers and scatter-adds of its
+   forces into loc (n) and, if jac, of its derivatives into loc + n (n x n column-major) */
+static PetscErrorCode GroupCondensed(JRHBM h, JRHBMGroup *g, const PetscReal *a, PetscBool reuse, PetscBool derivs, PetscBool jac, PetscReal *loc)
+{
+  const PetscInt  nm = h->nq, nc = h->nc, n = h->ns, nloc = g->nloc; /* nm: the rows' length */
+  const PetscInt *qt = g->qt, *qn = g->qn;
+
+  PetscFunctionBeginUser;
+  if (!reuse) {
+    for (PetscInt c = 0; c < nc; c++)
+      for (PetscInt e = 0; e < nloc; e++) {
+        g->U[e + c * nloc] = a[qt[e] + c * nm];
+        if (g->normal) g->V[e + c * nloc] = a[qn[e] + c * nm];
+      }
+    PetscCall(JRContactEvaluate(g->c, g->U, g->V, g->F, g->normal ? g->N : NULL, derivs ? g->DU : NULL, derivs && g->normal ? g->DV : NULL, derivs && g->normal ? g->DN : NULL, NULL));
+    if (g->normal)
+      for (PetscInt e = 0; e < nloc; e++) g->N[e] -= g->nstatic[e];
+  }
+  for (PetscInt c = 0; c < nc; c++)
+    for (PetscInt e = 0; e < nloc; e++) {
+      loc[qt[e] + c * nm] += g->F[e + c * nloc];
+      if (g->normal) loc[qn[e] + c * nm] += g->N[e + c * nloc];
+    }
+  if (jac) { /* dF/du on (joint row, joint row), dF/dv on (joint row, normal row), dN/dv on (normal row, normal row) */
+    PetscCall(PetscLogEventBegin(JR_HBMJacobian, 0, 0, 0, 0));
+    for (PetscInt k = 0; k < nc; k++)
+      for (PetscInt m = 0; m < nc; m++) {
+        PetscReal       *blk = loc + n + (k * nm) + (m * nm) * n;
+        const PetscReal *du = g->DU + (k * nc + m) * nloc, *dv = g->normal ? g->DV + (k * nc + m) * nloc : NULL, *dn = g->normal ? g->DN + (k * nc + m) * nloc : NULL;
+        for (PetscInt e = 0; e < nloc; e++) {
+          blk[qt[e] + qt[e] * n] += du[e];
+          if (g->normal) {
+            blk[qt[e] + qn[e] * n] += dv[e];
+            blk[qn[e] + qn[e] * n] += dn[e];
+          }
+        }
+      }
+    PetscCall(PetscLogFlops(1.0 * nloc * nc * nc * (g->normal ? 3 : 1)));
+    PetscCall(PetscLogEventEnd(JR_HBMJacobian, 0, 0, 0, 0));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The Jacobian of group g's elements, R^T diag(dF/dU) R blockwise (and the normal blocks), added to loc (n x n
+   column-major): friction elements' part at rest (Kst, Knn) once per diagonal block, the rest projected for the
+   elements out of their state at rest only */
+static PetscErrorCode GroupJacobian(JRHBM h, JRHBMGroup *g, PetscReal *loc)
+{
+  const PetscInt   nm = h->nm, nc = h->nc, n = h->ns, nloc = g->nloc;
+  const PetscReal *GR = g->R, *GS = g->S, *Kst = g->Kst, *Knn = g->Knn;
+  PetscInt         nsel = nloc;
+  const PetscReal *Rj = GR, *Sj = GS;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(JR_HBMJacobian, 0, 0, 0, 0));
+  if (g->split) {
+    /* which elements differ from their state at rest dF/du = pt I, dF/dv = 0, dN/dv = pn I */
+    nsel = 0;
+    for (PetscInt e = 0; e < nloc; e++) {
+      const PetscReal tol = 1e-12 * g->kt[e], toln = 1e-12 * PetscMax(g->kn[e], g->kt[e]);
+      PetscBool       stuck = PETSC_TRUE;
+      for (PetscInt q = 0; q < nc * nc && stuck; q++) {
+        const PetscBool diag = (PetscBool)(q / nc == q % nc);
+        if (PetscAbsReal(g->DU[q * nloc + e] - (diag ? g->pt[e] : 0.0)) > tol) stuck = PETSC_FALSE;
+        if (g->normal && (PetscAbsReal(g->DV[q * nloc + e]) > toln || PetscAbsReal(g->DN[q * nloc + e] - (diag ? g->pn[e] : 0.0)) > toln)) stuck = PETSC_FALSE;
+      }
+      if (!stuck) g->sel[nsel++] = e;
+    }
+    g->nsel = nsel;
+    for (PetscInt i = 0; i < nm; i++) {
+      for (PetscInt s = 0; s < nsel; s++) g->Rc[s + i * nsel] = GR[g->sel[s] + i * nloc];
+      if (g->normal)
+        for (PetscInt s = 0; s < nsel; s++) g->Sc[s + i * nsel] = GS[g->sel[s] + i * nloc];
+    }
+    Rj = g->Rc;
+    Sj = g->Sc;
+    /* the part at rest: Kst and Knn on the diagonal blocks */
+    for (PetscInt k = 0; k < nc; k++) {
+      PetscReal *blk = loc + n + (k * nm) + (k * nm) * n;
+      for (PetscInt j = 0; j < nm; j++)
+        for (PetscInt i = 0; i < nm; i++) blk[i + j * n] += Kst[i + j * nm] + (g->normal ? Knn[i + j * nm] : 0.0);
+    }
+  }
+  if (nsel)
+    for (PetscInt k = 0; k < nc; k++)
+      for (PetscInt m = 0; m < nc; m++) {
+        PetscReal     *blk   = loc + n + (k * nm) + (m * nm) * n;
+        const PetscInt which = g->normal ? 3 : 1;
+        for (PetscInt q = 0; q < which; q++) {
+          const PetscReal *dall = (q == 0 ? g->DU : q == 1 ? g->DV : g->DN) + (k * nc + m) * nloc;
+          const PetscReal *left = q == 2 ? Sj : Rj, *right = q == 0 ? Rj : Sj;
+          PetscReal       *d    = g->Dc, dmax = 0.0;
+          /* the selected elements' derivative, less the stuck part already counted */
+          for (PetscInt s = 0; s < nsel; s++) {
+            const PetscInt e = g->split ? g->sel[s] : s;
+            d[s]             = dall[e] - (g->split && k == m ? (q == 0 ? g->pt[e] : q == 2 ? g->pn[e] : 0.0) : 0.0);
+            dmax             = PetscMax(dmax, PetscAbsReal(d[s]));
+          }
+          if (dmax == 0.0) continue;
+          for (PetscInt i = 0; i < nm; i++) {
+            const PetscReal *col = right + i * nsel;
+            PetscReal       *w   = g->W + i * nsel;
+            for (PetscInt s = 0; s < nsel; s++) w[s] = d[s] * col[s];
+          }
+          PetscCall(JRGemm("T", "N", nm, nm, nsel, 1.0, left, nsel, g->W, nsel, 1.0, blk, n));
+        }
+      }
+  PetscCall(PetscLogFlops(2.0 * nsel * nm * nm * nc * nc * (g->normal ? 3 : 1)));
+  PetscCall(PetscLogEventEnd(JR_HBMJacobian, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/*
+  Nonlinear part: res (n) and, if jac, the Jacobian (n x n column-major) summed over all elements of
+  all ranks (identical on every rank). a: the unknowns (n). With the analytic Jacobian, every
+  evaluation also computes the element derivatives and keeps them with a copy of a: the Jacobian that
+  Newton asks for next, at the same a, then only assembles them.
+*/
+PetscErrorCode JRHBMNonlinear(JRHBM h, const PetscReal *a, PetscReal *res, PetscReal *jac)
+{
+  const PetscInt  nm = h->cond ? h->nq : h->nm, nc = h->nc, n = h->ns, len = jac ? n + n * n : n; /* nm: the rows' length */
+  PetscReal      *loc    = h->buf;
+  const PetscBool derivs = (PetscBool)(jac || h->jtype == JR_HBM_JACOBIAN_ANALYTIC);
+  PetscBool       reuse  = PETSC_FALSE;
+
+  PetscLogDouble  t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  if (h->cache_ok) reuse = (PetscBool)!memcmp(a, h->cache_a, sizeof(PetscReal) * n); /* forces and derivatives kept from a call at this a (the Jacobian after the residual, the expansion after the accepted residual) */
+  PetscCall(PetscArrayzero(loc, len));
+  if (h->basis != JR_HBM_BASIS_FREE && h->Kc && !h->cond) { /* stuck basis: less the stuck springs, which are in Km (this rank's share; all of them if repl) */
+    PetscCall(JRGemm("N", "N", nm, nc, nm, -1.0, h->Kc, nm, a, nm, 1.0, loc, nm));
+    if (jac)
+      for (PetscInt k = 0; k < nc; k++) {
+        PetscReal *blk = loc + n + (k * nm) + (k * nm) * n;
+        for (PetscInt j = 0; j < nm; j++)
+          for (PetscInt i = 0; i < nm; i++) blk[i + j * n] -= h->Kc[i + j * nm];
+      }
+  }
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    JRHBMGroup      *g    = &h->g[t];
+    const PetscInt   nloc = g->nloc;
+    const PetscReal *GR = g->R, *GS = g->S;
+    if (!nloc) continue;
+    if (h->cond) {
+      PetscCall(GroupCondensed(h, g, a, reuse, derivs, (PetscBool)(jac != NULL), loc));
+      continue;
+    }
+    if (!reuse) {
+      PetscCall(JRGemm("N", "N", nloc, nc, nm, 1.0, GR, nloc, a, nm, 0.0, g->U, nloc));
+      if (g->normal) PetscCall(JRGemm("N", "N", nloc, nc, nm, 1.0, GS, nloc, a, nm, 0.0, g->V, nloc));
+      PetscCall(JRContactEvaluate(g->c, g->U, g->V, g->F, g->normal ? g->N : NULL, derivs ? g->DU : NULL, derivs && g->normal ? g->DV : NULL, derivs && g->normal ? g->DN : NULL, NULL));
+      if (g->normal)
+        for (PetscInt e = 0; e < nloc; e++) g->N[e] -= g->nstatic[e]; /* the dynamic normal load */
+    }
+    PetscCall(JRGemm("T", "N", nm, nc, nloc, 1.0, GR, nloc, g->F, nloc, 1.0, loc, nm));
+    if (g->normal) PetscCall(JRGemm("T", "N", nm, nc, nloc, 1.0, GS, nloc, g->N, nloc, 1.0, loc, nm));
+    if (jac) PetscCall(GroupJacobian(h, g, loc));
+    PetscCall(PetscLogFlops(4.0 * nloc * nm * nc * (g->normal ? 2 : 1)));
+  }
+  if (!reuse) {
+    h->cache_ok = derivs;
+    PetscCall(PetscArraycpy(h->cache_a, a, n));
+  }
+  /* sum over the ranks on rank 0, then everyone gets the same numbers */
+  if (h->size > 1 && !h->repl) {
+    PetscCallMPI(MPI_Reduce(h->rank ? loc : MPI_IN_PLACE, loc, (PetscMPIInt)len, MPIU_REAL, MPIU_SUM, 0, h->comm));
+    PetscCallMPI(MPI_Bcast(loc, (PetscMPIInt)len, MPIU_REAL, 0, h->comm));
+  }
+  PetscCall(PetscArraycpy(res, loc, n));
+  if (jac) PetscCall(PetscArraycpy(jac, loc + n, n * n));
+  PetscCall(PetscTime(&t1));
+  h->telem += t1 - t0;
+  h->nelem++;
+  if (jac) h->nelemjac++;
+  PetscFunctionReturn(0);
+}
+
+/* Linear part of the residual (added to res), of the Jacobian (added to jac, may be NULL) and the
+   frequency derivative dR/dw (set, may be NULL) */
+static PetscErrorCode Linear(JRHBM h, PetscReal w, const PetscReal *a, PetscReal *res, PetscReal *jac, PetscReal *dw)
+{
+  const PetscInt nm = h->nm, n = h->n;
+
+  PetscFunctionBeginUser;
+  if (dw) PetscCall(PetscArrayzero(dw, n));
+  for (PetscInt i = 0; i < nm; i++) { /* mean: K a0 */
+    PetscReal s = 0.0;
+    for (PetscInt j = 0; j < nm; j++) s += h->Km[i * nm + j] * a[j];
+    if (h->pin) s += h->pin[i] * a[i];
+    res[i] += s;
+    if (jac) {
+      for (PetscInt j = 0; j < nm; j++) jac[i + j * n] += h->Km[i * nm + j];
+      if (h->pin) jac[i + i * n] += h->pin[i];
+    }
+  }
+  for (PetscInt hh = 1; hh <= h->H; hh++) {
+    const PetscInt   os = (2 * hh - 1) * nm, oc = 2 * hh * nm;
+    const PetscReal  hw = hh * w;
+    const PetscReal *as = a + os, *ac = a + oc;
+    for (PetscInt i = 0; i < nm; i++) {
+      PetscReal ds = 0.0, dc = 0.0, bs = 0.0, bc = 0.0, ms = 0.0, mc = 0.0, cs = 0.0, cc = 0.0;
+      for (PetscInt j = 0; j < nm; j++) {
+        const PetscReal kij = h->Km[i * nm + j], mij = h->Mm[i * nm + j], cij = h->Cm[i * nm + j];
+        const PetscReal dij = kij - hw * hw * mij, bij = h->gamma * h->Kg[i * nm + j] + hw * cij;
+        ds += dij * as[j];
+        dc += dij * ac[j];
+        bs += bij * as[j];
+        bc += bij * ac[j];
+        ms += mij * as[j];
+        mc += mij * ac[j];
+        cs += cij * as[j];
+        cc += cij * ac[j];
+        if (jac) {
+          jac[(os + i) + (os + j) * n] += dij;
+          jac[(os + i) + (oc + j) * n] -= bij;
+          jac[(oc + i) + (os + j) * n] += bij;
+          jac[(oc + i) + (oc + j) * n] += dij;
+        }
+      }
+      res[os + i] += ds - bc - (hh == 1 ? h->level * h->fm[i] : 0.0);
+      res[oc + i] += dc + bs;
+      if (dw) {
+        dw[os + i] = -2.0 * hh * hw * ms - hh * cc;
+        dw[oc + i] = -2.0 * hh * hw * mc + hh * cs;
+      }
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* R(a, w): the harmonic-balance residual (collective) */
+PetscErrorCode JRHBMComputeResidual(JRHBM h, PetscReal w, Vec a, Vec R)
+{
+  const PetscScalar *x;
+  PetscScalar       *r;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(PetscLogEventBegin(JR_HBMResidual, 0, 0, 0, 0));
+  PetscCall(VecGetArrayRead(a, &x));
+  PetscCall(VecGetArray(R, &r));
+  PetscCall(JRHBMNonlinear(h, x, r, NULL));
+  if (h->cond) PetscCall(JRHBMCondApply(h, w, x, r, NULL, NULL));
+  else PetscCall(Linear(h, w, x, r, NULL, NULL));
+  PetscCall(VecRestoreArray(R, &r));
+  PetscCall(VecRestoreArrayRead(a, &x));
+  PetscCall(PetscLogEventEnd(JR_HBMResidual, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* J = dR/da (analytic) and, if Rw is not NULL, dR/dw (collective) */
+PetscErrorCode JRHBMComputeJacobian(JRHBM h, PetscReal w, Vec a, Mat J, Vec Rw)
+{
+  const PetscScalar *x;
+  PetscScalar       *j, *rw = NULL;
+  PetscReal         *res;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  if (!h->jres) PetscCall(PetscMalloc1(h->ns, &h->jres));
+  res = h->jres;
+  PetscCall(VecGetArrayRead(a, &x));
+  PetscCall(MatDenseGetArrayWrite(J, &j));
+  if (Rw) PetscCall(VecGetArray(Rw, &rw));
+  PetscCall(JRHBMNonlinear(h, x, res, j));
+  if (h->cond) PetscCall(JRHBMCondApply(h, w, x, res, j, rw));
+  else PetscCall(Linear(h, w, x, res, j, rw));
+  if (Rw) PetscCall(VecRestoreArray(Rw, &rw));
+  PetscCall(MatDenseRestoreArrayWrite(J, &j));
+  PetscCall(VecRestoreArrayRead(a, &x));
+  PetscCall(JRMatDenseAssemble(J));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FormFunction(SNES snes, Vec a, Vec R, void *ctx)
+{
+  JRHBM h = (JRHBM)ctx;
+
+  PetscFunctionBeginUser;
+  (void)snes;
+  PetscCall(JRHBMComputeResidual(h, h->omega, a, R));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FormJacobian(SNES snes, Vec a, Mat J, Mat P, void *ctx)
+{
+  JRHBM h = (JRHBM)ctx;
+
+  PetscFunctionBeginUser;
+  (void)snes;
+  (void)P;
+  PetscCall(JRHBMComputeJacobian(h, h->omega, a, J, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* The nonlinear solver at fixed frequency: SNES on every rank (PETSC_COMM_SELF), prefix hbm_, dense Newton with LU,
+   the analytic Jacobian or finite differences (-hbm_jacobian fd) */
+PetscErrorCode JRHBMSetUpSolver(JRHBM h)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(h->buf));
+  PetscCall(PetscMalloc1(h->ns + h->ns * h->ns, &h->buf));
+  PetscCall(PetscFree(h->cache_a));
+  PetscCall(PetscMalloc1(h->ns, &h->cache_a));
+  h->cache_ok = PETSC_FALSE;
+  PetscCall(SNESDestroy(&h->snes));
+  PetscCall(MatDestroy(&h->J));
+  PetscCall(VecDestroy(&h->r));
+  PetscCall(JRHBMCreateVecs(h, &h->r, &h->J));
+  PetscCall(SNESCreate(PETSC_COMM_SELF, &h->snes));
+  PetscCall(SNESSetOptionsPrefix(h->snes, "hbm_"));
+  PetscCall(SNESSetFunction(h->snes, h->r, FormFunction, h));
+  if (h->jtype == JR_HBM_JACOBIAN_FD) PetscCall(SNESSetJacobian(h->snes, h->J, h->J, SNESComputeJacobianDefault, h));
+  else PetscCall(SNESSetJacobian(h->snes, h->J, h->J, FormJacobian, h));
+  {
+    KSP ksp;
+    PC  pc;
+    PetscCall(SNESGetKSP(h->snes, &ksp));
+    PetscCall(KSPSetType(ksp, KSPPREONLY));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCSetType(pc, PCLU));
+  }
+  PetscCall(SNESSetTolerances(h->snes, PETSC_DEFAULT, 1e-10, 1e-12, 40, 10000));
+  PetscCall(SNESSetType(h->snes, SNESNEWTONDENSE));
+  PetscCall(SNESSetFromOptions(h->snes));
+  PetscFunctionReturn(0);
+}
+
+/* Solve R(a, w) = 0 at fixed frequency w from the guess in a; its: Newton iterations */
+PetscErrorCode JRHBMSolve(JRHBM h, PetscReal w, Vec a, PetscInt *its, PetscBool *converged)
+{
+  SNESConvergedReason reason;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(PetscLogEventBegin(JR_HBMSolve, 0, 0, 0, 0));
+  h->omega = w;
+  PetscCall(SNESSolve(h->snes, NULL, a));
+  PetscCall(SNESGetConvergedReason(h->snes, &reason));
+  PetscCall(SNESGetIterationNumber(h->snes, its));
+  *converged = reason > 0 ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PetscLogEventEnd(JR_HBMSolve, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The response of the structure with every element linearised about rest (stuck contacts):
+   one Newton step from a = 0, exact when the elements stay in full stick */
+PetscErrorCode JRHBMLinearSolution(JRHBM h, PetscReal w, Vec a)
+{
+  const PetscInt     n = h->ns;
+  const PetscScalar *j;
+  PetscScalar       *x;
+  PetscBool          singular;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(VecZeroEntries(a));
+  PetscCall(JRHBMComputeJacobian(h, w, a, h->J, NULL)); /* and the residual at a = 0, in jres */
+  if (!h->llu) PetscCall(PetscMalloc2(n * n, &h->llu, n, &h->lpiv));
+  PetscCall(VecGetArray(a, &x));
+  for (PetscInt i = 0; i < n; i++) x[i] = -h->jres[i];
+  PetscCall(MatDenseGetArrayRead(h->J, &j));
+  PetscCall(JRDenseSolve(n, j, n, h->llu, h->lpiv, x, &singular));
+  PetscCall(MatDenseRestoreArrayRead(h->J, &j));
+  PetscCall(VecRestoreArray(a, &x));
+  PetscCheck(!singular, h->comm, PETSC_ERR_MAT_LU_ZRPVT, "The linearised harmonic-balance system is singular at %g Hz (a zero pivot): an undamped resonance or a rigid-body mode without -hbm_gamma or a stuck basis", (double)(w / (2 * PETSC_PI)));
+  PetscFunctionReturn(0);
+}
