@@ -310,6 +310,13 @@ typedef enum {
   JR_HBM_BASIS_MIXED  /* Ritz vectors of the stuck structure in the span of the stuck and free-interface modes */
 } JRHBMBasis;
 PETSC_EXTERN const char *const JRHBMBases[];
+/* -rom_joint_motion: how a joint's members move in the first reduction (4.4) */
+typedef enum {
+  JR_JOINT_MOTION_MEAN,   /* the joint's mean motion (the thesis) */
+  JR_JOINT_MOTION_LINEAR, /* a linear field over the members' positions (JRElements pos) */
+  JR_JOINT_MOTION_MODE    /* ... and over their motions in the stuck mode of interest (JRElements phi) */
+} JRJointMotion;
+PETSC_EXTERN const char *const JRJointMotions[];
 
 PETSC_EXTERN PetscErrorCode JRHBMCreate(MPI_Comm, JRHBM *);
 PETSC_EXTERN PetscErrorCode JRHBMSetModel(JRHBM, JRModel);
@@ -342,6 +349,9 @@ PETSC_EXTERN PetscErrorCode JRHBMStuckModeMotion(JRHBM, PetscInt, PetscReal[], P
 PETSC_EXTERN PetscErrorCode JRHBMStuckModeBalance(JRHBM, PetscInt, PetscReal *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMSetModes(JRHBM, JRHBM);
 PETSC_EXTERN PetscErrorCode JRHBMSetBasis(JRHBM, JRHBMBasis);
+PETSC_EXTERN PetscErrorCode JRHBMSetJointMotion(JRHBM, JRJointMotion);
+PETSC_EXTERN PetscErrorCode JRHBMSetOptionsPrefix(JRHBM, const char[]);
+PETSC_EXTERN PetscErrorCode JRHBMGetOptionsPrefix(JRHBM, const char **);
 PETSC_EXTERN PetscErrorCode JRHBMSetModesFile(JRHBM, const char[]);
 PETSC_EXTERN PetscErrorCode JRHBMGetBasis(JRHBM, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMStickFrequencies(JRHBM, PetscInt *, PetscReal[]);

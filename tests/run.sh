@@ -38,6 +38,7 @@ run cli_n2n bash tests/cli_n2n.sh
 run cli_rom bash tests/cli_rom.sh
 run cli_install bash tests/cli_install.sh
 run cli_signal bash tests/cli_signal.sh
+run cli_driver bash tests/cli_driver.sh
 rm -rf "$log"
 echo "$pass passed, $fail failed"
 [ "$fail" = 0 ]

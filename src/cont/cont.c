@@ -618,7 +618,11 @@ PetscErrorCode JRContSolve(JRCont c)
     PetscInt  maxit, maxf;
     PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, c->n + 1, c->n + 1, NULL, &c->BJ));
     PetscCall(SNESCreate(PETSC_COMM_SELF, &c->bsnes));
-    PetscCall(SNESSetOptionsPrefix(c->bsnes, "hbm_"));
+    {
+      const char *pre;
+      PetscCall(JRHBMGetOptionsPrefix(c->hbm, &pre));
+      PetscCall(SNESSetOptionsPrefix(c->bsnes, pre));
+    }
     PetscCall(SNESSetFunction(c->bsnes, c->br_, BorderedFunction, c));
     PetscCall(SNESSetJacobian(c->bsnes, c->BJ, c->BJ, BorderedJacobian, c));
     PetscCall(SNESGetKSP(c->bsnes, &ksp));

@@ -88,7 +88,6 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
   PetscCall(PetscOptionsEnum("-hbm_basis", "Modal basis: free (modes of K: the interface held by the bolts only), stuck (modes of K plus every element in contact at rest stuck; the elements then add only their deviation from stuck) or mixed (Ritz vectors of the stuck structure in the span of both)", "JRHBMSetUp", JRHBMBases, (PetscEnum)h->basis, (PetscEnum *)&h->basis, &h->basis_set));
   PetscCall(PetscOptionsInt("-hbm_free_modes", "-hbm_basis mixed: free-interface modes added to the -hbm_modes stuck ones (default: as many)", "JRHBMSetUp", h->nfree, &h->nfree, NULL));
   PetscCall(PetscOptionsEnum("-hbm_condense", "Reduced models: eliminate the modes and solve for the joints' motions only (auto: when it is exact and smaller)", "JRHBMSetUp", JRHBMCondenseTypes, (PetscEnum)h->condense, (PetscEnum *)&h->condense, NULL));
-  PetscCall(PetscOptionsEnum("-rom_joint_motion", "How a joint's members move: with its mean motion (4.4), or with a linear field over their coordinates, fitted by least squares: their positions (linear: the mean plus the joint's rotation) or their motions in the stuck mode of interest (mode); the coordinates are the elements' (JRElements pos, phi)", "JRHBMSetUp", JRJointMotions, (PetscEnum)h->jmotion, (PetscEnum *)&h->jmotion, NULL));
   PetscCall(PetscOptionsBool("-hbm_physical", "Physical coordinates instead of modes (small systems: checks modal truncation)", "JRHBMSetUp", h->physical, &h->physical, NULL));
   PetscCall(PetscOptionsReal("-hbm_gamma", "Structural damping H = gamma K (2.17) [-]", "JRHBMSetUp", h->gamma, &h->gamma, NULL));
   PetscCall(PetscOptionsReal("-hbm_zeta", "Modal viscous damping ratio, every mode [-]", "JRHBMSetUp", h->zeta, &h->zeta, NULL));
@@ -275,6 +274,38 @@ PetscErrorCode JRHBMSetModesFile(JRHBM h, const char file[])
   PetscFunctionReturn(0);
 }
 
+/* How the joints' members move (a reduced model; JRReduce passes its -rom_joint_motion): their mean motion (4.4) or
+   a linear field over their positions, or over their positions and stuck-mode motions */
+PetscErrorCode JRHBMSetJointMotion(JRHBM h, JRJointMotion jm)
+{
+  PetscFunctionBeginUser;
+  h->jmotion     = jm;
+  h->setupcalled = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMSetOptionsPrefix - a prefix put before "hbm_" on the options of the nested solvers (the SNES of a point and
+  the continuation's bordered SNES): JRReduce gives its reduced models "rom_", so that -rom_hbm_snes_* tunes them and
+  -hbm_snes_* the node-to-node model (the harmonic balance's own options, -hbm_harmonics and the like, stay shared)
+*/
+PetscErrorCode JRHBMSetOptionsPrefix(JRHBM h, const char prefix[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(h->prefix, prefix ? prefix : "", sizeof(h->prefix)));
+  h->setupcalled = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* The nested solvers' options prefix, "hbm_" after JRHBMSetOptionsPrefix's */
+PetscErrorCode JRHBMGetOptionsPrefix(JRHBM h, const char **prefix)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(h->snesprefix, sizeof(h->snesprefix), "%shbm_", h->prefix));
+  *prefix = h->snesprefix;
+  PetscFunctionReturn(0);
+}
+
 /* The modal basis (-hbm_basis): free (modes of K), stuck (modes of K with the stuck contact springs) or mixed */
 PetscErrorCode JRHBMSetBasis(JRHBM h, JRHBMBasis basis)
 {
@@ -359,7 +390,11 @@ PetscErrorCode JRHBMSetForceLevel(JRHBM h, PetscReal F)
     }
     if (lmin > 0) fn *= qn / lmin;
   }
-  PetscCall(PetscOptionsHasName(NULL, "hbm_", "-snes_atol", &set));
+  {
+    const char *pre;
+    PetscCall(JRHBMGetOptionsPrefix(h, &pre));
+    PetscCall(PetscOptionsHasName(NULL, pre, "-snes_atol", &set));
+  }
   if (!set) PetscCall(SNESSetTolerances(h->snes, (h->cond ? 1e-10 : 1e-12) * PetscAbsReal(F) * fn + 1e-300, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscFunctionReturn(0);
 }

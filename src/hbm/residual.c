@@ -352,7 +352,11 @@ PetscErrorCode JRHBMSetUpSolver(JRHBM h)
   PetscCall(VecDestroy(&h->r));
   PetscCall(JRHBMCreateVecs(h, &h->r, &h->J));
   PetscCall(SNESCreate(PETSC_COMM_SELF, &h->snes));
-  PetscCall(SNESSetOptionsPrefix(h->snes, "hbm_"));
+  {
+    const char *pre;
+    PetscCall(JRHBMGetOptionsPrefix(h, &pre));
+    PetscCall(SNESSetOptionsPrefix(h->snes, pre));
+  }
   PetscCall(SNESSetFunction(h->snes, h->r, FormFunction, h));
   if (h->jtype == JR_HBM_JACOBIAN_FD) PetscCall(SNESSetJacobian(h->snes, h->J, h->J, SNESComputeJacobianDefault, h));
   else PetscCall(SNESSetJacobian(h->snes, h->J, h->J, FormJacobian, h));

@@ -171,6 +171,7 @@ PetscErrorCode JRPreloadSetFromOptions(JRPreload p)
   char      type[64];
 
   PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < m; i++) F[i] = i < p->nforce ? p->force[i] : 0; /* the defaults -help shows */
   PetscCall(JRPreloadSolverRegisterAll());
   PetscOptionsBegin(p->comm, "preload_", "Bolt preload: static contact analysis (prefix preload_)", "JRPreload");
   PetscCall(PetscOptionsRealArray("-force", "Bolt pretension [N]: one value for all bolts, or one per bolt (comma-separated)", "JRPreloadSetForces", F, &m, &set));

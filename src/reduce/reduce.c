@@ -169,7 +169,9 @@ static PetscErrorCode ReducedHBM(JRReduce red, JRModel model, JRHBM hbm, PetscBo
   *factor = 1.0;
   PetscCall(JRHBMCreate(comm, &hr));
   PetscCall(JRHBMSetExcitationDof(hr, red->fdof, red->nout, red->odof));
-  PetscCall(JRHBMSetBasis(hr, 2));
+  PetscCall(JRHBMSetBasis(hr, JR_HBM_BASIS_MIXED));
+  PetscCall(JRHBMSetJointMotion(hr, (JRJointMotion)red->fit.jmotion));
+  PetscCall(JRHBMSetOptionsPrefix(hr, "rom_"));
   PetscCall(JRModelSetElements(model, elx));
   PetscCall(JRHBMSetModel(hr, model));
   PetscCall(JRHBMSetFromOptions(hr));

@@ -133,10 +133,10 @@ PetscErrorCode JROptionsHelpSolvers(MPI_Comm comm, PetscBool hbm, PetscBool prel
 {
   PetscFunctionBeginUser;
   if (hbm || preload) {
-    const char *pre[2] = {"hbm_", "preload_"};
-    for (PetscInt i = 0; i < 2; i++) {
+    const char *pre[3] = {"hbm_", "rom_hbm_", "preload_"};
+    for (PetscInt i = 0; i < 3; i++) {
       SNES snes;
-      if (!(i ? preload : hbm)) continue;
+      if (!(i == 2 ? preload : i == 1 ? hbm && rom : hbm)) continue;
       PetscCall(SNESCreate(comm, &snes));
       PetscCall(SNESSetOptionsPrefix(snes, pre[i]));
       PetscCall(SNESSetFromOptions(snes));

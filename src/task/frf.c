@@ -144,7 +144,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   }
   /* the harmonic balance's options; a loaded reduced model alone (-rom_load) has its own JRHBM, made later with these */
   PetscCall(JRHBMCreate(comm, &hbm));
-  if (fe) PetscCall(JRHBMSetBasis(hbm, 2)); /* stuck + free-interface modes: -hbm_basis free for the thesis's */
+  if (fe) PetscCall(JRHBMSetBasis(hbm, JR_HBM_BASIS_MIXED)); /* stuck + free-interface modes: -hbm_basis free for the thesis's */
   PetscCall(JRHBMSetFromOptions(hbm));
   { /* the continuation's options (-cont_*, -frf_force, the range): the case of a reduced model */
     JRCont    c;

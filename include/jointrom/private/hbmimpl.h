@@ -15,13 +15,7 @@ typedef enum {
 } JRHBMCondense;
 PETSC_INTERN const char *const JRHBMCondenseTypes[];
 
-/* -rom_joint_motion: how a joint's members move in the first reduction (4.4) */
-typedef enum {
-  JR_JOINT_MOTION_MEAN,   /* the joint's mean motion (the thesis) */
-  JR_JOINT_MOTION_LINEAR, /* a linear field over the members' positions (JRElements pos) */
-  JR_JOINT_MOTION_MODE    /* ... and over their motions in the stuck mode of interest (JRElements phi) */
-} JRJointMotion;
-PETSC_INTERN const char *const JRJointMotions[];
+
 
 /* The elements of one contact type on this rank, with their projection rows */
 typedef struct {
@@ -62,6 +56,8 @@ struct _p_JRHBM {
   PetscReal        *omega_r;      /* natural frequencies of the modes kept [rad/s] */
   PetscReal        *pin;          /* rigid-body modes: the mean equation a0_r pin_r = 0 (else 0 = 0) */
   JRHBMBasis        basis;        /* -hbm_basis */
+  char              prefix[64];   /* JRHBMSetOptionsPrefix(): before hbm_ on the nested solver's options */
+  char              snesprefix[80]; /* prefix + "hbm_" */
   PetscInt          nfree;        /* mixed: free-interface modes added (-1: as many as stuck ones) */
   PetscBool         basis_set;
   PetscReal        *Kg;           /* the structure's own stiffness in the basis (structural damping gamma Kg) */
