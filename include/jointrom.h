@@ -293,6 +293,10 @@ PETSC_EXTERN PetscErrorCode JRModesGetEigenvalues(JRModes, const PetscReal **);
 PETSC_EXTERN PetscErrorCode JRModesGetRows(JRModes, PetscInt, const PetscInt[], PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRModesProject(JRModes, Mat, PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRModesView(JRModes, PetscViewer);
+PETSC_EXTERN PetscErrorCode JRModesSetSaveDefault(JRModes, const char[]);
+PETSC_EXTERN PetscErrorCode JRModesSetMixed(JRModes);
+PETSC_EXTERN PetscErrorCode JRModesMix(JRModes, Mat, PetscInt, PetscInt, Vec[]);
+PETSC_EXTERN PetscErrorCode JRModesReference(JRModes);
 PETSC_EXTERN PetscErrorCode JRModesDestroy(JRModes *);
 
 /* ------------------------------------------------------------------------------------------ */

@@ -101,6 +101,7 @@ static const PetscInt *jr_joints = NULL; /* ProblemCreate: the elements' joints 
 static PetscInt        jr_njoints = 0;
 static const double   *jr_pos     = NULL; /* ProblemCreate: the elements' positions (3 each), if set */
 static const double   *jr_phi     = NULL; /* ProblemCreate: the elements' stuck-mode coordinates (2 each), if set */
+static JRJointMotion   jr_jmotion = JR_JOINT_MOTION_MEAN; /* ProblemCreate: how the joints' members move */
 
 /* a model + HBM (+ continuation) built from dense K, M, C and elements, options set beforehand */
 typedef struct {
@@ -142,6 +143,7 @@ static PetscErrorCode ProblemCreate(PetscInt n, const double *K, const double *M
   PetscCall(JRModelSetUp(p->model));
   PetscCall(JRHBMCreate(PETSC_COMM_WORLD, &p->hbm));
   PetscCall(JRHBMSetModel(p->hbm, p->model));
+  PetscCall(JRHBMSetJointMotion(p->hbm, jr_jmotion));
   PetscCall(JRHBMSetFromOptions(p->hbm));
   PetscCall(JRContCreate(PETSC_COMM_WORLD, &p->cont));
   PetscCall(JRContSetHBM(p->cont, p->hbm));
@@ -577,8 +579,10 @@ int main(int argc, char **argv)
       jr_joints  = joint;
       jr_njoints = 2;
       jr_pos     = pos;
-      PetscCall(Options(lin ? "-hbm_physical -rom_joint_motion linear" : "-hbm_physical"));
+      PetscCall(Options("-hbm_physical"));
+      jr_jmotion = lin ? JR_JOINT_MOTION_LINEAR : JR_JOINT_MOTION_MEAN;
       PetscCall(ProblemCreate(4, K4, M4, NULL, 4, e3, &p));
+      jr_jmotion = JR_JOINT_MOTION_MEAN;
       PetscCall(JRHBMStickFrequencies(p.hbm, &nf, lin ? fl : fm));
       PetscCall(ProblemDestroy(&p));
       for (PetscInt i = 0; i < 4; i++) err[lin] = PetscMax(err[lin], PetscAbsReal((lin ? fl : fm)[i] / (PetscSqrtReal(w[i]) / (2 * M_PI)) - 1));
@@ -592,7 +596,7 @@ int main(int argc, char **argv)
       PetscCall(JRHBMStickFrequencies(p.hbm, &nf, fo));
       PetscCall(ProblemDestroy(&p));
     }
-    CHECK(nf == 4 && err[1] < 1e-12 && err[0] < 1e-12, "first reduction, 3 members on a line in one joint: stuck frequencies with the linear field (-rom_joint_motion linear) = by hand within %.1e, with the mean within %.1e", err[1], err[0]);
+    CHECK(nf == 4 && err[1] < 1e-12 && err[0] < 1e-12, "first reduction, 3 members on a line in one joint: stuck frequencies with the linear field (joint motion linear) = by hand within %.1e, with the mean within %.1e", err[1], err[0]);
     CHECK(fm[0] <= fl[0] * (1 + 1e-12) && fl[0] <= fo[0] * (1 + 1e-12) && fl[0] > fm[0] * (1 + 1e-6), "nested projections: first stuck frequency mean %.6g <= linear %.6g <= own rows %.6g Hz (linear strictly above the mean)", fm[0], fl[0], fo[0]);    { /* a third coordinate (-rom_joint_motion mode: the stuck-mode motion, here 0, 0, 1 on the three members) makes
          1, x, phi independent over the three: the least-squares field then interpolates, every member keeps its own row,
          and the stuck frequencies are the members' own */
@@ -603,8 +607,10 @@ int main(int argc, char **argv)
       jr_njoints = 2;
       jr_pos     = pos;
       jr_phi     = phi;
-      PetscCall(Options("-hbm_physical -rom_joint_motion mode"));
+      PetscCall(Options("-hbm_physical"));
+      jr_jmotion = JR_JOINT_MOTION_MODE;
       PetscCall(ProblemCreate(4, K4, M4, NULL, 4, e3, &p));
+      jr_jmotion = JR_JOINT_MOTION_MEAN;
       PetscCall(JRHBMStickFrequencies(p.hbm, &nf, fp));
       PetscCall(ProblemDestroy(&p));
       jr_joints = NULL;

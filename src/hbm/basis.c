@@ -31,100 +31,6 @@ static PetscErrorCode DenseAll(Mat A, PetscReal D[])
   PetscFunctionReturn(0);
 }
 
-/*
-  Mixed basis: the stuck modes of h->modes (operators K + Ks, M) and the elastic free-interface modes of (K, M),
-  M-orthonormalised (dependent vectors dropped), then the Ritz vectors of (K + Ks, M) in their span, which
-  replace h->modes' modes: exact for the stuck structure and for the structure with the interface free.
-*/
-static PetscErrorCode MixBasis(JRHBM h, Mat K, Mat M)
-{
-  JRModes       fm, md = h->modes;
-  PetscInt      nrb, nf, nq = 0, ncand;
-  Vec           rb[6], *Q, *MQ, *cand, Mv;
-  PetscScalar  *d;
-  PetscReal    *A, *lam, *work;
-  PetscBLASInt  bn, lwork, info;
-
-  PetscFunctionBeginUser;
-  PetscCall(JRModelGetRigidBasis(h->model, &nrb, rb));
-  nf = h->nfree >= 0 ? h->nfree : h->nm;
-  PetscCall(JRModesCreate(h->comm, &fm));
-  PetscCall(JRModesSetOperators(fm, K, M));
-  PetscCall(JRModesSetFromOptions(fm));
-  fm->load[0] = fm->save[0] = 0;
-  fm->view                  = PETSC_FALSE;
-  PetscCall(JRModesSetNumber(fm, nf + nrb));
-  PetscCall(JRModesSetRigidBasis(fm, nrb, rb));
-  for (PetscInt i = 0; i < nrb; i++) PetscCall(VecDestroy(&rb[i]));
-  PetscCall(JRModesSolve(fm));
-  ncand = md->nm + nf;
-  PetscCall(PetscMalloc2(ncand, &cand, ncand, &Q));
-  for (PetscInt i = 0; i < md->nm; i++) cand[i] = md->phi[i];
-  for (PetscInt i = 0; i < nf; i++) cand[md->nm + i] = fm->phi[nrb + i];
-  PetscCall(VecDuplicate(md->phi[0], &Mv));
-  PetscCall(PetscMalloc1(ncand, &d));
-  PetscCall(PetscMalloc1(ncand, &MQ));
-  for (PetscInt c = 0; c < ncand; c++) { /* Gram-Schmidt in the M inner product, twice, against M Q kept */
-    PetscScalar nn;
-    PetscReal   n0;
-    PetscCall(VecDuplicate(cand[c], &Q[nq]));
-    PetscCall(VecCopy(cand[c], Q[nq]));
-    PetscCall(MatMult(M, Q[nq], Mv));
-    PetscCall(VecDot(Q[nq], Mv, &nn));
-    n0 = PetscSqrtReal(PetscRealPart(nn));
-    for (PetscInt pass = 0; pass < 2 && nq; pass++) {
-      PetscCall(VecMDot(Q[nq], nq, MQ, d));
-      for (PetscInt j = 0; j < nq; j++) d[j] = -d[j];
-      PetscCall(VecMAXPY(Q[nq], nq, d, Q));
-    }
-    PetscCall(MatMult(M, Q[nq], Mv));
-    PetscCall(VecDot(Q[nq], Mv, &nn));
-    if (PetscSqrtReal(PetscRealPart(nn)) < 1e-6 * n0) {
-      PetscCall(VecDestroy(&Q[nq]));
-      continue;
-    }
-    PetscCall(VecScale(Q[nq], 1.0 / PetscSqrtReal(PetscRealPart(nn))));
-    PetscCall(VecDuplicate(Q[nq], &MQ[nq]));
-    PetscCall(VecAXPBY(MQ[nq], 1.0 / PetscSqrtReal(PetscRealPart(nn)), 0.0, Mv));
-    nq++;
-  }
-  /* Ritz: A = Q^T (K + Ks) Q, eigenvectors ascending */
-  PetscCall(PetscMalloc3(nq * nq, &A, nq, &lam, 8 * nq, &work));
-  for (PetscInt j = 0; j < nq; j++) {
-    PetscCall(MatMult(md->K, Q[j], Mv));
-    PetscCall(VecMDot(Mv, nq, Q, d));
-    for (PetscInt i = 0; i < nq; i++) A[i + j * nq] = PetscRealPart(d[i]);
-  }
-  for (PetscInt j = 0; j < nq; j++)
-    for (PetscInt i = 0; i < j; i++) A[i + j * nq] = A[j + i * nq] = 0.5 * (A[i + j * nq] + A[j + i * nq]);
-  PetscCall(PetscBLASIntCast(nq, &bn));
-  PetscCall(PetscBLASIntCast(8 * nq, &lwork));
-  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &bn, A, &bn, lam, work, &lwork, &info));
-  PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed: info %d", (int)info);
-  PetscCall(VecDestroyVecs(md->nm, &md->phi));
-  PetscCall(PetscFree(md->lambda));
-  PetscCall(VecDuplicateVecs(Q[0], nq, &md->phi));
-  PetscCall(PetscMalloc1(nq, &md->lambda));
-  for (PetscInt i = 0; i < nq; i++) {
-    PetscCall(VecZeroEntries(md->phi[i]));
-    for (PetscInt j = 0; j < nq; j++) d[j] = A[j + i * nq];
-    PetscCall(VecMAXPY(md->phi[i], nq, d, Q));
-    md->lambda[i] = PetscAbsReal(lam[i]) <= 1e-10 * PetscAbsReal(lam[nq - 1]) ? 0.0 : lam[i];
-  }
-  md->nm = nq;
-  PetscCall(PetscInfo(NULL, "Mixed basis: %" PetscInt_FMT " stuck + %" PetscInt_FMT " free modes -> %" PetscInt_FMT " Ritz vectors\n", md->nev, nf, nq));
-  PetscCall(PetscFree3(A, lam, work));
-  PetscCall(PetscFree(d));
-  PetscCall(VecDestroy(&Mv));
-  for (PetscInt i = 0; i < nq; i++) {
-    PetscCall(VecDestroy(&Q[i]));
-    PetscCall(VecDestroy(&MQ[i]));
-  }
-  PetscCall(PetscFree(MQ));
-  PetscCall(PetscFree2(cand, Q));
-  PetscCall(JRModesDestroy(&fm));
-  PetscFunctionReturn(0);
-}
 
 /* Physical coordinates (-hbm_physical): K, M and C dense on every rank */
 static PetscErrorCode SetUpPhysical(JRHBM h, Mat K, Mat M, Mat C, PetscInt ndof)
@@ -146,8 +52,6 @@ static PetscErrorCode SetUpPhysical(JRHBM h, Mat K, Mat M, Mat C, PetscInt ndof)
    from those and the free-interface modes; -modes_* options, saved and loaded (-modes_save, -modes_load) */
 static PetscErrorCode SolveModes(JRHBM h, Mat K, Mat M, const JRElements *el)
 {
-  char save[PETSC_MAX_PATH_LEN] = "";
-
   PetscFunctionBeginUser;
   PetscCall(JRModesDestroy(&h->modes));
   PetscCall(JRModesCreate(h->comm, &h->modes));
@@ -165,7 +69,7 @@ static PetscErrorCode SolveModes(JRHBM h, Mat K, Mat M, const JRElements *el)
   PetscCall(JRModesSetNumber(h->modes, h->nm));
   PetscCall(JRModesSetFromOptions(h->modes));
   PetscCall(JRModesSetNumber(h->modes, h->nm)); /* -hbm_modes wins over -modes_nev */
-  if (h->modes_file[0] && !h->modes->load[0] && !h->modes->save[0]) PetscCall(PetscStrncpy(h->modes->save, h->modes_file, sizeof(h->modes->save)));
+  PetscCall(JRModesSetSaveDefault(h->modes, h->modes_file));
   {
     PetscInt nrb;
     Vec      rb[6];
@@ -179,16 +83,14 @@ static PetscErrorCode SolveModes(JRHBM h, Mat K, Mat M, const JRElements *el)
       PetscCall(VecDestroy(&X));
     }
   }
-  if (h->basis == JR_HBM_BASIS_MIXED) { /* the saved or loaded basis is the mixed one, marked by the signature's sign */
-    PetscCall(PetscStrncpy(save, h->modes->save, sizeof(save)));
-    h->modes->save[0]  = 0;
-    h->modes->load_all = PETSC_TRUE;
-    h->modes->sig      = -h->modes->sig - 1.0;
-  }
+  if (h->basis == JR_HBM_BASIS_MIXED) PetscCall(JRModesSetMixed(h->modes));
   PetscCall(JRModesSolve(h->modes));
-  if (h->basis == JR_HBM_BASIS_MIXED && !h->modes->load[0]) {
-    PetscCall(MixBasis(h, K, M));
-    if (save[0]) PetscCall(JRModesSave(h->modes, save));
+  if (h->basis == JR_HBM_BASIS_MIXED) { /* the stuck modes and the free-interface ones, mixed (Ritz) */
+    PetscInt nrb;
+    Vec      rb[6];
+    PetscCall(JRModelGetRigidBasis(h->model, &nrb, rb));
+    PetscCall(JRModesMix(h->modes, K, h->nfree >= 0 ? h->nfree : h->nm, nrb, rb));
+    for (PetscInt i = 0; i < nrb; i++) PetscCall(VecDestroy(&rb[i]));
   }
   PetscFunctionReturn(0);
 }

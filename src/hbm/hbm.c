@@ -256,8 +256,9 @@ PetscErrorCode JRHBMSetModes(JRHBM h, JRHBM from)
   PetscFunctionBeginUser;
   PetscCall(JRHBMSetUp(from));
   PetscCheck(!from->physical, h->comm, PETSC_ERR_ARG_WRONG, "JRHBMSetModes: the other JRHBM works in physical coordinates");
-  if (!h->modes_shared) PetscCall(JRModesDestroy(&h->modes));
-  h->modes        = from->modes;
+  PetscCall(JRModesReference(from->modes));
+  PetscCall(JRModesDestroy(&h->modes));
+  h->modes        = from->modes; /* a reference: not solved here, released by JRHBMDestroy */
   h->modes_shared = PETSC_TRUE;
   h->basis        = from->basis;
   h->basis_set    = PETSC_TRUE;
@@ -461,7 +462,7 @@ PetscErrorCode JRHBMDestroy(JRHBM *hbm)
   if (!h) PetscFunctionReturn(0);
   for (PetscInt t = 0; t < h->ngroups; t++) PetscCall(JRHBMGroupDestroy(&h->g[t]));
   PetscCall(PetscFree(h->g));
-  if (!h->modes_shared) PetscCall(JRModesDestroy(&h->modes));
+  PetscCall(JRModesDestroy(&h->modes));
   PetscCall(PetscFree3(h->Km, h->Mm, h->Cm));
   PetscCall(PetscFree(h->omega_r));
   PetscCall(PetscFree(h->pin));

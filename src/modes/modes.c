@@ -9,6 +9,7 @@
 */
 #include <jointrom/private/modelimpl.h>
 #include <petscviewerhdf5.h>
+#include <petscblaslapack.h>
 
 PetscErrorCode JRModesCreate(MPI_Comm comm, JRModes *modes)
 {
@@ -17,7 +18,8 @@ PetscErrorCode JRModesCreate(MPI_Comm comm, JRModes *modes)
   PetscFunctionBeginUser;
   PetscCall(JRInitializePackage());
   PetscCall(PetscNew(&md));
-  md->comm = comm;
+  md->comm   = comm;
+  md->refct  = 1;
   md->nev    = 10;
   md->use_rb = PETSC_TRUE;
   *modes     = md;
@@ -458,12 +460,146 @@ PetscErrorCode JRModesView(JRModes md, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+
+/* The file the modes are saved to when neither -modes_load nor -modes_save names one ("": not saved) */
+PetscErrorCode JRModesSetSaveDefault(JRModes md, const char file[])
+{
+  PetscFunctionBeginUser;
+  if (file && file[0] && !md->load[0] && !md->save[0]) PetscCall(PetscStrncpy(md->save, file, sizeof(md->save)));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRModesSetMixed - these modes become a mixed basis (JRModesMix after JRModesSolve): a saved or loaded file holds the
+  mixed basis whole, marked by the signature's sign, and the modes are saved once mixed, not when solved
+*/
+PetscErrorCode JRModesSetMixed(JRModes md)
+{
+  PetscFunctionBeginUser;
+  if (md->mixed) PetscFunctionReturn(0);
+  md->mixed = PETSC_TRUE;
+  PetscCall(PetscStrncpy(md->save_mixed, md->save, sizeof(md->save_mixed)));
+  md->save[0]  = 0;
+  md->load_all = PETSC_TRUE;
+  md->sig      = -md->sig - 1.0;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRModesMix - the mixed basis (after JRModesSetMixed and JRModesSolve): md's stuck modes (operators K + Ks, M) and
+  the nf lowest elastic free-interface modes of (K, M) (the free structure, rigid basis rb[nrb]), M-orthonormalised
+  (dependent vectors dropped), then the Ritz vectors of (K + Ks, M) in their span, which replace md's modes: exact
+  for the stuck structure and for the structure with the interface free. Saved (-modes_save or the default file)
+  once mixed; nothing to do when the modes were read (-modes_load: the file holds the mixed basis).
+*/
+PetscErrorCode JRModesMix(JRModes md, Mat K, PetscInt nf, PetscInt nrb, Vec rb[])
+{
+  JRModes       fm;
+  Mat           M = md->M;
+  PetscInt      nq = 0, ncand;
+  Vec           *Q, *MQ, *cand, Mv;
+  PetscScalar  *d;
+  PetscReal    *A, *lam, *work;
+  PetscBLASInt  bn, lwork, info;
+
+  PetscFunctionBeginUser;
+  PetscCheck(md->mixed, md->comm, PETSC_ERR_ARG_WRONGSTATE, "JRModesSetMixed() first");
+  if (md->load[0]) PetscFunctionReturn(0);
+  PetscCall(JRModesCreate(md->comm, &fm));
+  PetscCall(JRModesSetOperators(fm, K, M));
+  PetscCall(JRModesSetFromOptions(fm));
+  fm->load[0] = fm->save[0] = 0;
+  fm->view                  = PETSC_FALSE;
+  PetscCall(JRModesSetNumber(fm, nf + nrb));
+  PetscCall(JRModesSetRigidBasis(fm, nrb, rb));
+  PetscCall(JRModesSolve(fm));
+  ncand = md->nm + nf;
+  PetscCall(PetscMalloc2(ncand, &cand, ncand, &Q));
+  for (PetscInt i = 0; i < md->nm; i++) cand[i] = md->phi[i];
+  for (PetscInt i = 0; i < nf; i++) cand[md->nm + i] = fm->phi[nrb + i];
+  PetscCall(VecDuplicate(md->phi[0], &Mv));
+  PetscCall(PetscMalloc1(ncand, &d));
+  PetscCall(PetscMalloc1(ncand, &MQ));
+  for (PetscInt c = 0; c < ncand; c++) { /* Gram-Schmidt in the M inner product, twice, against M Q kept */
+    PetscScalar nn;
+    PetscReal   n0;
+    PetscCall(VecDuplicate(cand[c], &Q[nq]));
+    PetscCall(VecCopy(cand[c], Q[nq]));
+    PetscCall(MatMult(M, Q[nq], Mv));
+    PetscCall(VecDot(Q[nq], Mv, &nn));
+    n0 = PetscSqrtReal(PetscRealPart(nn));
+    for (PetscInt pass = 0; pass < 2 && nq; pass++) {
+      PetscCall(VecMDot(Q[nq], nq, MQ, d));
+      for (PetscInt j = 0; j < nq; j++) d[j] = -d[j];
+      PetscCall(VecMAXPY(Q[nq], nq, d, Q));
+    }
+    PetscCall(MatMult(M, Q[nq], Mv));
+    PetscCall(VecDot(Q[nq], Mv, &nn));
+    if (PetscSqrtReal(PetscRealPart(nn)) < 1e-6 * n0) {
+      PetscCall(VecDestroy(&Q[nq]));
+      continue;
+    }
+    PetscCall(VecScale(Q[nq], 1.0 / PetscSqrtReal(PetscRealPart(nn))));
+    PetscCall(VecDuplicate(Q[nq], &MQ[nq]));
+    PetscCall(VecAXPBY(MQ[nq], 1.0 / PetscSqrtReal(PetscRealPart(nn)), 0.0, Mv));
+    nq++;
+  }
+  /* Ritz: A = Q^T (K + Ks) Q, eigenvectors ascending */
+  PetscCall(PetscMalloc3(nq * nq, &A, nq, &lam, 8 * nq, &work));
+  for (PetscInt j = 0; j < nq; j++) {
+    PetscCall(MatMult(md->K, Q[j], Mv));
+    PetscCall(VecMDot(Mv, nq, Q, d));
+    for (PetscInt i = 0; i < nq; i++) A[i + j * nq] = PetscRealPart(d[i]);
+  }
+  for (PetscInt j = 0; j < nq; j++)
+    for (PetscInt i = 0; i < j; i++) A[i + j * nq] = A[j + i * nq] = 0.5 * (A[i + j * nq] + A[j + i * nq]);
+  PetscCall(PetscBLASIntCast(nq, &bn));
+  PetscCall(PetscBLASIntCast(8 * nq, &lwork));
+  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &bn, A, &bn, lam, work, &lwork, &info));
+  PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed: info %d", (int)info);
+  PetscCall(VecDestroyVecs(md->nm, &md->phi));
+  PetscCall(PetscFree(md->lambda));
+  PetscCall(VecDuplicateVecs(Q[0], nq, &md->phi));
+  PetscCall(PetscMalloc1(nq, &md->lambda));
+  for (PetscInt i = 0; i < nq; i++) {
+    PetscCall(VecZeroEntries(md->phi[i]));
+    for (PetscInt j = 0; j < nq; j++) d[j] = A[j + i * nq];
+    PetscCall(VecMAXPY(md->phi[i], nq, d, Q));
+    md->lambda[i] = PetscAbsReal(lam[i]) <= 1e-10 * PetscAbsReal(lam[nq - 1]) ? 0.0 : lam[i];
+  }
+  md->nm = nq;
+  PetscCall(PetscInfo(NULL, "Mixed basis: %" PetscInt_FMT " stuck + %" PetscInt_FMT " free modes -> %" PetscInt_FMT " Ritz vectors\n", md->nev, nf, nq));
+  PetscCall(PetscFree3(A, lam, work));
+  PetscCall(PetscFree(d));
+  PetscCall(VecDestroy(&Mv));
+  for (PetscInt i = 0; i < nq; i++) {
+    PetscCall(VecDestroy(&Q[i]));
+    PetscCall(VecDestroy(&MQ[i]));
+  }
+  PetscCall(PetscFree(MQ));
+  PetscCall(PetscFree2(cand, Q));
+  PetscCall(JRModesDestroy(&fm));
+  if (md->save_mixed[0]) PetscCall(JRModesSave(md, md->save_mixed));
+  PetscFunctionReturn(0);
+}
+
+/* One more reference to md: a holder (a JRHBM sharing another's modes) releases it with JRModesDestroy */
+PetscErrorCode JRModesReference(JRModes md)
+{
+  PetscFunctionBeginUser;
+  md->refct++;
+  PetscFunctionReturn(0);
+}
+
+/* Release a reference; the modes are freed with the last */
 PetscErrorCode JRModesDestroy(JRModes *modes)
 {
   JRModes md = *modes;
 
   PetscFunctionBeginUser;
   if (!md) PetscFunctionReturn(0);
+  *modes = NULL;
+  if (--md->refct > 0) PetscFunctionReturn(0);
   PetscCall(ClearModes(md));
   if (md->rb) PetscCall(VecDestroyVecs(md->nrb, &md->rb));
   PetscCall(EPSDestroy(&md->eps));

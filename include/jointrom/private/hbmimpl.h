@@ -62,7 +62,7 @@ struct _p_JRHBM {
   PetscBool         basis_set;
   PetscReal        *Kg;           /* the structure's own stiffness in the basis (structural damping gamma Kg) */
   PetscReal        *Kc;           /* stuck basis: the stuck springs in Km of this rank's elements (or members), nm x nm */
-  PetscBool         modes_shared; /* JRHBMSetModes(): the modes are another JRHBM's, not solved or destroyed here */
+  PetscBool         modes_shared; /* JRHBMSetModes(): the modes are another JRHBM's (a reference), not solved here */
   char              modes_file[PETSC_MAX_PATH_LEN]; /* JRHBMSetModesFile(): save the modes here unless -modes_load/-modes_save */
   PetscInt          fdof, nout, *outdof;
   PetscBool         fdof_set;      /* JRHBMSetExcitationDof() called: -frf_dof ignored */

@@ -47,6 +47,7 @@ PETSC_INTERN PetscErrorCode JRElementsReadCSV(MPI_Comm, const char[], PetscInt, 
 
 struct _p_JRModes {
   MPI_Comm   comm;
+  PetscInt   refct;      /* references (JRModesReference); JRModesDestroy frees at the last */
   Mat        K, M;
   PetscInt   nev;        /* requested */
   PetscInt   nm;         /* computed and kept */
@@ -62,6 +63,8 @@ struct _p_JRModes {
   Vec        X;          /* node coordinates in the DOF layout (optional): checks a loaded file's layout */
   char       load[PETSC_MAX_PATH_LEN], save[PETSC_MAX_PATH_LEN]; /* -modes_load, -modes_save */
   PetscBool  load_all;   /* -modes_load reads every vector of the file (a mixed basis) */
+  PetscBool  mixed;      /* JRModesSetMixed(): a mixed basis, made by JRModesMix */
+  char       save_mixed[PETSC_MAX_PATH_LEN]; /* where JRModesMix saves it */
 };
 
 #endif
