@@ -4,12 +4,8 @@
    .png, 'compare ...' lines). BASE is -frf_output_file ("" for no files); -frf_plot draws the PNGs.
 */
 #include <jointrom/private/modelimpl.h>
+#include <jointrom/private/postimpl.h>
 
-struct _p_JRPost {
-  MPI_Comm  comm;
-  char      base[PETSC_MAX_PATH_LEN];
-  PetscBool plot;
-};
 
 PetscErrorCode JRPostCreate(MPI_Comm comm, JRPost *post)
 {
