@@ -76,76 +76,86 @@ static PetscErrorCode Curves(MPI_Comm comm, JRHBM hbm, const char base[], JRCont
 }
 
 
-static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
-{
-  JRModel         model;
-  JRPreload       pre = NULL;
-  JRHBM           hbm = NULL, hbmr = NULL, hbmc;
-  JRCont          cont = NULL, contr = NULL, contc;
-  const JRPairs  *P;
-  const char     *damping;
-  JRReduce        red = NULL;
-  JRPost          post = NULL;
-  PetscInt        nm, H, n, *pair = NULL, romm = 0, fdof = 0, nout = 0, odof[21];
-  PetscBool       n2n, fe, help, joints = PETSC_FALSE, set = PETSC_FALSE, oset = PETSC_FALSE, stickfe = PETSC_FALSE, plot = PETSC_TRUE, isrom = PETSC_FALSE, loaded = PETSC_FALSE;
-  JRElements      el, elr, elj;
-  char            base[PETSC_MAX_PATH_LEN] = "out/frf";
-  const char     *romsave = "", *romload = "";
-  PetscLogDouble  t0, t1, tpre = 0, tmodel;
-  PetscReal       tn = 0, tr = 0, en = 0, er = 0, setn = 0, setr = 0, tred = 0;
-  PetscInt        dir = 2, nd = 3, no = 63;
-  PetscReal       at[3] = {0, 0, 0}, oat[63] = {0};
-  const char     *dirs[] = {"x", "y", "z"};
+/* The run: its objects, what the options asked for, and the figures reported */
+typedef struct {
+  MPI_Comm           comm;
+  PetscBool          compare, help, fe, n2n, isrom, loaded, joints, stickfe, plot, set, oset;
+  JRModel            model;
+  JRPreload          pre;
   JRInterfaceOptions iopt;
+  JRReduce           red;
+  JRPost             post;
+  JRHBM              hbm, hbmr, hbmc; /* node-to-node (or matrices), reduced, the one whose curves a frf run reports */
+  JRCont             cont, contr, contc;
+  JRElements         el, elr, elj;   /* node-to-node elements, reduced elements, the joints' members */
+  PetscInt          *pair, romm, fdof, nout, odof[21], dir, nd, no;
+  PetscReal          at[3], oat[63], fdist;
+  char               base[PETSC_MAX_PATH_LEN];
+  const char        *romsave, *romload;
+  PetscReal          tmodel, tn, tr, en, er, setn, setr, tred;
+} FRFRun;
+
+static const char *const Dirs[] = {"x", "y", "z"};
+
+/* The driver's own options: outputs, and on FE models the excitation and response points */
+static PetscErrorCode RunOptions(FRFRun *r)
+{
+  MPI_Comm comm = r->comm;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(&el, sizeof(el)));
-  PetscCall(PetscMemzero(&elr, sizeof(elr)));
-  PetscCall(PetscMemzero(&elj, sizeof(elj)));
-  /* every object's options, read and checked before any work (with -help: listed, not checked) */
-  PetscCall(PetscOptionsHasHelp(NULL, &help));
-  PetscCall(JRModelCreate(comm, &model));
-  PetscCall(JRModelSetFromOptions(model));
-  {
-    JRModelType mt;
-    PetscCall(JRModelGetType(model, &mt));
-    fe = (PetscBool)strcmp(mt, JRMODELMATRICES);
-  }
   PetscOptionsBegin(comm, NULL, "Frequency response (-task frf, -task compare)", "JRTaskFRF");
-  PetscCall(PetscOptionsString("-frf_output_file", "Output base name", "JRTaskFRF", base, base, sizeof(base), NULL));
-  PetscCall(PetscOptionsBool("-frf_plot", "Draw the PNG plots", "JRTaskFRF", plot, &plot, NULL));
-  if (fe || help) {
-    PetscCall(PetscOptionsBool("-frf_stick_fe", "Also the natural frequencies of the whole FE model with every element stuck (SLEPc): the modal truncation error", "JRTaskFRF", stickfe, &stickfe, NULL));
-  }
+  PetscCall(PetscOptionsString("-frf_output_file", "Output base name", "JRTaskFRF", r->base, r->base, sizeof(r->base), NULL));
+  PetscCall(PetscOptionsBool("-frf_plot", "Draw the PNG plots", "JRTaskFRF", r->plot, &r->plot, NULL));
+  if (r->fe || r->help) PetscCall(PetscOptionsBool("-frf_stick_fe", "Also the natural frequencies of the whole FE model with every element stuck (SLEPc): the modal truncation error", "JRTaskFRF", r->stickfe, &r->stickfe, NULL));
   PetscOptionsEnd();
-  PetscCheck(help || fe || !compare, comm, PETSC_ERR_ARG_WRONG, "-task compare needs an FE model with a contact interface (-model_type brb, lap1, lap3, lap, gmsh)");
-  if (fe || help) {
+  PetscCheck(r->help || r->fe || !r->compare, comm, PETSC_ERR_ARG_WRONG, "-task compare needs an FE model with a contact interface (-model_type brb, lap1, lap3, lap, gmsh)");
+  if (r->fe || r->help) {
     PetscBool d, o;
     PetscOptionsBegin(comm, NULL, "Excitation and responses of an FE model (-task frf)", "JRTaskFRF");
-    PetscCall(PetscOptionsRealArray("-frf_at", "Excitation point x,y,z [m] (nearest node; default: the end x = xmin, mid-width, top)", "JRTaskFRF", at, &nd, &set));
-    PetscCall(PetscOptionsEList("-frf_dir", "Direction of the excitation force and of the responses", "JRTaskFRF", dirs, 3, dirs[dir], &dir, NULL));
-    PetscCall(PetscOptionsRealArray("-frf_output_at", "Response points x1,y1,z1,x2,... [m] (default: the other end, then the excitation point)", "JRTaskFRF", oat, &no, &oset));
+    PetscCall(PetscOptionsRealArray("-frf_at", "Excitation point x,y,z [m] (nearest node; default: the end x = xmin, mid-width, top)", "JRTaskFRF", r->at, &r->nd, &r->set));
+    PetscCall(PetscOptionsEList("-frf_dir", "Direction of the excitation force and of the responses", "JRTaskFRF", Dirs, 3, Dirs[r->dir], &r->dir, NULL));
+    PetscCall(PetscOptionsRealArray("-frf_output_at", "Response points x1,y1,z1,x2,... [m] (default: the other end, then the excitation point)", "JRTaskFRF", r->oat, &r->no, &r->oset));
     PetscOptionsEnd();
-    PetscCheck(!set || nd == 3, comm, PETSC_ERR_ARG_WRONG, "-frf_at needs three coordinates x,y,z [m], got %" PetscInt_FMT, nd);
-    PetscCheck(!oset || (no % 3 == 0 && no > 0), comm, PETSC_ERR_ARG_WRONG, "-frf_output_at needs triples x,y,z [m], got %" PetscInt_FMT " values", no);
+    PetscCheck(!r->set || r->nd == 3, comm, PETSC_ERR_ARG_WRONG, "-frf_at needs three coordinates x,y,z [m], got %" PetscInt_FMT, r->nd);
+    PetscCheck(!r->oset || (r->no % 3 == 0 && r->no > 0), comm, PETSC_ERR_ARG_WRONG, "-frf_output_at needs triples x,y,z [m], got %" PetscInt_FMT " values", r->no);
     PetscCall(PetscOptionsHasName(NULL, NULL, "-frf_dof", &d));
     PetscCall(PetscOptionsHasName(NULL, NULL, "-frf_output", &o));
-    PetscCheck(help || !fe || (!d && !o), comm, PETSC_ERR_ARG_INCOMP, "%s: on an FE model the DOF numbers depend on the partition; give points instead: -frf_at x,y,z and -frf_output_at x,y,z,... [m] with -frf_dir x|y|z", d ? "-frf_dof" : "-frf_output");
-    PetscCall(JRPreloadCreate(comm, &pre));
-    PetscCall(JRPreloadSetModel(pre, model));
-    PetscCall(JRPreloadSetFromOptions(pre));
-    PetscCall(JRInterfaceSetFromOptions(comm, &iopt));
-    PetscCall(JRReduceCreate(comm, &red));
-    PetscCall(JRReduceSetFromOptions(red));
-    PetscCall(JRReduceGetRequest(red, &joints, &romm, NULL, &romsave, &romload));
-    PetscCheck(help || !romm || joints || romload[0], comm, PETSC_ERR_ARG_INCOMP, "-rom_elements needs joints: -rom_joints strips|bolts|between|sides|zones");
-    PetscCheck(help || !compare || joints || romload[0], comm, PETSC_ERR_ARG_WRONG, "-task compare needs a reduced model: joints (-rom_joints ..., optionally -rom_elements m) or -rom_load FILE");
-    PetscCheck(!romsave[0] || (joints && romm > 0 && !(romload[0] && !compare)), comm, PETSC_ERR_ARG_INCOMP, "-rom_save saves a second-reduction model: it needs -rom_joints ... and -rom_elements m");
+    PetscCheck(r->help || !r->fe || (!d && !o), comm, PETSC_ERR_ARG_INCOMP, "%s: on an FE model the DOF numbers depend on the partition; give points instead: -frf_at x,y,z and -frf_output_at x,y,z,... [m] with -frf_dir x|y|z", d ? "-frf_dof" : "-frf_output");
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Every object's options, read and checked before any work (with -help: listed, not checked) */
+static PetscErrorCode SetFromOptions(FRFRun *r)
+{
+  MPI_Comm comm = r->comm;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &r->help));
+  PetscCall(JRModelCreate(comm, &r->model));
+  PetscCall(JRModelSetFromOptions(r->model));
+  {
+    JRModelType mt;
+    PetscCall(JRModelGetType(r->model, &mt));
+    r->fe = (PetscBool)strcmp(mt, JRMODELMATRICES);
+  }
+  PetscCall(RunOptions(r));
+  if (r->fe || r->help) {
+    PetscCall(JRPreloadCreate(comm, &r->pre));
+    PetscCall(JRPreloadSetModel(r->pre, r->model));
+    PetscCall(JRPreloadSetFromOptions(r->pre));
+    PetscCall(JRInterfaceSetFromOptions(comm, &r->iopt));
+    PetscCall(JRReduceCreate(comm, &r->red));
+    PetscCall(JRReduceSetFromOptions(r->red));
+    PetscCall(JRReduceGetRequest(r->red, &r->joints, &r->romm, NULL, &r->romsave, &r->romload));
+    PetscCheck(r->help || !r->romm || r->joints || r->romload[0], comm, PETSC_ERR_ARG_INCOMP, "-rom_elements needs joints: -rom_joints strips|bolts|between|sides|zones");
+    PetscCheck(r->help || !r->compare || r->joints || r->romload[0], comm, PETSC_ERR_ARG_WRONG, "-task compare needs a reduced model: joints (-rom_joints ..., optionally -rom_elements m) or -rom_load FILE");
+    PetscCheck(!r->romsave[0] || (r->joints && r->romm > 0 && !(r->romload[0] && !r->compare)), comm, PETSC_ERR_ARG_INCOMP, "-rom_save saves a second-reduction model: it needs -rom_joints ... and -rom_elements m");
   }
   /* the harmonic balance's options; a loaded reduced model alone (-rom_load) has its own JRHBM, made later with these */
-  PetscCall(JRHBMCreate(comm, &hbm));
-  if (fe) PetscCall(JRHBMSetBasis(hbm, JR_HBM_BASIS_MIXED)); /* stuck + free-interface modes: -hbm_basis free for the thesis's */
-  PetscCall(JRHBMSetFromOptions(hbm));
+  PetscCall(JRHBMCreate(comm, &r->hbm));
+  if (r->fe) PetscCall(JRHBMSetBasis(r->hbm, JR_HBM_BASIS_MIXED)); /* stuck + free-interface modes: -hbm_basis free for the thesis's */
+  PetscCall(JRHBMSetFromOptions(r->hbm));
   { /* the continuation's options (-cont_*, -frf_force, the range): the case of a reduced model */
     JRCont    c;
     PetscInt  nl;
@@ -155,210 +165,253 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     PetscCall(JRContGetRange(c, &wmin, &wmax));
     PetscCall(JRContGetNumLevels(c, &nl));
     for (PetscInt l = 0; l < nl && l < 64; l++) PetscCall(JRContGetLevel(c, l, &lv[l]));
-    if (red) PetscCall(JRReduceSetCase(red, wmin, wmax, PetscMin(nl, 64), lv));
+    if (r->red) PetscCall(JRReduceSetCase(r->red, wmin, wmax, PetscMin(nl, 64), lv));
     PetscCall(JRContDestroy(&c));
   }
-  if (help) { /* -help: the options listed, nothing done */
-    PetscCall(JROptionsHelpSolvers(comm, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE));
-    PetscCall(JRReduceDestroy(&red));
-    PetscCall(JRHBMDestroy(&hbm));
-    PetscCall(JRPreloadDestroy(&pre));
-    PetscCall(JRModelDestroy(&model));
-    PetscFunctionReturn(0);
-  }
-  PetscCall(JRPostCreate(comm, &post));
-  PetscCall(JRPostSetOutput(post, base, plot));
-  PetscCall(JROptionsCheck(comm, fe ? (compare ? "-task compare" : "-task frf on an FE model") : "-task frf on a matrices model"));
-  PetscCall(JRFileCheckOutput(comm, "-frf_output_file", base));
-  if (fe && romload[0] && !compare) PetscCall(JRHBMDestroy(&hbm));
+  if (r->help) PetscFunctionReturn(0);
+  PetscCall(JRPostCreate(comm, &r->post));
+  PetscCall(JRPostSetOutput(r->post, r->base, r->plot));
+  PetscCall(JROptionsCheck(comm, r->fe ? (r->compare ? "-task compare" : "-task frf on an FE model") : "-task frf on a matrices model"));
+  PetscCall(JRFileCheckOutput(comm, "-frf_output_file", r->base));
+  if (r->fe && r->romload[0] && !r->compare) PetscCall(JRHBMDestroy(&r->hbm));
+  PetscFunctionReturn(0);
+}
 
-  /* 1. model */
+/* 1. the model; on an FE model the excitation and response DOFs, found by position (checked before the preload) */
+static PetscErrorCode SetUpModel(FRFRun *r)
+{
+  MPI_Comm       comm = r->comm;
+  const JRPairs *P    = NULL;
+  PetscLogDouble t0, t1;
+  PetscReal      lo[3], hi[3], dist;
+  PetscInt       ndof;
+
+  PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(JR_StageModel));
   PetscCall(PetscTime(&t0));
-  PetscCall(JRModelSetUp(model));
+  PetscCall(JRModelSetUp(r->model));
   PetscCall(PetscTime(&t1));
   PetscCall(PetscLogStagePop());
-  tmodel = t1 - t0;
-  P   = NULL;
-  n2n = PETSC_FALSE;
+  r->tmodel = t1 - t0;
   {
     DM dm;
-    PetscCall(JRModelGetDM(model, &dm));
+    PetscCall(JRModelGetDM(r->model, &dm));
     if (dm) {
-      PetscCall(JRModelGetPairs(model, &P));
-      n2n = (PetscBool)(P && P->n > 0);
+      PetscCall(JRModelGetPairs(r->model, &P));
+      r->n2n = (PetscBool)(P && P->n > 0);
     }
   }
-  PetscCheck(n2n || !fe, comm, PETSC_ERR_ARG_WRONG, "-task frf: the FE model has no contact interface (node pairs)");
+  PetscCheck(r->n2n || !r->fe, comm, PETSC_ERR_ARG_WRONG, "-task frf: the FE model has no contact interface (node pairs)");
+  if (!r->n2n) PetscFunctionReturn(0);
+  PetscCall(JRModelGetBoundingBox(r->model, lo, hi));
+  if (!r->set) {
+    r->at[0] = lo[0];
+    r->at[1] = 0.5 * (lo[1] + hi[1]);
+    r->at[2] = hi[2];
+  }
+  PetscCall(JRModelFindDof(r->model, r->at, r->dir, &r->fdof, &dist));
+  r->fdist = dist;
+  PetscCheck(dist <= 0.05 * (hi[0] - lo[0]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_at (%g, %g, %g) m: the nearest node is %g m away: the point is outside the model (box x %g..%g, y %g..%g, z %g..%g m)", (double)r->at[0], (double)r->at[1], (double)r->at[2], (double)dist, (double)lo[0], (double)hi[0], (double)lo[1], (double)hi[1], (double)lo[2], (double)hi[2]);
+  if (!r->oset) {
+    r->oat[0] = hi[0];
+    r->oat[1] = 0.5 * (lo[1] + hi[1]);
+    r->oat[2] = hi[2];
+    r->oat[3] = r->at[0];
+    r->oat[4] = r->at[1];
+    r->oat[5] = r->at[2];
+    r->no     = 6;
+  }
+  r->nout = r->no / 3;
+  for (PetscInt o = 0; o < r->nout; o++) {
+    PetscCall(JRModelFindDof(r->model, r->oat + 3 * o, r->dir, &r->odof[o], &dist));
+    PetscCheck(dist <= 0.05 * (hi[0] - lo[0]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_output_at (%g, %g, %g) m: the nearest node is %g m away: the point is outside the model", (double)r->oat[3 * o], (double)r->oat[3 * o + 1], (double)r->oat[3 * o + 2], (double)dist);
+  }
+  PetscCall(JRModelGetNumDofs(r->model, &ndof));
+  PetscCall(PetscPrintf(comm, "frf: node-to-node contact model, %" PetscInt_FMT " DOFs, %" PetscInt_FMT " interface pairs (model %.3g s)\n", ndof, P->n, (double)r->tmodel));
+  PetscFunctionReturn(0);
+}
 
-  if (n2n) {
-    PetscInt         ndof;
-    PetscReal        lo[3], hi[3], dist, fdist;
-    JRPreloadSummary s;
-    char             pbase[PETSC_MAX_PATH_LEN + 16], mfile[PETSC_MAX_PATH_LEN + 16];
+/* 2. the preload and 4. the interface: the node-to-node elements, their joints (a first reduction) or a saved model */
+static PetscErrorCode SetUpInterface(FRFRun *r)
+{
+  MPI_Comm         comm = r->comm;
+  PetscLogDouble   t0, t1;
+  JRPreloadSummary s;
+  char             pbase[PETSC_MAX_PATH_LEN + 16];
 
-    /* excitation and responses by position, checked before the preload */
-    PetscCall(JRModelGetBoundingBox(model, lo, hi));
-    if (!set) {
-      at[0] = lo[0];
-      at[1] = 0.5 * (lo[1] + hi[1]);
-      at[2] = hi[2];
+  PetscFunctionBeginUser;
+  if (r->romload[0] && !r->compare) { /* a saved reduced model: no preload, no interface, no fit */
+    PetscCall(JRReduceLoad(r->red, r->model, &r->elr));
+    r->isrom  = PETSC_TRUE;
+    r->loaded = PETSC_TRUE;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscLogStagePush(JR_StagePreload));
+  PetscCall(PetscTime(&t0));
+  PetscCall(JRPreloadSolve(r->pre));
+  PetscCall(PetscTime(&t1));
+  PetscCall(PetscLogStagePop());
+  PetscCall(JRPreloadGetSummary(r->pre, &s));
+  PetscCall(PetscPrintf(comm, "preload total_normal_force %.10g bolt_force_sum %.10g pairs_in_contact %" PetscInt_FMT " pairs %" PetscInt_FMT " (%.3g s)\n", (double)s.total_force, (double)s.bolt_force_sum, s.in_contact, s.pairs, (double)(t1 - t0)));
+  if (r->base[0]) {
+    PetscCall(PetscSNPrintf(pbase, sizeof(pbase), "%s_preload", r->base));
+    PetscCall(JRPreloadWrite(r->pre, pbase, r->plot));
+  }
+  PetscCall(PetscLogStagePush(JR_StageInterface));
+  PetscCall(JRInterfaceCreateElements(r->model, r->pre, &r->iopt, &r->el, &r->pair));
+  PetscCall(JRReduceAssignJoints(r->red, r->model, &r->el, r->pair));
+  PetscCall(PetscLogStagePop());
+  {
+    PetscReal nsum = 0, nmin = PETSC_MAX_REAL, nmax = -PETSC_MAX_REAL;
+    for (PetscInt e = 0; e < r->el.n; e++) {
+      nsum += r->el.n0[e];
+      nmin = PetscMin(nmin, r->el.n0[e]);
+      nmax = PetscMax(nmax, r->el.n0[e]);
     }
-    PetscCall(JRModelFindDof(model, at, dir, &fdof, &dist));
-    fdist = dist;
-    PetscCheck(dist <= 0.05 * (hi[0] - lo[0]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_at (%g, %g, %g) m: the nearest node is %g m away: the point is outside the model (box x %g..%g, y %g..%g, z %g..%g m)", (double)at[0], (double)at[1], (double)at[2], (double)dist, (double)lo[0], (double)hi[0], (double)lo[1], (double)hi[1], (double)lo[2], (double)hi[2]);
-    if (!oset) {
-      oat[0] = hi[0];
-      oat[1] = 0.5 * (lo[1] + hi[1]);
-      oat[2] = hi[2];
-      oat[3] = at[0];
-      oat[4] = at[1];
-      oat[5] = at[2];
-      no     = 6;
-    }
-    nout = no / 3;
-    for (PetscInt o = 0; o < nout; o++) {
-      PetscCall(JRModelFindDof(model, oat + 3 * o, dir, &odof[o], &dist));
-      PetscCheck(dist <= 0.05 * (hi[0] - lo[0]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_output_at (%g, %g, %g) m: the nearest node is %g m away: the point is outside the model", (double)oat[3 * o], (double)oat[3 * o + 1], (double)oat[3 * o + 2], (double)dist);
-    }
-    PetscCall(JRModelGetNumDofs(model, &ndof));
-    PetscCall(PetscPrintf(comm, "frf: node-to-node contact model, %" PetscInt_FMT " DOFs, %" PetscInt_FMT " interface pairs (model %.3g s)\n", ndof, P->n, (double)tmodel));
-    if (romload[0] && !compare) { /* a saved reduced model: no preload, no interface, no fit */
-      PetscCall(JRReduceLoad(red, model, &elr));
-      isrom  = PETSC_TRUE;
-      loaded = PETSC_TRUE;
-    } else {
-      /* 2. preload */
-      PetscCall(PetscLogStagePush(JR_StagePreload));
-      PetscCall(PetscTime(&t0));
-      PetscCall(JRPreloadSolve(pre));
-      PetscCall(PetscTime(&t1));
-      PetscCall(PetscLogStagePop());
-      tpre = t1 - t0;
-      PetscCall(JRPreloadGetSummary(pre, &s));
-      PetscCall(PetscPrintf(comm, "preload total_normal_force %.10g bolt_force_sum %.10g pairs_in_contact %" PetscInt_FMT " pairs %" PetscInt_FMT " (%.3g s)\n", (double)s.total_force, (double)s.bolt_force_sum, s.in_contact, s.pairs, (double)tpre));
-      if (base[0]) {
-        PetscCall(PetscSNPrintf(pbase, sizeof(pbase), "%s_preload", base));
-        PetscCall(JRPreloadWrite(pre, pbase, plot));
-      }
-      /* 4. interface, and the reduced model from its joints */
-      PetscCall(PetscLogStagePush(JR_StageInterface));
-      PetscCall(JRInterfaceCreateElements(model, pre, &iopt, &el, &pair));
-      PetscCall(JRReduceAssignJoints(red, model, &el, pair));
-      PetscCall(PetscLogStagePop());
-      {
-        PetscReal nsum = 0, nmin = PETSC_MAX_REAL, nmax = -PETSC_MAX_REAL;
-        for (PetscInt e = 0; e < el.n; e++) {
-          nsum += el.n0[e];
-          nmin = PetscMin(nmin, el.n0[e]);
-          nmax = PetscMax(nmax, el.n0[e]);
-        }
-        PetscCall(PetscPrintf(comm, "interface: %" PetscInt_FMT " %s elements (kt %g N/m, kn %g N/m, mu %g), n0 %.4g .. %.4g N, sum %.6g N\n", el.n, el.typename[0], (double)el.kt[0], (double)el.kn[0], (double)el.mu[0], (double)nmin, (double)nmax, (double)nsum));
-      }
-      if (el.joint) {
-        isrom = PETSC_TRUE;
-        PetscCall(JRElementsDuplicate(&el, &elj)); /* the joints, reduced below */
-        PetscCall(PetscFree(el.joint));           /* the node-to-node model itself */
-        el.njoints = 0;
-      } else if (romload[0]) {
-        PetscCall(JRReduceLoad(red, model, &elr));
-        isrom  = PETSC_TRUE;
-        loaded = PETSC_TRUE;
-      }
-    }
-    PetscCall(PetscPrintf(comm, "frf: excitation F sin(w t) along %s at (%g, %g, %g) m: DOF %" PetscInt_FMT " (node %.2g mm away)\n", dirs[dir], (double)at[0], (double)at[1], (double)at[2], fdof, (double)(fdist * 1e3)));
-    for (PetscInt o = 0; o < nout; o++) PetscCall(PetscPrintf(comm, "frf: response %" PetscInt_FMT " along %s at (%g, %g, %g) m: DOF %" PetscInt_FMT "\n", o + 1, dirs[dir], (double)oat[3 * o], (double)oat[3 * o + 1], (double)oat[3 * o + 2], odof[o]));
-    /* the modes are saved for reuse unless they are read (-modes_load) or saved elsewhere (-modes_save) */
-    if (base[0] && hbm) {
-      PetscCall(PetscSNPrintf(mfile, sizeof(mfile), "%s_modes.h5", base));
-      PetscCall(JRHBMSetModesFile(hbm, mfile));
+    PetscCall(PetscPrintf(comm, "interface: %" PetscInt_FMT " %s elements (kt %g N/m, kn %g N/m, mu %g), n0 %.4g .. %.4g N, sum %.6g N\n", r->el.n, r->el.typename[0], (double)r->el.kt[0], (double)r->el.kn[0], (double)r->el.mu[0], (double)nmin, (double)nmax, (double)nsum));
+  }
+  if (r->el.joint) {
+    r->isrom = PETSC_TRUE;
+    PetscCall(JRElementsDuplicate(&r->el, &r->elj)); /* the joints, reduced below */
+    PetscCall(PetscFree(r->el.joint));              /* the node-to-node model itself */
+    r->el.njoints = 0;
+  } else if (r->romload[0]) {
+    PetscCall(JRReduceLoad(r->red, r->model, &r->elr));
+    r->isrom  = PETSC_TRUE;
+    r->loaded = PETSC_TRUE;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* 3. the modes and the harmonic balance of the node-to-node (or matrices) model: its modes serve the reduced model too;
+   5. the reduction and the reduced model's harmonic balance */
+static PetscErrorCode SetUpModels(FRFRun *r)
+{
+  MPI_Comm       comm = r->comm;
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBeginUser;
+  if (r->n2n) {
+    char mfile[PETSC_MAX_PATH_LEN + 16];
+    PetscCall(PetscPrintf(comm, "frf: excitation F sin(w t) along %s at (%g, %g, %g) m: DOF %" PetscInt_FMT " (node %.2g mm away)\n", Dirs[r->dir], (double)r->at[0], (double)r->at[1], (double)r->at[2], r->fdof, (double)(r->fdist * 1e3)));
+    for (PetscInt o = 0; o < r->nout; o++) PetscCall(PetscPrintf(comm, "frf: response %" PetscInt_FMT " along %s at (%g, %g, %g) m: DOF %" PetscInt_FMT "\n", o + 1, Dirs[r->dir], (double)r->oat[3 * o], (double)r->oat[3 * o + 1], (double)r->oat[3 * o + 2], r->odof[o]));
+    if (r->base[0] && r->hbm) { /* the modes are saved for reuse unless they are read (-modes_load) or saved elsewhere */
+      PetscCall(PetscSNPrintf(mfile, sizeof(mfile), "%s_modes.h5", r->base));
+      PetscCall(JRHBMSetModesFile(r->hbm, mfile));
     }
   }
-  /* the node-to-node (or matrices) model: its modes serve the reduced model too */
-  if (!loaded) {
-    if (n2n) {
-      PetscCall(JRHBMSetExcitationDof(hbm, fdof, nout, odof));
-      PetscCall(JRHBMSetOutputPoints(hbm, nout, oat, dir));
-      PetscCall(JRModelSetElements(model, &el));
+  if (!r->loaded) {
+    if (r->n2n) {
+      PetscCall(JRHBMSetExcitationDof(r->hbm, r->fdof, r->nout, r->odof));
+      PetscCall(JRHBMSetOutputPoints(r->hbm, r->nout, r->oat, r->dir));
+      PetscCall(JRModelSetElements(r->model, &r->el));
     }
-    PetscCall(JRHBMSetModel(hbm, model));
+    PetscCall(JRHBMSetModel(r->hbm, r->model));
     PetscCall(PetscLogStagePush(JR_StageModes));
     PetscCall(PetscTime(&t0));
-    PetscCall(JRHBMSetUp(hbm));
+    PetscCall(JRHBMSetUp(r->hbm));
     PetscCall(PetscTime(&t1));
     PetscCall(PetscLogStagePop());
-    setn = t1 - t0;
+    r->setn = t1 - t0;
   }
   PetscCall(PetscLogStagePush(JR_StageReduce));
-  if (isrom && !loaded) { /* the reduction, from the joints of the node-to-node elements */
-    PetscCall(JRReduceSetExcitation(red, fdof, nout, odof));
-    PetscCall(JRReduceSetOutput(red, base, plot));
-    PetscCall(JRReduceSetUp(red, model, hbm, &elj, &elr, &tred));
+  if (r->isrom && !r->loaded) { /* the reduction, from the joints of the node-to-node elements */
+    PetscCall(JRReduceSetExcitation(r->red, r->fdof, r->nout, r->odof));
+    PetscCall(JRReduceSetOutput(r->red, r->base, r->plot));
+    PetscCall(JRReduceSetUp(r->red, r->model, r->hbm, &r->elj, &r->elr, &r->tred));
   }
-  if (isrom) {
-    if (loaded) PetscCall(JRReduceSetExcitation(red, fdof, nout, odof));
-    PetscCall(JRReduceCreateHBM(red, model, hbm, loaded, &elr, &hbmr, &setr));
-    PetscCall(JRHBMSetOutputPoints(hbmr, nout, oat, dir));
-    PetscCall(JRReduceSave(red, model, &elr));
+  if (r->isrom) {
+    if (r->loaded) PetscCall(JRReduceSetExcitation(r->red, r->fdof, r->nout, r->odof));
+    PetscCall(JRReduceCreateHBM(r->red, r->model, r->hbm, r->loaded, &r->elr, &r->hbmr, &r->setr));
+    PetscCall(JRHBMSetOutputPoints(r->hbmr, r->nout, r->oat, r->dir));
+    PetscCall(JRReduceSave(r->red, r->model, &r->elr));
   }
   PetscCall(PetscLogStagePop());
-  hbmc = isrom && !compare ? hbmr : hbm;
-  PetscCall(JRHBMGetSizes(hbmc, &nm, &H, &n));
-  PetscCall(JRHBMGetDampingDescription(hbmc, &damping));
-  {
-    PetscInt         nmod;
-    const PetscReal *om;
-    PetscCall(JRHBMGetModalFrequencies(hbmc, &nmod, &om));
-    const char *cinfo;
-    PetscCall(JRHBMGetSolveSize(isrom ? hbmr : hbmc, NULL, &cinfo));
-    if (nmod) PetscCall(PetscPrintf(comm, "frf: %" PetscInt_FMT " modes (%.6g .. %.6g Hz), %" PetscInt_FMT " harmonics + mean, %" PetscInt_FMT " unknowns; damping: %s\n", nm, (double)(om[0] / (2 * PETSC_PI)), (double)(om[nmod - 1] / (2 * PETSC_PI)), H, n, damping));
-    if (cinfo[0]) PetscCall(PetscPrintf(comm, "frf: reduced model %s\n", cinfo));
-    else PetscCall(PetscPrintf(comm, "frf: %" PetscInt_FMT " physical coordinates, %" PetscInt_FMT " harmonics + mean, %" PetscInt_FMT " unknowns; damping: %s\n", nm, H, n, damping));
-    if (n2n) {
-      PetscInt b;
-      PetscCall(JRHBMGetBasis(hbmc, &b));
-      PetscCall(PetscPrintf(comm, "frf: modes and projections %.3g s; modes of the %s [Hz]:", (double)(setn + setr), b == 2 ? "mixed basis (Ritz, stuck + free)" : b ? "stuck structure" : "free interface"));
-      for (PetscInt i = 0; i < nmod; i++) PetscCall(PetscPrintf(comm, " %.5g", (double)(om[i] / (2 * PETSC_PI))));
-      PetscCall(PetscPrintf(comm, "\n"));
-    }
+  r->hbmc = r->isrom && !r->compare ? r->hbmr : r->hbm;
+  PetscFunctionReturn(0);
+}
+
+/* The harmonic balance's size, damping and modal basis */
+static PetscErrorCode ViewBasis(FRFRun *r)
+{
+  MPI_Comm         comm = r->comm;
+  PetscInt         nm, H, n, nmod;
+  const PetscReal *om;
+  const char      *damping, *cinfo;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMGetSizes(r->hbmc, &nm, &H, &n));
+  PetscCall(JRHBMGetDampingDescription(r->hbmc, &damping));
+  PetscCall(JRHBMGetModalFrequencies(r->hbmc, &nmod, &om));
+  PetscCall(JRHBMGetSolveSize(r->isrom ? r->hbmr : r->hbmc, NULL, &cinfo));
+  if (nmod) PetscCall(PetscPrintf(comm, "frf: %" PetscInt_FMT " modes (%.6g .. %.6g Hz), %" PetscInt_FMT " harmonics + mean, %" PetscInt_FMT " unknowns; damping: %s\n", nm, (double)(om[0] / (2 * PETSC_PI)), (double)(om[nmod - 1] / (2 * PETSC_PI)), H, n, damping));
+  if (cinfo[0]) PetscCall(PetscPrintf(comm, "frf: reduced model %s\n", cinfo));
+  else PetscCall(PetscPrintf(comm, "frf: %" PetscInt_FMT " physical coordinates, %" PetscInt_FMT " harmonics + mean, %" PetscInt_FMT " unknowns; damping: %s\n", nm, H, n, damping));
+  if (r->n2n) {
+    PetscInt b;
+    PetscCall(JRHBMGetBasis(r->hbmc, &b));
+    PetscCall(PetscPrintf(comm, "frf: modes and projections %.3g s; modes of the %s [Hz]:", (double)(r->setn + r->setr), b == JR_HBM_BASIS_MIXED ? "mixed basis (Ritz, stuck + free)" : b == JR_HBM_BASIS_STUCK ? "stuck structure" : "free interface"));
+    for (PetscInt i = 0; i < nmod; i++) PetscCall(PetscPrintf(comm, " %.5g", (double)(om[i] / (2 * PETSC_PI))));
+    PetscCall(PetscPrintf(comm, "\n"));
   }
-  if (compare) {
+  PetscFunctionReturn(0);
+}
+
+/* 6. the curves: of the one model, or of both (-task compare) with their comparison */
+static PetscErrorCode Solve(FRFRun *r)
+{
+  MPI_Comm comm = r->comm;
+
+  PetscFunctionBeginUser;
+  if (r->compare) {
     char bn[PETSC_MAX_PATH_LEN + 8], br[PETSC_MAX_PATH_LEN + 8];
-    PetscCall(PetscSNPrintf(bn, sizeof(bn), "%s%s", base, base[0] ? "_n2n" : ""));
-    PetscCall(PetscSNPrintf(br, sizeof(br), "%s%s", base, base[0] ? "_rom" : ""));
+    PetscCall(PetscSNPrintf(bn, sizeof(bn), "%s%s", r->base, r->base[0] ? "_n2n" : ""));
+    PetscCall(PetscSNPrintf(br, sizeof(br), "%s%s", r->base, r->base[0] ? "_rom" : ""));
     PetscCall(PetscPrintf(comm, "compare: node-to-node model\n"));
-    PetscCall(Curves(comm, hbm, bn, &cont, &tn, &en));
-    PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) node-to-node %.4g s\n", (double)tn));
+    PetscCall(Curves(comm, r->hbm, bn, &r->cont, &r->tn, &r->en));
+    PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) node-to-node %.4g s\n", (double)r->tn));
     PetscCall(PetscPrintf(comm, "compare: reduced model\n"));
-    PetscCall(Curves(comm, hbmr, br, &contr, &tr, &er));
-    PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) reduced %.4g s\n", (double)tr));
+    PetscCall(Curves(comm, r->hbmr, br, &r->contr, &r->tr, &r->er));
+    PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) reduced %.4g s\n", (double)r->tr));
     {
-      const JRCompareTimes t = {tn, tr, en, er, setn, setr, tred};
-      PetscCall(JRPostCompareReport(post, cont, contr, &el, &elr, &t));
+      const JRCompareTimes t = {r->tn, r->tr, r->en, r->er, r->setn, r->setr, r->tred};
+      PetscCall(JRPostCompareReport(r->post, r->cont, r->contr, &r->el, &r->elr, &t));
     }
-    contc = cont;
+    r->contc = r->cont;
   } else {
-    PetscCall(Curves(comm, hbmc, base[0] ? base : NULL, isrom ? &contr : &cont, &tn, NULL));
-    PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) %.4g s\n", (double)tn));
-    contc = isrom ? contr : cont;
+    PetscCall(Curves(comm, r->hbmc, r->base[0] ? r->base : NULL, r->isrom ? &r->contr : &r->cont, &r->tn, NULL));
+    PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) %.4g s\n", (double)r->tn));
+    r->contc = r->isrom ? r->contr : r->cont;
   }
-  if (n2n) {
+  PetscFunctionReturn(0);
+}
+
+/* 7. the stuck structure's frequencies beside the lowest level's peak (and, with -frf_stick_fe, the whole FE model's),
+   the contact maps at the peaks, the peak memory */
+static PetscErrorCode Report(FRFRun *r)
+{
+  MPI_Comm comm = r->comm;
+
+  PetscFunctionBeginUser;
+  if (r->n2n) {
     PetscReal *fs, w, a, best = 0, fe[64];
-    PetscInt   nf;
+    PetscInt   nf, nm;
+    PetscCall(JRHBMGetSizes(r->hbmc, &nm, NULL, NULL));
     PetscCall(PetscMalloc1(nm, &fs));
-    PetscCall(JRHBMStickFrequencies(hbmc, &nf, fs));
-    PetscCall(JRContGetPeak(contc, 0, &w, &a));
+    PetscCall(JRHBMStickFrequencies(r->hbmc, &nf, fs));
+    PetscCall(JRContGetPeak(r->contc, 0, &w, &a));
     for (PetscInt i = 0; i < nf; i++)
       if (PetscAbsReal(fs[i] - w / (2 * PETSC_PI)) < PetscAbsReal(best - w / (2 * PETSC_PI))) best = fs[i];
-    PetscCall(PetscPrintf(comm, "frf: stuck structure%s, modal basis of %" PetscInt_FMT " modes [Hz]:", hbmc == hbmr ? " (reduced model)" : "", nm));
+    PetscCall(PetscPrintf(comm, "frf: stuck structure%s, modal basis of %" PetscInt_FMT " modes [Hz]:", r->hbmc == r->hbmr ? " (reduced model)" : "", nm));
     for (PetscInt i = 0; i < nf; i++) PetscCall(PetscPrintf(comm, " %.6g", (double)fs[i]));
     PetscCall(PetscPrintf(comm, "\n"));
     PetscCall(PetscPrintf(comm, "stick freq_hz %.8g modes %" PetscInt_FMT " lowest_level_peak_hz %.8g rel %.3e\n", (double)best, nm, (double)(w / (2 * PETSC_PI)), (double)(w / (2 * PETSC_PI) / best - 1)));
-    if (stickfe) {
-      PetscInt  nfe = PetscMin(nm, 64);
-      PetscReal bfe = 0;
+    if (r->stickfe) {
+      PetscInt       nfe = PetscMin(nm, 64);
+      PetscReal      bfe = 0;
+      PetscLogDouble t0, t1;
       PetscCall(PetscTime(&t0));
-      PetscCall(StickFE(model, loaded ? &elr : &el, nfe, fe));
+      PetscCall(StickFE(r->model, r->loaded ? &r->elr : &r->el, nfe, fe));
       PetscCall(PetscTime(&t1));
       PetscCall(PetscPrintf(comm, "frf: stuck structure, full FE model with the element springs (SLEPc, %.3g s) [Hz]:", (double)(t1 - t0)));
       for (PetscInt i = 0; i < nfe; i++) PetscCall(PetscPrintf(comm, " %.6g", (double)fe[i]));
@@ -368,7 +421,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
       PetscCall(PetscPrintf(comm, "stick_fe freq_hz %.8g modal_freq_hz %.8g truncation_error %.3e\n", (double)bfe, (double)best, (double)(best / bfe - 1)));
     }
     PetscCall(PetscFree(fs));
-    if (base[0] && contc == cont && cont) PetscCall(JRPostWriteContactMaps(post, model, cont, &el, pair));
+    if (r->base[0] && r->contc == r->cont && r->cont) PetscCall(JRPostWriteContactMaps(r->post, r->model, r->cont, &r->el, r->pair));
   }
   { /* peak resident memory of the processes */
     struct rusage ru;
@@ -379,18 +432,56 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
     PetscCall(MPIU_Allreduce(&mb[1], &mx[1], 1, MPIU_REAL, MPIU_SUM, comm));
     PetscCall(PetscPrintf(comm, "frf: peak memory %.1f MB per process (largest), %.1f MB in all\n", (double)mx[0], (double)mx[1]));
   }
-  PetscCall(JRContDestroy(&contr));
-  PetscCall(JRContDestroy(&cont));
-  PetscCall(JRHBMDestroy(&hbmr));
-  PetscCall(JRHBMDestroy(&hbm));
-  PetscCall(JRPreloadDestroy(&pre));
-  PetscCall(JRReduceDestroy(&red));
-  PetscCall(JRPostDestroy(&post));
-  PetscCall(JRElementsDestroy(&el));
-  PetscCall(JRElementsDestroy(&elr));
-  PetscCall(JRElementsDestroy(&elj));
-  PetscCall(PetscFree(pair));
-  PetscCall(JRModelDestroy(&model));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Destroy(FRFRun *r)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRContDestroy(&r->contr));
+  PetscCall(JRContDestroy(&r->cont));
+  PetscCall(JRHBMDestroy(&r->hbmr));
+  PetscCall(JRHBMDestroy(&r->hbm));
+  PetscCall(JRPreloadDestroy(&r->pre));
+  PetscCall(JRReduceDestroy(&r->red));
+  PetscCall(JRPostDestroy(&r->post));
+  PetscCall(JRElementsDestroy(&r->el));
+  PetscCall(JRElementsDestroy(&r->elr));
+  PetscCall(JRElementsDestroy(&r->elj));
+  PetscCall(PetscFree(r->pair));
+  PetscCall(JRModelDestroy(&r->model));
+  PetscFunctionReturn(0);
+}
+
+/* The pipeline: options (all, checked), model, preload and interface, modes and harmonic balance, reduction, curves,
+   outputs */
+static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
+{
+  FRFRun r;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(&r, sizeof(r)));
+  r.comm    = comm;
+  r.compare = compare;
+  r.plot    = PETSC_TRUE;
+  r.dir     = 2;
+  r.nd      = 3;
+  r.no      = 63;
+  r.romsave = r.romload = "";
+  PetscCall(PetscStrncpy(r.base, "out/frf", sizeof(r.base)));
+  PetscCall(SetFromOptions(&r));
+  if (r.help) {
+    PetscCall(JROptionsHelpSolvers(comm, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE));
+    PetscCall(Destroy(&r));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(SetUpModel(&r));
+  if (r.n2n) PetscCall(SetUpInterface(&r));
+  PetscCall(SetUpModels(&r));
+  PetscCall(ViewBasis(&r));
+  PetscCall(Solve(&r));
+  PetscCall(Report(&r));
+  PetscCall(Destroy(&r));
   PetscFunctionReturn(0);
 }
 
