@@ -101,136 +101,169 @@ PetscErrorCode JRPostModesTable(JRPost post, JRModes modes)
   PetscFunctionReturn(0);
 }
 
-/* BASE.h5, BASE.xdmf and (with plot) BASE.png of the modes of an FE model; nplot elastic modes drawn */
-PetscErrorCode JRPostWriteModes(JRPost post, JRModel model, JRModes modes, PetscInt nplot)
+/* BASE.h5: the mesh and the modes in PETSc's visualisation layout, the frequencies */
+static PetscErrorCode WriteModesH5(JRPost post, DM dm, JRModes modes, const char h5[])
 {
   MPI_Comm         comm = post->comm;
-  const char      *base = post->base;
-  const PetscBool  plot = post->plot;
   PetscInt         nm;
   const PetscReal *lam;
   Vec             *phi;
-  DM               dm;
   PetscMPIInt      rank;
+  char             tmp[PETSC_MAX_PATH_LEN + 32];
+  PetscViewer      v;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(JRModesGetNumber(modes, &nm));
   PetscCall(JRModesGetEigenvalues(modes, &lam));
   PetscCall(JRModesGetVecs(modes, &phi));
-  PetscCall(JRModelGetDM(model, &dm));
-  if (base[0] && dm) {
-    char        h5[PETSC_MAX_PATH_LEN + 8], tmp[PETSC_MAX_PATH_LEN + 32], xdmf[PETSC_MAX_PATH_LEN + 8];
-    PetscViewer v;
-    PetscInt    nv, nc, cs, ce, vs, ve;
-    /* HDF5: mesh and modes in PETSc's visualisation layout, frequencies */
-    PetscCall(PetscSNPrintf(h5, sizeof(h5), "%s.h5", base));
-    PetscCall(JRFileTempName(comm, h5, tmp, sizeof(tmp)));
-    PetscCall(PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &v));
-    PetscCall(PetscViewerPushFormat(v, PETSC_VIEWER_HDF5_VIZ));
-    PetscCall(DMView(dm, v));
-    for (PetscInt i = 0; i < nm; i++) { /* a vector of the DM, so that the mesh viewer writes vertex fields */
-      char name[32];
-      Vec  g;
-      PetscCall(DMGetGlobalVector(dm, &g));
-      PetscCall(VecCopy(phi[i], g));
-      PetscCall(PetscSNPrintf(name, sizeof(name), "mode_%" PetscInt_FMT, i + 1));
-      PetscCall(PetscObjectSetName((PetscObject)g, name));
-      PetscCall(VecView(g, v));
-      PetscCall(DMRestoreGlobalVector(dm, &g));
-    }
-    PetscCall(PetscViewerPopFormat(v));
-    for (int k = 0; k < 2; k++) { /* /modes/omega_rad_s and /modes/frequency_hz */
-      Vec          f;
-      PetscScalar *fa;
-      PetscCall(VecCreateMPI(comm, rank ? 0 : nm, PETSC_DETERMINE, &f));
-      PetscCall(PetscObjectSetName((PetscObject)f, k ? "frequency_hz" : "omega_rad_s"));
-      PetscCall(VecGetArray(f, &fa));
-      for (PetscInt i = 0; i < (rank ? 0 : nm); i++) fa[i] = PetscSqrtReal(PetscMax(lam[i], 0.0)) / (k ? 2.0 * PETSC_PI : 1.0);
-      PetscCall(VecRestoreArray(f, &fa));
-      PetscCall(PetscViewerHDF5PushGroup(v, "/modes"));
-      PetscCall(VecView(f, v));
-      PetscCall(PetscViewerHDF5PopGroup(v));
-      PetscCall(VecDestroy(&f));
-    }
-    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "units", PETSC_STRING, "SI: coordinates m; /fields/mode_i: every DOF of mode i (x, y, z per node), /vertex_fields: at the vertices, mass-normalised (kg^-1/2); omega_rad_s rad/s; frequency_hz Hz"));
-    PetscCall(PetscViewerDestroy(&v));
-    PetscCall(JRFileRename(comm, tmp, h5));
-    /* XDMF for ParaView: the hexahedra and every mode as a nodal vector */
-    PetscCall(DMPlexGetHeightStratum(dm, 0, &cs, &ce));
-    PetscCall(DMPlexGetDepthStratum(dm, 0, &vs, &ve));
-    nc = ce - cs;
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nc, 1, MPIU_INT, MPI_SUM, comm));
-    {
-      IS vn;
-      PetscCall(DMPlexGetVertexNumbering(dm, &vn));
-      PetscCall(ISGetSize(vn, &nv));
-      {
-        const PetscInt *idx;
-        PetscInt        n, own = 0;
-        PetscCall(ISGetLocalSize(vn, &n));
-        PetscCall(ISGetIndices(vn, &idx));
-        for (PetscInt i = 0; i < n; i++) own += idx[i] >= 0;
-        PetscCall(ISRestoreIndices(vn, &idx));
-        PetscCallMPI(MPI_Allreduce(&own, &nv, 1, MPIU_INT, MPI_SUM, comm));
-      }
-    }
-    PetscCall(PetscSNPrintf(xdmf, sizeof(xdmf), "%s.xdmf", base));
-    {
-      FILE       *fp;
-      char        tx[PETSC_MAX_PATH_LEN + 32];
-      const char *leaf = strrchr(h5, '/') ? strrchr(h5, '/') + 1 : h5;
-      PetscCall(JRFileOpenTemp(comm, xdmf, &fp, tx, sizeof(tx)));
-      if (fp) {
-        fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"modes\" GridType=\"Uniform\">\n");
-        fprintf(fp, "   <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"%" PetscInt_FMT "\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 8\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n   </Topology>\n", nc, nc, leaf);
-        fprintf(fp, "   <Geometry GeometryType=\"XYZ\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n   </Geometry>\n", nv, leaf);
-        for (PetscInt i = 0; i < nm; i++)
-          fprintf(fp, "   <Attribute Name=\"mode %" PetscInt_FMT " (%.6g Hz)\" AttributeType=\"Vector\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/mode_%" PetscInt_FMT "_displacement</DataItem>\n   </Attribute>\n", i + 1, (double)(PetscSqrtReal(PetscMax(lam[i], 0.0)) / (2 * PETSC_PI)), nv, leaf, i + 1);
-        fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
-      }
-      PetscCall(JRFileCommit(comm, &fp, tx, xdmf));
-    }
-    /* PNG: side view of the first elastic modes (front face, deformed) */
-    if (plot) {
-      PetscInt   nf, *fd, first = 0, np;
-      PetscReal *fx, *rows, L = 0.0;
-      char       csv[PETSC_MAX_PATH_LEN + 8], png[PETSC_MAX_PATH_LEN + 8], tc[PETSC_MAX_PATH_LEN + 32];
-      FILE      *fp;
-      while (first < nm && lam[first] < 1e-8 * lam[nm - 1]) first++; /* skip the rigid-body modes (supplied or computed) */
-      np = PetscMin(nplot, nm - first);
-      PetscCall(FrontFace(dm, &nf, &fx, &fd));
-      PetscCall(PetscMalloc1(PetscMax(nf, 1) * 3 * nm, &rows));
-      {
-        PetscInt *d3;
-        PetscCall(PetscMalloc1(3 * PetscMax(nf, 1), &d3));
-        for (PetscInt i = 0; i < nf; i++)
-          for (int k = 0; k < 3; k++) d3[3 * i + k] = fd[i] + k;
-        PetscCall(JRModesGetRows(modes, 3 * nf, d3, rows));
-        PetscCall(PetscFree(d3));
-      }
-      for (PetscInt i = 0; i < nf; i++) L = PetscMax(L, fx[3 * i]);
-      PetscCall(PetscSNPrintf(csv, sizeof(csv), "%s_shapes.csv", base));
-      PetscCall(PetscSNPrintf(png, sizeof(png), "%s.png", base));
-      PetscCall(JRFileOpenTemp(comm, csv, &fp, tc, sizeof(tc)));
-      if (fp) fprintf(fp, "mode,freq_hz,x_m,z_m,xdef_m,zdef_m\n");
-      for (PetscInt q = 0; q < np; q++) {
-        const PetscInt r = first + q;
-        PetscReal      umax = 0.0, s;
-        for (PetscInt i = 0; i < nf; i++) umax = PetscMax(umax, PetscSqrtReal(PetscSqr(rows[(3 * i) * nm + r]) + PetscSqr(rows[(3 * i + 2) * nm + r])));
-        s = umax > 0 ? 0.08 * L / umax : 0.0; /* the largest displacement drawn as 8% of the length */
-        for (PetscInt i = 0; fp && i < nf; i++) fprintf(fp, "%" PetscInt_FMT ",%.6g,%.6g,%.6g,%.6g,%.6g\n", r + 1, (double)(PetscSqrtReal(PetscMax(lam[r], 0.0)) / (2 * PETSC_PI)), (double)fx[3 * i], (double)fx[3 * i + 2], (double)(fx[3 * i] + s * rows[(3 * i) * nm + r]), (double)(fx[3 * i + 2] + s * rows[(3 * i + 2) * nm + r]));
-      }
-      PetscCall(JRFileCommit(comm, &fp, tc, csv));
-      if (np > 0) {
-        char vars[3 * PETSC_MAX_PATH_LEN];
-        PetscCall(PetscSNPrintf(vars, sizeof(vars), "data='%s'; first=%" PetscInt_FMT "; nplot=%" PetscInt_FMT, csv, first + 1, np));
-        PetscCall(JRPlot(comm, "plot_modes.gp", png, vars, NULL));
-      }
-      PetscCall(PetscFree(rows));
-      PetscCall(PetscFree2(fx, fd));
-    }
-    PetscCall(PetscPrintf(comm, "modes: wrote %s, %s%s%s.png\n", h5, xdmf, plot ? ", " : "", plot ? base : ""));
+  PetscCall(JRFileTempName(comm, h5, tmp, sizeof(tmp)));
+  PetscCall(PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &v));
+  PetscCall(PetscViewerPushFormat(v, PETSC_VIEWER_HDF5_VIZ));
+  PetscCall(DMView(dm, v));
+  for (PetscInt i = 0; i < nm; i++) { /* a vector of the DM, so that the mesh viewer writes vertex fields */
+    char name[32];
+    Vec  g;
+    PetscCall(DMGetGlobalVector(dm, &g));
+    PetscCall(VecCopy(phi[i], g));
+    PetscCall(PetscSNPrintf(name, sizeof(name), "mode_%" PetscInt_FMT, i + 1));
+    PetscCall(PetscObjectSetName((PetscObject)g, name));
+    PetscCall(VecView(g, v));
+    PetscCall(DMRestoreGlobalVector(dm, &g));
   }
+  PetscCall(PetscViewerPopFormat(v));
+  for (int k = 0; k < 2; k++) { /* /modes/omega_rad_s and /modes/frequency_hz */
+    Vec          f;
+    PetscScalar *fa;
+    PetscCall(VecCreateMPI(comm, rank ? 0 : nm, PETSC_DETERMINE, &f));
+    PetscCall(PetscObjectSetName((PetscObject)f, k ? "frequency_hz" : "omega_rad_s"));
+    PetscCall(VecGetArray(f, &fa));
+    for (PetscInt i = 0; i < (rank ? 0 : nm); i++) fa[i] = PetscSqrtReal(PetscMax(lam[i], 0.0)) / (k ? 2.0 * PETSC_PI : 1.0);
+    PetscCall(VecRestoreArray(f, &fa));
+    PetscCall(PetscViewerHDF5PushGroup(v, "/modes"));
+    PetscCall(VecView(f, v));
+    PetscCall(PetscViewerHDF5PopGroup(v));
+    PetscCall(VecDestroy(&f));
+  }
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "units", PETSC_STRING, "SI: coordinates m; /fields/mode_i: every DOF of mode i (x, y, z per node), /vertex_fields: at the vertices, mass-normalised (kg^-1/2); omega_rad_s rad/s; frequency_hz Hz"));
+  PetscCall(PetscViewerDestroy(&v));
+  PetscCall(JRFileRename(comm, tmp, h5));
+  PetscFunctionReturn(0);
+}
+
+/* BASE.xdmf for ParaView: the hexahedra and every mode as a nodal vector, from BASE.h5 */
+static PetscErrorCode WriteModesXdmf(JRPost post, DM dm, JRModes modes, const char h5[], const char xdmf[])
+{
+  MPI_Comm         comm = post->comm;
+  PetscInt         nm, nv, nc, cs, ce, vs, ve;
+  const PetscReal *lam;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModesGetNumber(modes, &nm));
+  PetscCall(JRModesGetEigenvalues(modes, &lam));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cs, &ce));
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vs, &ve));
+  nc = ce - cs;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nc, 1, MPIU_INT, MPI_SUM, comm));
+  {
+    IS vn;
+    PetscCall(DMPlexGetVertexNumbering(dm, &vn));
+    PetscCall(ISGetSize(vn, &nv));
+    {
+      const PetscInt *idx;
+      PetscInt        n, own = 0;
+      PetscCall(ISGetLocalSize(vn, &n));
+      PetscCall(ISGetIndices(vn, &idx));
+      for (PetscInt i = 0; i < n; i++) own += idx[i] >= 0;
+      PetscCall(ISRestoreIndices(vn, &idx));
+      PetscCallMPI(MPI_Allreduce(&own, &nv, 1, MPIU_INT, MPI_SUM, comm));
+    }
+  }
+  {
+    FILE       *fp;
+    char        tx[PETSC_MAX_PATH_LEN + 32];
+    const char *leaf = strrchr(h5, '/') ? strrchr(h5, '/') + 1 : h5;
+    PetscCall(JRFileOpenTemp(comm, xdmf, &fp, tx, sizeof(tx)));
+    if (fp) {
+      fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"modes\" GridType=\"Uniform\">\n");
+      fprintf(fp, "   <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"%" PetscInt_FMT "\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 8\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n   </Topology>\n", nc, nc, leaf);
+      fprintf(fp, "   <Geometry GeometryType=\"XYZ\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n   </Geometry>\n", nv, leaf);
+      for (PetscInt i = 0; i < nm; i++)
+        fprintf(fp, "   <Attribute Name=\"mode %" PetscInt_FMT " (%.6g Hz)\" AttributeType=\"Vector\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/mode_%" PetscInt_FMT "_displacement</DataItem>\n   </Attribute>\n", i + 1, (double)(PetscSqrtReal(PetscMax(lam[i], 0.0)) / (2 * PETSC_PI)), nv, leaf, i + 1);
+      fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
+    }
+    PetscCall(JRFileCommit(comm, &fp, tx, xdmf));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* BASE.png (and BASE_shapes.csv): side view of the first nplot elastic modes, the front face deformed */
+static PetscErrorCode PlotModes(JRPost post, DM dm, JRModes modes, PetscInt nplot)
+{
+  MPI_Comm         comm = post->comm;
+  const char      *base = post->base;
+  PetscInt         nm;
+  const PetscReal *lam;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModesGetNumber(modes, &nm));
+  PetscCall(JRModesGetEigenvalues(modes, &lam));
+  {
+    PetscInt   nf, *fd, first = 0, np;
+    PetscReal *fx, *rows, L = 0.0;
+    char       csv[PETSC_MAX_PATH_LEN + 8], png[PETSC_MAX_PATH_LEN + 8], tc[PETSC_MAX_PATH_LEN + 32];
+    FILE      *fp;
+    while (first < nm && lam[first] < 1e-8 * lam[nm - 1]) first++; /* skip the rigid-body modes (supplied or computed) */
+    np = PetscMin(nplot, nm - first);
+    PetscCall(FrontFace(dm, &nf, &fx, &fd));
+    PetscCall(PetscMalloc1(PetscMax(nf, 1) * 3 * nm, &rows));
+    {
+      PetscInt *d3;
+      PetscCall(PetscMalloc1(3 * PetscMax(nf, 1), &d3));
+      for (PetscInt i = 0; i < nf; i++)
+        for (int k = 0; k < 3; k++) d3[3 * i + k] = fd[i] + k;
+      PetscCall(JRModesGetRows(modes, 3 * nf, d3, rows));
+      PetscCall(PetscFree(d3));
+    }
+    for (PetscInt i = 0; i < nf; i++) L = PetscMax(L, fx[3 * i]);
+    PetscCall(PetscSNPrintf(csv, sizeof(csv), "%s_shapes.csv", base));
+    PetscCall(PetscSNPrintf(png, sizeof(png), "%s.png", base));
+    PetscCall(JRFileOpenTemp(comm, csv, &fp, tc, sizeof(tc)));
+    if (fp) fprintf(fp, "mode,freq_hz,x_m,z_m,xdef_m,zdef_m\n");
+    for (PetscInt q = 0; q < np; q++) {
+      const PetscInt r = first + q;
+      PetscReal      umax = 0.0, s;
+      for (PetscInt i = 0; i < nf; i++) umax = PetscMax(umax, PetscSqrtReal(PetscSqr(rows[(3 * i) * nm + r]) + PetscSqr(rows[(3 * i + 2) * nm + r])));
+      s = umax > 0 ? 0.08 * L / umax : 0.0; /* the largest displacement drawn as 8% of the length */
+      for (PetscInt i = 0; fp && i < nf; i++) fprintf(fp, "%" PetscInt_FMT ",%.6g,%.6g,%.6g,%.6g,%.6g\n", r + 1, (double)(PetscSqrtReal(PetscMax(lam[r], 0.0)) / (2 * PETSC_PI)), (double)fx[3 * i], (double)fx[3 * i + 2], (double)(fx[3 * i] + s * rows[(3 * i) * nm + r]), (double)(fx[3 * i + 2] + s * rows[(3 * i + 2) * nm + r]));
+    }
+    PetscCall(JRFileCommit(comm, &fp, tc, csv));
+    if (np > 0) {
+      char vars[3 * PETSC_MAX_PATH_LEN];
+      PetscCall(PetscSNPrintf(vars, sizeof(vars), "data='%s'; first=%" PetscInt_FMT "; nplot=%" PetscInt_FMT, csv, first + 1, np));
+      PetscCall(JRPlot(comm, "plot_modes.gp", png, vars, NULL));
+    }
+    PetscCall(PetscFree(rows));
+    PetscCall(PetscFree2(fx, fd));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* BASE.h5, BASE.xdmf and (with plot) BASE.png of the modes of an FE model; nplot elastic modes drawn */
+PetscErrorCode JRPostWriteModes(JRPost post, JRModel model, JRModes modes, PetscInt nplot)
+{
+  const char *base = post->base;
+  DM          dm;
+  char        h5[PETSC_MAX_PATH_LEN + 8], xdmf[PETSC_MAX_PATH_LEN + 8];
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetDM(model, &dm));
+  if (!base[0] || !dm) PetscFunctionReturn(0);
+  PetscCall(PetscSNPrintf(h5, sizeof(h5), "%s.h5", base));
+  PetscCall(PetscSNPrintf(xdmf, sizeof(xdmf), "%s.xdmf", base));
+  PetscCall(WriteModesH5(post, dm, modes, h5));
+  PetscCall(WriteModesXdmf(post, dm, modes, h5, xdmf));
+  if (post->plot) PetscCall(PlotModes(post, dm, modes, nplot));
+  PetscCall(PetscPrintf(post->comm, "modes: wrote %s, %s%s%s.png\n", h5, xdmf, post->plot ? ", " : "", post->plot ? base : ""));
   PetscFunctionReturn(0);
 }
