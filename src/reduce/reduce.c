@@ -28,104 +28,130 @@
   and -rom_split_width splits every strip-type region at mid-width. Each region must hold elements (else an error
   naming it); its members move with the average of their relative motions (4.4).
 */
-static PetscErrorCode AssignJoints(JRReduce o, JRModel model, const JRPairs *P, JRElements *el, const PetscInt pair[])
-{
-  const char *kinds[] = {"none", "each", "strips", "bolts", "between", "sides", "zones", "boxes"};
-  PetscInt    kind = o->joints, ncut = o->ncut, nreg, nbox = o->nbox;
-  PetscReal   cut[64], ylo = PETSC_MAX_REAL, yhi = -PETSC_MAX_REAL, box[256], zf = o->zone_fraction;
-  PetscBool   split = o->split_width;
-  PetscInt   *cnt;
+static const char *const JointKinds[] = {"none", "each", "strips", "bolts", "between", "sides", "zones", "boxes"};
 
-  MPI_Comm    comm = o->comm;
+/* -rom_joints boxes: element e in the one box that holds its pair's point; *nreg boxes, cnt[] their members */
+static PetscErrorCode AssignBoxes(JRReduce o, const JRPairs *P, JRElements *el, const PetscInt pair[], PetscInt *nreg, PetscInt **cnt)
+{
+  MPI_Comm         comm = o->comm;
+  const PetscReal *box  = o->box;
+  const PetscInt   nb   = o->nbox / 4;
 
   PetscFunctionBeginUser;
+  PetscCheck(o->nbox >= 4 && o->nbox % 4 == 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes needs x0,x1,y0,y1 per joint [m], got %" PetscInt_FMT " values", o->nbox);
+  for (PetscInt b = 0; b < nb; b++) PetscCheck(box[4 * b + 1] > box[4 * b] && box[4 * b + 3] > box[4 * b + 2], comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: box %" PetscInt_FMT " (%g..%g, %g..%g m) is empty: x0 < x1 and y0 < y1", b, (double)box[4 * b], (double)box[4 * b + 1], (double)box[4 * b + 2], (double)box[4 * b + 3]);
+  PetscCall(PetscCalloc1(nb, cnt));
+  for (PetscInt e = 0; e < el->n; e++) {
+    const PetscReal *x  = P->x + 3 * pair[e];
+    PetscInt         in = -1;
+    for (PetscInt b = 0; b < nb; b++) {
+      if (!(x[0] >= box[4 * b] && x[0] <= box[4 * b + 1] && x[1] >= box[4 * b + 2] && x[1] <= box[4 * b + 3])) continue;
+      PetscCheck(in < 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: the element at (%g, %g) m lies in box %" PetscInt_FMT " and in box %" PetscInt_FMT ": the regions overlap", (double)x[0], (double)x[1], in, b);
+      in = b;
+    }
+    PetscCheck(in >= 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: the element at (%g, %g) m lies in no box: every element must belong to a region", (double)x[0], (double)x[1]);
+    el->joint[e] = in;
+    (*cnt)[in]++;
+  }
+  for (PetscInt b = 0; b < nb; b++) PetscCheck((*cnt)[b] > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: box %" PetscInt_FMT " (%g..%g, %g..%g m) holds no element: an empty joint", b, (double)box[4 * b], (double)box[4 * b + 1], (double)box[4 * b + 2], (double)box[4 * b + 3]);
+  *nreg = nb;
+  PetscFunctionReturn(0);
+}
+
+/* The cuts along the beam axis of -rom_joints bolts (midway between bolts), between (at the bolts' axes), sides and
+   zones (both); strips: -rom_strips's */
+static PetscErrorCode JointCuts(JRReduce o, JRModel model, PetscInt *ncut, PetscReal cut[])
+{
+  const PetscInt kind = o->joints;
+  const JRBolts *B;
+  PetscReal      xb[64];
+  PetscInt       nb;
+
+  PetscFunctionBeginUser;
+  *ncut = o->ncut;
   PetscCall(PetscArraycpy(cut, o->cut, 64));
-  PetscCall(PetscArraycpy(box, o->box, 256));
-  if (kind == 0) PetscFunctionReturn(0);
-  if (kind == 1) {
+  if (kind < 3) PetscFunctionReturn(0);
+  PetscCall(JRModelGetBolts(model, &B));
+  PetscCheck(B && B->n > 0 && B->n <= 32, o->comm, PETSC_ERR_ARG_WRONG, "-rom_joints %s needs a model with bolts (1 to 32)", JointKinds[kind]);
+  nb = B->n;
+  for (PetscInt b = 0; b < nb; b++) xb[b] = B->x[3 * b];
+  for (PetscInt b = 1; b < nb; b++) /* sort */
+    for (PetscInt c = b; c > 0 && xb[c] < xb[c - 1]; c--) {
+      const PetscReal t = xb[c];
+      xb[c]             = xb[c - 1];
+      xb[c - 1]         = t;
+    }
+  *ncut = 0;
+  for (PetscInt b = 0; b < nb; b++) {
+    if (kind != 3 && kind != 4 && b > 0) cut[(*ncut)++] = 0.5 * (xb[b - 1] + xb[b]); /* sides, zones */
+    if (kind == 3 && b > 0) cut[(*ncut)++] = 0.5 * (xb[b - 1] + xb[b]);                  /* bolts */
+    if (kind != 3) cut[(*ncut)++] = xb[b];                                               /* between, sides, zones */
+  }
+  PetscFunctionReturn(0);
+}
+
+/* -rom_joints strips, bolts, between, sides, zones: regions between cuts along the beam axis (halves of the width
+   with -rom_split_width; zones: each split into a high-load and a low-load zone by -rom_zone_fraction) */
+static PetscErrorCode AssignCuts(JRReduce o, JRModel model, const JRPairs *P, JRElements *el, const PetscInt pair[], PetscInt *nreg, PetscInt **cnt)
+{
+  MPI_Comm        comm = o->comm;
+  const PetscInt  kind = o->joints, nz = kind == 6 ? 2 : 1;
+  const PetscBool split = o->split_width;
+  PetscInt        ncut;
+  PetscReal       cut[64], ylo = PETSC_MAX_REAL, yhi = -PETSC_MAX_REAL;
+
+  PetscFunctionBeginUser;
+  PetscCall(JointCuts(o, model, &ncut, cut));
+  PetscCheck(kind != 2 || ncut > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints strips needs the cuts -rom_strips x1,x2,... [m]");
+  for (PetscInt k = 1; k < ncut; k++) PetscCheck(cut[k] > cut[k - 1], comm, PETSC_ERR_ARG_WRONG, "-rom_strips: the cuts must increase, but %g m follows %g m", (double)cut[k], (double)cut[k - 1]);
+  for (PetscInt e = 0; e < el->n; e++) {
+    ylo = PetscMin(ylo, P->x[3 * pair[e] + 1]);
+    yhi = PetscMax(yhi, P->x[3 * pair[e] + 1]);
+  }
+  *nreg = (ncut + 1) * (split ? 2 : 1) * nz;
+  PetscCall(PetscCalloc1(*nreg, cnt));
+  for (PetscInt e = 0; e < el->n; e++) {
+    const PetscReal *x = P->x + 3 * pair[e];
+    PetscInt         k = 0;
+    while (k < ncut && x[0] >= cut[k]) k++;
+    el->joint[e] = (split ? 2 * k + (x[1] > 0.5 * (ylo + yhi) ? 1 : 0) : k) * nz;
+  }
+  if (kind == 6) { /* zones: high load (>= zf of the side's largest n0) and low load */
+    PetscReal *nmax;
+    PetscCall(PetscCalloc1(*nreg, &nmax));
+    for (PetscInt e = 0; e < el->n; e++) nmax[el->joint[e]] = PetscMax(nmax[el->joint[e]], el->n0[e]);
+    for (PetscInt e = 0; e < el->n; e++) el->joint[e] += (nmax[el->joint[e]] > 0 && el->n0[e] >= o->zone_fraction * nmax[el->joint[e]]) ? 1 : 0;
+    PetscCall(PetscFree(nmax));
+  }
+  for (PetscInt e = 0; e < el->n; e++) (*cnt)[el->joint[e]]++;
+  for (PetscInt r = 0; r < *nreg; r++) {
+    const PetscInt k = (split ? r / (2 * nz) : r / nz);
+    PetscCheck((*cnt)[r] > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints %s: the region x %s%g .. %g%s m%s%s holds no element: an empty joint (%s)", JointKinds[kind], k ? "" : "< ", (double)(k ? cut[k - 1] : cut[0]), (double)(k < ncut ? cut[k] : cut[ncut - 1]), k < ncut ? "" : " and beyond", split ? ((r / nz) % 2 ? ", upper half of the width" : ", lower half of the width") : "", nz > 1 ? (r % 2 ? ", high-load zone" : ", low-load zone") : "", kind == 2 ? "move the cuts" : kind == 6 ? "change -rom_zone_fraction" : "fewer regions");
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode AssignJoints(JRReduce o, JRModel model, const JRPairs *P, JRElements *el, const PetscInt pair[])
+{
+  PetscInt   nreg = 0, *cnt = NULL;
+  PetscReal *n0s;
+
+  PetscFunctionBeginUser;
+  if (o->joints == 0) PetscFunctionReturn(0);
+  if (o->joints == 1) { /* each */
     el->njoints = el->n;
     PetscCall(PetscMalloc1(el->n, &el->joint));
     for (PetscInt e = 0; e < el->n; e++) el->joint[e] = e;
     PetscFunctionReturn(0);
   }
   PetscCall(PetscMalloc1(el->n, &el->joint));
-  if (kind == 7) { /* boxes */
-    PetscCheck(nbox >= 4 && nbox % 4 == 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes needs x0,x1,y0,y1 per joint [m], got %" PetscInt_FMT " values", nbox);
-    nreg = nbox / 4;
-    for (PetscInt b = 0; b < nreg; b++) PetscCheck(box[4 * b + 1] > box[4 * b] && box[4 * b + 3] > box[4 * b + 2], comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: box %" PetscInt_FMT " (%g..%g, %g..%g m) is empty: x0 < x1 and y0 < y1", b, (double)box[4 * b], (double)box[4 * b + 1], (double)box[4 * b + 2], (double)box[4 * b + 3]);
-    PetscCall(PetscCalloc1(nreg, &cnt));
-    for (PetscInt e = 0; e < el->n; e++) {
-      const PetscReal *x  = P->x + 3 * pair[e];
-      PetscInt         in = -1;
-      for (PetscInt b = 0; b < nreg; b++) {
-        if (!(x[0] >= box[4 * b] && x[0] <= box[4 * b + 1] && x[1] >= box[4 * b + 2] && x[1] <= box[4 * b + 3])) continue;
-        PetscCheck(in < 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: the element at (%g, %g) m lies in box %" PetscInt_FMT " and in box %" PetscInt_FMT ": the regions overlap", (double)x[0], (double)x[1], in, b);
-        in = b;
-      }
-      PetscCheck(in >= 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: the element at (%g, %g) m lies in no box: every element must belong to a region", (double)x[0], (double)x[1]);
-      el->joint[e] = in;
-      cnt[in]++;
-    }
-    for (PetscInt b = 0; b < nreg; b++) PetscCheck(cnt[b] > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: box %" PetscInt_FMT " (%g..%g, %g..%g m) holds no element: an empty joint", b, (double)box[4 * b], (double)box[4 * b + 1], (double)box[4 * b + 2], (double)box[4 * b + 3]);
-  } else {
-    PetscInt nz = kind == 6 ? 2 : 1, nb = 0, *zone = NULL;
-    if (kind >= 3) { /* cuts from the bolts' positions along the beam axis */
-      const JRBolts *B;
-      PetscReal      xb[64];
-      PetscCall(JRModelGetBolts(model, &B));
-      PetscCheck(B && B->n > 0 && B->n <= 32, comm, PETSC_ERR_ARG_WRONG, "-rom_joints %s needs a model with bolts (1 to 32)", kinds[kind]);
-      nb = B->n;
-      for (PetscInt b = 0; b < nb; b++) xb[b] = B->x[3 * b];
-      for (PetscInt b = 1; b < nb; b++) /* sort */
-        for (PetscInt c = b; c > 0 && xb[c] < xb[c - 1]; c--) {
-          const PetscReal t = xb[c];
-          xb[c]             = xb[c - 1];
-          xb[c - 1]         = t;
-        }
-      ncut = 0;
-      for (PetscInt b = 0; b < nb; b++) {
-        if (kind != 3 && kind != 4 && b > 0) cut[ncut++] = 0.5 * (xb[b - 1] + xb[b]); /* sides, zones */
-        if (kind == 3 && b > 0) cut[ncut++] = 0.5 * (xb[b - 1] + xb[b]);                  /* bolts */
-        if (kind != 3) cut[ncut++] = xb[b];                                               /* between, sides, zones */
-      }
-    }
-    PetscCheck(kind != 2 || ncut > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints strips needs the cuts -rom_strips x1,x2,... [m]");
-    for (PetscInt k = 1; k < ncut; k++) PetscCheck(cut[k] > cut[k - 1], comm, PETSC_ERR_ARG_WRONG, "-rom_strips: the cuts must increase, but %g m follows %g m", (double)cut[k], (double)cut[k - 1]);
-    for (PetscInt e = 0; e < el->n; e++) {
-      ylo = PetscMin(ylo, P->x[3 * pair[e] + 1]);
-      yhi = PetscMax(yhi, P->x[3 * pair[e] + 1]);
-    }
-    nreg = (ncut + 1) * (split ? 2 : 1) * nz;
-    PetscCall(PetscCalloc1(nreg, &cnt));
-    for (PetscInt e = 0; e < el->n; e++) {
-      const PetscReal *x = P->x + 3 * pair[e];
-      PetscInt         k = 0;
-      while (k < ncut && x[0] >= cut[k]) k++;
-      el->joint[e] = (split ? 2 * k + (x[1] > 0.5 * (ylo + yhi) ? 1 : 0) : k) * nz;
-    }
-    if (kind == 6) { /* zones: high load (>= zf of the side's largest n0) and low load */
-      PetscReal *nmax;
-      PetscCall(PetscCalloc1(nreg, &nmax));
-      PetscCall(PetscMalloc1(el->n, &zone));
-      for (PetscInt e = 0; e < el->n; e++) nmax[el->joint[e]] = PetscMax(nmax[el->joint[e]], el->n0[e]);
-      for (PetscInt e = 0; e < el->n; e++) el->joint[e] += (nmax[el->joint[e]] > 0 && el->n0[e] >= zf * nmax[el->joint[e]]) ? 1 : 0;
-      PetscCall(PetscFree(nmax));
-      PetscCall(PetscFree(zone));
-    }
-    for (PetscInt e = 0; e < el->n; e++) cnt[el->joint[e]]++;
-    for (PetscInt r = 0; r < nreg; r++) {
-      const PetscInt k = (split ? r / (2 * nz) : r / nz);
-      PetscCheck(cnt[r] > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints %s: the region x %s%g .. %g%s m%s%s holds no element: an empty joint (%s)", kinds[kind], k ? "" : "< ", (double)(k ? cut[k - 1] : cut[0]), (double)(k < ncut ? cut[k] : cut[ncut - 1]), k < ncut ? "" : " and beyond", split ? ((r / nz) % 2 ? ", upper half of the width" : ", lower half of the width") : "", nz > 1 ? (r % 2 ? ", high-load zone" : ", low-load zone") : "", kind == 2 ? "move the cuts" : kind == 6 ? "change -rom_zone_fraction" : "fewer regions");
-    }
-  }
+  if (o->joints == 7) PetscCall(AssignBoxes(o, P, el, pair, &nreg, &cnt));
+  else PetscCall(AssignCuts(o, model, P, el, pair, &nreg, &cnt));
   el->njoints = nreg;
-  {
-    PetscReal *n0s;
-    PetscCall(PetscCalloc1(nreg, &n0s));
-    for (PetscInt e = 0; e < el->n; e++) n0s[el->joint[e]] += el->n0[e];
-    for (PetscInt r = 0; r < nreg; r++) PetscCall(PetscPrintf(comm, "rom: joint %" PetscInt_FMT ": %" PetscInt_FMT " elements, normal load %.6g N\n", r, cnt[r], (double)n0s[r]));
-    PetscCall(PetscFree(n0s));
-  }
+  PetscCall(PetscCalloc1(nreg, &n0s));
+  for (PetscInt e = 0; e < el->n; e++) n0s[el->joint[e]] += el->n0[e];
+  for (PetscInt r = 0; r < nreg; r++) PetscCall(PetscPrintf(o->comm, "rom: joint %" PetscInt_FMT ": %" PetscInt_FMT " elements, normal load %.6g N\n", r, cnt[r], (double)n0s[r]));
+  PetscCall(PetscFree(n0s));
   PetscCall(PetscFree(cnt));
   PetscFunctionReturn(0);
 }
@@ -334,8 +360,7 @@ PetscErrorCode JRReduceDestroy(JRReduce *red)
 */
 PetscErrorCode JRReduceSetFromOptions(JRReduce r)
 {
-  const char *kinds[] = {"none", "each", "strips", "bolts", "between", "sides", "zones", "boxes"};
-  const char *sel[]   = {"none", "first"};
+  const char *sel[] = {"none", "first"};
   MPI_Comm    comm    = r->comm;
   PetscBool   set, bset, st, sc;
   PetscInt    nst = 8, nsc = 8;
@@ -344,7 +369,7 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
   r->ncut = 64;
   r->nbox = 256;
   PetscOptionsBegin(comm, "rom_", "Reduced-order joints (prefix rom_)", "JRReduce");
-  PetscCall(PetscOptionsEList("-joints", "First reduction, the joints: none (node-to-node), each, strips (-rom_strips cuts), bolts, between, sides, zones (per bolt side and load), boxes (-rom_boxes)", "JRReduceAssignJoints", kinds, 8, kinds[r->joints], &r->joints, NULL));
+  PetscCall(PetscOptionsEList("-joints", "First reduction, the joints: none (node-to-node), each, strips (-rom_strips cuts), bolts, between, sides, zones (per bolt side and load), boxes (-rom_boxes)", "JRReduceAssignJoints", JointKinds, 8, JointKinds[r->joints], &r->joints, NULL));
   PetscCall(PetscOptionsRealArray("-strips", "Cut positions along the beam axis x1,x2,... [m], increasing", "JRReduceAssignJoints", r->cut, &r->ncut, &set));
   PetscCall(PetscOptionsRealArray("-boxes", "Boxes x0,x1,y0,y1 per joint [m]", "JRReduceAssignJoints", r->box, &r->nbox, &bset));
   PetscCall(PetscOptionsReal("-zone_fraction", "-rom_joints zones: the high-load zone of a bolt side holds the members with n0 at least this fraction of the side's largest", "JRReduceAssignJoints", r->zone_fraction, &r->zone_fraction, NULL));
@@ -566,11 +591,10 @@ PetscErrorCode JRReduceGetStiffnessCorrection(JRReduce r, PetscReal *c)
 
 PetscErrorCode JRReduceView(JRReduce r, PetscViewer viewer)
 {
-  const char *kinds[] = {"none", "each", "strips", "bolts", "between", "sides", "zones", "boxes"};
-  const char *jm[]    = {"mean", "linear", "mode"};
+  const char *jm[] = {"mean", "linear", "mode"};
 
   PetscFunctionBeginUser;
   if (!viewer) viewer = PETSC_VIEWER_STDOUT_(r->comm);
-  PetscCall(PetscViewerASCIIPrintf(viewer, "JRReduce: joints %s, %" PetscInt_FMT " elements per joint%s, joint motion %s, stiffness correction %s (%g)\n", kinds[r->joints], r->m, r->m ? "" : " (first reduction)", jm[r->fit.jmotion], r->corr_on ? "on" : "off", (double)r->corr));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "JRReduce: joints %s, %" PetscInt_FMT " elements per joint%s, joint motion %s, stiffness correction %s (%g)\n", JointKinds[r->joints], r->m, r->m ? "" : " (first reduction)", jm[r->fit.jmotion], r->corr_on ? "on" : "off", (double)r->corr));
   PetscFunctionReturn(0);
 }
