@@ -386,18 +386,23 @@ PETSC_EXTERN PetscErrorCode JRReduceDestroy(JRReduce *);
 /* JRCont: frequency-response curves by continuation (thesis 2.4.2-2.4.3), several force levels */
 /* ------------------------------------------------------------------------------------------ */
 typedef struct _p_JRCont *JRCont;
-typedef enum {
-  JR_CONT_NATURAL,
-  JR_CONT_ARCLENGTH
-} JRContType;
-PETSC_EXTERN const char *const JRContTypes[];
+typedef const char       *JRContType;
+#define JRCONTNATURAL   "natural"   /* natural-parameter: step in frequency (2.4.2) */
+#define JRCONTARCLENGTH "arclength" /* pseudo-arclength: passes turning points (2.4.3) */
+/* The arclength type's constraint (-cont_constraint): orthogonal to the tangent, or the sphere (2.28) */
 typedef enum {
   JR_CONT_PSEUDO,
   JR_CONT_SPHERE
 } JRContConstraint;
 PETSC_EXTERN const char *const JRContConstraints[];
 
+PETSC_EXTERN PetscFunctionList JRContList;
+PETSC_EXTERN PetscErrorCode JRContRegister(const char[], PetscErrorCode (*)(JRCont));
+PETSC_EXTERN PetscErrorCode JRContRegisterAll(void);
+
 PETSC_EXTERN PetscErrorCode JRContCreate(MPI_Comm, JRCont *);
+PETSC_EXTERN PetscErrorCode JRContSetType(JRCont, JRContType);
+PETSC_EXTERN PetscErrorCode JRContGetType(JRCont, JRContType *);
 PETSC_EXTERN PetscErrorCode JRContSetHBM(JRCont, JRHBM);
 PETSC_EXTERN PetscErrorCode JRContSetFromOptions(JRCont);
 PETSC_EXTERN PetscErrorCode JRContSetStepBounds(JRCont, PetscReal, PetscReal);

@@ -32,6 +32,7 @@ PetscErrorCode JRInitializePackage(void)
   PetscCall(JRModelRegisterAll());
   PetscCall(JRContactRegisterAll());
   PetscCall(JRPreloadSolverRegisterAll());
+  PetscCall(JRContRegisterAll());
   PetscCall(PetscRegisterFinalize(JRFinalizePackage));
   PetscFunctionReturn(0);
 }
@@ -42,6 +43,7 @@ PetscErrorCode JRFinalizePackage(void)
   PetscCall(JRContactRegisterAllReset());
   PetscCall(PetscFunctionListDestroy(&JRModelList));
   PetscCall(PetscFunctionListDestroy(&JRPreloadSolverList));
+  PetscCall(PetscFunctionListDestroy(&JRContList));
   JRPackageInitialized = PETSC_FALSE;
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,440 @@
+/*
+   -cont_type arclength: pseudo-arclength continuation (thesis 2.4.3). Unknowns x = (a, w); tangent predictor from
+   the bordered system
+       [ dR/da  dR/dw ] t = [0]
+       [   t_prev^T   ]     [1]
+   corrector: an SNES (the JRHBM's prefix, hbm_ by default) on the bordered system  R(a, w) = 0, g(a, w) = 0  with
+   the pseudo-arclength constraint g = <x - x_pred, t> = 0 or the thesis's sphere (2.28) g = |x - x_k|^2 - ds^2
+   (-cont_constraint sphere). Lengths are measured in scaled units, a / a_ref and w / (w_max - w_min), with a_ref
+   the largest response of the linearised (stuck) structure over the range, raised to the largest response met
+   along the curve, so that amplitudes and frequency weigh alike. Step control from the Newton iteration count and
+   the turn of the plotted curve; turning points are passed; the last point lands exactly on the end of the range.
+*/
+#include <jointrom/private/contimpl.h>
+
+const char *const JRContConstraints[] = {"pseudo", "sphere", "JRContConstraint", "JR_CONT_", NULL};
+
+typedef struct {
+  JRContConstraint constraint;
+  SNES             snes;                    /* the corrector, on the bordered system */
+  Mat              BJ, J;                   /* the bordered Jacobian ((n+1) x (n+1)); dR/da */
+  Vec              a, r, Rw;                /* work, size n: the unknowns, R, dR/dw */
+  Vec              G, xpred, xk, tk, d;     /* size n + 1: the bordered residual, the predictor, the last point and its tangent, work */
+  PetscReal        aref, wref, ds, aunit;   /* aunit: the linearised response scale per unit level */
+  PetscScalar     *tb, *tlu;                /* the tangent's bordered matrix and its LU ((n+1) x (n+1)) */
+  PetscBLASInt    *tpiv;
+} JRCont_Arclength;
+
+/* scaled inner product <x, y> over (a, w) */
+static PetscErrorCode ScaledDot(JRCont c, Vec x, Vec y, PetscReal *d)
+{
+  JRCont_Arclength  *arc = (JRCont_Arclength *)c->data;
+  const PetscScalar *u, *v;
+  PetscReal          s = 0.0;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(x, &u));
+  PetscCall(VecGetArrayRead(y, &v));
+  for (PetscInt i = 0; i < c->n; i++) s += PetscRealPart(u[i] * v[i]) / (arc->aref * arc->aref);
+  s += PetscRealPart(u[c->n] * v[c->n]) / (arc->wref * arc->wref);
+  PetscCall(VecRestoreArrayRead(y, &v));
+  PetscCall(VecRestoreArrayRead(x, &u));
+  *d = s;
+  PetscFunctionReturn(0);
+}
+
+/* split x = (a, w) into a (Vec of size n) and w */
+static PetscErrorCode Split(JRCont c, Vec x, Vec a, PetscReal *w)
+{
+  const PetscScalar *u;
+  PetscScalar       *v;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(x, &u));
+  PetscCall(VecGetArray(a, &v));
+  for (PetscInt i = 0; i < c->n; i++) v[i] = u[i];
+  *w = PetscRealPart(u[c->n]);
+  PetscCall(VecRestoreArray(a, &v));
+  PetscCall(VecRestoreArrayRead(x, &u));
+  PetscFunctionReturn(0);
+}
+
+/* join a and w into x = (a, w) */
+static PetscErrorCode Join(JRCont c, Vec a, PetscReal w, Vec x)
+{
+  const PetscScalar *u;
+  PetscScalar       *v;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(a, &u));
+  PetscCall(VecGetArray(x, &v));
+  for (PetscInt i = 0; i < c->n; i++) v[i] = u[i];
+  v[c->n] = w;
+  PetscCall(VecRestoreArray(x, &v));
+  PetscCall(VecRestoreArrayRead(a, &u));
+  PetscFunctionReturn(0);
+}
+
+/* bordered residual G(x) = [R(a, w); g(x)] */
+static PetscErrorCode BorderedFunction(SNES snes, Vec x, Vec G, void *ctx)
+{
+  JRCont            c   = (JRCont)ctx;
+  JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
+  PetscReal         w, g;
+  Vec               d = arc->d;
+
+  PetscFunctionBeginUser;
+  (void)snes;
+  PetscCall(Split(c, x, arc->a, &w));
+  PetscCall(JRHBMComputeResidual(c->hbm, w, arc->a, arc->r));
+  if (arc->constraint == JR_CONT_PSEUDO) {
+    PetscCall(VecWAXPY(d, -1.0, arc->xpred, x));
+    PetscCall(ScaledDot(c, d, arc->tk, &g));
+  } else {
+    PetscCall(VecWAXPY(d, -1.0, arc->xk, x));
+    PetscCall(ScaledDot(c, d, d, &g));
+    g -= arc->ds * arc->ds;
+  }
+  PetscCall(Join(c, arc->r, g, G));
+  PetscFunctionReturn(0);
+}
+
+/* bordered Jacobian [J Rw; c^T d] */
+static PetscErrorCode BorderedJacobian(SNES snes, Vec x, Mat BJ, Mat P, void *ctx)
+{
+  JRCont             c   = (JRCont)ctx;
+  JRCont_Arclength  *arc = (JRCont_Arclength *)c->data;
+  PetscReal          w;
+  const PetscScalar *j, *rw, *t, *xx, *xk;
+  PetscScalar       *b;
+  const PetscInt     n = c->n;
+
+  PetscFunctionBeginUser;
+  (void)snes;
+  (void)P;
+  PetscCall(Split(c, x, arc->a, &w));
+  PetscCall(JRHBMComputeJacobian(c->hbm, w, arc->a, arc->J, arc->Rw));
+  PetscCall(MatDenseGetArrayRead(arc->J, &j));
+  PetscCall(VecGetArrayRead(arc->Rw, &rw));
+  PetscCall(VecGetArrayRead(arc->tk, &t));
+  PetscCall(VecGetArrayRead(x, &xx));
+  PetscCall(VecGetArrayRead(arc->xk, &xk));
+  PetscCall(MatDenseGetArrayWrite(BJ, &b));
+  for (PetscInt col = 0; col < n; col++) {
+    for (PetscInt row = 0; row < n; row++) b[row + col * (n + 1)] = j[row + col * n];
+    b[n + col * (n + 1)] = arc->constraint == JR_CONT_PSEUDO ? t[col] / (arc->aref * arc->aref) : 2.0 * (xx[col] - xk[col]) / (arc->aref * arc->aref);
+  }
+  for (PetscInt row = 0; row < n; row++) b[row + n * (n + 1)] = rw[row];
+  b[n + n * (n + 1)] = arc->constraint == JR_CONT_PSEUDO ? t[n] / (arc->wref * arc->wref) : 2.0 * (xx[n] - xk[n]) / (arc->wref * arc->wref);
+  PetscCall(MatDenseRestoreArrayWrite(BJ, &b));
+  PetscCall(VecRestoreArrayRead(arc->xk, &xk));
+  PetscCall(VecRestoreArrayRead(x, &xx));
+  PetscCall(VecRestoreArrayRead(arc->tk, &t));
+  PetscCall(VecRestoreArrayRead(arc->Rw, &rw));
+  PetscCall(MatDenseRestoreArrayRead(arc->J, &j));
+  PetscCall(JRMatDenseAssemble(BJ));
+  PetscFunctionReturn(0);
+}
+
+/* unit (scaled) tangent at x: [J Rw; tprev^T W] t = [0; 1], oriented along tprev */
+static PetscErrorCode Tangent(JRCont c, Vec x, Vec tprev, Vec t)
+{
+  JRCont_Arclength  *arc = (JRCont_Arclength *)c->data;
+  PetscReal          w, nrm;
+  const PetscInt     n = c->n, m = n + 1;
+  const PetscScalar *j, *rw, *tp;
+  PetscScalar       *b, *tt;
+  PetscBool          singular;
+
+  PetscFunctionBeginUser;
+  PetscCall(Split(c, x, arc->a, &w));
+  PetscCall(JRHBMComputeJacobian(c->hbm, w, arc->a, arc->J, arc->Rw));
+  if (!arc->tb) PetscCall(PetscMalloc3(m * m, &arc->tb, m * m, &arc->tlu, m, &arc->tpiv)); /* kept for the whole solve */
+  b = arc->tb;
+  PetscCall(MatDenseGetArrayRead(arc->J, &j));
+  PetscCall(VecGetArrayRead(arc->Rw, &rw));
+  PetscCall(VecGetArrayRead(tprev, &tp));
+  for (PetscInt col = 0; col < n; col++) {
+    for (PetscInt row = 0; row < n; row++) b[row + col * m] = j[row + col * n];
+    b[n + col * m] = tp[col] / (arc->aref * arc->aref);
+  }
+  for (PetscInt row = 0; row < n; row++) b[row + n * m] = rw[row];
+  b[n + n * m] = tp[n] / (arc->wref * arc->wref);
+  PetscCall(VecRestoreArrayRead(tprev, &tp));
+  PetscCall(VecRestoreArrayRead(arc->Rw, &rw));
+  PetscCall(MatDenseRestoreArrayRead(arc->J, &j));
+  PetscCall(VecZeroEntries(t));
+  PetscCall(VecGetArray(t, &tt));
+  tt[n] = 1.0;
+  PetscCall(JRDenseSolve(m, b, m, arc->tlu, arc->tpiv, tt, &singular));
+  PetscCall(VecRestoreArray(t, &tt));
+  PetscCheck(!singular, PETSC_COMM_SELF, PETSC_ERR_MAT_LU_ZRPVT, "Continuation: the bordered tangent system is singular at %g Hz (a zero pivot)", (double)(w / (2 * PETSC_PI)));
+  PetscCall(ScaledDot(c, t, t, &nrm));
+  PetscCall(VecScale(t, 1.0 / PetscSqrtReal(nrm)));
+  PetscFunctionReturn(0);
+}
+
+/* the response scale a_ref: the largest linearised response over the range */
+static PetscErrorCode ResponseScale(JRCont c, PetscReal F, Vec a)
+{
+  JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
+  PetscReal         m   = 0.0, nrm;
+
+  PetscFunctionBeginUser;
+  if (arc->aunit <= 0 || F <= 0) { /* the linearised response is proportional to the level: sampled once */
+    for (PetscInt k = 0; k <= 64; k++) {
+      const PetscReal w = c->wmin + (c->wmax - c->wmin) * k / 64.0;
+      PetscCall(JRHBMLinearSolution(c->hbm, w, a));
+      PetscCall(VecNorm(a, NORM_2, &nrm));
+      m = PetscMax(m, nrm);
+    }
+    if (F > 0) arc->aunit = m / F;
+  } else m = arc->aunit * F;
+  arc->aref = m > 0 ? m : 1.0;
+  arc->wref = c->wmax - c->wmin;
+  PetscFunctionReturn(0);
+}
+
+/* The first point of the curve (into a and x_k) and its tangent t_k, along increasing frequency; tnew: work */
+static PetscErrorCode Start(JRCont c, PetscInt lev, JRContBranch *b, Vec a, Vec tnew)
+{
+  JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRContBranchStart(c, lev, b, a));
+  PetscCall(Join(c, a, c->wmin, arc->xk));
+  PetscCall(VecZeroEntries(arc->tk));
+  PetscCall(VecSetValue(arc->tk, c->n, 1.0, INSERT_VALUES)); /* start along increasing frequency */
+  PetscCall(VecAssemblyBegin(arc->tk));
+  PetscCall(VecAssemblyEnd(arc->tk));
+  PetscCall(Tangent(c, arc->xk, arc->tk, tnew));
+  PetscCall(VecCopy(tnew, arc->tk));
+  PetscFunctionReturn(0);
+}
+
+/* Predictor x_k + ds t_k and corrector (Newton on the bordered system with the step ds): the new point x */
+static PetscErrorCode Correct(JRCont c, PetscReal ds, Vec x, PetscInt *its, SNESConvergedReason *reason)
+{
+  JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
+
+  PetscFunctionBeginUser;
+  arc->ds = ds;
+  PetscCall(VecWAXPY(arc->xpred, ds, arc->tk, arc->xk));
+  PetscCall(VecCopy(arc->xpred, x));
+  PetscCall(PetscLogEventBegin(JR_ContStep, 0, 0, 0, 0));
+  PetscCall(SNESSolve(arc->snes, NULL, x));
+  PetscCall(PetscLogEventEnd(JR_ContStep, 0, 0, 0, 0));
+  PetscCall(SNESGetConvergedReason(arc->snes, reason));
+  PetscCall(SNESGetIterationNumber(arc->snes, its));
+  PetscFunctionReturn(0);
+}
+
+/* The corrector passed the end of the range at (a, w): land on it exactly, by Newton at w_max from the interpolation
+   between x_k and (a, w) */
+static PetscErrorCode LandOnEnd(JRCont c, PetscInt lev, JRContBranch *b, Vec a, PetscReal w, PetscReal ds)
+{
+  JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
+  PetscReal         wk, s;
+  PetscInt          its;
+  PetscBool         conv;
+  Vec               ak;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(a, &ak));
+  PetscCall(Split(c, arc->xk, ak, &wk));
+  s = (c->wmax - wk) / (w - wk);
+  PetscCall(VecAXPBY(a, 1.0 - s, s, ak)); /* a <- s a + (1 - s) a_k */
+  PetscCall(VecDestroy(&ak));
+  PetscCall(JRHBMSolve(c->hbm, c->wmax, a, &its, &conv));
+  if (conv) {
+    PetscCall(JRContBranchAdd(c, b, c->wmax, a, its, ds));
+    b->complete = PETSC_TRUE;
+  } else PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: no solution exactly at the end of the range; the curve ends at %.6g Hz\n", lev + 1, (double)b->F, (double)(wk / (2 * PETSC_PI))));
+  PetscFunctionReturn(0);
+}
+
+/* The next step from the last point's Newton iterations against the target, and the turn of the response curve as
+   plotted (frequency over the range, decades of amplitude at the first output) against 5 degrees per step, so that
+   peaks and folds get points where the curve bends (the full tangent also turns with invisible harmonics and modes,
+   at every stick-slip kink of the sampled elements); within [dsmin, dsmax] */
+static PetscReal NextStep(JRCont c, JRContBranch *b, PetscInt its, PetscReal ds, PetscReal dsmin, PetscReal dsmax)
+{
+  JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
+  const PetscInt    k   = b->np - 1;
+  PetscReal         fn  = PetscSqrtReal((PetscReal)c->target / PetscMax(its, 1)), fa = 2.0;
+
+  if (k >= 2 && b->amp[k * c->nout] > 0 && b->amp[(k - 1) * c->nout] > 0 && b->amp[(k - 2) * c->nout] > 0) {
+    const PetscReal d1w = (b->omega[k - 1] - b->omega[k - 2]) / arc->wref, d1a = PetscLog10Real(b->amp[(k - 1) * c->nout] / b->amp[(k - 2) * c->nout]);
+    const PetscReal d2w = (b->omega[k] - b->omega[k - 1]) / arc->wref, d2a = PetscLog10Real(b->amp[k * c->nout] / b->amp[(k - 1) * c->nout]);
+    const PetscReal n1 = PetscSqrtReal(d1w * d1w + d1a * d1a), n2 = PetscSqrtReal(d2w * d2w + d2a * d2a);
+    if (n1 > 0 && n2 > 0) {
+      const PetscReal ang = PetscAcosReal(PetscMax(-1.0, PetscMin(1.0, (d1w * d2w + d1a * d2a) / (n1 * n2))));
+      fa                  = (5.0 * PETSC_PI / 180.0) / PetscMax(ang, 1e-3);
+    }
+  }
+  ds *= PetscMax(0.5, PetscMin(2.0, PetscMin(fn, fa)));
+  return PetscMax(dsmin, PetscMin(dsmax, ds));
+}
+
+/* Pseudo-arclength continuation over [wmin, wmax] at the current level */
+static PetscErrorCode JRContSolveLevel_Arclength(JRCont c, PetscInt lev, JRContBranch *b, Vec a)
+{
+  JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
+  PetscReal         ds = c->step0 > 0 ? c->step0 : 0.01, dsmin = c->stepmin > 0 ? c->stepmin : 1e-7, dsmax = c->stepmax > 0 ? c->stepmax : 0.05, w, atol;
+  SNES              hs;
+  Vec               tnew, x;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMGetSNES(c->hbm, &hs)); /* the corrector's absolute tolerance: the harmonic-balance Newton's */
+  PetscCall(SNESGetTolerances(hs, &atol, NULL, NULL, NULL, NULL));
+  PetscCall(SNESSetTolerances(arc->snes, atol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
+  PetscCall(ResponseScale(c, b->F, a)); /* the response scale grows with the level */
+  PetscCall(VecDuplicate(arc->xk, &tnew));
+  PetscCall(VecDuplicate(arc->xk, &x));
+  PetscCall(Start(c, lev, b, a, tnew));
+  while (b->np < c->maxpts) {
+    PetscReal           wk, na;
+    PetscInt            its;
+    SNESConvergedReason reason;
+    PetscCall(Split(c, arc->xk, arc->a, &wk));
+    PetscCall(Correct(c, ds, x, &its, &reason));
+    PetscCall(Split(c, x, a, &w));
+    if (reason <= 0 || PetscIsInfOrNanReal(w)) {
+      b->retries++;
+      ds *= 0.5;
+      if (c->monitor) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: corrector failed after %.6g Hz (%s), retrying with step %.3g\n", lev + 1, (double)b->F, (double)(wk / (2 * PETSC_PI)), SNESConvergedReasons[reason], (double)ds));
+      if (ds < dsmin) {
+        PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: stopped at %.6g Hz, the step fell below %.3g (-cont_step_min); the curve ends there\n", lev + 1, (double)b->F, (double)(wk / (2 * PETSC_PI)), (double)dsmin));
+        break;
+      }
+      continue;
+    }
+    if (w >= c->wmax) {
+      PetscCall(LandOnEnd(c, lev, b, a, w, ds));
+      break;
+    }
+    PetscCall(JRContBranchAdd(c, b, w, a, its, ds));
+    PetscCall(JRContMonitor(c, lev, b));
+    PetscCall(VecNorm(a, NORM_2, &na)); /* the amplitude scale follows the largest response met: slipping joints respond far more than stuck ones */
+    if (na > arc->aref) arc->aref = na; /* the next tangent is normalised in the new metric */
+    if (w < c->wmin) {
+      PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: the curve turned back below the start of the range at %.6g Hz; stopped\n", lev + 1, (double)b->F, (double)(w / (2 * PETSC_PI))));
+      break;
+    }
+    PetscCall(Tangent(c, x, arc->tk, tnew));
+    ds = NextStep(c, b, its, ds, dsmin, dsmax);
+    PetscCall(VecCopy(tnew, arc->tk));
+    PetscCall(VecCopy(x, arc->xk));
+  }
+  if (b->np >= c->maxpts) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: -cont_max_points %" PetscInt_FMT " reached before the end of the range\n", lev + 1, (double)b->F, c->maxpts));
+  PetscCall(VecDestroy(&tnew));
+  PetscCall(VecDestroy(&x));
+  PetscFunctionReturn(0);
+}
+
+/* The corrector: Newton (newtondense, LU) on the bordered system under the JRHBM's prefix, with its tolerances */
+static PetscErrorCode CreateCorrector(JRCont c)
+{
+  JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
+  KSP               ksp;
+  PC                pc;
+  SNES              hs;
+  PetscReal         atol, rtol, stol;
+  PetscInt          maxit, maxf;
+  const char       *pre;
+  JRHBMJacobianType jt;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, c->n + 1, c->n + 1, NULL, &arc->BJ));
+  PetscCall(SNESCreate(PETSC_COMM_SELF, &arc->snes));
+  PetscCall(JRHBMGetOptionsPrefix(c->hbm, &pre));
+  PetscCall(SNESSetOptionsPrefix(arc->snes, pre));
+  PetscCall(SNESSetFunction(arc->snes, arc->G, BorderedFunction, c));
+  PetscCall(SNESSetJacobian(arc->snes, arc->BJ, arc->BJ, BorderedJacobian, c));
+  PetscCall(SNESGetKSP(arc->snes, &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(JRHBMGetSNES(c->hbm, &hs));
+  PetscCall(SNESGetTolerances(hs, &atol, &rtol, &stol, &maxit, &maxf));
+  PetscCall(SNESSetTolerances(arc->snes, atol, rtol, stol, maxit, maxf));
+  PetscCall(SNESSetType(arc->snes, SNESNEWTONDENSE));
+  PetscCall(SNESSetFromOptions(arc->snes));
+  PetscCall(JRHBMGetJacobianType(c->hbm, &jt));
+  if (jt == JR_HBM_JACOBIAN_FD) PetscCall(SNESSetJacobian(arc->snes, arc->BJ, arc->BJ, SNESComputeJacobianDefault, c));
+  PetscFunctionReturn(0);
+}
+
+/* The work of an earlier solve */
+static PetscErrorCode Reset(JRCont_Arclength *arc)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SNESDestroy(&arc->snes));
+  PetscCall(MatDestroy(&arc->BJ));
+  PetscCall(MatDestroy(&arc->J));
+  PetscCall(PetscFree3(arc->tb, arc->tlu, arc->tpiv));
+  PetscCall(VecDestroy(&arc->a));
+  PetscCall(VecDestroy(&arc->r));
+  PetscCall(VecDestroy(&arc->Rw));
+  PetscCall(VecDestroy(&arc->G));
+  PetscCall(VecDestroy(&arc->xpred));
+  PetscCall(VecDestroy(&arc->xk));
+  PetscCall(VecDestroy(&arc->tk));
+  PetscCall(VecDestroy(&arc->d));
+  PetscFunctionReturn(0);
+}
+
+/* At every solve (the sizes may differ from an earlier one): the work vectors, the Jacobians and the corrector */
+static PetscErrorCode JRContSetUp_Arclength(JRCont c)
+{
+  JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
+
+  PetscFunctionBeginUser;
+  PetscCall(Reset(arc));
+  arc->aunit = 0;
+  PetscCall(JRHBMCreateVecs(c->hbm, &arc->a, &arc->J));
+  PetscCall(VecDuplicate(arc->a, &arc->r));
+  PetscCall(VecDuplicate(arc->a, &arc->Rw));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, c->n + 1, &arc->xk));
+  PetscCall(VecDuplicate(arc->xk, &arc->xpred));
+  PetscCall(VecDuplicate(arc->xk, &arc->tk));
+  PetscCall(VecDuplicate(arc->xk, &arc->G));
+  PetscCall(VecDuplicate(arc->xk, &arc->d));
+  PetscCall(CreateCorrector(c));
+  PetscFunctionReturn(0);
+}
+
+/* -cont_constraint pseudo|sphere */
+static PetscErrorCode JRContSetFromOptions_Arclength(JRCont c, PetscOptionItems *PetscOptionsObject)
+{
+  JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
+  PetscInt          k   = arc->constraint;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsEList("-cont_constraint", "Arclength constraint: pseudo (orthogonal to the tangent) or sphere (thesis 2.28)", "JRContSetFromOptions", JRContConstraints, 2, JRContConstraints[arc->constraint], &k, NULL));
+  arc->constraint = (JRContConstraint)k;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode JRContDestroy_Arclength(JRCont c)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Reset((JRCont_Arclength *)c->data));
+  PetscCall(PetscFree(c->data));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRContCreate_Arclength(JRCont c)
+{
+  JRCont_Arclength *arc;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&arc));
+  arc->constraint        = JR_CONT_PSEUDO;
+  c->data                = arc;
+  c->ops->setfromoptions = JRContSetFromOptions_Arclength;
+  c->ops->setup          = JRContSetUp_Arclength;
+  c->ops->solvelevel     = JRContSolveLevel_Arclength;
+  c->ops->destroy        = JRContDestroy_Arclength;
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,533 @@
+/*
+   JRCont: frequency-response curves of a JRHBM problem by continuation, for several excitation
+   levels (thesis 2.4), by one of the registered types (-cont_type):
+
+   natural (2.4.2; src/cont/impls/natural/): step in frequency from the response of the stuck, linearised
+     structure away from resonance, Newton (the JRHBM SNES) at each frequency.
+   arclength (2.4.3; src/cont/impls/arclength/, the default): unknowns (a, w), a tangent predictor and a
+     corrector on the bordered system with a pseudo-arclength or sphere constraint; passes turning points.
+
+   This file: the object's life cycle and options, the level loop of JRContSolve, the steps the types share
+   (the first point of a curve, adding a point, the progress line) and the peak of each level; output.c writes
+   the curves (JRContWrite) and prints the summary table.
+*/
+#include <jointrom/private/contimpl.h>
+
+PetscFunctionList JRContList = NULL;
+
+/* Register a continuation type: its name (-cont_type) and the function that fills its ops */
+PetscErrorCode JRContRegister(const char name[], PetscErrorCode (*create)(JRCont))
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRInitializePackage());
+  PetscCall(PetscFunctionListAdd(&JRContList, name, create));
+  PetscFunctionReturn(0);
+}
+
+/* Register the built-in types once (JRInitializePackage; JRFinalizePackage destroys the list) */
+PetscErrorCode JRContRegisterAll(void)
+{
+  PetscFunctionBeginUser;
+  if (JRContList) PetscFunctionReturn(0);
+  PetscCall(PetscFunctionListAdd(&JRContList, JRCONTNATURAL, JRContCreate_Natural));
+  PetscCall(PetscFunctionListAdd(&JRContList, JRCONTARCLENGTH, JRContCreate_Arclength));
+  PetscFunctionReturn(0);
+}
+
+/* Create a continuation: one level of 1 N, at most 2000 points per curve, output to out/frf; the type is set by
+   JRContSetType, -cont_type, or arclength at JRContSolve */
+PetscErrorCode JRContCreate(MPI_Comm comm, JRCont *cont)
+{
+  JRCont c;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRInitializePackage());
+  PetscCall(PetscNew(&c));
+  c->comm    = comm;
+  c->maxpts  = 2000;
+  c->target  = 4;
+  c->monitor = 1;
+  c->secant  = PETSC_TRUE;
+  c->plot    = PETSC_TRUE;
+  c->write   = PETSC_TRUE;
+  c->nlev    = 1;
+  PetscCall(PetscMalloc1(1, &c->levels));
+  c->levels[0] = 1.0;
+  PetscCall(PetscStrncpy(c->out, "out/frf", sizeof(c->out)));
+  *cont = c;
+  PetscFunctionReturn(0);
+}
+
+/* The continuation type: natural, arclength or a registered one (-cont_type) */
+PetscErrorCode JRContSetType(JRCont c, JRContType type)
+{
+  PetscErrorCode (*create)(JRCont) = NULL;
+  PetscBool match;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRContRegisterAll());
+  PetscCall(PetscStrcmp(c->type_name, type, &match));
+  if (match) PetscFunctionReturn(0);
+  PetscCall(PetscFunctionListFind(JRContList, type, &create));
+  PetscCheck(create, c->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "Unknown continuation type '%s' (-cont_type): natural or arclength", type);
+  if (c->ops->destroy) PetscCall((*c->ops->destroy)(c));
+  PetscCall(PetscMemzero(c->ops, sizeof(struct _JRContOps)));
+  c->data = NULL;
+  PetscCall(PetscStrncpy(c->type_name, type, sizeof(c->type_name)));
+  PetscCall((*create)(c));
+  PetscFunctionReturn(0);
+}
+
+/* The continuation type's name; NULL before one is set */
+PetscErrorCode JRContGetType(JRCont c, JRContType *type)
+{
+  PetscFunctionBeginUser;
+  *type = c->type_name[0] ? c->type_name : NULL;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRContSetHBM(JRCont c, JRHBM hbm)
+{
+  PetscFunctionBeginUser;
+  c->hbm = hbm;
+  PetscFunctionReturn(0);
+}
+
+/* Smallest and largest step: rad/s for natural, scaled arclength for arclength (-cont_step_min, -cont_step_max) */
+PetscErrorCode JRContSetStepBounds(JRCont c, PetscReal smin, PetscReal smax)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(smin > 0 && smax >= smin, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "Step bounds %g .. %g: need 0 < min <= max", (double)smin, (double)smax);
+  c->stepmin = smin;
+  c->stepmax = smax;
+  PetscFunctionReturn(0);
+}
+
+/* The frequency range [rad/s] */
+PetscErrorCode JRContGetRange(JRCont c, PetscReal *wmin, PetscReal *wmax)
+{
+  PetscFunctionBeginUser;
+  if (wmin) *wmin = c->wmin;
+  if (wmax) *wmax = c->wmax;
+  PetscFunctionReturn(0);
+}
+
+/* The output base name (instead of -frf_output_file): BASE.h5, BASE.csv, BASE.png */
+PetscErrorCode JRContSetOutputBase(JRCont c, const char base[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(c->out, base, sizeof(c->out)));
+  c->write = c->out[0] ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* The frequency range [rad/s] (-frf_omega_min/-frf_omega_max, or -frf_fmin/-frf_fmax in Hz); by default 0.8 to 1.2
+   of the first elastic mode's frequency */
+PetscErrorCode JRContSetRange(JRCont c, PetscReal wmin, PetscReal wmax)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(wmin > 0 && wmax > wmin, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "Frequency range %g .. %g rad/s: need 0 < min < max", (double)wmin, (double)wmax);
+  c->wmin      = wmin;
+  c->wmax      = wmax;
+  c->range_set = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* The curves of every level and their arrays */
+static PetscErrorCode BranchesDestroy(JRCont c)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt l = 0; c->br && l < c->nlev; l++) {
+    PetscCall(PetscFree6(c->br[l].omega, c->br[l].a, c->br[l].amp, c->br[l].pp, c->br[l].step, c->br[l].its));
+    PetscCall(PetscFree(c->br[l].estate));
+  }
+  PetscCall(PetscFree(c->br));
+  PetscFunctionReturn(0);
+}
+
+/* Excitation levels F [N] (-frf_force); forgets the curves of the earlier levels */
+PetscErrorCode JRContSetLevels(JRCont c, PetscInt n, const PetscReal F[])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(n >= 1, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "At least one excitation level");
+  PetscCall(BranchesDestroy(c));
+  PetscCall(PetscFree(c->levels));
+  PetscCall(PetscMalloc1(n, &c->levels));
+  for (PetscInt i = 0; i < n; i++) {
+    PetscCheck(PetscIsNormalReal(F[i]) && F[i] > 0, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_force %g: excitation levels must be positive and finite [N]", (double)F[i]);
+    c->levels[i] = F[i];
+  }
+  c->nlev = n;
+  PetscFunctionReturn(0);
+}
+
+/*
+  Options: -cont_type natural|arclength (and the type's own: -cont_constraint pseudo|sphere for arclength),
+  -cont_step, -cont_step_min, -cont_step_max, -cont_max_points, -cont_points (natural), -cont_newton_target,
+  -cont_predictor secant|previous (natural), -cont_monitor 0|1|2; -frf_force F1,F2,.. [N],
+  -frf_omega_min/-frf_omega_max [rad/s] or -frf_fmin/-frf_fmax [Hz], -frf_output_file BASE (BASE.h5, BASE.csv,
+  BASE.png), -frf_plot, -frf_normalize (plot amplitude / force).
+*/
+PetscErrorCode JRContSetFromOptions(JRCont c)
+{
+  char        type[64];
+  PetscInt    nl = 64, pred = c->secant ? 0 : 1;
+  PetscReal   lv[64], wmin = c->wmin, wmax = c->wmax, fmin = 0, fmax = 0;
+  PetscBool   flg, f1, f2, f3, f4, fl, natural;
+  const char *preds[] = {"secant", "previous", "Predictor", "", NULL};
+
+  PetscFunctionBeginUser;
+  PetscCall(JRContRegisterAll());
+  PetscOptionsBegin(c->comm, NULL, "Continuation (JRCont) and frequency-response output", "JRCont");
+  PetscCall(PetscOptionsFList("-cont_type", "Continuation: natural (step in frequency) or arclength (pseudo-arclength, passes turning points)", "JRContSetType", JRContList, c->type_name[0] ? c->type_name : JRCONTARCLENGTH, type, sizeof(type), &flg));
+  if (flg) PetscCall(JRContSetType(c, type));
+  else if (!c->type_name[0]) PetscCall(JRContSetType(c, JRCONTARCLENGTH));
+  if (c->ops->setfromoptions) PetscCall((*c->ops->setfromoptions)(c, PetscOptionsObject)); /* the type's own options, beside -cont_type in -help */
+  PetscCall(PetscOptionsReal("-cont_step", "First step: rad/s (natural) or scaled arclength (arclength); default: 1/100 of the range, 0.01", "JRContSetFromOptions", c->step0, &c->step0, NULL));
+  PetscCall(PetscOptionsReal("-cont_step_min", "Smallest step (rad/s or scaled arclength)", "JRContSetStepBounds", c->stepmin, &c->stepmin, NULL));
+  PetscCall(PetscOptionsReal("-cont_step_max", "Largest step (rad/s or scaled arclength)", "JRContSetStepBounds", c->stepmax, &c->stepmax, NULL));
+  PetscCall(PetscOptionsInt("-cont_max_points", "Most points per curve", "JRContSetFromOptions", c->maxpts, &c->maxpts, NULL));
+  PetscCall(PetscOptionsInt("-cont_points", "Natural continuation on this many equally spaced frequencies (no step adaptation; benchmarks)", "JRContSetFromOptions", c->npoints, &c->npoints, NULL));
+  PetscCall(PetscOptionsInt("-cont_newton_target", "Newton iterations per point the step control aims at", "JRContSetFromOptions", c->target, &c->target, NULL));
+  PetscCall(PetscOptionsEList("-cont_predictor", "Natural continuation predictor: secant or previous solution", "JRContSetFromOptions", preds, 2, preds[pred], &pred, NULL));
+  PetscCall(PetscOptionsInt("-cont_monitor", "Progress: 0 none, 1 every 25th point and each level, 2 every point", "JRContSetFromOptions", c->monitor, &c->monitor, NULL));
+  PetscCall(PetscOptionsRealArray("-frf_force", "Excitation levels F [N]: f(t) = F sin(w t) at -frf_dof", "JRContSetLevels", lv, &nl, &fl));
+  PetscCall(PetscOptionsReal("-frf_omega_min", "Lowest frequency [rad/s]", "JRContSetRange", wmin, &wmin, &f1));
+  PetscCall(PetscOptionsReal("-frf_omega_max", "Highest frequency [rad/s]", "JRContSetRange", wmax, &wmax, &f2));
+  PetscCall(PetscOptionsReal("-frf_fmin", "Lowest frequency [Hz] (instead of -frf_omega_min)", "JRContSetRange", fmin, &fmin, &f3));
+  PetscCall(PetscOptionsReal("-frf_fmax", "Highest frequency [Hz] (instead of -frf_omega_max)", "JRContSetRange", fmax, &fmax, &f4));
+  PetscCall(PetscOptionsString("-frf_output_file", "Output base name: BASE.h5 (all points), BASE.csv, BASE.png ('' for none)", "JRContWrite", c->out, c->out, sizeof(c->out), NULL));
+  PetscCall(PetscOptionsBool("-frf_plot", "Draw BASE.png", "JRContWrite", c->plot, &c->plot, NULL));
+  PetscCall(PetscOptionsBool("-frf_normalize", "Plot the normalised displacement amplitude / force [m/N]", "JRContWrite", c->normalize, &c->normalize, NULL));
+  PetscOptionsEnd();
+  c->secant = pred == 0 ? PETSC_TRUE : PETSC_FALSE;
+  c->write  = c->out[0] ? PETSC_TRUE : PETSC_FALSE;
+  if (fl) PetscCall(JRContSetLevels(c, nl, lv));
+  PetscCheck(!(f1 && f3) && !(f2 && f4), c->comm, PETSC_ERR_ARG_INCOMP, "Give the range in rad/s (-frf_omega_min/max) or in Hz (-frf_fmin/fmax), not both");
+  if (f3) wmin = 2.0 * PETSC_PI * fmin;
+  if (f4) wmax = 2.0 * PETSC_PI * fmax;
+  if (f1 || f2 || f3 || f4) {
+    PetscCheck((f1 || f3) && (f2 || f4), c->comm, PETSC_ERR_ARG_INCOMP, "Give both ends of the frequency range (-frf_omega_min and -frf_omega_max, or -frf_fmin and -frf_fmax)");
+    PetscCheck(PetscIsNormalReal(wmin) && PetscIsNormalReal(wmax) && wmin > 0 && wmax > wmin, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "Frequency range %g .. %g rad/s (%g .. %g Hz): need 0 < min < max", (double)wmin, (double)wmax, (double)(wmin / (2 * PETSC_PI)), (double)(wmax / (2 * PETSC_PI)));
+    PetscCall(JRContSetRange(c, wmin, wmax));
+  }
+  PetscCall(PetscStrcmp(c->type_name, JRCONTNATURAL, &natural));
+  PetscCheck(c->npoints == 0 || (c->npoints >= 2 && natural), c->comm, PETSC_ERR_ARG_INCOMP, "-cont_points %" PetscInt_FMT ": at least 2, with -cont_type natural", c->npoints);
+  PetscCheck(c->maxpts >= 2, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_max_points %" PetscInt_FMT ": at least 2", c->maxpts);
+  PetscCheck(c->target >= 1, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_newton_target %" PetscInt_FMT ": at least 1", c->target);
+  PetscCheck(c->step0 >= 0 && c->stepmin >= 0 && c->stepmax >= 0, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_step, -cont_step_min, -cont_step_max must be positive");
+  PetscFunctionReturn(0);
+}
+
+/* Append the point (w, a) to the curve: its modal unknowns and its responses at the outputs */
+PetscErrorCode JRContBranchAdd(JRCont c, JRContBranch *b, PetscReal w, Vec a, PetscInt its, PetscReal step)
+{
+  const PetscScalar *x;
+
+  PetscFunctionBeginUser;
+  if (b->np == b->cap) {
+    PetscInt   cap = b->cap ? 2 * b->cap : 128;
+    PetscReal *o, *aa, *amp, *pp, *st;
+    PetscInt  *it;
+    PetscCall(PetscMalloc6(cap, &o, cap * c->nmod, &aa, cap * c->nout, &amp, cap * c->nout, &pp, cap, &st, cap, &it));
+    if (b->np) {
+      PetscCall(PetscArraycpy(o, b->omega, b->np));
+      PetscCall(PetscArraycpy(aa, b->a, b->np * c->nmod));
+      PetscCall(PetscArraycpy(amp, b->amp, b->np * c->nout));
+      PetscCall(PetscArraycpy(pp, b->pp, b->np * c->nout));
+      PetscCall(PetscArraycpy(st, b->step, b->np));
+      PetscCall(PetscArraycpy(it, b->its, b->np));
+    }
+    PetscCall(PetscFree6(b->omega, b->a, b->amp, b->pp, b->step, b->its));
+    b->omega = o;
+    b->a     = aa;
+    b->amp   = amp;
+    b->pp    = pp;
+    b->step  = st;
+    b->its   = it;
+    b->cap   = cap;
+  }
+  b->omega[b->np] = w;
+  PetscCall(JRHBMExpand(c->hbm, w, a, c->amod)); /* the branch keeps the modal unknowns */
+  PetscCall(VecGetArrayRead(c->amod, &x));
+  for (PetscInt i = 0; i < c->nmod; i++) b->a[b->np * c->nmod + i] = PetscRealPart(x[i]);
+  PetscCall(VecRestoreArrayRead(c->amod, &x));
+  PetscCall(JRHBMResponse(c->hbm, c->amod, NULL, b->amp + b->np * c->nout, b->pp + b->np * c->nout));
+  b->its[b->np]  = its;
+  b->step[b->np] = step;
+  b->newton += its;
+  b->np++;
+  PetscFunctionReturn(0);
+}
+
+/* The progress line of the last point (-cont_monitor: 1 every 25th point, 2 every point) */
+PetscErrorCode JRContMonitor(JRCont c, PetscInt lev, JRContBranch *b)
+{
+  PetscFunctionBeginUser;
+  if (!c->monitor || c->quiet || !b->np) PetscFunctionReturn(0);
+  if (c->monitor >= 2 || (b->np - 1) % 25 == 0) {
+    const PetscInt k = b->np - 1;
+    PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT "/%" PetscInt_FMT " F %g N  point %4" PetscInt_FMT "  f %.6g Hz  amp %.4e m  newton %" PetscInt_FMT "  step %.3g\n", lev + 1, c->nlev, (double)b->F, k, (double)(b->omega[k] / (2 * PETSC_PI)), (double)b->amp[k * c->nout], b->its[k], (double)b->step[k]));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The first point of a curve: Newton at the start of the range from the linearised response, into a */
+PetscErrorCode JRContBranchStart(JRCont c, PetscInt lev, JRContBranch *b, Vec a)
+{
+  PetscInt  its;
+  PetscBool conv;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMLinearSolution(c->hbm, c->wmin, a));
+  PetscCall(JRHBMSolve(c->hbm, c->wmin, a, &its, &conv));
+  PetscCheck(conv, c->comm, PETSC_ERR_NOT_CONVERGED, "Level F = %g N: no solution at the start of the range, %g Hz (try a lower -frf_fmin, or -hbm_snes_* options)", (double)b->F, (double)(c->wmin / (2 * PETSC_PI)));
+  PetscCall(JRContBranchAdd(c, b, c->wmin, a, its, 0.0));
+  PetscCall(JRContMonitor(c, lev, b));
+  PetscFunctionReturn(0);
+}
+
+/* The peak b->kpeak, refined to (b->wpeak, b->apeak) by the parabola through it and its two neighbours when the
+   frequencies are monotone there (not at a fold) */
+static void PeakRefine(JRCont c, JRContBranch *b)
+{
+  PetscInt k = 0;
+
+  for (PetscInt i = 1; i < b->np; i++)
+    if (b->amp[i * c->nout] > b->amp[k * c->nout]) k = i;
+  b->kpeak = k;
+  b->wpeak = b->omega[k];
+  b->apeak = b->amp[k * c->nout];
+  if (k > 0 && k < b->np - 1) {
+    const PetscReal x0 = b->omega[k - 1], x1 = b->omega[k], x2 = b->omega[k + 1];
+    const PetscReal y0 = b->amp[(k - 1) * c->nout], y1 = b->amp[k * c->nout], y2 = b->amp[(k + 1) * c->nout];
+    if ((x1 - x0) * (x2 - x1) > 0) {
+      /* y = y1 + p (x - x1) + q (x - x1)^2 */
+      const PetscReal d0 = x0 - x1, d2 = x2 - x1, s0 = (y0 - y1) / d0, s2 = (y2 - y1) / d2;
+      const PetscReal q = (s2 - s0) / (d2 - d0), p = s0 - q * d0;
+      if (q < 0) {
+        const PetscReal dx = -p / (2 * q);
+        if (PetscAbsReal(dx) <= PetscMax(PetscAbsReal(d0), PetscAbsReal(d2))) {
+          b->wpeak = x1 + dx;
+          b->apeak = y1 + p * dx + q * dx * dx;
+        }
+      }
+    }
+  }
+}
+
+/* a <- the modal unknowns of point k */
+static PetscErrorCode PointUnknowns(JRCont c, JRContBranch *b, PetscInt k, Vec a)
+{
+  PetscScalar *x;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(a, &x));
+  for (PetscInt j = 0; j < c->nmod; j++) x[j] = b->a[k * c->nmod + j];
+  PetscCall(VecRestoreArray(a, &x));
+  PetscFunctionReturn(0);
+}
+
+/* The energies at every point: the worst imbalance b->ebal, and the equivalent damping ratio b->zeta at the peak */
+static PetscErrorCode PeakDamping(JRCont c, JRContBranch *b, Vec a)
+{
+  PetscFunctionBeginUser;
+  b->ebal = 0.0;
+  for (PetscInt i = 0; i < b->np; i++) {
+    PetscReal win, ed, enl;
+    PetscCall(PointUnknowns(c, b, i, a));
+    PetscCall(JRHBMEnergy(c->hbm, b->omega[i], a, &win, &ed, &enl));
+    if (win > 0) b->ebal = PetscMax(b->ebal, PetscAbsReal(win - ed - enl) / win);
+    if (i == b->kpeak) {
+      PetscReal T;
+      PetscCall(JRHBMKineticEnergy(c->hbm, b->omega[i], a, &T));
+      b->zeta = T > 0 ? (ed + enl) / (8 * PETSC_PI * T) : 0.0;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Peak, equivalent damping, energy balance, contact states (level lev done; a: work vector, modal; collective) */
+static PetscErrorCode Peak(JRCont c, PetscInt lev, Vec a)
+{
+  JRContBranch *b = &c->br[lev];
+  PetscInt      nel;
+
+  PetscFunctionBeginUser;
+  PeakRefine(c, b);
+  PetscCall(PeakDamping(c, b, a));
+  PetscCall(PointUnknowns(c, b, b->kpeak, a));
+  PetscCall(JRHBMContactStates(c->hbm, a, b->states));
+  nel = b->states[0] + b->states[1] + b->states[2] + b->states[3];
+  PetscCall(PetscFree(b->estate));
+  PetscCall(PetscMalloc1(nel, &b->estate));
+  PetscCall(JRHBMElementStates(c->hbm, a, b->estate));
+  PetscFunctionReturn(0);
+}
+
+/* No range given: 0.8 to 1.2 of the first elastic mode's frequency */
+static PetscErrorCode DefaultRange(JRCont c)
+{
+  PetscInt         nm;
+  const PetscReal *om;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMGetModalFrequencies(c->hbm, &nm, &om));
+  PetscCheck(nm > 0, c->comm, PETSC_ERR_ARG_WRONGSTATE, "Give the frequency range (-frf_fmin/-frf_fmax in Hz or -frf_omega_min/-frf_omega_max in rad/s)");
+  for (PetscInt i = 0; i < nm; i++)
+    if (om[i] > 1e-6 * om[nm - 1]) {
+      PetscCall(JRContSetRange(c, 0.8 * om[i], 1.2 * om[i]));
+      break;
+    }
+  PetscCheck(c->range_set, c->comm, PETSC_ERR_ARG_WRONGSTATE, "No elastic mode to centre the frequency range on: give -frf_fmin/-frf_fmax");
+  PetscFunctionReturn(0);
+}
+
+/* Before the levels: the sizes, the range, the work vectors (a: the solve space), the type's work, empty curves */
+static PetscErrorCode SolveSetUp(JRCont c, Vec *a)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(c->hbm, c->comm, PETSC_ERR_ARG_WRONGSTATE, "JRContSetHBM() first");
+  if (!c->type_name[0]) PetscCall(JRContSetType(c, JRCONTARCLENGTH));
+  PetscCall(JRHBMGetSizes(c->hbm, NULL, NULL, &c->nmod));
+  PetscCall(JRHBMGetSolveSize(c->hbm, &c->n, NULL));
+  PetscCall(JRHBMGetOutputs(c->hbm, &c->nout, NULL));
+  if (!c->range_set) PetscCall(DefaultRange(c));
+  PetscCall(JRHBMCreateVecs(c->hbm, a, NULL));
+  PetscCall(VecDestroy(&c->amod));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, c->nmod, &c->amod));
+  if (c->ops->setup) PetscCall((*c->ops->setup)(c));
+  PetscCall(BranchesDestroy(c));
+  PetscCall(PetscCalloc1(c->nlev, &c->br));
+  PetscFunctionReturn(0);
+}
+
+/* Level lev: its curve by the type, its peak, and (unless quiet) its lines */
+static PetscErrorCode SolveLevel(JRCont c, PetscInt lev, Vec a)
+{
+  JRContBranch  *b = &c->br[lev];
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  b->F = c->levels[lev];
+  PetscCall(JRHBMSetForceLevel(c->hbm, b->F));
+  PetscCall((*c->ops->solvelevel)(c, lev, b, a));
+  PetscCall(PetscTime(&t1));
+  b->seconds = t1 - t0;
+  PetscCall(Peak(c, lev, c->amod));
+  if (c->quiet) PetscFunctionReturn(0);
+  if (c->monitor) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT "/%" PetscInt_FMT " F %g N done: %" PetscInt_FMT " points, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " retries, %.3g s%s\n", lev + 1, c->nlev, (double)b->F, b->np, b->newton, b->retries, (double)b->seconds, b->complete ? "" : " (incomplete: see above)"));
+  PetscCall(PetscPrintf(c->comm, "peak level %g freq_hz %.8g amp %.8e amp_over_force %.8e\n", (double)b->F, (double)(b->wpeak / (2 * PETSC_PI)), (double)b->apeak, (double)(b->apeak / b->F)));
+  PetscFunctionReturn(0);
+}
+
+/* Trace the frequency-response curve of every level, then (unless quiet) print the summary table */
+PetscErrorCode JRContSolve(JRCont c)
+{
+  Vec a;
+
+  PetscFunctionBeginUser;
+  PetscCall(SolveSetUp(c, &a));
+  for (PetscInt lev = 0; lev < c->nlev; lev++) PetscCall(SolveLevel(c, lev, a));
+  PetscCall(VecDestroy(&a));
+  if (!c->quiet) PetscCall(JRContPrintSummary(c));
+  PetscFunctionReturn(0);
+}
+
+/* JRContSetQuiet - solve without printing progress, peak lines or the summary (a model solved as a means, e.g. to
+   choose among candidates); warnings still print */
+PetscErrorCode JRContSetQuiet(JRCont c, PetscBool quiet)
+{
+  PetscFunctionBeginUser;
+  c->quiet = quiet;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRContGetNumLevels(JRCont c, PetscInt *n)
+{
+  PetscFunctionBeginUser;
+  *n = c->nlev;
+  PetscFunctionReturn(0);
+}
+
+/* The points of level lev: frequencies [rad/s], unknowns (np x n), first-harmonic amplitude at the outputs (np x nout) */
+PetscErrorCode JRContGetBranch(JRCont c, PetscInt lev, PetscInt *np, const PetscReal **omega, const PetscReal **a, const PetscReal **amp)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(c->br && lev >= 0 && lev < c->nlev, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "No level %" PetscInt_FMT, lev);
+  *np = c->br[lev].np;
+  if (omega) *omega = c->br[lev].omega;
+  if (a) *a = c->br[lev].a;
+  if (amp) *amp = c->br[lev].amp;
+  PetscFunctionReturn(0);
+}
+
+/* Peak of the first output's amplitude on level lev [rad/s, m]: the computed point with the largest
+   amplitude, refined by the parabola through it and its two neighbours when the frequencies are monotone
+   there (not at a fold) */
+PetscErrorCode JRContGetPeak(JRCont c, PetscInt lev, PetscReal *w, PetscReal *amp)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(c->br && lev >= 0 && lev < c->nlev, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "No level %" PetscInt_FMT, lev);
+  *w   = c->br[lev].wpeak;
+  *amp = c->br[lev].apeak;
+  PetscFunctionReturn(0);
+}
+
+/* The excitation level of level lev [N] */
+PetscErrorCode JRContGetLevel(JRCont c, PetscInt lev, PetscReal *F)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(c->levels && lev >= 0 && lev < c->nlev, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "No level %" PetscInt_FMT, lev);
+  *F = c->levels[lev];
+  PetscFunctionReturn(0);
+}
+
+/* Every element's contact state at the peak of level lev (rank 0; NULL elsewhere), in the model's numbering */
+PetscErrorCode JRContGetPeakStates(JRCont c, PetscInt lev, const JRContactState **st)
+{
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCheck(c->br && lev >= 0 && lev < c->nlev, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "No level %" PetscInt_FMT, lev);
+  PetscCallMPI(MPI_Comm_rank(c->comm, &rank));
+  *st = rank ? NULL : c->br[lev].estate;
+  PetscFunctionReturn(0);
+}
+
+/* Equivalent damping ratio at the peak and the worst energy imbalance of level lev */
+PetscErrorCode JRContGetDamping(JRCont c, PetscInt lev, PetscReal *zeta, PetscReal *ebal)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(c->br && lev >= 0 && lev < c->nlev, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "No level %" PetscInt_FMT, lev);
+  if (zeta) *zeta = c->br[lev].zeta;
+  if (ebal) *ebal = c->br[lev].ebal;
+  PetscFunctionReturn(0);
+}
+
+/* A level's wall time [s] (continuation only), points and Newton iterations */
+PetscErrorCode JRContGetLevelStats(JRCont c, PetscInt lev, PetscReal *seconds, PetscInt *points, PetscInt *newton)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(c->br && lev >= 0 && lev < c->nlev, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "No level %" PetscInt_FMT, lev);
+  if (seconds) *seconds = c->br[lev].seconds;
+  if (points) *points = c->br[lev].np;
+  if (newton) *newton = c->br[lev].newton;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRContDestroy(JRCont *cont)
+{
+  JRCont c = *cont;
+
+  PetscFunctionBeginUser;
+  if (!c) PetscFunctionReturn(0);
+  if (c->ops->destroy) PetscCall((*c->ops->destroy)(c));
+  PetscCall(BranchesDestroy(c));
+  PetscCall(PetscFree(c->levels));
+  PetscCall(VecDestroy(&c->amod));
+  PetscCall(PetscFree(c));
+  *cont = NULL;
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,234 @@
+/*
+   JRCont's outputs: the curves written by JRContWrite (BASE.csv, BASE.h5, BASE.png) and the summary table that
+   JRContSolve prints, one row per level.
+*/
+#include <jointrom/private/contimpl.h>
+#include <petscviewerhdf5.h>
+
+/* The responses' description, from the JRHBM: their DOFs or points and direction, H and the modes */
+typedef struct {
+  PetscInt         nout, nm, H, dir;
+  const PetscInt  *dofs;
+  const PetscReal *xyz; /* NULL on a matrices model */
+  const char      *damping;
+} Outputs;
+
+/* One dataset written from rank 0: len values (reals r, or integers iv), block size bs (collective) */
+static PetscErrorCode WriteRank0(MPI_Comm comm, PetscViewer v, const char name[], PetscInt len, PetscInt bs, const PetscReal r[], const PetscInt iv[])
+{
+  Vec          x;
+  PetscScalar *xa;
+  PetscMPIInt  rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank) len = 0;
+  PetscCall(VecCreateMPI(comm, len, PETSC_DETERMINE, &x));
+  if (bs > 1) PetscCall(VecSetBlockSize(x, bs));
+  PetscCall(PetscObjectSetName((PetscObject)x, name));
+  PetscCall(VecGetArray(x, &xa));
+  for (PetscInt i = 0; i < len; i++) xa[i] = r ? r[i] : (PetscReal)iv[i];
+  PetscCall(VecRestoreArray(x, &xa));
+  PetscCall(VecView(x, v));
+  PetscCall(VecDestroy(&x));
+  PetscFunctionReturn(0);
+}
+
+/* Response o (0-based) in words: "response 1 along z at (x, y, z) m" at a point (JRHBMSetOutputPoints), else "response 1 at DOF d" */
+static PetscErrorCode ResponseName(PetscInt o, const PetscReal xyz[], PetscInt dir, const PetscInt dofs[], char s[], size_t len)
+{
+  PetscFunctionBeginUser;
+  if (xyz) PetscCall(PetscSNPrintf(s, len, "response %" PetscInt_FMT " along %c at (%g, %g, %g) m", o + 1, "xyz"[dir], (double)xyz[3 * o], (double)xyz[3 * o + 1], (double)xyz[3 * o + 2]));
+  else PetscCall(PetscSNPrintf(s, len, "response %" PetscInt_FMT " at DOF %" PetscInt_FMT, o + 1, dofs[o]));
+  PetscFunctionReturn(0);
+}
+
+/* BASE.csv: level,F_N,omega_rad_s,freq_hz,amp_1..amp_n[,pp_1..pp_n] (pp with H > 1), one row per point */
+static PetscErrorCode WriteCSV(JRCont c, const Outputs *o, const char csv[])
+{
+  char  tmp[PETSC_MAX_PATH_LEN + 32];
+  FILE *fp;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRFileOpenTemp(c->comm, csv, &fp, tmp, sizeof(tmp)));
+  if (fp) {
+    fprintf(fp, "level,F_N,omega_rad_s,freq_hz");
+    for (PetscInt i = 0; i < o->nout; i++) fprintf(fp, ",amp_%" PetscInt_FMT, i + 1);
+    if (o->H > 1)
+      for (PetscInt i = 0; i < o->nout; i++) fprintf(fp, ",pp_%" PetscInt_FMT, i + 1);
+    fprintf(fp, "\n");
+    for (PetscInt l = 0; l < c->nlev; l++) {
+      JRContBranch *b = &c->br[l];
+      for (PetscInt k = 0; k < b->np; k++) {
+        fprintf(fp, "%" PetscInt_FMT ",%.10g,%.12g,%.12g", l, (double)b->F, (double)b->omega[k], (double)(b->omega[k] / (2 * PETSC_PI)));
+        for (PetscInt i = 0; i < o->nout; i++) fprintf(fp, ",%.10e", (double)b->amp[k * o->nout + i]);
+        if (o->H > 1)
+          for (PetscInt i = 0; i < o->nout; i++) fprintf(fp, ",%.10e", (double)b->pp[k * o->nout + i]);
+        fprintf(fp, "\n");
+      }
+    }
+  }
+  PetscCall(JRFileCommit(c->comm, &fp, tmp, csv));
+  PetscFunctionReturn(0);
+}
+
+/* The HDF5 root's attributes: the run's options, units, damping, sizes, the continuation and each response's group */
+static PetscErrorCode WriteHDF5Header(JRCont c, const Outputs *o, PetscViewer v)
+{
+  char *opts;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetAll(NULL, &opts));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "options", PETSC_STRING, opts));
+  PetscCall(PetscFree(opts));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "units", PETSC_STRING, "SI: omega rad/s, freq_hz Hz, amp m, force N; a: modal coordinates of mass-normalised modes (physical DOFs with -hbm_physical)"));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "damping", PETSC_STRING, o->damping));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "harmonics", PETSC_INT, &o->H));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "modes", PETSC_INT, &o->nm));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "layout_a", PETSC_STRING, "per point: [a0 | as_1 ac_1 | ... | as_H ac_H], each block over the modes"));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "continuation", PETSC_STRING, c->type_name));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "responses", PETSC_STRING, "amp and pp: one column per response, in order; /response_i: response i's point (x_m, y_m, z_m, direction) or, on a matrices model, its dof (0-based)"));
+  for (PetscInt i = 0; i < o->nout; i++) {
+    char grp[64], name[192];
+    PetscCall(PetscSNPrintf(grp, sizeof(grp), "/response_%" PetscInt_FMT, i + 1));
+    PetscCall(ResponseName(i, o->xyz, o->dir, o->dofs, name, sizeof(name)));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "name", PETSC_STRING, name));
+    if (o->xyz) {
+      const char *xn[] = {"x_m", "y_m", "z_m"}, *dn[] = {"x", "y", "z"};
+      for (PetscInt k = 0; k < 3; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, grp, xn[k], PETSC_REAL, &o->xyz[3 * i + k]));
+      PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "direction", PETSC_STRING, dn[o->dir]));
+    } else PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "dof", PETSC_INT, &o->dofs[i]));
+  }
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "peak_states", PETSC_STRING, "per level: every element's contact state at the peak, 0 full stick, 1 stick-slip without separation, 2 separation with stick-slip, 3 full separation"));
+  PetscFunctionReturn(0);
+}
+
+/* The group /level_<l>'s attributes: force, points, time, the peak, damping, Newton total and the contact states */
+static PetscErrorCode WriteHDF5LevelAttributes(PetscViewer v, const char grp[], JRContBranch *b)
+{
+  PetscReal fhz = b->wpeak / (2 * PETSC_PI), aof = b->apeak / b->F;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "force_N", PETSC_REAL, &b->F));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "points", PETSC_INT, &b->np));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "seconds", PETSC_REAL, &b->seconds));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "complete", PETSC_BOOL, &b->complete));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "peak_freq_hz", PETSC_REAL, &fhz));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "peak_amp_m", PETSC_REAL, &b->apeak));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "peak_amp_over_force_m_per_N", PETSC_REAL, &aof));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "zeta_eq", PETSC_REAL, &b->zeta));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "energy_balance", PETSC_REAL, &b->ebal));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "newton_total", PETSC_INT, &b->newton));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "elements_full_stick", PETSC_INT, &b->states[0]));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "elements_stick_slip", PETSC_INT, &b->states[1]));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "elements_separation_stick_slip", PETSC_INT, &b->states[2]));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "elements_full_separation", PETSC_INT, &b->states[3]));
+  PetscFunctionReturn(0);
+}
+
+/* The group /level_<l>: every point's omega, amp, pp, a, step, Newton iterations, and the elements' states at the peak */
+static PetscErrorCode WriteHDF5Level(JRCont c, PetscViewer v, PetscInt l)
+{
+  JRContBranch  *b = &c->br[l];
+  char           grp[64];
+  const PetscInt np = b->np, nel = b->states[0] + b->states[1] + b->states[2] + b->states[3];
+  PetscInt      *st;
+  PetscMPIInt    rank;
+  const struct {
+    const char *name;
+    PetscInt    bs;
+    PetscReal  *data;
+  } sets[] = {
+    {"omega", 1,       b->omega},
+    {"amp",   c->nout, b->amp  },
+    {"pp",    c->nout, b->pp   },
+    {"a",     c->nmod, b->a    },
+    {"step",  1,       b->step }
+  };
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(c->comm, &rank));
+  PetscCall(PetscSNPrintf(grp, sizeof(grp), "/level_%" PetscInt_FMT, l));
+  PetscCall(PetscViewerHDF5PushGroup(v, grp));
+  for (size_t s = 0; s < sizeof(sets) / sizeof(sets[0]); s++) PetscCall(WriteRank0(c->comm, v, sets[s].name, np * sets[s].bs, sets[s].bs, sets[s].data, NULL));
+  PetscCall(WriteRank0(c->comm, v, "newton_its", np, 1, NULL, b->its));
+  PetscCall(WriteHDF5LevelAttributes(v, grp, b));
+  PetscCall(PetscMalloc1(rank ? 0 : nel, &st));
+  for (PetscInt i = 0; !rank && i < nel; i++) st[i] = (PetscInt)b->estate[i];
+  PetscCall(WriteRank0(c->comm, v, "peak_states", nel, 1, NULL, st));
+  PetscCall(PetscFree(st));
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscFunctionReturn(0);
+}
+
+/* BASE.h5: the root's attributes and one group per level, written to a temporary file and renamed */
+static PetscErrorCode WriteHDF5(JRCont c, const Outputs *o, const char h5[])
+{
+  char        tmp[PETSC_MAX_PATH_LEN + 32];
+  PetscViewer v;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRFileTempName(c->comm, h5, tmp, sizeof(tmp)));
+  PetscCall(PetscViewerHDF5Open(c->comm, tmp, FILE_MODE_WRITE, &v));
+  PetscCall(WriteHDF5Header(c, o, v));
+  for (PetscInt l = 0; l < c->nlev; l++) PetscCall(WriteHDF5Level(c, v, l));
+  PetscCall(PetscViewerDestroy(&v));
+  PetscCall(JRFileRename(c->comm, tmp, h5));
+  PetscFunctionReturn(0);
+}
+
+/* BASE.png from BASE.csv (share/plot_frf.gp: response 1, every level; -frf_normalize divides by the force) */
+static PetscErrorCode Plot(JRCont c, const Outputs *o, const char csv[], const char png[], PetscBool *made)
+{
+  char vars[3 * PETSC_MAX_PATH_LEN], name[192];
+
+  PetscFunctionBeginUser;
+  PetscCall(ResponseName(0, o->xyz, o->dir, o->dofs, name, sizeof(name)));
+  PetscCall(PetscSNPrintf(vars, sizeof(vars), "data='%s'; nlev=%" PetscInt_FMT "; normalize=%d; ttl='%s (%s continuation, H = %" PetscInt_FMT ")'", csv, c->nlev, (int)c->normalize, name, c->type_name, o->H));
+  PetscCall(JRPlot(c->comm, "plot_frf.gp", png, vars, made));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRContWrite - BASE.h5 (every point), BASE.csv (level,F_N,omega_rad_s,freq_hz,amp_1..amp_n[,pp_1..pp_n]: the
+  responses by their index, 1-based) and BASE.png (response 1). The HDF5 group /response_<i> names response i:
+  its point x_m, y_m, z_m and direction (JRHBMSetOutputPoints: an FE model) or its dof (a matrices model).
+  BASE is -frf_output_file or JRContSetOutputBase ('' for none); -frf_plot 0 leaves out the PNG.
+*/
+PetscErrorCode JRContWrite(JRCont c)
+{
+  char      h5[PETSC_MAX_PATH_LEN + 8], csv[PETSC_MAX_PATH_LEN + 8], png[PETSC_MAX_PATH_LEN + 8];
+  Outputs   o;
+  PetscBool made;
+
+  PetscFunctionBeginUser;
+  if (!c->write) PetscFunctionReturn(0);
+  PetscCall(JRHBMGetOutputs(c->hbm, &c->nout, &o.dofs));
+  PetscCall(JRHBMGetOutputPoints(c->hbm, &o.xyz, &o.dir));
+  PetscCall(JRHBMGetSizes(c->hbm, &o.nm, &o.H, NULL));
+  PetscCall(JRHBMGetDampingDescription(c->hbm, &o.damping));
+  o.nout = c->nout;
+  PetscCall(PetscSNPrintf(h5, sizeof(h5), "%s.h5", c->out));
+  PetscCall(PetscSNPrintf(csv, sizeof(csv), "%s.csv", c->out));
+  PetscCall(PetscSNPrintf(png, sizeof(png), "%s.png", c->out));
+  PetscCall(WriteCSV(c, &o, csv));
+  PetscCall(WriteHDF5(c, &o, h5));
+  if (c->plot) {
+    PetscCall(Plot(c, &o, csv, png, &made));
+    PetscCall(PetscPrintf(c->comm, "frf: wrote %s, %s%s%s\n", h5, csv, made ? ", " : "", made ? png : ""));
+  } else PetscCall(PetscPrintf(c->comm, "frf: wrote %s, %s\n", h5, csv));
+  PetscFunctionReturn(0);
+}
+
+/* The summary table of JRContSolve: one row per level (peak, damping, points, Newton, retries, time, balance, states) */
+PetscErrorCode JRContPrintSummary(JRCont c)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscPrintf(c->comm, "frf summary (%s continuation; peak of response 1, refined by a parabola; zeta_eq = energy dissipated per cycle / (8 pi mean kinetic energy) at the peak;\n  energy balance: largest |W_in - W_damping - W_contact| / W_in over the curve; elements at the peak: full stick / stick-slip / separation with stick-slip / full separation)\n", c->type_name));
+  PetscCall(PetscPrintf(c->comm, "  %10s %12s %13s %13s %10s %7s %7s %7s %9s %9s  %s\n", "F [N]", "peak [Hz]", "amp [m]", "amp/F [m/N]", "zeta_eq", "points", "newton", "retries", "time [s]", "balance", "states"));
+  for (PetscInt lev = 0; lev < c->nlev; lev++) {
+    JRContBranch *b = &c->br[lev];
+    PetscCall(PetscPrintf(c->comm, "  %10.4g %12.6g %13.5e %13.5e %10.4e %7" PetscInt_FMT " %7" PetscInt_FMT " %7" PetscInt_FMT " %9.3g %9.2e  %" PetscInt_FMT " / %" PetscInt_FMT " / %" PetscInt_FMT " / %" PetscInt_FMT "%s\n", (double)b->F, (double)(b->wpeak / (2 * PETSC_PI)), (double)b->apeak, (double)(b->apeak / b->F), (double)b->zeta, b->np, b->newton, b->retries, (double)b->seconds, (double)b->ebal, b->states[0], b->states[1], b->states[2], b->states[3], b->complete ? "" : "  (incomplete)"));
+  }
+  PetscFunctionReturn(0);
+}
