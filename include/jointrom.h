@@ -324,6 +324,8 @@ PETSC_EXTERN const char *const JRJointMotions[];
 
 PETSC_EXTERN PetscErrorCode JRHBMCreate(MPI_Comm, JRHBM *);
 PETSC_EXTERN PetscErrorCode JRHBMSetModel(JRHBM, JRModel);
+PETSC_EXTERN PetscErrorCode JRHBMSetElements(JRHBM, const JRElements *);
+PETSC_EXTERN PetscErrorCode JRHBMGetElements(JRHBM, const JRElements **);
 PETSC_EXTERN PetscErrorCode JRHBMSetFromOptions(JRHBM);
 PETSC_EXTERN PetscErrorCode JRHBMSetUp(JRHBM);
 PETSC_EXTERN PetscErrorCode JRHBMGetSizes(JRHBM, PetscInt *, PetscInt *, PetscInt *);

@@ -586,7 +586,7 @@ PetscErrorCode JRHBMStuckModeMotion(JRHBM h, PetscInt k, PetscReal u[], PetscRea
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMSetUp(h));
-  PetscCall(JRModelGetElements(h->model, &el));
+  PetscCall(JRHBMGetElements(h, &el));
   PetscCheck(k >= 0 && k < h->nm, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Stuck mode %" PetscInt_FMT ": the basis has %" PetscInt_FMT, k, h->nm);
   PetscCall(PetscMalloc2(h->nm, &f, h->nm, &q));
   PetscCall(StickEig(h, 1.0, &nf, f, k, q));

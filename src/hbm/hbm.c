@@ -67,6 +67,27 @@ PetscErrorCode JRHBMSetModel(JRHBM h, JRModel model)
   PetscFunctionReturn(0);
 }
 
+/* The contact elements (copied), instead of the model's own (a matrices model's element table): the node-to-node
+   elements of an FE model, or a reduced model's */
+PetscErrorCode JRHBMSetElements(JRHBM h, const JRElements *el)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRElementsDestroy(&h->el));
+  PetscCall(JRElementsDuplicate(el, &h->el));
+  h->el_given    = PETSC_TRUE;
+  h->setupcalled = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* The contact elements of the harmonic balance: JRHBMSetElements's, else the model's */
+PetscErrorCode JRHBMGetElements(JRHBM h, const JRElements **el)
+{
+  PetscFunctionBeginUser;
+  if (h->el_given) *el = &h->el;
+  else PetscCall(JRModelGetElements(h->model, el));
+  PetscFunctionReturn(0);
+}
+
 /*
   Options: -hbm_harmonics H, -hbm_samples N, -hbm_modes m (default: all for small models, else 10),
   -hbm_physical, -hbm_gamma, -hbm_zeta, -hbm_jacobian analytic|fd, -hbm_view; the excitation
@@ -165,7 +186,7 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
   PetscCheck(h->model, h->comm, PETSC_ERR_ARG_WRONGSTATE, "JRHBMSetModel() first");
   PetscCall(JRModelGetMatrices(h->model, &K, &M, &C));
   PetscCall(JRModelGetNumDofs(h->model, &ndof));
-  PetscCall(JRModelGetElements(h->model, &el));
+  PetscCall(JRHBMGetElements(h, &el));
   h->nc    = 2 * h->H + 1;
   PetscCall(PetscFree(h->pptab)); /* sized by nc */
   h->has_C = C ? PETSC_TRUE : PETSC_FALSE;
@@ -210,7 +231,6 @@ PetscErrorCode JRHBMSetExcitationDof(JRHBM h, PetscInt dof, PetscInt nout, const
   h->fdof     = dof;
   h->fdof_set = PETSC_TRUE;
   PetscCall(PetscFree(h->outdof));
-  PetscCall(PetscFree(h->ptxyz));
   h->nout = nout;
   PetscCall(PetscMalloc1(nout, &h->outdof));
   PetscCall(PetscArraycpy(h->outdof, out, nout));
@@ -469,6 +489,8 @@ PetscErrorCode JRHBMDestroy(JRHBM *hbm)
   PetscCall(PetscFree(h->Kg));
   PetscCall(PetscFree(h->Kc));
   PetscCall(PetscFree(h->outdof));
+  PetscCall(PetscFree(h->ptxyz));
+  PetscCall(JRElementsDestroy(&h->el));
   PetscCall(PetscFree(h->fm));
   PetscCall(PetscFree(h->Phiout));
   PetscCall(PetscFree(h->buf));

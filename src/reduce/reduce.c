@@ -198,8 +198,8 @@ static PetscErrorCode ReducedHBM(JRReduce red, JRModel model, JRHBM hbm, PetscBo
   PetscCall(JRHBMSetBasis(hr, JR_HBM_BASIS_MIXED));
   PetscCall(JRHBMSetJointMotion(hr, (JRJointMotion)red->fit.jmotion));
   PetscCall(JRHBMSetOptionsPrefix(hr, "rom_"));
-  PetscCall(JRModelSetElements(model, elx));
   PetscCall(JRHBMSetModel(hr, model));
+  PetscCall(JRHBMSetElements(hr, elx));
   PetscCall(JRHBMSetFromOptions(hr));
   if (hbm) PetscCall(JRHBMSetModes(hr, hbm));
   PetscCall(PetscTime(&t0));
@@ -224,8 +224,7 @@ static PetscErrorCode ReducedHBM(JRReduce red, JRModel model, JRHBM hbm, PetscBo
       elx->kt[e] *= c;
       elx->kn[e] *= c;
     }
-    PetscCall(JRModelSetElements(model, elx));
-    PetscCall(JRHBMSetModel(hr, model));
+    PetscCall(JRHBMSetElements(hr, elx));
     PetscCall(PetscTime(&t0));
     PetscCall(JRHBMSetUp(hr));
     PetscCall(PetscTime(&t1));

@@ -304,9 +304,9 @@ static PetscErrorCode SetUpModels(FRFRun *r)
     if (r->n2n) {
       PetscCall(JRHBMSetExcitationDof(r->hbm, r->fdof, r->nout, r->odof));
       PetscCall(JRHBMSetOutputPoints(r->hbm, r->nout, r->oat, r->dir));
-      PetscCall(JRModelSetElements(r->model, &r->el));
     }
     PetscCall(JRHBMSetModel(r->hbm, r->model));
+    if (r->n2n) PetscCall(JRHBMSetElements(r->hbm, &r->el));
     PetscCall(PetscLogStagePush(JR_StageModes));
     PetscCall(PetscTime(&t0));
     PetscCall(JRHBMSetUp(r->hbm));

@@ -47,6 +47,8 @@ struct _p_JRHBM {
   MPI_Comm          comm;
   PetscMPIInt       rank, size;
   JRModel           model;
+  JRElements        el;           /* JRHBMSetElements(): the contact elements (a copy), else the model's */
+  PetscBool         el_given;
   JRModes           modes;
   PetscBool         setupcalled, physical, view;
   PetscInt          H, Ns, nm, nc, n, nmodes_opt;
