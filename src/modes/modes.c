@@ -266,38 +266,22 @@ static PetscErrorCode ModesLoad(JRModes md, const char file[])
   PetscFunctionReturn(0);
 }
 
-/* Solve for the nev lowest modes; mass-normalise and sort them (or read them: -modes_load) */
-PetscErrorCode JRModesSolve(JRModes md)
+/* The eigensolver: dense LAPACK for small systems (or most of their modes), else shift-and-invert a little below
+   zero (free-free structures have a singular K) with a Cholesky factorisation (MUMPS unless
+   -modes_st_pc_factor_mat_solver_type says otherwise); -modes_eps_*, -modes_st_* */
+static PetscErrorCode SetUpEPS(JRModes md, PetscInt n, PetscInt nrb, PetscBool dense)
 {
-  PetscInt  n, nconv, *perm, nrb, nel;
-  Vec       x, Mx;
-  PetscReal *lam;
-  Vec       *vecs;
-  ST         st;
-  KSP        ksp;
-  PC         pc;
-  PetscBool  dense;
+  const PetscInt nel = md->nev - nrb; /* elastic modes to compute */
+  ST             st;
+  KSP            ksp;
+  PC             pc;
 
   PetscFunctionBeginUser;
-  PetscCheck(md->K && md->M, md->comm, PETSC_ERR_ARG_WRONGSTATE, "JRModesSetOperators() first");
-  PetscCall(ClearModes(md));
-  if (md->load[0]) {
-    PetscCall(ModesLoad(md, md->load));
-    if (md->view) PetscCall(JRModesView(md, NULL));
-    PetscFunctionReturn(0);
-  }
-  PetscCall(MatGetSize(md->K, &n, NULL));
-  PetscCheck(md->nev <= n, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "%" PetscInt_FMT " modes requested (-modes_nev or -hbm_modes), the model has %" PetscInt_FMT " DOFs", md->nev, n);
-  nrb = md->use_rb ? md->nrb : 0;
-  PetscCheck(md->nev > nrb, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "%" PetscInt_FMT " modes requested: more than the %" PetscInt_FMT " rigid-body modes are needed", md->nev, nrb);
-  PetscCall(PetscLogEventBegin(JR_ModesSolve, 0, 0, 0, 0));
   PetscCall(EPSDestroy(&md->eps));
   PetscCall(EPSCreate(md->comm, &md->eps));
   PetscCall(EPSSetOptionsPrefix(md->eps, "modes_"));
   PetscCall(EPSSetOperators(md->eps, md->K, md->M));
   PetscCall(EPSSetProblemType(md->eps, EPS_GHEP));
-  nel   = md->nev - nrb; /* elastic modes to compute */
-  dense = (PetscBool)(2 * md->nev > n || n <= 64);
   if (nrb) PetscCall(EPSSetDeflationSpace(md->eps, nrb, md->rb));
   if (dense) { /* every mode (or most of them) of a small system: dense LAPACK */
     PetscCall(EPSSetType(md->eps, EPSLAPACK));
@@ -338,9 +322,20 @@ PetscErrorCode JRModesSolve(JRModes md)
     if (factor && !set) PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   }
 #endif
-  PetscCall(EPSSolve(md->eps));
+  PetscFunctionReturn(0);
+}
+
+/* The modes from the converged eigenpairs: the supplied rigid-body modes first (omega = 0), then the lowest elastic
+   ones, ascending, mass-normalised */
+static PetscErrorCode ExtractModes(JRModes md, PetscInt n, PetscInt nrb, PetscBool dense)
+{
+  PetscInt   nconv, *perm;
+  Vec        x, Mx, *vecs;
+  PetscReal *lam;
+
+  PetscFunctionBeginUser;
   PetscCall(EPSGetConverged(md->eps, &nconv));
-  PetscCheck(nconv >= nel, md->comm, PETSC_ERR_NOT_CONVERGED, "Only %" PetscInt_FMT " of %" PetscInt_FMT " modes converged (tune -modes_eps_* or -modes_target)", nconv, nel);
+  PetscCheck(nconv >= md->nev - nrb, md->comm, PETSC_ERR_NOT_CONVERGED, "Only %" PetscInt_FMT " of %" PetscInt_FMT " modes converged (tune -modes_eps_* or -modes_target)", nconv, md->nev - nrb);
   nconv = PetscMin(nconv, dense ? n : nconv);
   PetscCall(PetscMalloc2(nconv, &lam, nconv, &perm));
   PetscCall(MatCreateVecs(md->K, &x, &Mx));
@@ -373,6 +368,32 @@ PetscErrorCode JRModesSolve(JRModes md)
   PetscCall(VecDestroy(&x));
   PetscCall(VecDestroy(&Mx));
   PetscCall(PetscFree2(lam, perm));
+  PetscFunctionReturn(0);
+}
+
+/* Solve for the nev lowest modes; mass-normalise and sort them (or read them: -modes_load) */
+PetscErrorCode JRModesSolve(JRModes md)
+{
+  PetscInt  n, nrb;
+  PetscBool dense;
+
+  PetscFunctionBeginUser;
+  PetscCheck(md->K && md->M, md->comm, PETSC_ERR_ARG_WRONGSTATE, "JRModesSetOperators() first");
+  PetscCall(ClearModes(md));
+  if (md->load[0]) {
+    PetscCall(ModesLoad(md, md->load));
+    if (md->view) PetscCall(JRModesView(md, NULL));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(MatGetSize(md->K, &n, NULL));
+  PetscCheck(md->nev <= n, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "%" PetscInt_FMT " modes requested (-modes_nev or -hbm_modes), the model has %" PetscInt_FMT " DOFs", md->nev, n);
+  nrb = md->use_rb ? md->nrb : 0;
+  PetscCheck(md->nev > nrb, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "%" PetscInt_FMT " modes requested: more than the %" PetscInt_FMT " rigid-body modes are needed", md->nev, nrb);
+  dense = (PetscBool)(2 * md->nev > n || n <= 64);
+  PetscCall(PetscLogEventBegin(JR_ModesSolve, 0, 0, 0, 0));
+  PetscCall(SetUpEPS(md, n, nrb, dense));
+  PetscCall(EPSSolve(md->eps));
+  PetscCall(ExtractModes(md, n, nrb, dense));
   PetscCall(PetscLogEventEnd(JR_ModesSolve, 0, 0, 0, 0));
   if (md->save[0]) PetscCall(JRModesSave(md, md->save));
   if (md->view) PetscCall(JRModesView(md, NULL));
