@@ -184,16 +184,17 @@ f0=$(field "$(sf -rom_elements 0)" rom_before_hz); fd=$(field "$(sf -rom_element
 check "[ -n '$f0' ] && close $fs $f0 1e-8 && ! close $fd $f0 1e-7" "-rom_fit_stiffness_weight 1e4 (default): 6 x 3 stuck resonance $fs Hz = first reduction's $f0 Hz (weight 10: $fd Hz)"
 # jenkins_nv, -rom_joint_motion mode: the fit's error with the normal loads varying in the mode (AFT, one harmonic),
 # printed per level, is zero when every member is its own element (the same elements, placed at their own stuck-mode
-# motions) and not when three elements stand for a joint's members
-l3c="-options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -task frf -frf_force 0.01,0.05 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file ''"
+# motions) and not when three elements stand for a joint's members. The fit weights fixed (those -rom_fit_select first
+# picks for the full lap3 run), so every run below fits with the same ones
+l3c="-options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -task frf -frf_force 0.01,0.05 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' -rom_fit_select none -rom_fit_total_weight 1000 -rom_fit_case_weight 0"
 nvw() { echo "$1" | awk '/dissipation_error_normal_varying/{e = $6; if (e < 0) e = -e; if (e > w) w = e; n++; m = $13} END{print w + 0, n + 0, m + 0}'; }
 read w1 n1 s1 <<< "$(nvw "$(eval $J $l3c -rom_elements 200)")"
 read w3 n3 s3 <<< "$(nvw "$(eval $J $l3c)")"
 check "[ '$n1' = 2 ] && lt '$w1' 1e-12 && lt 0.01 '$s1' && lt 1e-3 '$w3'" "jenkins_nv lap3 (coarse), mode: the fit's dissipation error with the normal load varying, every member its own element: $w1 (members dissipate $s1 of the input); 12 x 3: $w3"
-# -rom_fit_normal_passes 2 (defect correction): the fit's error with the normal load varying, which it aims at,
-# smaller than the plain fit's (the worst over both levels)
+# -rom_fit_normal_passes 2 (defect correction): the fit's error with the normal load varying, which it aims at, at
+# least 4x smaller than the plain fit's with the same weights (the worst over both levels; measured: 0.0027 vs 0.043)
 read w2 n2 s2 <<< "$(nvw "$(eval $J $l3c -rom_fit_normal_passes 2)")"
-check "[ '$n2' = 2 ] && lt '$w2' '$w3'" "jenkins_nv lap3 (coarse), -rom_fit_normal_passes 2: worst error with the normal load varying $w2 (plain fit: $w3)"
+check "[ '$n2' = 2 ] && lt \$(awk -v a='$w2' 'BEGIN{print 4 * a}') '$w3'" "jenkins_nv lap3 (coarse), -rom_fit_normal_passes 2: worst error with the normal load varying $w2, at least 4x below the plain fit's $w3 (same weights)"
 expect_error "zero stiffness weight" "-rom_fit_stiffness_weight 0.: the weight must be positive" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_stiffness_weight 0 -frf_output_file ''
 expect_error "negative normal passes" "-rom_fit_normal_passes -1: 0 or more" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_normal_passes -1 -frf_output_file ''
 expect_error "negative case weight" "-rom_fit_case_weight -1.: the weight must be non-negative" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_case_weight -1 -frf_output_file ''
