@@ -2,14 +2,19 @@
 # jointrom test suite: the C test programs (build/tests/test_*) and the command-line checks
 # (tests/cli.sh). Every check prints "ok - ..." or "not ok - ..."; a program that crashes or exits
 # non-zero without reporting a failure counts as one failure. Ends with "N passed, M failed".
+# JR_TEST_TIMES=FILE (an absolute path): each program's and each check's wall and CPU seconds appended to FILE.
 cd "$(dirname "$0")/.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 pass=0; fail=0
 log=$(mktemp -d)
 run() { # name, command...
   local name=$1; shift
+  local t0=$EPOCHREALTIME
+  times > "$log/.t0"
   "$@" > "$log/${name// /_}.out" 2>&1
   local rc=$?
+  times > "$log/.t1"
+  [ -n "$JR_TEST_TIMES" ] && awk -v a="$EPOCHREALTIME" -v b="$t0" -v s="$name" 'FNR == 2 {split($0, t, /[ms ]+/); c[++n] = 60 * t[1] + t[2] + 60 * t[3] + t[4]} END{printf "%.1f %.1f %s (all)\n", a - b, c[2] - c[1], s}' "$log/.t0" "$log/.t1" >> "$JR_TEST_TIMES"
   local p f
   local out="$log/${name// /_}.out"
   p=$(grep -c '^ok - ' "$out")
