@@ -63,7 +63,8 @@ for f in runs/*.opts; do
       grep -q '^-model_type lap' "$f" && extra="$extra -model_mesh_h 0.005 -model_mesh_grade 4 -cont_max_points 40"
       grep -q '^-rom_fit_select first' "$f" && extra="$extra -rom_fit_select_total 1000 -rom_fit_select_case 0" ;; # one pair: the selection runs, quickly (its own checks: cli_rom.sh)
     "-task modes") extra="-modes_output_file '' -model_mesh_h 0.01" ;; # a coarse mesh: the options are what is checked
-    "-task preload") extra="-preload_output_file '' -model_mesh_h 0.005 -model_mesh_grade 4" ;;
+    "-task preload") extra="-preload_output_file '' -model_mesh_h 0.005 -model_mesh_grade 4"
+      grep -q '^-model_type brb' "$f" && extra="-preload_output_file '' -model_mesh_h 0.01" ;; # as the other BRB runs
     *) extra="-element_loop ''" ;;
   esac
   o=$(eval $J -options_file "$f" -options_left $extra 2>&1); rc=$?
