@@ -6,7 +6,8 @@
 # reduced model's stuck resonance on the node-to-node one; a saved reduced model reproduces the run that saved it
 # (also without the preload); 1 vs 2 ranks; bad regions and files; the joints' linear motion field (-rom_joint_motion
 # linear) between the mean's and node-to-node's, and carrying lap1's bending; with the stuck-mode coordinates
-# (-rom_joint_motion mode) the mode of interest kept exactly.
+# (-rom_joint_motion mode) the mode of interest kept exactly. Runs of one model after the first read its preload and
+# modes (-preload_load, -modes_load: the same basis, as -task compare's two models share it).
 cd "$(dirname "$0")/.."
 . tests/cli_lib.sh
 brb="-model_type brb -model_mesh_h 0.01 -preload_force 11500 -interface_kt 1e6 -interface_mu 0.12 -hbm_modes 12 -hbm_gamma 0.002 -cont_monitor 0 -frf_plot 0 -frf_fmin 128 -frf_fmax 138"
@@ -70,23 +71,24 @@ read f a <<< "$(worst "$o")"
 check "echo \"\$o\" | grep -q '^rom coupled' && lt '$f' 5e-3 && lt '$a' 0.1" "second reduction 6 x 10, no search (elements fitted to no force): coupled fit runs, worst peak frequency error $f, amplitude $a"
 # -rom_fit_select first: every pair of weights fitted and solved, the pair nearest the first reduction kept. Checked
 # against separate runs: the same weights given directly give the same reduced model, and its peaks against the first
-# reduction's (-rom_elements 0) give the error printed for that pair, the smallest printed (one rank: the same
-# model bit for bit; on two the modes, recomputed per run, differ at round-off)
-os=$($J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements 3 -rom_fit_select first -frf_output_file '' 2>&1)
+# reduction's (-rom_elements 0) give the error printed for that pair, the smallest printed (one rank, the later runs
+# with this run's preload and modes ($b1): the same model bit for bit)
+os=$($J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements 3 -rom_fit_select first -frf_output_file "$tmp/b1" 2>&1)
+b1="-preload_load $tmp/b1_preload.h5 -modes_load $tmp/b1_modes.h5"
 ns=$(echo "$os" | grep -c '^rom select ')
 cl=$(echo "$os" | grep '^rom: fit weights chosen')
 bt=$(field "$cl" -rom_fit_total_weight); bk=$(field "$cl" -rom_fit_case_weight)
 emin=$(echo "$os" | awk '/^rom select /{if (m == "" || $8 < m) {m = $8; t = $4; k = $6}} END{print m, t, k}')
 read em et ek <<< "$emin"
 check "[ '$ns' = 6 ] && [ -n '$bt' ] && awk 'BEGIN{exit !($bt == $et && $bk == $ek)}'" "-rom_fit_select first: 6 pairs fitted and solved, the one of the smallest error vs the first reduction chosen (total $bt, case $bk; error $em)"
-od=$($J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements 3 -rom_fit_total_weight $bt -rom_fit_case_weight $bk -frf_output_file '' 2>&1)
-o0=$($J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements 0 -frf_output_file '' 2>&1)
+od=$($J -task compare $brb $b1 -frf_force $lev -rom_joints sides -rom_elements 3 -rom_fit_total_weight $bt -rom_fit_case_weight $bk -frf_output_file '' 2>&1)
+o0=$($J -task compare $brb $b1 -frf_force $lev -rom_joints sides -rom_elements 0 -frf_output_file '' 2>&1)
 amps() { echo "$1" | awk '/^compare level/{printf "%s ", $11}'; }
 dd=$(awk -v a="$(amps "$os")" -v b="$(amps "$od")" 'BEGIN{n = split(a, x); split(b, y); for (i = 1; i <= n; i++) {e = x[i] / y[i] - 1; if (e < 0) e = -e; if (e > m) m = e} print (n == 5 ? m + 0 : "none")}')
 e0=$(awk -v a="$(amps "$os")" -v b="$(amps "$o0")" 'BEGIN{n = split(a, x); split(b, y); for (i = 1; i <= n; i++) {e = x[i] / y[i] - 1; if (e < 0) e = -e; if (e > m) m = e} print (n == 5 ? m + 0 : "none")}')
 check "lt '$dd' 1e-12 && close '$e0' '$em' 1e-3" "-rom_fit_select first = the chosen weights given directly (peak amplitudes within $dd); its worst amplitude vs a separate first-reduction run $e0 = the printed $em"
 # the stiffness correction: the reduced model's stuck resonance (LAPACK, same basis) = the node-to-node one
-o=$($J -task frf $brb -frf_force 0.01 -rom_joints sides -rom_elements 3 -frf_output_file '' 2>&1)
+o=$($J -task frf $brb $b1 -frf_force 0.01 -rom_joints sides -rom_elements 3 -frf_output_file '' 2>&1)
 fr=$(field "$(echo "$o" | grep '^stick freq_hz')" freq_hz); fn=$(field "$(echo "$o" | grep '^rom stiffness_correction')" n2n_hz)
 check "[ -n '$fr' ] && close $fr $fn 1e-9" "stiffness correction ($(field "$cr" stiffness_correction)): reduced stuck resonance $fr Hz = node-to-node $fn Hz"
 
@@ -148,29 +150,32 @@ expect_error "compare without joints" "-task compare needs a reduced model" $J -
 # jenkins_nv with open pairs (lap3, zones, first reduction): a joint moves with the average of its members in
 # contact at rest, whose springs it carries; then by Cauchy-Schwarz (k sum u_e^2 >= K (mean u)^2) the reduced
 # stuck mode can only be at or below node-to-node's (averaging over all members put it 16% above)
-o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -rom_elements 0 -rom_joint_motion mean -frf_force 0.001 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
+o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -rom_elements 0 -rom_joint_motion mean -frf_force 0.001 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file "$tmp/l3" 2>&1)
+l3="-preload_load $tmp/l3_preload.h5 -modes_load $tmp/l3_modes.h5" # the runs of lap3 below: this run's preload and modes
 c=$(echo "$o" | grep '^rom stiffness_correction'); fb=$(field "$c" rom_before_hz); fn=$(field "$c" n2n_hz)
 check "[ -n '$fb' ] && awk -v b='$fb' -v n='$fn' 'BEGIN{exit !(b <= n * (1 + 1e-9))}'" "jenkins_nv lap3, 12 zone joints over the pairs in contact at rest: reduced stuck mode $fb Hz <= node-to-node $fn Hz"
 # the joints' linear motion field (-rom_joint_motion linear: the mean plus the joint's rotation, fitted by least
 # squares over the members' positions) is a projection onto a larger space that holds the mean's: the stuck mode lies
 # between the mean's and node-to-node's (with equal kt per member)
-o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -rom_elements 0 -rom_joint_motion linear -frf_force 0.001 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
+o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 $l3 -rom_elements 0 -rom_joint_motion linear -frf_force 0.001 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
 fl=$(field "$(echo "$o" | grep '^rom stiffness_correction')" rom_before_hz)
 check "[ -n '$fl' ] && awk -v m='$fb' -v l='$fl' -v n='$fn' 'BEGIN{exit !(m < l && l <= n * (1 + 1e-9))}'" "jenkins_nv lap3, 12 zone joints, linear field: reduced stuck mode mean $fb < linear $fl <= node-to-node $fn Hz"
 # -rom_joint_motion mode: the field's coordinates also include each member's tangential and normal motion in the
 # stuck mode of interest; those motions then lie in the field's span, so (for equal springs per member) that mode is
 # an exact eigenvector of the first reduction, with the node-to-node frequency (no stiffness correction needed)
 for model in lap3 lap1; do
-  [ $model = lap3 ] && mo="-options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -frf_force 0.001" || mo="-options_file runs/lap1_rom.opts -model_mesh_h 0.008 -frf_force 0.01"
-  o=$($J $mo -rom_elements 0 -rom_joint_motion mode -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
+  # lap1's run writes its preload and modes for the lap1 runs below
+  [ $model = lap3 ] && mo="-options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 $l3 -frf_force 0.001" mb= || mo="-options_file runs/lap1_rom.opts -model_mesh_h 0.008 -frf_force 0.01" mb=$tmp/l1
+  o=$($J $mo -rom_elements 0 -rom_joint_motion mode -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file "$mb" 2>&1)
   c=$(echo "$o" | grep '^rom stiffness_correction'); fb=$(field "$c" rom_before_hz); fn=$(field "$c" n2n_hz)
   check "[ -n '$fb' ] && close $fb $fn 1e-8" "jenkins_nv $model, first reduction with -rom_joint_motion mode: the stuck mode of interest kept exactly, $fb Hz = node-to-node $fn Hz"
 done
 # lap1 (one bolt, 4 zone joints): the mean motion makes the interface a hinge in bending (stuck mode at half the
 # node-to-node one, no stiffness correction can reach it); the linear field, with each fitted element spread over
-# three points with its members' second moment, carries the bending (3 elements per joint here)
+# three points with its members' second moment, carries the bending (3 elements per joint here; the preload and
+# modes of the lap1 run above)
 for jm in mean linear; do
-  o=$($J -options_file runs/lap1_rom.opts -model_mesh_h 0.008 -rom_elements 3 -rom_joint_motion $jm -frf_force 0.01 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
+  o=$($J -options_file runs/lap1_rom.opts -model_mesh_h 0.008 -preload_load $tmp/l1_preload.h5 -modes_load $tmp/l1_modes.h5 -rom_elements 3 -rom_joint_motion $jm -frf_force 0.01 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
   c=$(echo "$o" | grep '^rom stiffness_correction'); eval "f_$jm=\$(field \"\$c\" rom_before_hz)"; fn=$(field "$c" n2n_hz)
   [ $jm = linear ] && ne=$(echo "$o" | awk '/^rom: second reduction/{print $4}')
 done
@@ -179,14 +184,14 @@ check "[ -n '$f_linear' ] && awk -v m='$f_mean' -v l='$f_linear' -v n='$fn' 'BEG
 # -rom_fit_stiffness_weight (1e4): each joint's stuck loop weighed enough holds its members' stuck stiffness (sum k_i
 # = sum w^2 kt), so the reduced model's stuck stiffness matrix is the first reduction's and so is its stuck resonance
 # (same basis, LAPACK); with a weight of 10 (the default before stop 17) the fit gives a little of it away for the loops
-sf() { $J -task frf $brb -frf_force 0.01 -rom_joints sides "$@" -frf_output_file '' 2>&1 | grep '^rom stiffness_correction'; }
+sf() { $J -task frf $brb $b1 -frf_force 0.01 -rom_joints sides "$@" -frf_output_file '' 2>&1 | grep '^rom stiffness_correction'; }
 f0=$(field "$(sf -rom_elements 0)" rom_before_hz); fd=$(field "$(sf -rom_elements 3 -rom_fit_stiffness_weight 10)" rom_before_hz); fs=$(field "$(sf -rom_elements 3)" rom_before_hz)
 check "[ -n '$f0' ] && close $fs $f0 1e-8 && ! close $fd $f0 1e-7" "-rom_fit_stiffness_weight 1e4 (default): 6 x 3 stuck resonance $fs Hz = first reduction's $f0 Hz (weight 10: $fd Hz)"
 # jenkins_nv, -rom_joint_motion mode: the fit's error with the normal loads varying in the mode (AFT, one harmonic),
 # printed per level, is zero when every member is its own element (the same elements, placed at their own stuck-mode
 # motions) and not when three elements stand for a joint's members. The fit weights fixed (those -rom_fit_select first
 # picks for the full lap3 run), so every run below fits with the same ones
-l3c="-options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -task frf -frf_force 0.01,0.05 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' -rom_fit_select none -rom_fit_total_weight 1000 -rom_fit_case_weight 0"
+l3c="-options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -task frf -frf_force 0.01,0.05 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' -rom_fit_select none -rom_fit_total_weight 1000 -rom_fit_case_weight 0 $l3"
 nvw() { echo "$1" | awk '/dissipation_error_normal_varying/{e = $6; if (e < 0) e = -e; if (e > w) w = e; n++; m = $13} END{print w + 0, n + 0, m + 0}'; }
 read w1 n1 s1 <<< "$(nvw "$(eval $J $l3c -rom_elements 200)")"
 read w3 n3 s3 <<< "$(nvw "$(eval $J $l3c)")"
