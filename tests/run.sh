@@ -1,9 +1,14 @@
 #!/usr/bin/env bash
 # jointrom test suite: the C test programs (build/tests/test_*) and the command-line checks
-# (tests/cli.sh). Every check prints "ok - ..." or "not ok - ..."; a program that crashes or exits
+# (tests/cli*.sh). Every check prints "ok - ..." or "not ok - ..."; a program that crashes or exits
 # non-zero without reporting a failure counts as one failure. Ends with "N passed, M failed".
+#   bash tests/run.sh        the suite (make test; minutes)
+#   bash tests/run.sh long   the slow end-to-end checks (make test-long, which CI runs after make test):
+#                            test_fe on 2 ranks, tests/cli_long.sh
 # JR_TEST_TIMES=FILE (an absolute path): each program's and each check's wall and CPU seconds appended to FILE.
 cd "$(dirname "$0")/.."
+part=${1:-quick}
+case $part in quick|long) ;; *) echo "usage: bash tests/run.sh [long]" >&2; exit 2 ;; esac
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 pass=0; fail=0
 log=$(mktemp -d)
@@ -27,20 +32,25 @@ run() { # name, command...
   fi
   pass=$((pass + p)); fail=$((fail + f))
 }
-for t in build/tests/test_*; do
-  [ -x "$t" ] || continue
-  run "$(basename "$t")" "$t"
-done
-# the parallel pieces again on 2 ranks (elements and matrices split across ranks)
-for t in test_hbm test_matio test_fe test_preload; do
-  [ -x "build/tests/$t" ] && run "$t np2" mpiexec -n 2 "build/tests/$t"
-done
-run cli bash tests/cli.sh
-run cli_frf bash tests/cli_frf.sh
-run cli_modes bash tests/cli_modes.sh
-run cli_preload bash tests/cli_preload.sh
-run cli_n2n bash tests/cli_n2n.sh
-run cli_rom bash tests/cli_rom.sh
+if [ "$part" = long ]; then
+  [ -x build/tests/test_fe ] && run "test_fe np2" mpiexec -n 2 build/tests/test_fe
+  run cli_long bash tests/cli_long.sh
+else
+  for t in build/tests/test_*; do
+    [ -x "$t" ] || continue
+    run "$(basename "$t")" "$t"
+  done
+  # the parallel pieces again on 2 ranks (elements and matrices split across ranks; test_fe: make test-long)
+  for t in test_hbm test_matio test_preload; do
+    [ -x "build/tests/$t" ] && run "$t np2" mpiexec -n 2 "build/tests/$t"
+  done
+  run cli bash tests/cli.sh
+  run cli_frf bash tests/cli_frf.sh
+  run cli_modes bash tests/cli_modes.sh
+  run cli_preload bash tests/cli_preload.sh
+  run cli_n2n bash tests/cli_n2n.sh
+  run cli_rom bash tests/cli_rom.sh
+fi
 rm -rf "$log"
 echo "$pass passed, $fail failed"
 [ "$fail" = 0 ]
