@@ -3,6 +3,7 @@
 #   make          build lib/libjointrom.a and bin/jointrom
 #   make run      install missing dependencies, build, run runs/default.opts, write its plots to out/
 #   make test     install missing dependencies, build, run the test suite (ends "N passed, M failed")
+#   make test-long  the same for the slow end-to-end checks (CI runs it after make test)
 #   make bench    build and print the benchmark figures (1 and 2 MPI ranks)
 #   make install  install under PREFIX (default /usr/local): bin/jointrom, lib/libjointrom.a,
 #                 lib/pkgconfig/jointrom.pc, include/ (jointrom.h, jointrom/private/), and the plot
@@ -47,7 +48,7 @@ TEST_BIN := $(TEST_SRC:tests/%.c=build/tests/%)
 BENCH_SRC := $(wildcard tests/bench/*.c)
 BENCH_BIN := $(BENCH_SRC:tests/bench/%.c=build/bench/%)
 
-.PHONY: all deps run test bench clean install uninstall jr-run jr-test jr-bench jr-tests-build
+.PHONY: all deps run test test-long bench clean install uninstall jr-run jr-test jr-test-long jr-bench jr-tests-build
 PREFIX ?= /usr/local
 
 ifeq ($(HAVE_SLEPC),yes)
@@ -86,6 +87,9 @@ jr-tests-build: all $(TEST_BIN)
 jr-test: jr-tests-build
 	@bash tests/run.sh
 
+jr-test-long: jr-tests-build
+	@bash tests/run.sh long
+
 jr-bench: all $(BENCH_BIN)
 	@bash tests/bench/run.sh
 
@@ -93,7 +97,7 @@ jr-run: all
 	@mkdir -p out
 	$(MPIRUN) -n $(NP) bin/jointrom -options_file runs/default.opts
 else
-all jr-test jr-bench jr-run jr-tests-build:
+all jr-test jr-test-long jr-bench jr-run jr-tests-build:
 	@echo "jointrom: PETSc/SLEPc not found (SLEPC_DIR=$(SLEPC_DIR)). Run 'bash share/install-deps.sh' or 'make run'/'make test', which install them." >&2
 	@exit 1
 endif
@@ -135,6 +139,9 @@ run: deps
 
 test: deps
 	@$(MAKE) --no-print-directory jr-test
+
+test-long: deps
+	@$(MAKE) --no-print-directory jr-test-long
 
 bench: deps
 	@$(MAKE) --no-print-directory jr-bench

@@ -55,19 +55,9 @@ fi
 check "[ -z \"\$(ls '$tmp' | grep tmp)\" ]" "no temporary files left behind"
 check "[ ! -e .csv ] && [ ! -e .png ]" "-element_loop '' writes no loop files"
 
-# run files: every option used, no typo
+# run files: every option used, no typo (the frf and compare runs on the lap models: tests/cli_long.sh)
 for f in runs/*.opts; do
-  case $(grep -m1 '^-task' "$f") in
-    "-task frf"|"-task compare") extra="-frf_output_file $tmp/runfile -frf_plot 0 -cont_monitor 0"
-      grep -q '^-model_type brb' "$f" && extra="$extra -model_mesh_h 0.01 -cont_max_points 40" # FE: a coarse mesh, the options are what is checked
-      grep -q '^-model_type lap' "$f" && extra="$extra -model_mesh_h 0.005 -model_mesh_grade 4 -cont_max_points 40"
-      grep -q '^-rom_fit_select first' "$f" && extra="$extra -rom_fit_select_total 1000 -rom_fit_select_case 0" ;; # one pair: the selection runs, quickly (its own checks: cli_rom.sh)
-    "-task modes") extra="-modes_output_file '' -model_mesh_h 0.01" ;; # a coarse mesh: the options are what is checked
-    "-task preload") extra="-preload_output_file '' -model_mesh_h 0.005 -model_mesh_grade 4" ;;
-    *) extra="-element_loop ''" ;;
-  esac
-  o=$(eval $J -options_file "$f" -options_left $extra 2>&1); rc=$?
-  check "[ $rc = 0 ] && echo \"\$o\" | grep -q 'There are no unused options'" "run file $f runs (exit $rc) and uses every option"
+  run_file_long "$f" || run_file_check "$f"
 done
 
 # -help lists every option

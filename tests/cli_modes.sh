@@ -42,7 +42,7 @@ check "awk -v d='$d' 'BEGIN{exit !(d < 1e-8)}'" "bolted lap on 1 and 2 ranks: th
 check "grep -q '^-model_type brb' runs/brb_modes.opts && $J -options_file runs/brb_modes.opts -model_mesh_h 0.01 -modes_nev 7 -modes_output_file '' 2>&1 | grep -q '^mode 7 '" "runs/brb_modes.opts runs (coarse mesh here)"
 
 # -help lists the model options with their units
-h=$($J -task modes -model_type brb -help 2>&1)
+h=$($J -task modes -model_type brb -model_mesh_h 0.01 -modes_nev 7 -modes_output_file '' -help 2>&1) # a coarse mesh: the help is what is checked
 miss=""
 for o in -model_E -model_nu -model_rho -model_fe_order -model_clamp -model_mesh_h -model_length_a -model_length_b -model_width -model_height -model_lap_length -model_nbolts -model_bolt_pitch -model_hole_diameter -model_washer_diameter -model_bolt_diameter -model_bolt_tie -model_interface -model_pair_tol -model_tangent -modes_nev -modes_rigid_basis -modes_output_file -modes_plot; do
   echo "$h" | grep -q -- "$o" || miss="$miss $o"

@@ -36,7 +36,7 @@ check "$J -options_file runs/brb_preload.opts -model_mesh_h 0.01 -preload_output
 check "$J -options_file runs/lap1_preload.opts -model_mesh_h 0.005 -model_mesh_grade 4 -preload_output_file '' 2>&1 | grep -q '^preload total_normal_force'" "runs/lap1_preload.opts runs (graded mesh here)"
 
 # -help lists the preload options with their units
-h=$($J -task preload -model_type brb -help 2>&1)
+h=$($J -task preload -model_type brb -model_mesh_h 0.01 -preload_output_file '' -help 2>&1) # a coarse mesh: the help is what is checked
 miss=""
 for o in -preload_force -preload_method -preload_penalty -preload_rtol -preload_max_it -preload_support -preload_open_start -preload_kv -preload_load -preload_output_file -preload_snes_; do
   echo "$h" | grep -q -- "$o" || miss="$miss $o"

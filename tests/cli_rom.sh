@@ -2,11 +2,14 @@
 # Command-line checks of the reduced-order joints (-task compare, -rom_*) on the coarse Brake-Reuss beam (10 mm,
 # 133 jenkins elements), against the node-to-node model computed in the same run (an independent model: every pair
 # its own element): every element its own joint reproduces it exactly; the first reduction with mode-shape weights
-# and the second reduction (6 joints x 3, 4, 7 elements) within stated errors; the stiffness correction puts the
-# reduced model's stuck resonance on the node-to-node one; a saved reduced model reproduces the run that saved it
-# (also without the preload); 1 vs 2 ranks; bad regions and files; the joints' linear motion field (-rom_joint_motion
-# linear) between the mean's and node-to-node's, and carrying lap1's bending; with the stuck-mode coordinates
-# (-rom_joint_motion mode) the mode of interest kept exactly.
+# and the second reduction (6 joints x 3 elements) within stated errors; the stiffness correction puts the reduced
+# model's stuck resonance on the node-to-node one; a saved reduced model reproduces the run that saved it (also
+# without the preload); bad regions and files; the joints' linear motion field (-rom_joint_motion linear) between the
+# mean's and node-to-node's, and carrying lap1's bending; with the stuck-mode coordinates (-rom_joint_motion mode) the
+# mode of interest kept exactly. Runs of one model after the first read its preload and modes (-preload_load,
+# -modes_load: the same basis, as -task compare's two models share it). The slower end-to-end checks (one-member
+# joints with the linear field, mode-shape weights vs the plain average, 6 x 4, 7, 10 elements, save and load of the
+# other joint motions, 1 vs 2 ranks, condensation of the first reduction): tests/cli_long.sh.
 cd "$(dirname "$0")/.."
 . tests/cli_lib.sh
 brb="-model_type brb -model_mesh_h 0.01 -preload_force 11500 -interface_kt 1e6 -interface_mu 0.12 -hbm_modes 12 -hbm_gamma 0.002 -cont_monitor 0 -frf_plot 0 -frf_fmin 128 -frf_fmax 138"
@@ -19,9 +22,6 @@ lt() { awk -v a="$1" -v b="$2" 'BEGIN{exit !(a != "" && a < b)}'; }
 o=$(mpiexec -n 2 $J -task compare $brb -frf_force $lev -rom_joints each -frf_output_file '' 2>&1)
 read f a <<< "$(worst "$o")"
 check "lt '$f' 1e-9 && lt '$a' 1e-8" "-rom_joints each: reduced = node-to-node at 5 levels, worst peak frequency error $f, amplitude error $a"
-o=$(mpiexec -n 2 $J -task compare $brb -frf_force $lev -rom_joints each -rom_joint_motion linear -frf_output_file '' 2>&1)
-read f a <<< "$(worst "$o")"
-check "lt '$f' 1e-9 && lt '$a' 1e-8" "-rom_joints each -rom_joint_motion linear (a one-member joint's field is its own motion): reduced = node-to-node, worst peak frequency error $f, amplitude error $a"
 
 # 2. first reduction, 6 joints (each side of each bolt), members weighted by their motion in the stuck mode
 o=$(mpiexec -n 2 $J -task compare $brb -frf_force $lev -rom_joints sides -frf_output_file "$tmp/s0" 2>&1)
@@ -34,109 +34,70 @@ check "[ -f '$tmp/s0_compare.csv' ] && [ \$(grep -c . '$tmp/s0_compare.csv') = 6
 ts=$(echo "$o" | awk '/^compare time /{tn = $4; tr = $6} /^compare time_split/{en = $4; er = $8; print tn, tr, en, er, $12}')
 read tn tr en er cap <<< "$ts"
 check "[ -n '$cap' ] && awk 'BEGIN{exit !($en > 0 && $en <= $tn && $er > 0 && $er <= $tr && $cap >= $tn / $tr)}'" "compare time_split: the elements' time within each solve (node-to-node $en of $tn s, reduced $er of $tr s), speed-up cap $cap"
-o0=$(mpiexec -n 2 $J -task compare $brb -frf_force $lev -rom_joints sides -rom_mode_weights 0 -rom_stiffness_correction 0 -frf_output_file '' 2>&1)
-read f0 a0 <<< "$(worst "$o0")"
-check "lt '$a' '$a0'" "mode-shape weights help: amplitude error $a with, $a0 with the plain average (4.4)"
 
-# 3. second reduction: 6 joints x 3, 4, 7 elements
-for m in 3 4 7; do
-  o=$(mpiexec -n 2 $J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements $m -frf_output_file "$tmp/s$m" 2>&1)
-  read f a <<< "$(worst "$o")"
-  ne=$(echo "$o" | awk '/^rom joint/{s += $7} END{print s}')
-  check "[ -n '$ne' ] && [ '$ne' -ge 6 ] && [ '$ne' -le $((6 * m)) ] && lt '$f' 5e-3" "second reduction 6 x $m: $ne elements (at most $((6 * m)): elements the fit leaves without force are dropped), worst peak frequency error $f (< 0.5%)"
-  # the amplitude at every level (0.1..200 N): the 5% target for 6 x 3. Measured with the fit coupled across joints
-  # (-rom_fit_total_weight 20): 2.6% (6 x 3), 1.3% (6 x 4), 2.2% (6 x 7); each joint alone: 9.2%, 4.5%, 2.2%
-  case $m in 3) amax=0.05 ;; 4) amax=0.03 ;; 7) amax=0.04 ;; esac
-  aw=$(echo "$o" | awk '/^compare level/ {e = $11 / $9 - 1; if (e < 0) e = -e; if (e > w) w = e} END{print w + 0}')
-  nc=$(echo "$o" | grep -c '^rom case level .* dissipation_error')
-  check "lt '$aw' $amax && [ '$nc' = 5 ]" "second reduction 6 x $m: amplitude within $amax at every level (0.1..200 N): worst $aw; the fit's dissipation error printed for the 5 levels"
-  if [ $m = 3 ]; then
-    # the coupled fit: the energy all joints dissipate together at the case's amplitudes at least 2x closer than with
-    # each joint fitted alone (which is where it starts); each joint's own rows may give way
-    cp=$(echo "$o" | grep '^rom coupled')
-    rt=$(field "$cp" all_joints_energy_residual); rt0=$(field "$cp" each_alone)
-    check "[ -n '$rt' ] && lt \$(awk -v a='$rt' 'BEGIN{print 2 * a}') '$rt0' && [ -f '$tmp/s3_rom_loops.csv' ]" "second reduction 6 x 3, coupled across joints: all joints' energy residual $rt (each joint alone: $rt0), loops written"
-    o1=$(mpiexec -n 2 $J -task frf $brb -frf_force $lev -rom_joints sides -rom_elements 3 -rom_fit_total_weight 0 -frf_output_file '' 2>&1)
-    r=$(echo "$o1" | awk '/^rom joint/{if ($13 > w) w = $13} END{print w}')
-    r0=$(echo "$o1" | awk '/^rom joint/{if ($15 > w) w = $15} END{print w}')
-    check "lt '$r' '$r0' && ! echo \"\$o1\" | grep -q '^rom coupled'" "second reduction 6 x 3, each joint alone (-rom_fit_total_weight 0): the fit lowers every joint's residual below the start's (worst $r < $r0)"
-    cr=$(echo "$o" | grep '^rom stiffness_correction')
-  fi
-done
-# 6 x 10 without the slip-displacement search: the per-joint fits leave elements without force (dropped), and the
-# coupled fit must start from their slip displacements, not from 0 / 0
-o=$($J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements 10 -rom_fit_search 0 -frf_output_file '' 2>&1)
+# 3. second reduction: 6 joints x 3 elements (4 and 7: tests/cli_long.sh)
+o=$(mpiexec -n 2 $J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements 3 -frf_output_file "$tmp/s3" 2>&1)
 read f a <<< "$(worst "$o")"
-check "echo \"\$o\" | grep -q '^rom coupled' && lt '$f' 5e-3 && lt '$a' 0.1" "second reduction 6 x 10, no search (elements fitted to no force): coupled fit runs, worst peak frequency error $f, amplitude $a"
+ne=$(echo "$o" | awk '/^rom joint/{s += $7} END{print s}')
+check "[ -n '$ne' ] && [ '$ne' -ge 6 ] && [ '$ne' -le 18 ] && lt '$f' 5e-3" "second reduction 6 x 3: $ne elements (at most 18: elements the fit leaves without force are dropped), worst peak frequency error $f (< 0.5%)"
+# the amplitude at every level (0.1..200 N): the 5% target. Measured with the fit coupled across joints
+# (-rom_fit_total_weight 20): 2.6% (6 x 3), 1.3% (6 x 4), 2.2% (6 x 7); each joint alone: 9.2%, 4.5%, 2.2%
+aw=$(echo "$o" | awk '/^compare level/ {e = $11 / $9 - 1; if (e < 0) e = -e; if (e > w) w = e} END{print w + 0}')
+nc=$(echo "$o" | grep -c '^rom case level .* dissipation_error')
+check "lt '$aw' 0.05 && [ '$nc' = 5 ]" "second reduction 6 x 3: amplitude within 0.05 at every level (0.1..200 N): worst $aw; the fit's dissipation error printed for the 5 levels"
+# the coupled fit: the energy all joints dissipate together at the case's amplitudes at least 2x closer than with
+# each joint fitted alone (which is where it starts); each joint's own rows may give way
+cp=$(echo "$o" | grep '^rom coupled')
+rt=$(field "$cp" all_joints_energy_residual); rt0=$(field "$cp" each_alone)
+check "[ -n '$rt' ] && lt \$(awk -v a='$rt' 'BEGIN{print 2 * a}') '$rt0' && [ -f '$tmp/s3_rom_loops.csv' ]" "second reduction 6 x 3, coupled across joints: all joints' energy residual $rt (each joint alone: $rt0), loops written"
+o1=$(mpiexec -n 2 $J -task frf $brb -frf_force $lev -rom_joints sides -rom_elements 3 -rom_fit_total_weight 0 -frf_output_file '' 2>&1)
+r=$(echo "$o1" | awk '/^rom joint/{if ($13 > w) w = $13} END{print w}')
+r0=$(echo "$o1" | awk '/^rom joint/{if ($15 > w) w = $15} END{print w}')
+check "lt '$r' '$r0' && ! echo \"\$o1\" | grep -q '^rom coupled'" "second reduction 6 x 3, each joint alone (-rom_fit_total_weight 0): the fit lowers every joint's residual below the start's (worst $r < $r0)"
+cr=$(echo "$o" | grep '^rom stiffness_correction')
 # -rom_fit_select first: every pair of weights fitted and solved, the pair nearest the first reduction kept. Checked
 # against separate runs: the same weights given directly give the same reduced model, and its peaks against the first
-# reduction's (-rom_elements 0) give the error printed for that pair, the smallest printed (one rank: the same
-# model bit for bit; on two the modes, recomputed per run, differ at round-off)
-os=$($J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements 3 -rom_fit_select first -frf_output_file '' 2>&1)
+# reduction's (-rom_elements 0) give the error printed for that pair, the smallest printed (one rank, the later runs
+# with this run's preload and modes ($b1): the same model bit for bit)
+os=$($J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements 3 -rom_fit_select first -frf_output_file "$tmp/b1" 2>&1)
+b1="-preload_load $tmp/b1_preload.h5 -modes_load $tmp/b1_modes.h5"
 ns=$(echo "$os" | grep -c '^rom select ')
 cl=$(echo "$os" | grep '^rom: fit weights chosen')
 bt=$(field "$cl" -rom_fit_total_weight); bk=$(field "$cl" -rom_fit_case_weight)
 emin=$(echo "$os" | awk '/^rom select /{if (m == "" || $8 < m) {m = $8; t = $4; k = $6}} END{print m, t, k}')
 read em et ek <<< "$emin"
 check "[ '$ns' = 6 ] && [ -n '$bt' ] && awk 'BEGIN{exit !($bt == $et && $bk == $ek)}'" "-rom_fit_select first: 6 pairs fitted and solved, the one of the smallest error vs the first reduction chosen (total $bt, case $bk; error $em)"
-od=$($J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements 3 -rom_fit_total_weight $bt -rom_fit_case_weight $bk -frf_output_file '' 2>&1)
-o0=$($J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements 0 -frf_output_file '' 2>&1)
+od=$($J -task compare $brb $b1 -frf_force $lev -rom_joints sides -rom_elements 3 -rom_fit_total_weight $bt -rom_fit_case_weight $bk -frf_output_file '' 2>&1)
+o0=$($J -task compare $brb $b1 -frf_force $lev -rom_joints sides -rom_elements 0 -frf_output_file '' 2>&1)
 amps() { echo "$1" | awk '/^compare level/{printf "%s ", $11}'; }
 dd=$(awk -v a="$(amps "$os")" -v b="$(amps "$od")" 'BEGIN{n = split(a, x); split(b, y); for (i = 1; i <= n; i++) {e = x[i] / y[i] - 1; if (e < 0) e = -e; if (e > m) m = e} print (n == 5 ? m + 0 : "none")}')
 e0=$(awk -v a="$(amps "$os")" -v b="$(amps "$o0")" 'BEGIN{n = split(a, x); split(b, y); for (i = 1; i <= n; i++) {e = x[i] / y[i] - 1; if (e < 0) e = -e; if (e > m) m = e} print (n == 5 ? m + 0 : "none")}')
 check "lt '$dd' 1e-12 && close '$e0' '$em' 1e-3" "-rom_fit_select first = the chosen weights given directly (peak amplitudes within $dd); its worst amplitude vs a separate first-reduction run $e0 = the printed $em"
 # the stiffness correction: the reduced model's stuck resonance (LAPACK, same basis) = the node-to-node one
-o=$($J -task frf $brb -frf_force 0.01 -rom_joints sides -rom_elements 3 -frf_output_file '' 2>&1)
+o=$($J -task frf $brb $b1 -frf_force 0.01 -rom_joints sides -rom_elements 3 -frf_output_file '' 2>&1)
 fr=$(field "$(echo "$o" | grep '^stick freq_hz')" freq_hz); fn=$(field "$(echo "$o" | grep '^rom stiffness_correction')" n2n_hz)
 check "[ -n '$fr' ] && close $fr $fn 1e-9" "stiffness correction ($(field "$cr" stiffness_correction)): reduced stuck resonance $fr Hz = node-to-node $fn Hz"
 
 # 4. save and load: the loaded model (no preload, no fit) reproduces the run that saved it, on a fixed frequency grid
 # (the loading run solves the modes again, to SLEPc's tolerance: amplitudes agree to 1e-7; on the arclength path such
-# differences move the points, and the peaks by ~1e-6); 1 vs 2 ranks
+# differences move the points, and the peaks by ~1e-6). At 0.1 and 50 N, as 4b, which reuses the loading run. The
+# other joint motions and 1 vs 2 ranks: tests/cli_long.sh
 fix="-cont_type natural -cont_points 120"
 same() { awk -F, 'NR == FNR {if (FNR > 1) a[$1 " " $4] = $5; next} FNR > 1 && ($1 " " $4) in a {d = $5 / a[$1 " " $4] - 1; if (d < 0) d = -d; n++; if (d > m) m = d} END{printf "%d %.2e\n", n, m}' "$1" "$2"; }
-mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_joints sides -rom_elements 3 -rom_save "$tmp/rom.h5" -frf_output_file "$tmp/sv" > /dev/null 2>&1
-o=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_load "$tmp/rom.h5" -frf_output_file "$tmp/ld" 2>&1)
+mpiexec -n 2 $J -task frf $brb $fix -frf_force 0.1,50 -rom_joints sides -rom_elements 3 -rom_save "$tmp/rom.h5" -frf_output_file "$tmp/sv" > /dev/null 2>&1
+o=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 0.1,50 -rom_load "$tmp/rom.h5" -frf_output_file "$tmp/ld" 2>&1)
 read nm dm <<< "$(same "$tmp/sv.csv" "$tmp/ld.csv" 2>/dev/null)"
 check "[ '$nm' -ge 100 ] && lt '$dm' 1e-7 && ! echo \"\$o\" | grep -q '^preload total'" "-rom_load reproduces the saving run (no preload solved): amplitudes at $nm common frequencies within $dm (< 1e-7)"
-mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_joints sides -rom_elements 3 -rom_joint_motion linear -rom_save "$tmp/roml.h5" -frf_output_file "$tmp/svl" > /dev/null 2>&1
-o=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_load "$tmp/roml.h5" -frf_output_file "$tmp/ldl" 2>&1)
-read nm dm <<< "$(same "$tmp/svl.csv" "$tmp/ldl.csv" 2>/dev/null)"
-read n2 d2 <<< "$(same "$tmp/sv.csv" "$tmp/svl.csv" 2>/dev/null)"
-check "[ '$nm' -ge 100 ] && lt '$dm' 1e-7 && lt 1e-4 '$d2'" "-rom_load of a model reduced with -rom_joint_motion linear (its elements' points saved) reproduces the saving run: within $dm at $nm frequencies (it differs from the mean's by $d2)"
-mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_joints sides -rom_elements 3 -rom_joint_motion mode -rom_save "$tmp/romm.h5" -frf_output_file "$tmp/svm" > /dev/null 2>&1
-o=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_load "$tmp/romm.h5" -frf_output_file "$tmp/ldm" 2>&1)
-read nm dm <<< "$(same "$tmp/svm.csv" "$tmp/ldm.csv" 2>/dev/null)"
-read n2 d2 <<< "$(same "$tmp/sv.csv" "$tmp/svm.csv" 2>/dev/null)"
-check "[ '$nm' -ge 100 ] && lt '$dm' 1e-7 && lt 1e-4 '$d2'" "-rom_load of a model reduced with -rom_joint_motion mode (points and stuck-mode coordinates saved) reproduces the saving run: within $dm at $nm frequencies (it differs from the mean's by $d2)"
-# 1 vs 2 ranks: the fit is convex (slip displacements fixed, forces free), so its result moves only at round-off
-# with the modes; on a fixed frequency grid the peaks agree to 1e-8 (-rom_fit_refine, non-convex, is not checked so)
-c1=$($J -task frf $brb $fix -frf_force 1,50 -rom_joints sides -rom_elements 3 -frf_output_file '' 2>&1 | grep '^peak level' | awk '{print $5, $7}')
-c2=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_joints sides -rom_elements 3 -frf_output_file '' 2>&1 | grep '^peak level' | awk '{print $5, $7}')
-check "[ -n '$c1' ] && awk -v a='$(echo $c1)' -v b='$(echo $c2)' 'BEGIN{n = split(a, x, \" \"); split(b, y, \" \"); for (i = 1; i <= n; i++) {d = x[i] / y[i] - 1; if (d < 0) d = -d; if (d > 1e-8) exit 1} exit n != 4}'" "reduced model (6 x 3) on 1 and 2 ranks: peaks and amplitudes within 1e-8 ($(echo $c1) / $(echo $c2))"
-
-# the reduced model's elements are on every rank (no sum over the ranks per Newton iteration): not condensed (the
-# stuck springs then come off on every rank), its peaks, energy balance and contact-state counts on 1 and 2 ranks
-rt() { echo "$1" | awk '/^compare: reduced model/{r = 1} /^compare: / && !/reduced model/{r = 0} r && $1 ~ /^[0-9.]+$/ && NF == 17 {print $2, $3, $10, $11, $13, $15, $17}'; }
-o1=$($J -task compare $brb -frf_force 5,200 -rom_joints sides -rom_elements 3 -hbm_condense no -frf_output_file '' 2>&1)
-o2=$(mpiexec -n 2 $J -task compare $brb -frf_force 5,200 -rom_joints sides -rom_elements 3 -hbm_condense no -frf_output_file '' 2>&1)
-r1=$(rt "$o1"); r2=$(rt "$o2")
-check "[ -n \"\$r1\" ] && [ \$(echo \"\$r1\" | wc -l) = 2 ] && [ \"\$r1\" = \"\$r2\" ]" "reduced model (6 x 3, not condensed) on 1 and 2 ranks, every element on every rank: peak, amplitude, balance and contact states the same ($(echo $r1 | cut -c1-80))"
 
 # 4b. condensation onto the joints (-hbm_condense, on by default for reduced models): the modal equations with the
 # modes eliminated exactly, so on the frequencies both solve the amplitudes agree to round-off and solver tolerance.
 # At 0.1 and 50 N: at 1 N the peak bends over (a fold near 133.9 Hz, solutions 2.5% apart), where natural continuation
-# may land on either branch as the recomputed modes differ at round-off from run to run
-for r in "-rom_load $tmp/rom.h5" "-rom_joints sides"; do
-  rm -f "$tmp"/cd_*.csv
-  for c in yes no; do
-    o=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 0.1,50 $r -hbm_condense $c -frf_output_file "$tmp/cd_$c" 2>&1)
-    [ $c = yes ] && info=$(echo "$o" | grep -o 'condensed onto.*')
-  done
-  read nm dm <<< "$(same "$tmp/cd_no.csv" "$tmp/cd_yes.csv")"
-  [ "${r%% *}" = -rom_load ] && what="second reduction (6 x 3, loaded)" || what="first reduction (133 members on 6 joints)"
-  check "[ -n '$info' ] && [ '$nm' -ge 100 ] && lt '$dm' 1e-7" "$what $info; amplitudes at $nm common frequencies = the modal equations' within $dm (< 1e-7)"
-done
+# may land on either branch as the recomputed modes differ at round-off from run to run. The loading run of 4
+# (condensed) against the same model not condensed; the first reduction's: tests/cli_long.sh
+info=$(echo "$o" | grep -o 'condensed onto.*')
+mpiexec -n 2 $J -task frf $brb $fix -frf_force 0.1,50 -rom_load "$tmp/rom.h5" -hbm_condense no -frf_output_file "$tmp/cd_no" > /dev/null 2>&1
+read nm dm <<< "$(same "$tmp/cd_no.csv" "$tmp/ld.csv")"
+check "[ -n '$info' ] && [ '$nm' -ge 100 ] && lt '$dm' 1e-7" "second reduction (6 x 3, loaded) $info; amplitudes at $nm common frequencies = the modal equations' within $dm (< 1e-7)"
 
 # 5. bad input
 expect_error "missing ROM file" "no such file" $J -task frf $brb -frf_force 1 -rom_load "$tmp/none.h5" -frf_output_file ''
@@ -148,29 +109,32 @@ expect_error "compare without joints" "-task compare needs a reduced model" $J -
 # jenkins_nv with open pairs (lap3, zones, first reduction): a joint moves with the average of its members in
 # contact at rest, whose springs it carries; then by Cauchy-Schwarz (k sum u_e^2 >= K (mean u)^2) the reduced
 # stuck mode can only be at or below node-to-node's (averaging over all members put it 16% above)
-o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -rom_elements 0 -rom_joint_motion mean -frf_force 0.001 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
+o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -rom_elements 0 -rom_joint_motion mean -frf_force 0.001 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file "$tmp/l3" 2>&1)
+l3="-preload_load $tmp/l3_preload.h5 -modes_load $tmp/l3_modes.h5" # the runs of lap3 below: this run's preload and modes
 c=$(echo "$o" | grep '^rom stiffness_correction'); fb=$(field "$c" rom_before_hz); fn=$(field "$c" n2n_hz)
 check "[ -n '$fb' ] && awk -v b='$fb' -v n='$fn' 'BEGIN{exit !(b <= n * (1 + 1e-9))}'" "jenkins_nv lap3, 12 zone joints over the pairs in contact at rest: reduced stuck mode $fb Hz <= node-to-node $fn Hz"
 # the joints' linear motion field (-rom_joint_motion linear: the mean plus the joint's rotation, fitted by least
 # squares over the members' positions) is a projection onto a larger space that holds the mean's: the stuck mode lies
 # between the mean's and node-to-node's (with equal kt per member)
-o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -rom_elements 0 -rom_joint_motion linear -frf_force 0.001 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
+o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 $l3 -rom_elements 0 -rom_joint_motion linear -frf_force 0.001 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
 fl=$(field "$(echo "$o" | grep '^rom stiffness_correction')" rom_before_hz)
 check "[ -n '$fl' ] && awk -v m='$fb' -v l='$fl' -v n='$fn' 'BEGIN{exit !(m < l && l <= n * (1 + 1e-9))}'" "jenkins_nv lap3, 12 zone joints, linear field: reduced stuck mode mean $fb < linear $fl <= node-to-node $fn Hz"
 # -rom_joint_motion mode: the field's coordinates also include each member's tangential and normal motion in the
 # stuck mode of interest; those motions then lie in the field's span, so (for equal springs per member) that mode is
 # an exact eigenvector of the first reduction, with the node-to-node frequency (no stiffness correction needed)
 for model in lap3 lap1; do
-  [ $model = lap3 ] && mo="-options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -frf_force 0.001" || mo="-options_file runs/lap1_rom.opts -model_mesh_h 0.008 -frf_force 0.01"
-  o=$($J $mo -rom_elements 0 -rom_joint_motion mode -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
+  # lap1's run writes its preload and modes for the lap1 runs below
+  [ $model = lap3 ] && mo="-options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 $l3 -frf_force 0.001" mb= || mo="-options_file runs/lap1_rom.opts -model_mesh_h 0.008 -frf_force 0.01" mb=$tmp/l1
+  o=$($J $mo -rom_elements 0 -rom_joint_motion mode -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file "$mb" 2>&1)
   c=$(echo "$o" | grep '^rom stiffness_correction'); fb=$(field "$c" rom_before_hz); fn=$(field "$c" n2n_hz)
   check "[ -n '$fb' ] && close $fb $fn 1e-8" "jenkins_nv $model, first reduction with -rom_joint_motion mode: the stuck mode of interest kept exactly, $fb Hz = node-to-node $fn Hz"
 done
 # lap1 (one bolt, 4 zone joints): the mean motion makes the interface a hinge in bending (stuck mode at half the
 # node-to-node one, no stiffness correction can reach it); the linear field, with each fitted element spread over
-# three points with its members' second moment, carries the bending (3 elements per joint here)
+# three points with its members' second moment, carries the bending (3 elements per joint here; the preload and
+# modes of the lap1 run above)
 for jm in mean linear; do
-  o=$($J -options_file runs/lap1_rom.opts -model_mesh_h 0.008 -rom_elements 3 -rom_joint_motion $jm -frf_force 0.01 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
+  o=$($J -options_file runs/lap1_rom.opts -model_mesh_h 0.008 -preload_load $tmp/l1_preload.h5 -modes_load $tmp/l1_modes.h5 -rom_elements 3 -rom_joint_motion $jm -frf_force 0.01 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
   c=$(echo "$o" | grep '^rom stiffness_correction'); eval "f_$jm=\$(field \"\$c\" rom_before_hz)"; fn=$(field "$c" n2n_hz)
   [ $jm = linear ] && ne=$(echo "$o" | awk '/^rom: second reduction/{print $4}')
 done
@@ -179,21 +143,22 @@ check "[ -n '$f_linear' ] && awk -v m='$f_mean' -v l='$f_linear' -v n='$fn' 'BEG
 # -rom_fit_stiffness_weight (1e4): each joint's stuck loop weighed enough holds its members' stuck stiffness (sum k_i
 # = sum w^2 kt), so the reduced model's stuck stiffness matrix is the first reduction's and so is its stuck resonance
 # (same basis, LAPACK); with a weight of 10 the fit gives a little of it away for the loops
-sf() { $J -task frf $brb -frf_force 0.01 -rom_joints sides "$@" -frf_output_file '' 2>&1 | grep '^rom stiffness_correction'; }
+sf() { $J -task frf $brb $b1 -frf_force 0.01 -rom_joints sides "$@" -frf_output_file '' 2>&1 | grep '^rom stiffness_correction'; }
 f0=$(field "$(sf -rom_elements 0)" rom_before_hz); fd=$(field "$(sf -rom_elements 3 -rom_fit_stiffness_weight 10)" rom_before_hz); fs=$(field "$(sf -rom_elements 3)" rom_before_hz)
 check "[ -n '$f0' ] && close $fs $f0 1e-8 && ! close $fd $f0 1e-7" "-rom_fit_stiffness_weight 1e4 (default): 6 x 3 stuck resonance $fs Hz = first reduction's $f0 Hz (weight 10: $fd Hz)"
 # jenkins_nv, -rom_joint_motion mode: the fit's error with the normal loads varying in the mode (AFT, one harmonic),
 # printed per level, is zero when every member is its own element (the same elements, placed at their own stuck-mode
-# motions) and not when three elements stand for a joint's members
-l3c="-options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -task frf -frf_force 0.01,0.05 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file ''"
+# motions) and not when three elements stand for a joint's members. The fit weights fixed (those -rom_fit_select first
+# picks for the full lap3 run), so every run below fits with the same ones
+l3c="-options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 -task frf -frf_force 0.01,0.05 -cont_max_points 10 -frf_plot 0 -cont_monitor 0 -frf_output_file '' -rom_fit_select none -rom_fit_total_weight 1000 -rom_fit_case_weight 0 $l3"
 nvw() { echo "$1" | awk '/dissipation_error_normal_varying/{e = $6; if (e < 0) e = -e; if (e > w) w = e; n++; m = $13} END{print w + 0, n + 0, m + 0}'; }
 read w1 n1 s1 <<< "$(nvw "$(eval $J $l3c -rom_elements 200)")"
 read w3 n3 s3 <<< "$(nvw "$(eval $J $l3c)")"
 check "[ '$n1' = 2 ] && lt '$w1' 1e-12 && lt 0.01 '$s1' && lt 1e-3 '$w3'" "jenkins_nv lap3 (coarse), mode: the fit's dissipation error with the normal load varying, every member its own element: $w1 (members dissipate $s1 of the input); 12 x 3: $w3"
-# -rom_fit_normal_passes 2 (defect correction): the fit's error with the normal load varying, which it aims at,
-# smaller than the plain fit's (the worst over both levels)
+# -rom_fit_normal_passes 2 (defect correction): the fit's error with the normal load varying, which it aims at, at
+# least 4x smaller than the plain fit's with the same weights (the worst over both levels; measured: 0.0027 vs 0.043)
 read w2 n2 s2 <<< "$(nvw "$(eval $J $l3c -rom_fit_normal_passes 2)")"
-check "[ '$n2' = 2 ] && lt '$w2' '$w3'" "jenkins_nv lap3 (coarse), -rom_fit_normal_passes 2: worst error with the normal load varying $w2 (plain fit: $w3)"
+check "[ '$n2' = 2 ] && lt \$(awk -v a='$w2' 'BEGIN{print 4 * a}') '$w3'" "jenkins_nv lap3 (coarse), -rom_fit_normal_passes 2: worst error with the normal load varying $w2, at least 4x below the plain fit's $w3 (same weights)"
 expect_error "zero stiffness weight" "-rom_fit_stiffness_weight 0.: the weight must be positive" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_stiffness_weight 0 -frf_output_file ''
 expect_error "negative normal passes" "-rom_fit_normal_passes -1: 0 or more" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_normal_passes -1 -frf_output_file ''
 expect_error "negative case weight" "-rom_fit_case_weight -1.: the weight must be non-negative" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_case_weight -1 -frf_output_file ''

@@ -1,15 +1,25 @@
 #!/usr/bin/env bash
 # jointrom test suite: the C test programs (build/tests/test_*) and the command-line checks
-# (tests/cli.sh). Every check prints "ok - ..." or "not ok - ..."; a program that crashes or exits
+# (tests/cli*.sh). Every check prints "ok - ..." or "not ok - ..."; a program that crashes or exits
 # non-zero without reporting a failure counts as one failure. Ends with "N passed, M failed".
+#   bash tests/run.sh        the suite (make test; minutes)
+#   bash tests/run.sh long   the slow end-to-end checks (make test-long, which CI runs after make test):
+#                            test_fe on 2 ranks, tests/cli_long.sh
+# JR_TEST_TIMES=FILE (an absolute path): each program's and each check's wall and CPU seconds appended to FILE.
 cd "$(dirname "$0")/.."
+part=${1:-quick}
+case $part in quick|long) ;; *) echo "usage: bash tests/run.sh [long]" >&2; exit 2 ;; esac
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 pass=0; fail=0
 log=$(mktemp -d)
 run() { # name, command...
   local name=$1; shift
+  local t0=$EPOCHREALTIME
+  times > "$log/.t0"
   "$@" > "$log/${name// /_}.out" 2>&1
   local rc=$?
+  times > "$log/.t1"
+  [ -n "$JR_TEST_TIMES" ] && awk -v a="$EPOCHREALTIME" -v b="$t0" -v s="$name" 'FNR == 2 {split($0, t, /[ms ]+/); c[++n] = 60 * t[1] + t[2] + 60 * t[3] + t[4]} END{printf "%.1f %.1f %s (all)\n", a - b, c[2] - c[1], s}' "$log/.t0" "$log/.t1" >> "$JR_TEST_TIMES"
   local p f
   local out="$log/${name// /_}.out"
   p=$(grep -c '^ok - ' "$out")
@@ -22,23 +32,28 @@ run() { # name, command...
   fi
   pass=$((pass + p)); fail=$((fail + f))
 }
-for t in build/tests/test_*; do
-  [ -x "$t" ] || continue
-  run "$(basename "$t")" "$t"
-done
-# the parallel pieces again on 2 ranks (elements and matrices split across ranks)
-for t in test_hbm test_matio test_fe test_preload; do
-  [ -x "build/tests/$t" ] && run "$t np2" mpiexec -n 2 "build/tests/$t"
-done
-run cli bash tests/cli.sh
-run cli_frf bash tests/cli_frf.sh
-run cli_modes bash tests/cli_modes.sh
-run cli_preload bash tests/cli_preload.sh
-run cli_n2n bash tests/cli_n2n.sh
-run cli_rom bash tests/cli_rom.sh
-run cli_install bash tests/cli_install.sh
-run cli_signal bash tests/cli_signal.sh
-run cli_driver bash tests/cli_driver.sh
+if [ "$part" = long ]; then
+  [ -x build/tests/test_fe ] && run "test_fe np2" mpiexec -n 2 build/tests/test_fe
+  run cli_long bash tests/cli_long.sh
+else
+  for t in build/tests/test_*; do
+    [ -x "$t" ] || continue
+    run "$(basename "$t")" "$t"
+  done
+  # the parallel pieces again on 2 ranks (elements and matrices split across ranks; test_fe: make test-long)
+  for t in test_hbm test_matio test_preload; do
+    [ -x "build/tests/$t" ] && run "$t np2" mpiexec -n 2 "build/tests/$t"
+  done
+  run cli bash tests/cli.sh
+  run cli_frf bash tests/cli_frf.sh
+  run cli_modes bash tests/cli_modes.sh
+  run cli_preload bash tests/cli_preload.sh
+  run cli_n2n bash tests/cli_n2n.sh
+  run cli_rom bash tests/cli_rom.sh
+  run cli_install bash tests/cli_install.sh
+  run cli_signal bash tests/cli_signal.sh
+  run cli_driver bash tests/cli_driver.sh
+fi
 rm -rf "$log"
 echo "$pass passed, $fail failed"
 [ "$fail" = 0 ]

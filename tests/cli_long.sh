@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# The slow end-to-end checks (make test-long, which CI runs after make test): the run files of the frf and compare
+# runs on the lap models, and the reduced-order joints on the coarse Brake-Reuss beam (10 mm, 133 jenkins elements)
+# beyond tests/cli_rom.sh's: the linear field of one-member joints, the second reduction with 4, 7 and 10 elements per
+# joint, save and load with the linear and stuck-mode joint motions, 1 vs 2 ranks, and the first reduction condensed.
+# Each against the node-to-node model of the same run, the saving run, or the other rank count.
+cd "$(dirname "$0")/.."
+. tests/cli_lib.sh
+brb="-model_type brb -model_mesh_h 0.01 -preload_force 11500 -interface_kt 1e6 -interface_mu 0.12 -hbm_modes 12 -hbm_gamma 0.002 -cont_monitor 0 -frf_plot 0 -frf_fmin 128 -frf_fmax 138"
+lev="0.1,5,20,50,200"
+fix="-cont_type natural -cont_points 120"
+field() { echo "$1" | awk -v k="$2" '{for (i = 1; i < NF; i++) if ($i == k) {print $(i+1); exit}}'; }
+worst() { echo "$1" | awk '/^compare worst/{print $4, $6}'; }
+lt() { awk -v a="$1" -v b="$2" 'BEGIN{exit !(a != "" && a < b)}'; }
+same() { awk -F, 'NR == FNR {if (FNR > 1) a[$1 " " $4] = $5; next} FNR > 1 && ($1 " " $4) in a {d = $5 / a[$1 " " $4] - 1; if (d < 0) d = -d; n++; if (d > m) m = d} END{printf "%d %.2e\n", n, m}' "$1" "$2"; }
+
+# run files on the lap models: every option used, no typo (coarse meshes; the others: tests/cli.sh)
+for f in runs/*.opts; do
+  run_file_long "$f" && run_file_check "$f"
+done
+
+# the first reduction's mode-shape weights against the plain average (4.4): the amplitude error smaller (the weights'
+# own error: tests/cli_rom.sh)
+o=$(mpiexec -n 2 $J -task compare $brb -frf_force $lev -rom_joints sides -frf_output_file '' 2>&1)
+read f a <<< "$(worst "$o")"
+o0=$(mpiexec -n 2 $J -task compare $brb -frf_force $lev -rom_joints sides -rom_mode_weights 0 -rom_stiffness_correction 0 -frf_output_file '' 2>&1)
+read f0 a0 <<< "$(worst "$o0")"
+check "lt '$a' '$a0'" "mode-shape weights help: amplitude error $a with, $a0 with the plain average (4.4)"
+
+# every element its own joint, with the linear motion field: the node-to-node model exactly (to round-off)
+o=$(mpiexec -n 2 $J -task compare $brb -frf_force $lev -rom_joints each -rom_joint_motion linear -frf_output_file '' 2>&1)
+read f a <<< "$(worst "$o")"
+check "lt '$f' 1e-9 && lt '$a' 1e-8" "-rom_joints each -rom_joint_motion linear (a one-member joint's field is its own motion): reduced = node-to-node, worst peak frequency error $f, amplitude error $a"
+
+# second reduction: 6 joints x 4 and 7 elements (6 x 3: tests/cli_rom.sh). The amplitude at every level (0.1..200 N)
+# measured with the fit coupled across joints (-rom_fit_total_weight 20): 1.3% (6 x 4), 2.2% (6 x 7); each joint
+# alone: 4.5%, 2.2%
+for m in 4 7; do
+  o=$(mpiexec -n 2 $J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements $m -frf_output_file '' 2>&1)
+  read f a <<< "$(worst "$o")"
+  ne=$(echo "$o" | awk '/^rom joint/{s += $7} END{print s}')
+  check "[ -n '$ne' ] && [ '$ne' -ge 6 ] && [ '$ne' -le $((6 * m)) ] && lt '$f' 5e-3" "second reduction 6 x $m: $ne elements (at most $((6 * m)): elements the fit leaves without force are dropped), worst peak frequency error $f (< 0.5%)"
+  case $m in 4) amax=0.03 ;; 7) amax=0.04 ;; esac
+  aw=$(echo "$o" | awk '/^compare level/ {e = $11 / $9 - 1; if (e < 0) e = -e; if (e > w) w = e} END{print w + 0}')
+  nc=$(echo "$o" | grep -c '^rom case level .* dissipation_error')
+  check "lt '$aw' $amax && [ '$nc' = 5 ]" "second reduction 6 x $m: amplitude within $amax at every level (0.1..200 N): worst $aw; the fit's dissipation error printed for the 5 levels"
+done
+# 6 x 10 without the slip-displacement search: the per-joint fits leave elements without force (dropped), and the
+# coupled fit must start from their slip displacements, not from 0 / 0
+o=$($J -task compare $brb -frf_force $lev -rom_joints sides -rom_elements 10 -rom_fit_search 0 -frf_output_file '' 2>&1)
+read f a <<< "$(worst "$o")"
+check "echo \"\$o\" | grep -q '^rom coupled' && lt '$f' 5e-3 && lt '$a' 0.1" "second reduction 6 x 10, no search (elements fitted to no force): coupled fit runs, worst peak frequency error $f, amplitude $a"
+
+# save and load with the other joint motions: the loaded model (no preload, no fit) reproduces the run that saved
+# it on a fixed frequency grid, within the modes' solver tolerance (the mean's: tests/cli_rom.sh), and differs from
+# the mean's (this run, on 2 ranks, also serves 1 vs 2 ranks below)
+o2=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_joints sides -rom_elements 3 -frf_output_file "$tmp/sv" 2>&1)
+for jm in linear mode; do
+  mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_joints sides -rom_elements 3 -rom_joint_motion $jm -rom_save "$tmp/rom_$jm.h5" -frf_output_file "$tmp/sv_$jm" > /dev/null 2>&1
+  mpiexec -n 2 $J -task frf $brb $fix -frf_force 1,50 -rom_load "$tmp/rom_$jm.h5" -frf_output_file "$tmp/ld_$jm" > /dev/null 2>&1
+  read nm dm <<< "$(same "$tmp/sv_$jm.csv" "$tmp/ld_$jm.csv" 2>/dev/null)"
+  read n2 d2 <<< "$(same "$tmp/sv.csv" "$tmp/sv_$jm.csv" 2>/dev/null)"
+  [ $jm = linear ] && what="its elements' points saved" || what="points and stuck-mode coordinates saved"
+  check "[ '$nm' -ge 100 ] && lt '$dm' 1e-7 && lt 1e-4 '$d2'" "-rom_load of a model reduced with -rom_joint_motion $jm ($what) reproduces the saving run: within $dm at $nm frequencies (it differs from the mean's by $d2)"
+done
+# 1 vs 2 ranks: the fit is convex (slip displacements fixed, forces free), so its result moves only at round-off
+# with the modes; on a fixed frequency grid the peaks agree to 1e-8 (-rom_fit_refine, non-convex, is not checked so)
+c1=$($J -task frf $brb $fix -frf_force 1,50 -rom_joints sides -rom_elements 3 -frf_output_file '' 2>&1 | grep '^peak level' | awk '{print $5, $7}')
+c2=$(echo "$o2" | grep '^peak level' | awk '{print $5, $7}')
+check "[ -n '$c1' ] && awk -v a='$(echo $c1)' -v b='$(echo $c2)' 'BEGIN{n = split(a, x, \" \"); split(b, y, \" \"); for (i = 1; i <= n; i++) {d = x[i] / y[i] - 1; if (d < 0) d = -d; if (d > 1e-8) exit 1} exit n != 4}'" "reduced model (6 x 3) on 1 and 2 ranks: peaks and amplitudes within 1e-8 ($(echo $c1) / $(echo $c2))"
+# the reduced model's elements are on every rank (no sum over the ranks per Newton iteration): not condensed (the
+# stuck springs then come off on every rank), its peaks, energy balance and contact-state counts on 1 and 2 ranks
+rt() { echo "$1" | awk '/^compare: reduced model/{r = 1} /^compare: / && !/reduced model/{r = 0} r && $1 ~ /^[0-9.]+$/ && NF == 17 {print $2, $3, $10, $11, $13, $15, $17}'; }
+o1=$($J -task compare $brb -frf_force 5,200 -rom_joints sides -rom_elements 3 -hbm_condense no -frf_output_file '' 2>&1)
+o2=$(mpiexec -n 2 $J -task compare $brb -frf_force 5,200 -rom_joints sides -rom_elements 3 -hbm_condense no -frf_output_file '' 2>&1)
+r1=$(rt "$o1"); r2=$(rt "$o2")
+check "[ -n \"\$r1\" ] && [ \$(echo \"\$r1\" | wc -l) = 2 ] && [ \"\$r1\" = \"\$r2\" ]" "reduced model (6 x 3, not condensed) on 1 and 2 ranks, every element on every rank: peak, amplitude, balance and contact states the same ($(echo $r1 | cut -c1-80))"
+
+# condensation onto the joints of the first reduction (the second's: tests/cli_rom.sh): the modal equations with the
+# modes eliminated exactly, so on the frequencies both solve the amplitudes agree to round-off and solver tolerance
+for c in yes no; do
+  o=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 0.1,50 -rom_joints sides -hbm_condense $c -frf_output_file "$tmp/cd_$c" 2>&1)
+  [ $c = yes ] && info=$(echo "$o" | grep -o 'condensed onto.*')
+done
+read nm dm <<< "$(same "$tmp/cd_no.csv" "$tmp/cd_yes.csv")"
+check "[ -n '$info' ] && [ '$nm' -ge 100 ] && lt '$dm' 1e-7" "first reduction (133 members on 6 joints) $info; amplitudes at $nm common frequencies = the modal equations' within $dm (< 1e-7)"
