@@ -30,4 +30,8 @@ struct _p_JRReduce {
   /* results */
   PetscReal corr; /* the stiffness correction applied (1: none) */
 };
+
+/* An element list of n elements of one type with joints (and the node-to-node arrays if nodes), no DOFs: the second
+   reduction's elements (src/reduce/fit.c) and a loaded model's (src/reduce/io.c) */
+PETSC_INTERN PetscErrorCode JRROMElementsSetUp(JRElements *, PetscInt, const char[], PetscBool);
 #endif
