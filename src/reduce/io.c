@@ -173,22 +173,25 @@ static PetscErrorCode ReadSeq(PetscViewer v, const char file[], const char name[
   PetscFunctionReturn(0);
 }
 
-/*
-  JRROMLoad - read a reduced model written by JRROMSave for this FE model: every member's nodes must be where the
-  file says (within 1e-9 of the model's size), else an error naming the file; corr: its stiffness correction.
-*/
-PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, PetscReal *corr)
+/* A file written by JRROMSave, as read (every rank) */
+typedef struct {
+  const char *file;
+  PetscInt    ne, nmem, nj, npos, nphi;
+  PetscReal  *el, *mem;  /* rows of JR_ROM_EL and JR_ROM_MEM numbers */
+  PetscReal  *pos, *phi; /* rows of 3 and 2, one per element then one per member (NULL: not in the file) */
+  char       *ty, *mty;  /* the elements' and the members' type */
+  PetscReal   corr;      /* the stiffness correction (1 if the file has none) */
+} ROMFile;
+
+/* Every dataset and attribute of the file; the element type and the counts checked */
+static PetscErrorCode ROMFileRead(MPI_Comm comm, const char file[], ROMFile *f)
 {
-  MPI_Comm    comm;
   PetscViewer v;
   PetscBool   exists, haspos, hasphi;
-  PetscReal  *a, *b, *xc, *pos = NULL, *phi = NULL, lo[3], hi[3], size = 0, worst = 0;
-  PetscInt    ne, nmem, nj = 0, ndof, bad = -1, npos = 0, nphi = 0;
-  char       *ty = NULL, *mty = NULL;
-  JRElements *mem;
 
   PetscFunctionBeginUser;
-  PetscCall(JRModelGetComm(model, &comm));
+  PetscCall(PetscMemzero(f, sizeof(*f)));
+  f->file = file;
   PetscCall(PetscTestFile(file, 'r', &exists));
   PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-rom_load %s: no such file (write one with -rom_save)", file);
   {
@@ -199,78 +202,150 @@ PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, Pets
     PetscCall(JRErrorContextPop());
   }
   PetscCall(PetscViewerHDF5PushGroup(v, "/rom"));
-  PetscCall(ReadSeq(v, file, "elements", JR_ROM_EL, &ne, &a));
-  PetscCall(ReadSeq(v, file, "members", JR_ROM_MEM, &nmem, &b));
+  PetscCall(ReadSeq(v, file, "elements", JR_ROM_EL, &f->ne, &f->el));
+  PetscCall(ReadSeq(v, file, "members", JR_ROM_MEM, &f->nmem, &f->mem));
   PetscCall(PetscViewerHDF5HasDataset(v, "positions", &haspos));
-  if (haspos) PetscCall(ReadSeq(v, file, "positions", 3, &npos, &pos));
+  if (haspos) PetscCall(ReadSeq(v, file, "positions", 3, &f->npos, &f->pos));
   PetscCall(PetscViewerHDF5HasDataset(v, "mode_coordinates", &hasphi));
-  if (hasphi) PetscCall(ReadSeq(v, file, "mode_coordinates", 2, &nphi, &phi));
-  PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "njoints", PETSC_INT, NULL, &nj));
-  PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "element_type", PETSC_STRING, NULL, &ty));
-  PetscCall(PetscViewerHDF5ReadAttribute(v, "members", "element_type", PETSC_STRING, NULL, &mty));
-  *corr = 1.0;
-  PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "stiffness_correction", PETSC_REAL, corr, corr));
+  if (hasphi) PetscCall(ReadSeq(v, file, "mode_coordinates", 2, &f->nphi, &f->phi));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "njoints", PETSC_INT, NULL, &f->nj));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "element_type", PETSC_STRING, NULL, &f->ty));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "members", "element_type", PETSC_STRING, NULL, &f->mty));
+  f->corr = 1.0;
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "stiffness_correction", PETSC_REAL, &f->corr, &f->corr));
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscViewerDestroy(&v));
-  PetscCheck(!strcmp(ty, JRCONTACTJENKINS) || !strcmp(ty, JRCONTACTJENKINSNV), comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: element type '%s' (jenkins or jenkins_nv)", file, ty);
-  PetscCheck(nj > 0 && ne > 0 && nmem > 0, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: %" PetscInt_FMT " joints, %" PetscInt_FMT " elements, %" PetscInt_FMT " members: an empty model", file, nj, ne, nmem);
-  PetscCall(JRModelGetNumDofs(model, &ndof));
-  PetscCall(JRROMElementsSetUp(rom, ne, ty, PETSC_FALSE));
+  PetscCheck(!strcmp(f->ty, JRCONTACTJENKINS) || !strcmp(f->ty, JRCONTACTJENKINSNV), comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: element type '%s' (jenkins or jenkins_nv)", file, f->ty);
+  PetscCheck(f->nj > 0 && f->ne > 0 && f->nmem > 0, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: %" PetscInt_FMT " joints, %" PetscInt_FMT " elements, %" PetscInt_FMT " members: an empty model", file, f->nj, f->ne, f->nmem);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ROMFileDestroy(ROMFile *f)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(f->el));
+  PetscCall(PetscFree(f->mem));
+  PetscCall(PetscFree(f->pos));
+  PetscCall(PetscFree(f->phi));
+  PetscCall(PetscFree(f->ty));
+  PetscCall(PetscFree(f->mty));
+  PetscFunctionReturn(0);
+}
+
+/* The file's elements, each on one of its joints with kt, mu > 0 */
+static PetscErrorCode ROMFileElements(MPI_Comm comm, const ROMFile *f, JRElements *rom)
+{
+  const PetscInt nj = f->nj;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRROMElementsSetUp(rom, f->ne, f->ty, PETSC_FALSE));
   rom->njoints = nj;
-  for (PetscInt e = 0; e < ne; e++) {
-    GetRow(rom, e, a + JR_ROM_EL * e);
-    PetscCheck(rom->joint[e] >= 0 && rom->joint[e] < nj && rom->kt[e] > 0 && rom->mu[e] > 0, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: element %" PetscInt_FMT " has joint %" PetscInt_FMT " (0..%" PetscInt_FMT "), kt %g, mu %g: not a valid element", file, e, rom->joint[e], nj - 1, (double)rom->kt[e], (double)rom->mu[e]);
+  for (PetscInt e = 0; e < f->ne; e++) {
+    GetRow(rom, e, f->el + JR_ROM_EL * e);
+    PetscCheck(rom->joint[e] >= 0 && rom->joint[e] < nj && rom->kt[e] > 0 && rom->mu[e] > 0, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: element %" PetscInt_FMT " has joint %" PetscInt_FMT " (0..%" PetscInt_FMT "), kt %g, mu %g: not a valid element", f->file, e, rom->joint[e], nj - 1, (double)rom->kt[e], (double)rom->mu[e]);
   }
+  PetscFunctionReturn(0);
+}
+
+/* The file's members, each on one of its joints and between two of the model's DOFs */
+static PetscErrorCode ROMFileMembers(JRModel model, const ROMFile *f, JRElements **members)
+{
+  MPI_Comm    comm;
+  PetscInt    ndof;
+  JRElements *mem;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetComm(model, &comm));
+  PetscCall(JRModelGetNumDofs(model, &ndof));
   PetscCall(PetscNew(&mem));
-  PetscCall(JRROMElementsSetUp(mem, nmem, mty, PETSC_TRUE));
-  mem->njoints = nj;
-  for (PetscInt e = 0; e < nmem; e++) {
-    const PetscReal *r = b + JR_ROM_MEM * e;
+  PetscCall(JRROMElementsSetUp(mem, f->nmem, f->mty, PETSC_TRUE));
+  mem->njoints = f->nj;
+  for (PetscInt e = 0; e < f->nmem; e++) {
+    const PetscReal *r = f->mem + JR_ROM_MEM * e;
     GetRow(mem, e, r);
-    PetscCheck(mem->joint[e] >= 0 && mem->joint[e] < nj, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT " has joint %" PetscInt_FMT ", outside 0..%" PetscInt_FMT, file, e, mem->joint[e], nj - 1);
+    PetscCheck(mem->joint[e] >= 0 && mem->joint[e] < f->nj, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT " has joint %" PetscInt_FMT ", outside 0..%" PetscInt_FMT, f->file, e, mem->joint[e], f->nj - 1);
     for (PetscInt c = 0; c < 3; c++) {
       mem->vdof_a[3 * e + c] = (PetscInt)r[6 + c];
       mem->vdof_b[3 * e + c] = (PetscInt)r[9 + c];
       mem->tdir[3 * e + c]   = r[12 + c];
       mem->ndir[3 * e + c]   = r[15 + c];
-      PetscCheck(mem->vdof_a[3 * e + c] >= 0 && mem->vdof_a[3 * e + c] < ndof && mem->vdof_b[3 * e + c] >= 0 && mem->vdof_b[3 * e + c] < ndof, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT " has DOFs outside the model's 0..%" PetscInt_FMT ": the file is for another mesh", file, e, ndof - 1);
+      PetscCheck(mem->vdof_a[3 * e + c] >= 0 && mem->vdof_a[3 * e + c] < ndof && mem->vdof_b[3 * e + c] >= 0 && mem->vdof_b[3 * e + c] < ndof, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT " has DOFs outside the model's 0..%" PetscInt_FMT ": the file is for another mesh", f->file, e, ndof - 1);
     }
   }
-  rom->members = mem;
-  if (haspos) { /* a model reduced with -rom_joint_motion linear: the points where its elements and members sit */
-    PetscCheck(npos == ne + nmem, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: /rom/positions has %" PetscInt_FMT " points, not one per element and member (%" PetscInt_FMT ")", file, npos, ne + nmem);
+  *members = mem;
+  PetscFunctionReturn(0);
+}
+
+/* The points of the elements and members, if the file has them: positions (-rom_joint_motion linear or mode) and
+   stuck-mode coordinates (mode) */
+static PetscErrorCode ROMFilePoints(MPI_Comm comm, const ROMFile *f, JRElements *rom, JRElements *mem)
+{
+  const PetscInt ne = f->ne, nmem = f->nmem;
+
+  PetscFunctionBeginUser;
+  if (f->pos) { /* a model reduced with -rom_joint_motion linear: the points where its elements and members sit */
+    PetscCheck(f->npos == ne + nmem, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: /rom/positions has %" PetscInt_FMT " points, not one per element and member (%" PetscInt_FMT ")", f->file, f->npos, ne + nmem);
     PetscCall(PetscMalloc1(3 * ne, &rom->pos));
     PetscCall(PetscMalloc1(3 * nmem, &mem->pos));
-    PetscCall(PetscArraycpy(rom->pos, pos, 3 * ne));
-    PetscCall(PetscArraycpy(mem->pos, pos + 3 * ne, 3 * nmem));
-    PetscCall(PetscFree(pos));
+    PetscCall(PetscArraycpy(rom->pos, f->pos, 3 * ne));
+    PetscCall(PetscArraycpy(mem->pos, f->pos + 3 * ne, 3 * nmem));
   }
-  if (hasphi) { /* reduced with -rom_joint_motion mode: their coordinates in the stuck mode of interest */
-    PetscCheck(haspos && nphi == ne + nmem, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: /rom/mode_coordinates has %" PetscInt_FMT " rows, not one per element and member (%" PetscInt_FMT ") with /rom/positions", file, nphi, ne + nmem);
+  if (f->phi) { /* reduced with -rom_joint_motion mode: their coordinates in the stuck mode of interest */
+    PetscCheck(f->pos && f->nphi == ne + nmem, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: /rom/mode_coordinates has %" PetscInt_FMT " rows, not one per element and member (%" PetscInt_FMT ") with /rom/positions", f->file, f->nphi, ne + nmem);
     PetscCall(PetscMalloc1(2 * ne, &rom->phi));
     PetscCall(PetscMalloc1(2 * nmem, &mem->phi));
-    PetscCall(PetscArraycpy(rom->phi, phi, 2 * ne));
-    PetscCall(PetscArraycpy(mem->phi, phi + 2 * ne, 2 * nmem));
-    PetscCall(PetscFree(phi));
+    PetscCall(PetscArraycpy(rom->phi, f->phi, 2 * ne));
+    PetscCall(PetscArraycpy(mem->phi, f->phi + 2 * ne, 2 * nmem));
   }
-  PetscCall(PetscMalloc1(6 * nmem, &xc));
+  PetscFunctionReturn(0);
+}
+
+/* Every member's nodes where the file puts them, within 1e-9 of the model's size (collective) */
+static PetscErrorCode ROMFileCheckNodes(JRModel model, const ROMFile *f, const JRElements *mem)
+{
+  MPI_Comm   comm;
+  PetscReal *xc, lo[3], hi[3], size = 0, worst = 0;
+  PetscInt   bad = -1;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetComm(model, &comm));
+  PetscCall(PetscMalloc1(6 * f->nmem, &xc));
   PetscCall(MemberCoordinates(model, mem, xc));
   PetscCall(JRModelGetBoundingBox(model, lo, hi));
   for (PetscInt c = 0; c < 3; c++) size = PetscMax(size, hi[c] - lo[c]);
-  for (PetscInt e = 0; e < nmem; e++)
+  for (PetscInt e = 0; e < f->nmem; e++)
     for (PetscInt c = 0; c < 3; c++) {
-      const PetscReal da = PetscAbsReal(xc[6 * e + c] - b[JR_ROM_MEM * e + 18 + c]), db = PetscAbsReal(xc[6 * e + 3 + c] - b[JR_ROM_MEM * e + 21 + c]);
+      const PetscReal da = PetscAbsReal(xc[6 * e + c] - f->mem[JR_ROM_MEM * e + 18 + c]), db = PetscAbsReal(xc[6 * e + 3 + c] - f->mem[JR_ROM_MEM * e + 21 + c]);
       if (PetscMax(da, db) > worst) {
         worst = PetscMax(da, db);
         bad   = e;
       }
     }
-  PetscCheck(worst <= 1e-9 * size, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT "'s nodes are %g m from where the file puts them: the file is for another mesh or partition (run with the options and ranks that saved it)", file, bad, (double)worst);
-  PetscCall(PetscPrintf(comm, "rom: loaded %" PetscInt_FMT " %s elements in %" PetscInt_FMT " joints (%" PetscInt_FMT " members, stiffness correction %.6f) from %s\n", ne, ty, nj, nmem, (double)*corr, file));
+  PetscCheck(worst <= 1e-9 * size, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT "'s nodes are %g m from where the file puts them: the file is for another mesh or partition (run with the options and ranks that saved it)", f->file, bad, (double)worst);
   PetscCall(PetscFree(xc));
-  PetscCall(PetscFree(a));
-  PetscCall(PetscFree(b));
-  PetscCall(PetscFree(ty));
-  PetscCall(PetscFree(mty));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRROMLoad - read a reduced model written by JRROMSave for this FE model: every member's nodes must be where the
+  file says (within 1e-9 of the model's size), else an error naming the file; corr: its stiffness correction.
+*/
+PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, PetscReal *corr)
+{
+  MPI_Comm    comm;
+  ROMFile     f;
+  JRElements *mem = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetComm(model, &comm));
+  PetscCall(ROMFileRead(comm, file, &f));
+  *corr = f.corr;
+  PetscCall(ROMFileElements(comm, &f, rom));
+  PetscCall(ROMFileMembers(model, &f, &mem));
+  rom->members = mem;
+  PetscCall(ROMFilePoints(comm, &f, rom, mem));
+  PetscCall(ROMFileCheckNodes(model, &f, mem));
+  PetscCall(PetscPrintf(comm, "rom: loaded %" PetscInt_FMT " %s elements in %" PetscInt_FMT " joints (%" PetscInt_FMT " members, stiffness correction %.6f) from %s\n", f.ne, f.ty, f.nj, f.nmem, (double)*corr, file));
+  PetscCall(ROMFileDestroy(&f));
   PetscFunctionReturn(0);
 }
