@@ -45,12 +45,12 @@
    the fit's error with it (rom case level F dissipation_error_normal_varying) and, with -rom_fit_normal_passes k,
    fits k more times with that change added to the targets (a defect correction; off by default: on lap3 it moved
    the peak amplitudes either way: docs/validation.md).
+   The least-squares solvers (TAO, NNLS) are in src/reduce/lsq.c.
    Saved and loaded with -rom_save / -rom_load (HDF5, /rom/...; src/reduce/io.c): the reduced elements and the members
    that define the joints' motion, with the members' node coordinates to check that the file fits the model.
 */
 #include <jointrom/private/reduceimpl.h>
 #include <jointrom/private/contactimpl.h>
-#include <petsctao.h>
 #include <petscblaslapack.h>
 
 /* Steady Jenkins loop (spring k, slip force f) under u = a cos(theta_s), theta_s = 2 pi s / ns: F[s] += force,
@@ -91,128 +91,6 @@ static void JenkinsLoop(PetscReal k, PetscReal f, PetscReal a, PetscInt ns, Pets
     if (Fk) Fk[s] = dk;
     if (Ff) Ff[s] = df;
   }
-}
-
-/* Least squares r(x) -> min 1/2 |r|^2 with x >= lo, by TAO (prefix rom_); J: nr x nx column-major */
-typedef struct {
-  PetscInt  nx, nr;
-  PetscErrorCode (*fn)(void *, const PetscReal[], PetscReal[], PetscReal[]);
-  void      *ctx;
-  PetscReal *r, *J;
-} LSQ;
-
-static PetscErrorCode LSQObjective(Tao tao, Vec X, PetscReal *obj, Vec G, void *ctx)
-{
-  LSQ               *q = (LSQ *)ctx;
-  const PetscScalar *x;
-  PetscScalar       *g;
-
-  PetscFunctionBeginUser;
-  (void)tao;
-  PetscCall(VecGetArrayRead(X, &x));
-  PetscCall(q->fn(q->ctx, x, q->r, q->J));
-  PetscCall(VecRestoreArrayRead(X, &x));
-  *obj = 0;
-  for (PetscInt i = 0; i < q->nr; i++) *obj += 0.5 * q->r[i] * q->r[i];
-  PetscCall(VecGetArray(G, &g));
-  for (PetscInt j = 0; j < q->nx; j++) {
-    PetscReal s = 0;
-    for (PetscInt i = 0; i < q->nr; i++) s += q->J[i + j * q->nr] * q->r[i];
-    g[j] = s;
-  }
-  PetscCall(VecRestoreArray(G, &g));
-  PetscFunctionReturn(0);
-}
-
-/* Gauss-Newton Hessian J^T J (J from the last objective evaluation at this X), with a 1e-10 relative shift */
-static PetscErrorCode LSQHessian(Tao tao, Vec X, Mat Hm, Mat Pm, void *ctx)
-{
-  LSQ         *q = (LSQ *)ctx;
-  PetscScalar *a;
-  PetscReal    tr = 0;
-
-  PetscFunctionBeginUser;
-  (void)tao;
-  (void)Pm;
-  {
-    const PetscScalar *x;
-    PetscCall(VecGetArrayRead(X, &x));
-    PetscCall(q->fn(q->ctx, x, q->r, q->J));
-    PetscCall(VecRestoreArrayRead(X, &x));
-  }
-  PetscCall(MatDenseGetArray(Hm, &a));
-  for (PetscInt j = 0; j < q->nx; j++)
-    for (PetscInt i = 0; i < q->nx; i++) {
-      PetscReal v = 0;
-      for (PetscInt k = 0; k < q->nr; k++) v += q->J[k + i * q->nr] * q->J[k + j * q->nr];
-      a[i + j * q->nx] = v;
-      if (i == j) tr += v;
-    }
-  for (PetscInt i = 0; i < q->nx; i++) a[i + i * q->nx] += 1e-10 * tr / q->nx;
-  PetscCall(MatDenseRestoreArray(Hm, &a));
-  PetscCall(MatAssemblyBegin(Hm, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(Hm, MAT_FINAL_ASSEMBLY));
-  PetscFunctionReturn(0);
-}
-
-/* rms: sqrt(|r|^2) before (rms0) and after; x updated */
-static PetscErrorCode LSQSolve(LSQ *q, PetscReal x[], PetscReal lo, PetscReal *rms0, PetscReal *rms, PetscInt *its)
-{
-  Tao                tao;
-  Vec                X, L, U;
-  Mat                Hm;
-  PetscScalar       *xa;
-  TaoConvergedReason reason;
-  PetscReal          jnorm = 0;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscMalloc2(q->nr, &q->r, q->nr * q->nx, &q->J));
-  PetscCall(q->fn(q->ctx, x, q->r, q->J));
-  *rms0 = 0;
-  for (PetscInt i = 0; i < q->nr; i++) *rms0 += q->r[i] * q->r[i];
-  *rms0 = PetscSqrtReal(*rms0);
-  for (PetscInt i = 0; i < q->nr * q->nx; i++) jnorm += q->J[i] * q->J[i];
-  jnorm = PetscSqrtReal(jnorm);
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, q->nx, &X));
-  PetscCall(VecDuplicate(X, &L));
-  PetscCall(VecDuplicate(X, &U));
-  PetscCall(VecSet(L, lo));
-  PetscCall(VecSet(U, PETSC_INFINITY));
-  PetscCall(VecGetArray(X, &xa));
-  for (PetscInt j = 0; j < q->nx; j++) xa[j] = x[j];
-  PetscCall(VecRestoreArray(X, &xa));
-  PetscCall(TaoCreate(PETSC_COMM_SELF, &tao));
-  PetscCall(TaoSetOptionsPrefix(tao, "rom_"));
-  PetscCall(TaoSetType(tao, TAOBNLS)); /* bounded Newton line search on the Gauss-Newton Hessian */
-  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, q->nx, q->nx, NULL, &Hm));
-  PetscCall(TaoSetHessian(tao, Hm, Hm, LSQHessian, q));
-  PetscCall(TaoSetSolution(tao, X));
-  PetscCall(TaoSetVariableBounds(tao, L, U));
-  PetscCall(TaoSetObjectiveAndGradient(tao, NULL, LSQObjective, q));
-  /* to round-off (the fit must not depend on the ranks): the gradient J^T r down to 1e-13 of |J| |r| at the start */
-  PetscCall(TaoSetTolerances(tao, 1e-13 * jnorm * PetscMax(*rms0, 1e-13), 0, 0));
-  PetscCall(TaoSetMaximumIterations(tao, 2000));
-  PetscCall(TaoSetFunctionLowerBound(tao, 1e-26)); /* an exact fit stops there */
-  PetscCall(TaoSetMaximumFunctionEvaluations(tao, 20000));
-  PetscCall(TaoSetFromOptions(tao));
-  PetscCall(TaoSolve(tao));
-  PetscCall(TaoGetConvergedReason(tao, &reason));
-  PetscCall(TaoGetIterationNumber(tao, its));
-  PetscCheck(reason > 0 || reason == TAO_DIVERGED_MAXITS || reason == TAO_DIVERGED_LS_FAILURE || reason == TAO_DIVERGED_MAXFCN || reason == TAO_DIVERGED_TR_REDUCTION, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "The joint fit (TAO, prefix rom_) failed: %s; try -rom_tao_type or -rom_tao_max_it", TaoConvergedReasons[reason]);
-  PetscCall(VecGetArray(X, &xa));
-  for (PetscInt j = 0; j < q->nx; j++) x[j] = PetscRealPart(xa[j]);
-  PetscCall(VecRestoreArray(X, &xa));
-  PetscCall(q->fn(q->ctx, x, q->r, q->J));
-  *rms = 0;
-  for (PetscInt i = 0; i < q->nr; i++) *rms += q->r[i] * q->r[i];
-  *rms = PetscSqrtReal(*rms);
-  PetscCall(TaoDestroy(&tao));
-  PetscCall(MatDestroy(&Hm));
-  PetscCall(VecDestroy(&X));
-  PetscCall(VecDestroy(&L));
-  PetscCall(VecDestroy(&U));
-  PetscCall(PetscFree2(q->r, q->J));
-  PetscFunctionReturn(0);
 }
 
 /* The tangential fit: x = [k_i / ks, f_i / fs] */
@@ -304,71 +182,6 @@ static PetscErrorCode FixedResidual(void *ctx, const PetscReal y[], PetscReal r[
   PetscFunctionReturn(0);
 }
 
-/* The least squares on a support: A[idx, idx] z = c[idx] (A n x n column-major, k indices; B k x k scratch). info:
-   LAPACK's (> 0: singular) */
-static PetscErrorCode SupportSolve(PetscInt n, const PetscReal A[], const PetscReal c[], PetscInt k, const PetscInt idx[], PetscReal B[], PetscReal z[], PetscBLASInt piv[], PetscBLASInt *info)
-{
-  PetscBLASInt nb, one = 1;
-
-  PetscFunctionBeginUser;
-  *info = 0;
-  for (PetscInt a = 0; a < k; a++) {
-    for (PetscInt b = 0; b < k; b++) B[a + b * k] = A[idx[a] + idx[b] * n];
-    z[a] = c[idx[a]];
-  }
-  PetscCall(PetscBLASIntCast(k, &nb));
-  if (k) PetscCallBLAS("LAPACKgesv", LAPACKgesv_(&nb, &one, B, &nb, piv, z, &nb, info));
-  PetscFunctionReturn(0);
-}
-
-/* NNLS of the columns sel[0..m) of the Gram system (G, c, bb: C^T C, C^T b, b.b of the residual C y - b): every
-   support tried, the best non-negative least-squares solution (the NNLS minimum: m <= 8). cost: |C y - b|^2 */
-static PetscErrorCode GramNNLS(PetscInt nc, const PetscReal G[], const PetscReal c[], PetscReal bb, PetscInt m, const PetscInt sel[], PetscReal y[], PetscReal *cost)
-{
-  PetscReal    A[64], z[8];
-  PetscInt     idx[8], pos[8];
-  PetscBLASInt piv[8], info;
-
-  PetscFunctionBeginUser;
-  *cost = bb;
-  for (PetscInt i = 0; i < m; i++) y[i] = 0;
-  for (PetscInt S = 1; S < (1 << m); S++) {
-    PetscInt  k = 0, ok = 1;
-    PetscReal v = bb;
-    for (PetscInt i = 0; i < m; i++)
-      if (S & (1 << i)) {
-        pos[k]   = i;
-        idx[k++] = sel[i];
-      }
-    PetscCall(SupportSolve(nc, G, c, k, idx, A, z, piv, &info));
-    if (info) continue; /* singular: a smaller support covers it */
-    for (PetscInt a = 0; a < k; a++) {
-      ok = ok && z[a] > 0;
-      v -= z[a] * c[idx[a]];
-    }
-    if (ok && v < *cost) {
-      *cost = v;
-      for (PetscInt i = 0; i < m; i++) y[i] = 0;
-      for (PetscInt a = 0; a < k; a++) y[pos[a]] = z[a];
-    }
-  }
-  PetscFunctionReturn(0);
-}
-
-/* The Gram system of the columns C (ld rows, nc columns, column-major) against b: G = C^T C (nc x nc), cg = C^T b */
-static void Gram(PetscInt ld, PetscInt nc, const PetscReal C[], const PetscReal b[], PetscReal G[], PetscReal cg[])
-{
-  for (PetscInt i = 0; i < nc; i++) {
-    cg[i] = 0;
-    for (PetscInt q = 0; q < ld; q++) cg[i] += C[q + i * ld] * b[q];
-    for (PetscInt k = 0; k <= i; k++) {
-      PetscReal v = 0;
-      for (PetscInt q = 0; q < ld; q++) v += C[q + i * ld] * C[q + k * ld];
-      G[i + k * nc] = G[k + i * nc] = v;
-    }
-  }
-}
-
 /* The residual columns of single elements (y = 1) of joint fit t at the slip displacements dc[0..nc), as the Gram
    system of the residual C y - b: G = C^T C (nc x nc), cg = C^T b, bb = b.b */
 static PetscErrorCode CandidateGram(TangentFit *t, PetscInt nc, const PetscReal dc[], PetscReal G[], PetscReal cg[], PetscReal *bb)
@@ -390,7 +203,7 @@ static PetscErrorCode CandidateGram(TangentFit *t, PetscInt nc, const PetscReal 
     for (PetscInt q = 0; q < ld; q++) C[q + c * ld] += b[q];
   }
   t->m = mt;
-  Gram(ld, nc, C, b, G, cg);
+  JRGram(ld, nc, C, b, G, cg);
   PetscCall(PetscFree3(C, b, J));
   PetscFunctionReturn(0);
 }
@@ -405,7 +218,7 @@ static void CandidateDeltas(PetscInt m, const PetscReal delta[], PetscReal dmin,
 
 /* The slip displacements of the convex fit, chosen among candidates: the m start values and a log grid over the
    members' range. For each candidate element (y = 1) its residual column; the best set by exhaustive search
-   (<= 20000 sets) or else by coordinate descent from the start: each set scored by its NNLS (GramNNLS). Every
+   (<= 20000 sets) or else by coordinate descent from the start: each set scored by its NNLS (JRGramNNLS). Every
    step is deterministic: the same on any ranks. delta[] in: the start; out: the best set; y: its forces. */
 static PetscErrorCode SearchDelta(TangentFit *t, PetscReal dmin, PetscReal dmax, PetscInt m, PetscReal delta[], PetscReal y[], PetscReal *cost)
 {
@@ -421,13 +234,13 @@ static PetscErrorCode SearchDelta(TangentFit *t, PetscReal dmin, PetscReal dmax,
   PetscCall(CandidateGram(t, nc, dc, G, cg, &bb));
   for (PetscInt i = 0; i < m; i++) combos *= (double)(ngrid - i) / (i + 1);
   for (PetscInt i = 0; i < m; i++) bsel[i] = i;
-  PetscCall(GramNNLS(nc, G, cg, bb, m, bsel, y, &best));
+  PetscCall(JRGramNNLS(nc, G, cg, bb, m, bsel, y, &best));
   if (combos <= 20000) { /* every set of m grid values */
     for (PetscInt i = 0; i < m; i++) sel[i] = m + i;
     while (1) {
       PetscReal v;
       PetscInt  i;
-      PetscCall(GramNNLS(nc, G, cg, bb, m, sel, yy, &v));
+      PetscCall(JRGramNNLS(nc, G, cg, bb, m, sel, yy, &v));
       if (v < best) {
         best = v;
         for (PetscInt k = 0; k < m; k++) bsel[k] = sel[k];
@@ -449,7 +262,7 @@ static PetscErrorCode SearchDelta(TangentFit *t, PetscReal dmin, PetscReal dmax,
           for (PetscInt k = 0; k < m; k++) used = (PetscBool)(used || bsel[k] == c);
           if (used) continue;
           sel[i] = c;
-          PetscCall(GramNNLS(nc, G, cg, bb, m, sel, yy, &v));
+          PetscCall(JRGramNNLS(nc, G, cg, bb, m, sel, yy, &v));
           if (v < best * (1 - 1e-12)) {
             best = v;
             bsel[i] = c;
@@ -460,95 +273,9 @@ static PetscErrorCode SearchDelta(TangentFit *t, PetscReal dmin, PetscReal dmax,
     }
   }
   for (PetscInt i = 0; i < m; i++) delta[i] = dc[bsel[i]];
-  PetscCall(GramNNLS(nc, G, cg, bb, m, bsel, y, &best));
+  PetscCall(JRGramNNLS(nc, G, cg, bb, m, bsel, y, &best));
   *cost = PetscSqrtReal(PetscMax(best, 0.0));
   PetscCall(PetscFree3(dc, G, cg));
-  PetscFunctionReturn(0);
-}
-
-/* min y^T A y - 2 c^T y over y >= 0 (A n x n, symmetric positive semi-definite): the Lawson-Hanson active set on
-   the Gram system, deterministic, warm-started from the support of y on entry if the least squares there is
-   positive. val: that minimum */
-static PetscErrorCode ActiveSetNNLS(PetscInt n, const PetscReal A[], const PetscReal c[], PetscReal y[], PetscReal *val)
-{
-  PetscBool   *P, *skip;
-  PetscReal   *z, *B, *w, cmax = 0;
-  PetscInt    *idx;
-  PetscBLASInt *piv, info = 0;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscMalloc7(n, &P, n, &skip, n, &z, n * n, &B, n, &w, n, &idx, n, &piv));
-  for (PetscInt i = 0; i < n; i++) {
-    P[i]    = (PetscBool)(y[i] > 0);
-    skip[i] = PETSC_FALSE;
-    cmax    = PetscMax(cmax, PetscAbsReal(c[i]));
-  }
-  { /* the warm start: the least squares on the entry support, if it is positive */
-    PetscInt  k   = 0;
-    PetscBool pos = PETSC_TRUE;
-    for (PetscInt i = 0; i < n; i++)
-      if (P[i]) idx[k++] = i;
-    PetscCall(SupportSolve(n, A, c, k, idx, B, z, piv, &info));
-    for (PetscInt a = 0; a < k; a++) pos = (PetscBool)(pos && !info && z[a] > 0);
-    for (PetscInt i = 0; i < n; i++) y[i] = 0;
-    if (k && pos)
-      for (PetscInt a = 0; a < k; a++) y[idx[a]] = z[a];
-    else
-      for (PetscInt i = 0; i < n; i++) P[i] = PETSC_FALSE;
-  }
-  for (PetscInt outer = 0; outer < 3 * n; outer++) {
-    PetscInt  t  = -1;
-    PetscReal wt = 1e-12 * cmax;
-    for (PetscInt i = 0; i < n; i++) { /* the gradient's descent directions off the support */
-      w[i] = c[i];
-      for (PetscInt k = 0; k < n; k++) w[i] -= A[i + k * n] * y[k];
-      if (!P[i] && !skip[i] && w[i] > wt) {
-        wt = w[i];
-        t  = i;
-      }
-    }
-    if (t < 0) break;
-    P[t] = PETSC_TRUE;
-    for (PetscInt inner = 0; inner < 3 * n; inner++) {
-      PetscInt  k = 0, hit = -1;
-      PetscBool pos = PETSC_TRUE;
-      PetscReal alpha = 1;
-      for (PetscInt i = 0; i < n; i++)
-        if (P[i]) idx[k++] = i;
-      PetscCall(SupportSolve(n, A, c, k, idx, B, z, piv, &info));
-      if (info) { /* t's column depends on the support's: left out */
-        P[t] = PETSC_FALSE;
-        skip[t] = PETSC_TRUE;
-        break;
-      }
-      for (PetscInt a = 0; a < k; a++) pos = (PetscBool)(pos && z[a] > 0);
-      if (pos) {
-        for (PetscInt i = 0; i < n; i++) y[i] = 0;
-        for (PetscInt a = 0; a < k; a++) y[idx[a]] = z[a];
-        break;
-      }
-      for (PetscInt a = 0; a < k; a++) /* the step toward z stops where the first force reaches 0 */
-        if (z[a] <= 0 && y[idx[a]] / (y[idx[a]] - z[a]) < alpha) {
-          alpha = y[idx[a]] / (y[idx[a]] - z[a]);
-          hit   = idx[a];
-        }
-      for (PetscInt a = 0; a < k; a++) {
-        const PetscInt i = idx[a];
-        y[i] += alpha * (z[a] - y[i]);
-        if (i == hit || y[i] <= 0) {
-          y[i] = 0;
-          P[i] = PETSC_FALSE;
-        }
-      }
-    }
-  }
-  *val = 0;
-  for (PetscInt i = 0; i < n; i++) {
-    PetscReal v = -2 * c[i];
-    for (PetscInt k = 0; k < n; k++) v += A[i + k * n] * y[k];
-    *val += v * y[i];
-  }
-  PetscCall(PetscFree7(P, skip, z, B, w, idx, piv));
   PetscFunctionReturn(0);
 }
 
@@ -604,7 +331,7 @@ static PetscErrorCode CoupledResidual(void *ctx, const PetscReal y[], PetscReal 
 
 /* The slip displacements of all fitted joints together, by coordinate descent: each element's in turn over its
    joint's candidates (its current value and the log grid over [dlo, dhi] of the joint), the others fixed, every
-   choice scored by the NNLS of all forces (ActiveSetNNLS); sweeps until none improves. On return fx[k].delta hold the
+   choice scored by the NNLS of all forces (JRActiveSetNNLS); sweeps until none improves. On return fx[k].delta hold the
    choice, y its forces; cost0 and cost: the residual norm before and after */
 static PetscErrorCode CoupledSearch(CoupledFit *cf, const PetscReal dlo[], const PetscReal dhi[], PetscReal y[], PetscReal *cost0, PetscReal *cost, PetscInt *sweeps)
 {
@@ -635,7 +362,7 @@ static PetscErrorCode CoupledSearch(CoupledFit *cf, const PetscReal dlo[], const
     bg[l] = cf->w * cf->Et[l] / cf->En[l];
     bbs += bg[l] * bg[l];
   }
-  Gram(na, ncand, H, bg, HH, Hb); /* the rows of all joints: every pair of candidates */
+  JRGram(na, ncand, H, bg, HH, Hb); /* the rows of all joints: every pair of candidates */
 #define SCORE(val) \
   do { \
     for (PetscInt k = 0; k < cf->nj; k++) \
@@ -645,7 +372,7 @@ static PetscErrorCode CoupledSearch(CoupledFit *cf, const PetscReal dlo[], const
         for (PetscInt k2 = 0; k2 < cf->nj; k2++) \
           for (PetscInt e2 = cf->off[k2]; e2 < cf->off[k2 + 1]; e2++) A[e + e2 * n] = HH[a + (coff[k2] + sel[e2]) * ncand] + (k2 == k ? G[k][sel[e] + sel[e2] * nc[k]] : 0.0); \
       } \
-    PetscCall(ActiveSetNNLS(n, A, c, y, &v)); \
+    PetscCall(JRActiveSetNNLS(n, A, c, y, &v)); \
     val = bbs + v; \
   } while (0)
   SCORE(best);
@@ -1107,7 +834,7 @@ static PetscErrorCode FitCoupled(FitCtx *ctx)
   CoupledFit cf;
   PetscInt   sweeps = 0, its = 0, nr;
   PetscReal *y, *dl, *dh, *r, *J, cost0, cost, r0, r1, own0 = 0, own1 = 0, tot0 = 0, tot1 = 0;
-  LSQ        q;
+  JRLSQ      q;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(&cf, sizeof(cf)));
@@ -1123,7 +850,7 @@ static PetscErrorCode FitCoupled(FitCtx *ctx)
   q.nr  = nr;
   q.fn  = CoupledResidual;
   q.ctx = &cf;
-  PetscCall(LSQSolve(&q, y, 0.0, &r0, &r1, &its));
+  PetscCall(JRLSQSolve(&q, y, 0.0, &r0, &r1, &its));
   PetscCall(CoupledNorms(&cf, y, r, J, &own1, &tot1));
   for (PetscInt k = 0; k < cf.nj; k++) {
     JointFit      *f  = &ctx->jf[cf.jl[k]];
@@ -1540,7 +1267,7 @@ static PetscErrorCode FitConvex(FitCtx *ctx, PetscInt j)
   PetscReal         *x  = f->x, *y, rsearch, rms0, rms;
   PetscInt           its1 = 0;
   FixedFit           fx;
-  LSQ                q;
+  JRLSQ              q;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc4(mj, &fx.delta, 2 * mj, &fx.x, FitRows(t) * 2 * mj, &fx.J2, mj, &y));
@@ -1558,7 +1285,7 @@ static PetscErrorCode FitConvex(FitCtx *ctx, PetscInt j)
   q.nr  = FitRows(t);
   q.fn  = FixedResidual;
   q.ctx = &fx;
-  PetscCall(LSQSolve(&q, y, 0.0, &rms0, &rms, &its1));
+  PetscCall(JRLSQSolve(&q, y, 0.0, &rms0, &rms, &its1));
   for (PetscInt i = 0; i < mj; i++) {
     x[i]      = t->fs * y[i] / (fx.delta[i] * t->ks);
     x[mj + i] = y[i];
@@ -1579,7 +1306,7 @@ static PetscErrorCode FitRefine(FitCtx *ctx, PetscInt j)
   const PetscInt mj = f->m;
   PetscReal     *x  = f->x, r1, rms;
   PetscInt       its1 = 0;
-  LSQ            q;
+  JRLSQ          q;
 
   PetscFunctionBeginUser;
   for (PetscInt g = 0; g < mj; g++) {
@@ -1590,7 +1317,7 @@ static PetscErrorCode FitRefine(FitCtx *ctx, PetscInt j)
   q.nr  = FitRows(t);
   q.fn  = TangentResidual;
   q.ctx = t;
-  PetscCall(LSQSolve(&q, x, 1e-10, &r1, &rms, &its1));
+  PetscCall(JRLSQSolve(&q, x, 1e-10, &r1, &rms, &its1));
   f->rms = rms;
   f->its += its1;
   for (PetscInt g = 0; g < mj; g++) t->delta[g] = t->fs * x[mj + g] / (t->ks * x[g]);
@@ -1714,7 +1441,7 @@ static PetscErrorCode FitNormal(FitCtx *ctx, PetscInt j)
   const PetscReal    ftot = f->t.ftot;
   NormalFit          nf;
   PetscReal          vsep = 0, nmx = 0, c = 0, *xn;
-  LSQ                q;
+  JRLSQ              q;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(&nf, sizeof(nf)));
@@ -1745,7 +1472,7 @@ static PetscErrorCode FitNormal(FitCtx *ctx, PetscInt j)
   q.nr  = nf.nv;
   q.fn  = NormalResidual;
   q.ctx = &nf;
-  PetscCall(LSQSolve(&q, xn, 1e-10, &f->nrms0, &f->nrms, &f->nits));
+  PetscCall(JRLSQSolve(&q, xn, 1e-10, &f->nrms0, &f->nrms, &f->nits));
   for (PetscInt i = 0; i < mj; i++) ctx->ekn[ctx->cnt + i] = nf.kns * xn[i];
   PetscCall(PetscFree3(nf.v, nf.target, xn));
   PetscFunctionReturn(0);
