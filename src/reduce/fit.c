@@ -45,13 +45,12 @@
    the fit's error with it (rom case level F dissipation_error_normal_varying) and, with -rom_fit_normal_passes k,
    fits k more times with that change added to the targets (a defect correction; off by default: on lap3 it moved
    the peak amplitudes either way: docs/validation.md).
-   Saved and loaded with -rom_save / -rom_load (HDF5, /rom/...): the reduced elements and the members that define
-   the joints' motion, with the members' node coordinates to check that the file fits the model.
+   The least-squares solvers (TAO, NNLS) are in src/reduce/lsq.c.
+   Saved and loaded with -rom_save / -rom_load (HDF5, /rom/...; src/reduce/io.c): the reduced elements and the members
+   that define the joints' motion, with the members' node coordinates to check that the file fits the model.
 */
-#include <jointrom/private/modelimpl.h>
+#include <jointrom/private/reduceimpl.h>
 #include <jointrom/private/contactimpl.h>
-#include <petsctao.h>
-#include <petscviewerhdf5.h>
 #include <petscblaslapack.h>
 
 /* Steady Jenkins loop (spring k, slip force f) under u = a cos(theta_s), theta_s = 2 pi s / ns: F[s] += force,
@@ -92,128 +91,6 @@ static void JenkinsLoop(PetscReal k, PetscReal f, PetscReal a, PetscInt ns, Pets
     if (Fk) Fk[s] = dk;
     if (Ff) Ff[s] = df;
   }
-}
-
-/* Least squares r(x) -> min 1/2 |r|^2 with x >= lo, by TAO (prefix rom_); J: nr x nx column-major */
-typedef struct {
-  PetscInt  nx, nr;
-  PetscErrorCode (*fn)(void *, const PetscReal[], PetscReal[], PetscReal[]);
-  void      *ctx;
-  PetscReal *r, *J;
-} LSQ;
-
-static PetscErrorCode LSQObjective(Tao tao, Vec X, PetscReal *obj, Vec G, void *ctx)
-{
-  LSQ               *q = (LSQ *)ctx;
-  const PetscScalar *x;
-  PetscScalar       *g;
-
-  PetscFunctionBeginUser;
-  (void)tao;
-  PetscCall(VecGetArrayRead(X, &x));
-  PetscCall(q->fn(q->ctx, x, q->r, q->J));
-  PetscCall(VecRestoreArrayRead(X, &x));
-  *obj = 0;
-  for (PetscInt i = 0; i < q->nr; i++) *obj += 0.5 * q->r[i] * q->r[i];
-  PetscCall(VecGetArray(G, &g));
-  for (PetscInt j = 0; j < q->nx; j++) {
-    PetscReal s = 0;
-    for (PetscInt i = 0; i < q->nr; i++) s += q->J[i + j * q->nr] * q->r[i];
-    g[j] = s;
-  }
-  PetscCall(VecRestoreArray(G, &g));
-  PetscFunctionReturn(0);
-}
-
-/* Gauss-Newton Hessian J^T J (J from the last objective evaluation at this X), with a 1e-10 relative shift */
-static PetscErrorCode LSQHessian(Tao tao, Vec X, Mat Hm, Mat Pm, void *ctx)
-{
-  LSQ         *q = (LSQ *)ctx;
-  PetscScalar *a;
-  PetscReal    tr = 0;
-
-  PetscFunctionBeginUser;
-  (void)tao;
-  (void)Pm;
-  {
-    const PetscScalar *x;
-    PetscCall(VecGetArrayRead(X, &x));
-    PetscCall(q->fn(q->ctx, x, q->r, q->J));
-    PetscCall(VecRestoreArrayRead(X, &x));
-  }
-  PetscCall(MatDenseGetArray(Hm, &a));
-  for (PetscInt j = 0; j < q->nx; j++)
-    for (PetscInt i = 0; i < q->nx; i++) {
-      PetscReal v = 0;
-      for (PetscInt k = 0; k < q->nr; k++) v += q->J[k + i * q->nr] * q->J[k + j * q->nr];
-      a[i + j * q->nx] = v;
-      if (i == j) tr += v;
-    }
-  for (PetscInt i = 0; i < q->nx; i++) a[i + i * q->nx] += 1e-10 * tr / q->nx;
-  PetscCall(MatDenseRestoreArray(Hm, &a));
-  PetscCall(MatAssemblyBegin(Hm, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(Hm, MAT_FINAL_ASSEMBLY));
-  PetscFunctionReturn(0);
-}
-
-/* rms: sqrt(|r|^2) before (rms0) and after; x updated */
-static PetscErrorCode LSQSolve(LSQ *q, PetscReal x[], PetscReal lo, PetscReal *rms0, PetscReal *rms, PetscInt *its)
-{
-  Tao                tao;
-  Vec                X, L, U;
-  Mat                Hm;
-  PetscScalar       *xa;
-  TaoConvergedReason reason;
-  PetscReal          jnorm = 0;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscMalloc2(q->nr, &q->r, q->nr * q->nx, &q->J));
-  PetscCall(q->fn(q->ctx, x, q->r, q->J));
-  *rms0 = 0;
-  for (PetscInt i = 0; i < q->nr; i++) *rms0 += q->r[i] * q->r[i];
-  *rms0 = PetscSqrtReal(*rms0);
-  for (PetscInt i = 0; i < q->nr * q->nx; i++) jnorm += q->J[i] * q->J[i];
-  jnorm = PetscSqrtReal(jnorm);
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, q->nx, &X));
-  PetscCall(VecDuplicate(X, &L));
-  PetscCall(VecDuplicate(X, &U));
-  PetscCall(VecSet(L, lo));
-  PetscCall(VecSet(U, PETSC_INFINITY));
-  PetscCall(VecGetArray(X, &xa));
-  for (PetscInt j = 0; j < q->nx; j++) xa[j] = x[j];
-  PetscCall(VecRestoreArray(X, &xa));
-  PetscCall(TaoCreate(PETSC_COMM_SELF, &tao));
-  PetscCall(TaoSetOptionsPrefix(tao, "rom_"));
-  PetscCall(TaoSetType(tao, TAOBNLS)); /* bounded Newton line search on the Gauss-Newton Hessian */
-  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, q->nx, q->nx, NULL, &Hm));
-  PetscCall(TaoSetHessian(tao, Hm, Hm, LSQHessian, q));
-  PetscCall(TaoSetSolution(tao, X));
-  PetscCall(TaoSetVariableBounds(tao, L, U));
-  PetscCall(TaoSetObjectiveAndGradient(tao, NULL, LSQObjective, q));
-  /* to round-off (the fit must not depend on the ranks): the gradient J^T r down to 1e-13 of |J| |r| at the start */
-  PetscCall(TaoSetTolerances(tao, 1e-13 * jnorm * PetscMax(*rms0, 1e-13), 0, 0));
-  PetscCall(TaoSetMaximumIterations(tao, 2000));
-  PetscCall(TaoSetFunctionLowerBound(tao, 1e-26)); /* an exact fit stops there */
-  PetscCall(TaoSetMaximumFunctionEvaluations(tao, 20000));
-  PetscCall(TaoSetFromOptions(tao));
-  PetscCall(TaoSolve(tao));
-  PetscCall(TaoGetConvergedReason(tao, &reason));
-  PetscCall(TaoGetIterationNumber(tao, its));
-  PetscCheck(reason > 0 || reason == TAO_DIVERGED_MAXITS || reason == TAO_DIVERGED_LS_FAILURE || reason == TAO_DIVERGED_MAXFCN || reason == TAO_DIVERGED_TR_REDUCTION, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "The joint fit (TAO, prefix rom_) failed: %s; try -rom_tao_type or -rom_tao_max_it", TaoConvergedReasons[reason]);
-  PetscCall(VecGetArray(X, &xa));
-  for (PetscInt j = 0; j < q->nx; j++) x[j] = PetscRealPart(xa[j]);
-  PetscCall(VecRestoreArray(X, &xa));
-  PetscCall(q->fn(q->ctx, x, q->r, q->J));
-  *rms = 0;
-  for (PetscInt i = 0; i < q->nr; i++) *rms += q->r[i] * q->r[i];
-  *rms = PetscSqrtReal(*rms);
-  PetscCall(TaoDestroy(&tao));
-  PetscCall(MatDestroy(&Hm));
-  PetscCall(VecDestroy(&X));
-  PetscCall(VecDestroy(&L));
-  PetscCall(VecDestroy(&U));
-  PetscCall(PetscFree2(q->r, q->J));
-  PetscFunctionReturn(0);
 }
 
 /* The tangential fit: x = [k_i / ks, f_i / fs] */
@@ -305,71 +182,6 @@ static PetscErrorCode FixedResidual(void *ctx, const PetscReal y[], PetscReal r[
   PetscFunctionReturn(0);
 }
 
-/* The least squares on a support: A[idx, idx] z = c[idx] (A n x n column-major, k indices; B k x k scratch). info:
-   LAPACK's (> 0: singular) */
-static PetscErrorCode SupportSolve(PetscInt n, const PetscReal A[], const PetscReal c[], PetscInt k, const PetscInt idx[], PetscReal B[], PetscReal z[], PetscBLASInt piv[], PetscBLASInt *info)
-{
-  PetscBLASInt nb, one = 1;
-
-  PetscFunctionBeginUser;
-  *info = 0;
-  for (PetscInt a = 0; a < k; a++) {
-    for (PetscInt b = 0; b < k; b++) B[a + b * k] = A[idx[a] + idx[b] * n];
-    z[a] = c[idx[a]];
-  }
-  PetscCall(PetscBLASIntCast(k, &nb));
-  if (k) PetscCallBLAS("LAPACKgesv", LAPACKgesv_(&nb, &one, B, &nb, piv, z, &nb, info));
-  PetscFunctionReturn(0);
-}
-
-/* NNLS of the columns sel[0..m) of the Gram system (G, c, bb: C^T C, C^T b, b.b of the residual C y - b): every
-   support tried, the best non-negative least-squares solution (the NNLS minimum: m <= 8). cost: |C y - b|^2 */
-static PetscErrorCode GramNNLS(PetscInt nc, const PetscReal G[], const PetscReal c[], PetscReal bb, PetscInt m, const PetscInt sel[], PetscReal y[], PetscReal *cost)
-{
-  PetscReal    A[64], z[8];
-  PetscInt     idx[8], pos[8];
-  PetscBLASInt piv[8], info;
-
-  PetscFunctionBeginUser;
-  *cost = bb;
-  for (PetscInt i = 0; i < m; i++) y[i] = 0;
-  for (PetscInt S = 1; S < (1 << m); S++) {
-    PetscInt  k = 0, ok = 1;
-    PetscReal v = bb;
-    for (PetscInt i = 0; i < m; i++)
-      if (S & (1 << i)) {
-        pos[k]   = i;
-        idx[k++] = sel[i];
-      }
-    PetscCall(SupportSolve(nc, G, c, k, idx, A, z, piv, &info));
-    if (info) continue; /* singular: a smaller support covers it */
-    for (PetscInt a = 0; a < k; a++) {
-      ok = ok && z[a] > 0;
-      v -= z[a] * c[idx[a]];
-    }
-    if (ok && v < *cost) {
-      *cost = v;
-      for (PetscInt i = 0; i < m; i++) y[i] = 0;
-      for (PetscInt a = 0; a < k; a++) y[pos[a]] = z[a];
-    }
-  }
-  PetscFunctionReturn(0);
-}
-
-/* The Gram system of the columns C (ld rows, nc columns, column-major) against b: G = C^T C (nc x nc), cg = C^T b */
-static void Gram(PetscInt ld, PetscInt nc, const PetscReal C[], const PetscReal b[], PetscReal G[], PetscReal cg[])
-{
-  for (PetscInt i = 0; i < nc; i++) {
-    cg[i] = 0;
-    for (PetscInt q = 0; q < ld; q++) cg[i] += C[q + i * ld] * b[q];
-    for (PetscInt k = 0; k <= i; k++) {
-      PetscReal v = 0;
-      for (PetscInt q = 0; q < ld; q++) v += C[q + i * ld] * C[q + k * ld];
-      G[i + k * nc] = G[k + i * nc] = v;
-    }
-  }
-}
-
 /* The residual columns of single elements (y = 1) of joint fit t at the slip displacements dc[0..nc), as the Gram
    system of the residual C y - b: G = C^T C (nc x nc), cg = C^T b, bb = b.b */
 static PetscErrorCode CandidateGram(TangentFit *t, PetscInt nc, const PetscReal dc[], PetscReal G[], PetscReal cg[], PetscReal *bb)
@@ -391,7 +203,7 @@ static PetscErrorCode CandidateGram(TangentFit *t, PetscInt nc, const PetscReal 
     for (PetscInt q = 0; q < ld; q++) C[q + c * ld] += b[q];
   }
   t->m = mt;
-  Gram(ld, nc, C, b, G, cg);
+  JRGram(ld, nc, C, b, G, cg);
   PetscCall(PetscFree3(C, b, J));
   PetscFunctionReturn(0);
 }
@@ -406,7 +218,7 @@ static void CandidateDeltas(PetscInt m, const PetscReal delta[], PetscReal dmin,
 
 /* The slip displacements of the convex fit, chosen among candidates: the m start values and a log grid over the
    members' range. For each candidate element (y = 1) its residual column; the best set by exhaustive search
-   (<= 20000 sets) or else by coordinate descent from the start: each set scored by its NNLS (GramNNLS). Every
+   (<= 20000 sets) or else by coordinate descent from the start: each set scored by its NNLS (JRGramNNLS). Every
    step is deterministic: the same on any ranks. delta[] in: the start; out: the best set; y: its forces. */
 static PetscErrorCode SearchDelta(TangentFit *t, PetscReal dmin, PetscReal dmax, PetscInt m, PetscReal delta[], PetscReal y[], PetscReal *cost)
 {
@@ -422,13 +234,13 @@ static PetscErrorCode SearchDelta(TangentFit *t, PetscReal dmin, PetscReal dmax,
   PetscCall(CandidateGram(t, nc, dc, G, cg, &bb));
   for (PetscInt i = 0; i < m; i++) combos *= (double)(ngrid - i) / (i + 1);
   for (PetscInt i = 0; i < m; i++) bsel[i] = i;
-  PetscCall(GramNNLS(nc, G, cg, bb, m, bsel, y, &best));
+  PetscCall(JRGramNNLS(nc, G, cg, bb, m, bsel, y, &best));
   if (combos <= 20000) { /* every set of m grid values */
     for (PetscInt i = 0; i < m; i++) sel[i] = m + i;
     while (1) {
       PetscReal v;
       PetscInt  i;
-      PetscCall(GramNNLS(nc, G, cg, bb, m, sel, yy, &v));
+      PetscCall(JRGramNNLS(nc, G, cg, bb, m, sel, yy, &v));
       if (v < best) {
         best = v;
         for (PetscInt k = 0; k < m; k++) bsel[k] = sel[k];
@@ -450,7 +262,7 @@ static PetscErrorCode SearchDelta(TangentFit *t, PetscReal dmin, PetscReal dmax,
           for (PetscInt k = 0; k < m; k++) used = (PetscBool)(used || bsel[k] == c);
           if (used) continue;
           sel[i] = c;
-          PetscCall(GramNNLS(nc, G, cg, bb, m, sel, yy, &v));
+          PetscCall(JRGramNNLS(nc, G, cg, bb, m, sel, yy, &v));
           if (v < best * (1 - 1e-12)) {
             best = v;
             bsel[i] = c;
@@ -461,95 +273,9 @@ static PetscErrorCode SearchDelta(TangentFit *t, PetscReal dmin, PetscReal dmax,
     }
   }
   for (PetscInt i = 0; i < m; i++) delta[i] = dc[bsel[i]];
-  PetscCall(GramNNLS(nc, G, cg, bb, m, bsel, y, &best));
+  PetscCall(JRGramNNLS(nc, G, cg, bb, m, bsel, y, &best));
   *cost = PetscSqrtReal(PetscMax(best, 0.0));
   PetscCall(PetscFree3(dc, G, cg));
-  PetscFunctionReturn(0);
-}
-
-/* min y^T A y - 2 c^T y over y >= 0 (A n x n, symmetric positive semi-definite): the Lawson-Hanson active set on
-   the Gram system, deterministic, warm-started from the support of y on entry if the least squares there is
-   positive. val: that minimum */
-static PetscErrorCode ActiveSetNNLS(PetscInt n, const PetscReal A[], const PetscReal c[], PetscReal y[], PetscReal *val)
-{
-  PetscBool   *P, *skip;
-  PetscReal   *z, *B, *w, cmax = 0;
-  PetscInt    *idx;
-  PetscBLASInt *piv, info = 0;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscMalloc7(n, &P, n, &skip, n, &z, n * n, &B, n, &w, n, &idx, n, &piv));
-  for (PetscInt i = 0; i < n; i++) {
-    P[i]    = (PetscBool)(y[i] > 0);
-    skip[i] = PETSC_FALSE;
-    cmax    = PetscMax(cmax, PetscAbsReal(c[i]));
-  }
-  { /* the warm start: the least squares on the entry support, if it is positive */
-    PetscInt  k   = 0;
-    PetscBool pos = PETSC_TRUE;
-    for (PetscInt i = 0; i < n; i++)
-      if (P[i]) idx[k++] = i;
-    PetscCall(SupportSolve(n, A, c, k, idx, B, z, piv, &info));
-    for (PetscInt a = 0; a < k; a++) pos = (PetscBool)(pos && !info && z[a] > 0);
-    for (PetscInt i = 0; i < n; i++) y[i] = 0;
-    if (k && pos)
-      for (PetscInt a = 0; a < k; a++) y[idx[a]] = z[a];
-    else
-      for (PetscInt i = 0; i < n; i++) P[i] = PETSC_FALSE;
-  }
-  for (PetscInt outer = 0; outer < 3 * n; outer++) {
-    PetscInt  t  = -1;
-    PetscReal wt = 1e-12 * cmax;
-    for (PetscInt i = 0; i < n; i++) { /* the gradient's descent directions off the support */
-      w[i] = c[i];
-      for (PetscInt k = 0; k < n; k++) w[i] -= A[i + k * n] * y[k];
-      if (!P[i] && !skip[i] && w[i] > wt) {
-        wt = w[i];
-        t  = i;
-      }
-    }
-    if (t < 0) break;
-    P[t] = PETSC_TRUE;
-    for (PetscInt inner = 0; inner < 3 * n; inner++) {
-      PetscInt  k = 0, hit = -1;
-      PetscBool pos = PETSC_TRUE;
-      PetscReal alpha = 1;
-      for (PetscInt i = 0; i < n; i++)
-        if (P[i]) idx[k++] = i;
-      PetscCall(SupportSolve(n, A, c, k, idx, B, z, piv, &info));
-      if (info) { /* t's column depends on the support's: left out */
-        P[t] = PETSC_FALSE;
-        skip[t] = PETSC_TRUE;
-        break;
-      }
-      for (PetscInt a = 0; a < k; a++) pos = (PetscBool)(pos && z[a] > 0);
-      if (pos) {
-        for (PetscInt i = 0; i < n; i++) y[i] = 0;
-        for (PetscInt a = 0; a < k; a++) y[idx[a]] = z[a];
-        break;
-      }
-      for (PetscInt a = 0; a < k; a++) /* the step toward z stops where the first force reaches 0 */
-        if (z[a] <= 0 && y[idx[a]] / (y[idx[a]] - z[a]) < alpha) {
-          alpha = y[idx[a]] / (y[idx[a]] - z[a]);
-          hit   = idx[a];
-        }
-      for (PetscInt a = 0; a < k; a++) {
-        const PetscInt i = idx[a];
-        y[i] += alpha * (z[a] - y[i]);
-        if (i == hit || y[i] <= 0) {
-          y[i] = 0;
-          P[i] = PETSC_FALSE;
-        }
-      }
-    }
-  }
-  *val = 0;
-  for (PetscInt i = 0; i < n; i++) {
-    PetscReal v = -2 * c[i];
-    for (PetscInt k = 0; k < n; k++) v += A[i + k * n] * y[k];
-    *val += v * y[i];
-  }
-  PetscCall(PetscFree7(P, skip, z, B, w, idx, piv));
   PetscFunctionReturn(0);
 }
 
@@ -559,6 +285,7 @@ static PetscErrorCode ActiveSetNNLS(PetscInt n, const PetscReal A[], const Petsc
    amplitudes answer to. Et: the first reduction's, less that of joints not fitted (their members are their elements). */
 typedef struct {
   PetscInt    nj, na, n;      /* fitted joints, case amplitudes, elements of them all */
+  PetscInt   *jl;             /* fitted joint k is joint jl[k] */
   FixedFit   *fx;             /* each fitted joint's rows (fx[k].t) and slip displacements (fx[k].delta) */
   PetscInt   *off, *roff;     /* joint k: forces y[off[k] .. off[k + 1]), rows from roff[k] */
   PetscReal  *u, *am, *Et, *En, w;
@@ -604,7 +331,7 @@ static PetscErrorCode CoupledResidual(void *ctx, const PetscReal y[], PetscReal 
 
 /* The slip displacements of all fitted joints together, by coordinate descent: each element's in turn over its
    joint's candidates (its current value and the log grid over [dlo, dhi] of the joint), the others fixed, every
-   choice scored by the NNLS of all forces (ActiveSetNNLS); sweeps until none improves. On return fx[k].delta hold the
+   choice scored by the NNLS of all forces (JRActiveSetNNLS); sweeps until none improves. On return fx[k].delta hold the
    choice, y its forces; cost0 and cost: the residual norm before and after */
 static PetscErrorCode CoupledSearch(CoupledFit *cf, const PetscReal dlo[], const PetscReal dhi[], PetscReal y[], PetscReal *cost0, PetscReal *cost, PetscInt *sweeps)
 {
@@ -635,7 +362,7 @@ static PetscErrorCode CoupledSearch(CoupledFit *cf, const PetscReal dlo[], const
     bg[l] = cf->w * cf->Et[l] / cf->En[l];
     bbs += bg[l] * bg[l];
   }
-  Gram(na, ncand, H, bg, HH, Hb); /* the rows of all joints: every pair of candidates */
+  JRGram(na, ncand, H, bg, HH, Hb); /* the rows of all joints: every pair of candidates */
 #define SCORE(val) \
   do { \
     for (PetscInt k = 0; k < cf->nj; k++) \
@@ -645,7 +372,7 @@ static PetscErrorCode CoupledSearch(CoupledFit *cf, const PetscReal dlo[], const
         for (PetscInt k2 = 0; k2 < cf->nj; k2++) \
           for (PetscInt e2 = cf->off[k2]; e2 < cf->off[k2 + 1]; e2++) A[e + e2 * n] = HH[a + (coff[k2] + sel[e2]) * ncand] + (k2 == k ? G[k][sel[e] + sel[e2] * nc[k]] : 0.0); \
       } \
-    PetscCall(ActiveSetNNLS(n, A, c, y, &v)); \
+    PetscCall(JRActiveSetNNLS(n, A, c, y, &v)); \
     val = bbs + v; \
   } while (0)
   SCORE(best);
@@ -710,7 +437,7 @@ static PetscErrorCode NormalResidual(void *ctx, const PetscReal x[], PetscReal r
 }
 
 /* An element list of n elements of one type with joints (and the node-to-node arrays if nodes), no DOFs */
-static PetscErrorCode SetupList(JRElements *el, PetscInt n, const char type[], PetscBool nodes)
+PetscErrorCode JRROMElementsSetUp(JRElements *el, PetscInt n, const char type[], PetscBool nodes)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(el, sizeof(*el)));
@@ -772,62 +499,124 @@ static PetscErrorCode Say(PetscBool quiet, MPI_Comm comm, const char fmt[], ...)
   PetscFunctionReturn(0);
 }
 
+#define NCASE 24 /* the case's amplitudes: from half the lowest level's to twice the highest's (CaseAmplitude) */
+
+/* One joint's fit (FitJoint): its tangential fit t and x = [k_i / ks, f_i / fs] (3 m long: JointElements drops the
+   elements left without force in place) */
+typedef struct {
+  TangentFit t;
+  PetscReal *x;
+  PetscInt   m, its;          /* elements fitted, TAO iterations */
+  PetscReal  rms, rms0;       /* the residual of the fit and of its start */
+  PetscReal  mu, kn;          /* the members' friction coefficient (n0-weighted mean) and total normal stiffness */
+  PetscReal  dlo, dhi;        /* the range of slip displacements searched */
+  PetscReal  nrms, nrms0;     /* jenkins_nv (FitNormal): the normal fit's residual, after and at its start */
+  PetscInt   nits;            /* and its TAO iterations */
+} JointFit;
+
+/* What the steps of one fit (ReducePass) share: the problem, set by JRROMReduce, and what the steps compute */
+typedef struct {
+  MPI_Comm          comm;
+  const JRElements *nn;          /* the first-reduction model: the members, with their joints */
+  PetscInt          m;           /* -rom_elements: elements per joint */
+  const PetscReal  *wt;          /* the members' mode-shape weights (NULL: none) */
+  const JRROMCase  *cs;          /* the case (NULL: none) */
+  const JRROMFit   *fit;         /* the options */
+  const char       *base;        /* BASE_rom_loops.csv (NULL or "": none) */
+  PetscBool         plot, quiet; /* the loops' PNG too; print nothing */
+  const PetscReal  *nvin;        /* added to the case's energy targets (NULL: none; NormalVariation) */
+  /* the pass's own (FitCtxReset) */
+  PetscInt          nj;                /* joints */
+  PetscBool         nv, spread, modef; /* jenkins_nv; -rom_joint_motion linear; mode */
+  PetscReal        *mk, *mf;           /* every member as an element on its joint's motion (w^2 kt, |w| f) */
+  PetscReal        *amod, amin, amax;  /* the case's modal amplitude at each level, their range (NULL: no case) */
+  MemberDelta      *md;                /* joint j's members in contact at rest: md[joff[j] .. joff[j] + jn[j]), by slip
+                                          displacement */
+  PetscInt         *jn, *joff;
+  JointFit         *jf;                /* per joint */
+  PetscInt         *nel;               /* per joint: its reduced elements (JointElements) */
+  PetscInt          cnt;               /* the reduced elements of the joints before */
+  PetscReal        *ek, *ef, *ekn, *en0, *emu; /* the reduced elements before the split: kt, f, kn, n0, mu */
+  PetscReal        *ep, *er;           /* linear, mode: JR_EP per element (its points); mode: its ratio (ModePoints) */
+  FILE             *fp;                /* the loops' CSV (rank 0) */
+  char              csv[PETSC_MAX_PATH_LEN + 32], tmp[PETSC_MAX_PATH_LEN + 48];
+} FitCtx;
+
+/* The case's modal amplitude l of NCASE, in equal ratios from half the lowest level's to twice the highest's */
+static PetscReal CaseAmplitude(const FitCtx *ctx, PetscInt l)
+{
+  return 0.5 * ctx->amin * PetscPowReal(4 * ctx->amax / ctx->amin, l / (PetscReal)(NCASE - 1));
+}
+
 /* The joints' dissipation at modal amplitude a of the case's mode: sum over members of the (weighted) Jenkins
    energy per cycle at their joint's motion |u_j| a */
-static PetscReal CaseDissipation(const JRElements *nn, const PetscReal mk[], const PetscReal mf[], const JRROMCase *cs, PetscReal a)
+static PetscReal CaseDissipation(const FitCtx *ctx, PetscReal a)
 {
-  PetscReal D = 0;
+  const JRElements *nn = ctx->nn;
+  const PetscReal  *mk = ctx->mk, *mf = ctx->mf;
+  PetscReal         D  = 0;
   for (PetscInt e = 0; e < nn->n; e++)
-    if (mk[e] > 0 && mf[e] > 0) D += JenkinsEnergy(mk[e], mf[e], PetscAbsReal(cs->ujoint[nn->joint[e]]) * a, NULL, NULL);
+    if (mk[e] > 0 && mf[e] > 0) D += JenkinsEnergy(mk[e], mf[e], PetscAbsReal(ctx->cs->ujoint[nn->joint[e]]) * a, NULL, NULL);
   return D;
 }
 
 /* The modal amplitude a of the case's mode at resonance at every level F, by the energy balance of one cycle
    (single-mode, stuck mode shape): pi F force a = damp a^2 + D(a), where D (the joints' dissipation) grows faster
-   than a, so the root is unique (bisection). Every rank the same. */
-static PetscErrorCode CaseAmplitudes(MPI_Comm comm, PetscBool quiet, const JRElements *nn, const PetscReal mk[], const PetscReal mf[], const JRROMCase *cs, PetscReal **amod)
+   than a, so the root is unique (bisection). Every rank the same. amod (NULL if the excitation does not drive the
+   mode), amin, amax. */
+static PetscErrorCode CaseAmplitudes(FitCtx *ctx)
 {
-  PetscReal *a;
+  const JRROMCase *cs = ctx->cs;
+  PetscReal       *a;
 
   PetscFunctionBeginUser;
-  *amod = NULL;
   if (!(cs->force > 0)) {
-    PetscCall(Say(quiet, comm, "rom: WARNING the excitation does not drive the mode of interest (stuck mode nearest the middle of the frequency range): the fit does not use the case's amplitudes\n"));
+    PetscCall(Say(ctx->quiet, ctx->comm, "rom: WARNING the excitation does not drive the mode of interest (stuck mode nearest the middle of the frequency range): the fit does not use the case's amplitudes\n"));
     PetscFunctionReturn(0);
   }
   PetscCall(PetscMalloc1(cs->nlev, &a));
   for (PetscInt l = 0; l < cs->nlev; l++) {
     const PetscReal win = PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force; /* input per cycle / a */
     PetscReal       lo = 0, hi = cs->damp > 0 ? win / cs->damp : 1.0, umax = 0, D;
-    for (PetscInt j = 0; j < nn->njoints; j++) umax = PetscMax(umax, PetscAbsReal(cs->ujoint[j]));
+    for (PetscInt j = 0; j < ctx->nn->njoints; j++) umax = PetscMax(umax, PetscAbsReal(cs->ujoint[j]));
     if (!(cs->damp > 0)) { /* no linear damping: bounded only if the joints' friction can absorb the input */
       PetscInt k = 0;
-      while (win * hi - CaseDissipation(nn, mk, mf, cs, hi) > 0 && k++ < 200) hi *= 2;
-      PetscCheck(k < 200, comm, PETSC_ERR_ARG_OUTOFRANGE, "Level %g N: without linear damping (-hbm_gamma, -hbm_zeta) the joints' friction cannot bound the resonance: no amplitudes for the fit", (double)cs->level[l]);
+      while (win * hi - CaseDissipation(ctx, hi) > 0 && k++ < 200) hi *= 2;
+      PetscCheck(k < 200, ctx->comm, PETSC_ERR_ARG_OUTOFRANGE, "Level %g N: without linear damping (-hbm_gamma, -hbm_zeta) the joints' friction cannot bound the resonance: no amplitudes for the fit", (double)cs->level[l]);
     }
     for (PetscInt it = 0; it < 200 && hi - lo > 1e-14 * hi; it++) {
       const PetscReal mid = 0.5 * (lo + hi);
-      if (win * mid - cs->damp * mid * mid - CaseDissipation(nn, mk, mf, cs, mid) > 0) lo = mid;
+      if (win * mid - cs->damp * mid * mid - CaseDissipation(ctx, mid) > 0) lo = mid;
       else hi = mid;
     }
     a[l] = 0.5 * (lo + hi);
-    D    = CaseDissipation(nn, mk, mf, cs, a[l]);
-    PetscCall(Say(quiet, comm, "rom case level %g modal_amplitude %.5e joint_amplitude_m %.4e joint_dissipation_share %.4f\n", (double)cs->level[l], (double)a[l], (double)(umax * a[l]), (double)(a[l] > 0 ? D / (win * a[l]) : 0.0)));
+    D    = CaseDissipation(ctx, a[l]);
+    PetscCall(Say(ctx->quiet, ctx->comm, "rom case level %g modal_amplitude %.5e joint_amplitude_m %.4e joint_dissipation_share %.4f\n", (double)cs->level[l], (double)a[l], (double)(umax * a[l]), (double)(a[l] > 0 ? D / (win * a[l]) : 0.0)));
   }
-  *amod = a;
+  ctx->amod = a;
+  ctx->amin = ctx->amax = a[0];
+  for (PetscInt l = 1; l < cs->nlev; l++) {
+    ctx->amin = PetscMin(ctx->amin, a[l]);
+    ctx->amax = PetscMax(ctx->amax, a[l]);
+  }
   PetscFunctionReturn(0);
 }
 
-/* -rom_joint_motion linear: where a joint's fitted elements take its linear motion field. Element g stands for a group
-   of the joint's members d[] (by slip force, as the fit's start); it is split into three equal parts at the points
+/* -rom_joint_motion linear: where joint j's mj fitted elements take its linear motion field. Element g stands for a
+   group of the joint's members (by slip force, as the fit's start); it is split into three equal parts at the points
    c + sqrt(2) (s1 cos t e1 + s2 sin t e2), t = 0, 2 pi/3, 4 pi/3, where c is the group's stiffness-weighted centroid
    and s_a^2, e_a the eigenpairs of its in-plane covariance: the three points have the group's centroid and second
    moment, so the parts carry the joint's rotation with the members' stiffness (parallel axis theorem) and, moved
-   uniformly, act as the element itself. P: JR_EP per element (three points; their positions only) */
-static PetscErrorCode SpreadPoints(const JRElements *nn, const MemberDelta *d, PetscInt nm, PetscInt mj, const PetscReal mk[], const PetscReal mf[], PetscReal ftot, PetscReal P[])
+   uniformly, act as the element itself. Into ep, JR_EP per element (three points; their positions only) */
+static PetscErrorCode SpreadPoints(FitCtx *ctx, PetscInt j, PetscInt mj)
 {
-  PetscReal *acc; /* per group: weight, sum w p (3), sum w p p^T (9) */
-  PetscReal  c = 0;
+  const JRElements  *nn = ctx->nn;
+  const MemberDelta *d  = ctx->md + ctx->joff[j];
+  const PetscInt     nm = ctx->jn[j];
+  const PetscReal   *mk = ctx->mk, *mf = ctx->mf, ftot = ctx->jf[j].t.ftot;
+  PetscReal         *P  = ctx->ep + JR_EP * ctx->cnt;
+  PetscReal         *acc; /* per group: weight, sum w p (3), sum w p p^T (9) */
+  PetscReal          c = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PetscCalloc1(13 * mj, &acc));
@@ -860,19 +649,25 @@ static PetscErrorCode SpreadPoints(const JRElements *nn, const MemberDelta *d, P
   PetscFunctionReturn(0);
 }
 
-/* -rom_joint_motion mode: where joint j's fitted elements take its field over the members' positions and stuck-mode
+/* -rom_joint_motion mode: where joint j's mj fitted elements take its field over the members' positions and stuck-mode
    motions (nn->phi: tangential phi_t, normal phi_n), and what they carry there. The fit saw the members weighted by
    phi_t / its mean over the members in contact at rest (w^2 kt, |w| f): elements k, f moving with that mean. Element g,
-   which stands for a group of members d[] (by slip force, as the fit's start), moves with psi_t, chosen so that its
+   which stands for a group of members (by slip force, as the fit's start), moves with psi_t, chosen so that its
    spring becomes its group's total kt (|psi_t| = |mean| sqrt(k / sum kt), signed as the group's slip-force-weighted
    mean phi_t), with k (mean / psi_t)^2 and f |mean / psi_t|: the same loops in the mode, and no stiffer than its
    members in other motions; it sits at the group's kt-weighted centroid, and is split into two halves at psi_n =
    m -/+ s, the kn-weighted mean and spread of the members' phi_n, with the members' total kn: the group's normal
-   stiffness (sum kn phi_n^2) and normal load change (sum kn phi_n) in the mode. P: JR_EP per element (two points of
-   5 coordinates); ratio: mean / psi_t (k becomes k ratio^2, f becomes f |ratio|); kn: the group's total */
-static PetscErrorCode ModePoints(const JRElements *nn, PetscInt j, const MemberDelta *d, PetscInt nm, PetscInt mj, const PetscReal mf[], PetscReal ftot, const PetscReal k[], PetscReal ratio[], PetscReal kn[], PetscReal P[])
+   stiffness (sum kn phi_n^2) and normal load change (sum kn phi_n) in the mode. For the elements from ctx->cnt on
+   (their springs k in ek): ep, JR_EP each (two points of 5 coordinates); er: mean / psi_t (k becomes k er^2, f
+   becomes f |er|); ekn: the group's total kn */
+static PetscErrorCode ModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
 {
-  PetscReal mean = 0, cnt = 0, umax = 0, c = 0, *acc; /* per group: sum f phi_t, sum kt, sum kt phi_t^2, sum kn, sum kn phi_n, sum kn phi_n^2, sum kt x (3) */
+  const JRElements  *nn = ctx->nn;
+  const MemberDelta *d  = ctx->md + ctx->joff[j];
+  const PetscInt     nm = ctx->jn[j];
+  const PetscReal   *mf = ctx->mf, ftot = ctx->jf[j].t.ftot, *k = ctx->ek + ctx->cnt;
+  PetscReal         *ratio = ctx->er + ctx->cnt, *kn = ctx->ekn + ctx->cnt, *P = ctx->ep + JR_EP * ctx->cnt;
+  PetscReal          mean = 0, cnt = 0, umax = 0, c = 0, *acc; /* per group: sum f phi_t, sum kt, sum kt phi_t^2, sum kn, sum kn phi_n, sum kn phi_n^2, sum kt x (3) */
 
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < nn->n; e++) { /* the mean the weights were taken over (as in JRTaskFRF) */
@@ -902,7 +697,7 @@ static PetscErrorCode ModePoints(const JRElements *nn, PetscInt j, const MemberD
     if (r[0] < 0) psi = -psi;
     if (!(PetscAbsReal(mean) > 1e-6 * umax) || !(PetscAbsReal(psi) > 1e-6 * umax)) psi = mean; /* no weights were used */
     ratio[g] = psi != 0 ? mean / psi : 1.0;
-    kn[g]        = r[3];
+    kn[g]    = r[3];
     for (PetscInt h = 0; h < 2; h++) {
       for (PetscInt a = 0; a < 3; a++) P[JR_EP * g + 5 * h + a] = r[1] > 0 ? r[6 + a] / r[1] : 0;
       P[JR_EP * g + 5 * h + 3] = psi;
@@ -914,10 +709,14 @@ static PetscErrorCode ModePoints(const JRElements *nn, PetscInt j, const MemberD
 }
 
 /* -rom_joint_motion mode, jenkins_nv: a joint's open members od[] (n0 <= 0, sorted by gap -n0 / kn) in ng groups of
-   equal count, each an element with the group's total kt, kn and n0 (a gap that closes as the members' does on
-   average) at the members' mean phi_t and, in two halves, at psi_n = m -/+ s (kn-weighted mean and spread of phi_n) */
-static PetscErrorCode OpenPoints(const JRElements *nn, const MemberDelta *od, PetscInt no, PetscInt ng, PetscReal k[], PetscReal n0[], PetscReal kn[], PetscReal mu[], PetscReal P[])
+   equal count, each an element e0 + g with the group's total kt, kn and n0 (a gap that closes as
+   the members' does on average) at the members' mean phi_t and, in two halves, at psi_n = m -/+ s (kn-weighted mean and
+   spread of phi_n) */
+static PetscErrorCode OpenPoints(FitCtx *ctx, const MemberDelta *od, PetscInt no, PetscInt ng, PetscInt e0)
 {
+  const JRElements *nn = ctx->nn;
+  PetscReal        *k = ctx->ek + e0, *n0 = ctx->en0 + e0, *kn = ctx->ekn + e0, *mu = ctx->emu + e0, *P = ctx->ep + JR_EP * e0;
+
   PetscFunctionBeginUser;
   for (PetscInt g = 0; g < ng; g++) {
     const PetscInt i0 = g * no / ng, i1 = (g + 1) * no / ng;
@@ -949,114 +748,146 @@ static PetscErrorCode OpenPoints(const JRElements *nn, const MemberDelta *od, Pe
   PetscFunctionReturn(0);
 }
 
-/* The fit coupled across joints (CoupledFit): the joints with more members than elements, from their own fits x,
-   their slip displacements chosen together (CoupledSearch) and their forces fitted together by TAO; x, rms (each
+/* The coupled fit's joints (CoupledFit): those with more members than elements (cf->nj of them, counted), from their
+   own fits: slip displacements, forces y and the ranges dl, dh of their candidates */
+static PetscErrorCode CoupledSetUp(FitCtx *ctx, CoupledFit *cf, PetscReal **y, PetscReal **dl, PetscReal **dh)
+{
+  PetscInt ldmax = 0, mmax = 0;
+
+  PetscFunctionBeginUser;
+  cf->na = NCASE;
+  cf->w  = ctx->fit->wtotal / PetscSqrtReal((PetscReal)NCASE);
+  PetscCall(PetscMalloc7(cf->nj, &cf->jl, cf->nj, &cf->fx, cf->nj + 1, &cf->off, cf->nj + 1, &cf->roff, cf->nj, &cf->u, cf->nj, dl, cf->nj, dh));
+  cf->off[0] = cf->roff[0] = 0;
+  for (PetscInt j = 0, k = 0; j < ctx->nj; j++) {
+    const JointFit *f = &ctx->jf[j];
+    if (!(ctx->jn[j] > ctx->m)) continue;
+    cf->jl[k]       = j;
+    cf->u[k]        = PetscAbsReal(ctx->cs->ujoint[j]);
+    (*dl)[k]        = f->dlo;
+    (*dh)[k]        = f->dhi;
+    cf->off[k + 1]  = cf->off[k] + f->m;
+    cf->roff[k + 1] = cf->roff[k] + FitRows(&f->t);
+    ldmax           = PetscMax(ldmax, FitRows(&f->t));
+    mmax            = PetscMax(mmax, f->m);
+    k++;
+  }
+  cf->n = cf->off[cf->nj];
+  PetscCall(PetscMalloc6(cf->n, y, NCASE, &cf->am, NCASE, &cf->Et, NCASE, &cf->En, ldmax, &cf->rj, mmax * ldmax, &cf->Jj));
+  for (PetscInt k = 0; k < cf->nj; k++) {
+    JointFit      *f  = &ctx->jf[cf->jl[k]];
+    const PetscInt mj = f->m;
+    cf->fx[k].t       = &f->t;
+    PetscCall(PetscMalloc3(mj, &cf->fx[k].delta, 2 * mj, &cf->fx[k].x, FitRows(&f->t) * 2 * mj, &cf->fx[k].J2));
+    for (PetscInt i = 0; i < mj; i++) {
+      cf->fx[k].delta[i]  = f->t.delta[i];
+      (*y)[cf->off[k] + i] = f->x[mj + i];
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The rows of all joints: at the case's amplitudes (as the joints' own case rows) all the energy put in (En) and the
+   target Et: the members' dissipation less that of the joints not fitted, plus the normal-load variation nvin */
+static void CoupledTargets(const FitCtx *ctx, CoupledFit *cf)
+{
+  const JRElements *nn = ctx->nn;
+  const JRROMCase  *cs = ctx->cs;
+  const PetscReal  *mk = ctx->mk, *mf = ctx->mf;
+
+  for (PetscInt l = 0; l < NCASE; l++) {
+    const PetscReal am = CaseAmplitude(ctx, l), D = CaseDissipation(ctx, am);
+    cf->am[l] = am;
+    cf->En[l] = cs->damp * am * am + D;
+    cf->Et[l] = D;
+    for (PetscInt e = 0; e < nn->n; e++)
+      if (!(ctx->jn[nn->joint[e]] > ctx->m) && mk[e] > 0 && mf[e] > 0) cf->Et[l] -= JenkinsEnergy(mk[e], mf[e], PetscAbsReal(cs->ujoint[nn->joint[e]]) * am, NULL, NULL);
+    for (PetscInt j = 0; ctx->nvin && j < ctx->nj; j++) /* the normal-load variation (NormalVariation) */
+      if (ctx->jn[j] > ctx->m) cf->Et[l] += ctx->nvin[j * NCASE + l];
+    if (!(cf->En[l] > 0)) cf->En[l] = 1;
+  }
+}
+
+/* The coupled residual r at y (J its Jacobian) and its norms: of the joints' own rows and of the rows of all joints */
+static PetscErrorCode CoupledNorms(CoupledFit *cf, const PetscReal y[], PetscReal r[], PetscReal J[], PetscReal *own, PetscReal *all)
+{
+  const PetscInt nr = CoupledRows(cf);
+  PetscReal      o = 0, t = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(CoupledResidual(cf, y, r, J));
+  for (PetscInt i = 0; i < nr; i++) {
+    if (i < cf->roff[cf->nj]) o += r[i] * r[i];
+    else t += r[i] * r[i];
+  }
+  *own = PetscSqrtReal(o);
+  *all = PetscSqrtReal(t);
+  PetscFunctionReturn(0);
+}
+
+/* The fit coupled across joints (CoupledFit): the joints with more members than elements, from their own fits,
+   their slip displacements chosen together (CoupledSearch) and their forces fitted together by TAO; their x, rms (each
    joint's own rows) and its updated. Joints whose members are their elements stay as they are (their energy is
    taken off the target). Prints one line. */
-static PetscErrorCode FitCoupled(MPI_Comm comm, PetscBool quiet, const PetscReal nvin[], const JRElements *nn, const PetscReal mk[], const PetscReal mf[], const JRROMCase *cs, const PetscInt jn[], PetscInt m, PetscReal wtotal, PetscReal amin, PetscReal amax, PetscInt na, TangentFit tf[], PetscReal *xj[], const PetscInt mjv[], const PetscReal dlo[], const PetscReal dhi[], PetscReal rmsv[], PetscInt itsv[])
+static PetscErrorCode FitCoupled(FitCtx *ctx)
 {
   CoupledFit cf;
-  PetscInt  *jl, ldmax = 0, mmax = 0, sweeps = 0, its = 0, nr;
+  PetscInt   sweeps = 0, its = 0, nr;
   PetscReal *y, *dl, *dh, *r, *J, cost0, cost, r0, r1, own0 = 0, own1 = 0, tot0 = 0, tot1 = 0;
-  LSQ        q;
+  JRLSQ      q;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(&cf, sizeof(cf)));
-  for (PetscInt j = 0; j < nn->njoints; j++) cf.nj += jn[j] > m;
+  for (PetscInt j = 0; j < ctx->nj; j++) cf.nj += ctx->jn[j] > ctx->m;
   if (!cf.nj) PetscFunctionReturn(0);
-  cf.na = na;
-  cf.w  = wtotal / PetscSqrtReal((PetscReal)na);
-  PetscCall(PetscMalloc7(cf.nj, &jl, cf.nj, &cf.fx, cf.nj + 1, &cf.off, cf.nj + 1, &cf.roff, cf.nj, &cf.u, cf.nj, &dl, cf.nj, &dh));
-  cf.off[0] = cf.roff[0] = 0;
-  for (PetscInt j = 0, k = 0; j < nn->njoints; j++) {
-    if (!(jn[j] > m)) continue;
-    jl[k]          = j;
-    cf.u[k]        = PetscAbsReal(cs->ujoint[j]);
-    dl[k]          = dlo[j];
-    dh[k]          = dhi[j];
-    cf.off[k + 1]  = cf.off[k] + mjv[j];
-    cf.roff[k + 1] = cf.roff[k] + FitRows(&tf[j]);
-    ldmax          = PetscMax(ldmax, FitRows(&tf[j]));
-    mmax           = PetscMax(mmax, mjv[j]);
-    k++;
-  }
-  cf.n = cf.off[cf.nj];
-  nr   = CoupledRows(&cf);
-  PetscCall(PetscMalloc6(cf.n, &y, na, &cf.am, na, &cf.Et, na, &cf.En, ldmax, &cf.rj, mmax * ldmax, &cf.Jj));
-  for (PetscInt k = 0; k < cf.nj; k++) {
-    const PetscInt j = jl[k], mj = mjv[j];
-    cf.fx[k].t = &tf[j];
-    PetscCall(PetscMalloc3(mj, &cf.fx[k].delta, 2 * mj, &cf.fx[k].x, FitRows(&tf[j]) * 2 * mj, &cf.fx[k].J2));
-    for (PetscInt i = 0; i < mj; i++) {
-      cf.fx[k].delta[i]  = tf[j].delta[i];
-      y[cf.off[k] + i] = xj[j][mj + i];
-    }
-  }
-  for (PetscInt l = 0; l < na; l++) { /* the case's amplitudes, as the joints' own case rows */
-    const PetscReal am = 0.5 * amin * PetscPowReal(4 * amax / amin, l / (PetscReal)(na - 1)), D = CaseDissipation(nn, mk, mf, cs, am);
-    cf.am[l] = am;
-    cf.En[l] = cs->damp * am * am + D;
-    cf.Et[l] = D;
-    for (PetscInt e = 0; e < nn->n; e++)
-      if (!(jn[nn->joint[e]] > m) && mk[e] > 0 && mf[e] > 0) cf.Et[l] -= JenkinsEnergy(mk[e], mf[e], PetscAbsReal(cs->ujoint[nn->joint[e]]) * am, NULL, NULL);
-    for (PetscInt j = 0; nvin && j < nn->njoints; j++) /* the normal-load variation (NormalVariation) */
-      if (jn[j] > m) cf.Et[l] += nvin[j * na + l];
-    if (!(cf.En[l] > 0)) cf.En[l] = 1;
-  }
+  PetscCall(CoupledSetUp(ctx, &cf, &y, &dl, &dh));
+  CoupledTargets(ctx, &cf);
+  nr = CoupledRows(&cf);
   PetscCall(PetscMalloc2(nr, &r, nr * cf.n, &J));
-#define SPLIT(o, t_) \
-  do { \
-    PetscCall(CoupledResidual(&cf, y, r, J)); \
-    o = t_ = 0; \
-    for (PetscInt i = 0; i < nr; i++) { \
-      if (i < cf.roff[cf.nj]) o += r[i] * r[i]; \
-      else t_ += r[i] * r[i]; \
-    } \
-    o  = PetscSqrtReal(o); \
-    t_ = PetscSqrtReal(t_); \
-  } while (0)
-  SPLIT(own0, tot0);
+  PetscCall(CoupledNorms(&cf, y, r, J, &own0, &tot0));
   PetscCall(CoupledSearch(&cf, dl, dh, y, &cost0, &cost, &sweeps));
   q.nx  = cf.n;
   q.nr  = nr;
   q.fn  = CoupledResidual;
   q.ctx = &cf;
-  PetscCall(LSQSolve(&q, y, 0.0, &r0, &r1, &its));
-  SPLIT(own1, tot1);
-#undef SPLIT
+  PetscCall(JRLSQSolve(&q, y, 0.0, &r0, &r1, &its));
+  PetscCall(CoupledNorms(&cf, y, r, J, &own1, &tot1));
   for (PetscInt k = 0; k < cf.nj; k++) {
-    const PetscInt j = jl[k], mj = mjv[j], ld = FitRows(&tf[j]);
-    PetscReal      s = 0;
+    JointFit      *f  = &ctx->jf[cf.jl[k]];
+    const PetscInt mj = f->m, ld = FitRows(&f->t);
+    PetscReal      s  = 0;
     for (PetscInt i = 0; i < mj; i++) {
-      xj[j][i]      = tf[j].fs * y[cf.off[k] + i] / (cf.fx[k].delta[i] * tf[j].ks);
-      xj[j][mj + i] = y[cf.off[k] + i];
+      f->x[i]      = f->t.fs * y[cf.off[k] + i] / (cf.fx[k].delta[i] * f->t.ks);
+      f->x[mj + i] = y[cf.off[k] + i];
     }
     for (PetscInt q = 0; q < ld; q++) s += r[cf.roff[k] + q] * r[cf.roff[k] + q];
-    rmsv[j] = PetscSqrtReal(s);
-    itsv[j] += its;
+    f->rms = PetscSqrtReal(s);
+    f->its += its;
     PetscCall(PetscFree3(cf.fx[k].delta, cf.fx[k].x, cf.fx[k].J2));
   }
-  PetscCall(Say(quiet, comm, "rom coupled joints %" PetscInt_FMT " elements %" PetscInt_FMT " all_joints_energy_residual %.3e each_alone %.3e own_rows_residual %.3e each_alone %.3e sweeps %" PetscInt_FMT " tao_its %" PetscInt_FMT "\n", cf.nj, cf.n, (double)tot1, (double)tot0, (double)own1, (double)own0, sweeps, its));
+  PetscCall(Say(ctx->quiet, ctx->comm, "rom coupled joints %" PetscInt_FMT " elements %" PetscInt_FMT " all_joints_energy_residual %.3e each_alone %.3e own_rows_residual %.3e each_alone %.3e sweeps %" PetscInt_FMT " tao_its %" PetscInt_FMT "\n", cf.nj, cf.n, (double)tot1, (double)tot0, (double)own1, (double)own0, sweeps, its));
   PetscCall(PetscFree2(r, J));
   PetscCall(PetscFree6(y, cf.am, cf.Et, cf.En, cf.rj, cf.Jj));
-  PetscCall(PetscFree7(jl, cf.fx, cf.off, cf.roff, cf.u, dl, dh));
+  PetscCall(PetscFree7(cf.jl, cf.fx, cf.off, cf.roff, cf.u, dl, dh));
   PetscFunctionReturn(0);
 }
 
 /* -rom_joint_motion mode, jenkins_nv: the fit sees every element's loops under its normal load at rest (JenkinsLoop,
    JenkinsEnergy); in the model the normal load follows the normal motion, and separates. What that changes in the
-   energy per cycle, at the case's amplitudes am_l (as FitCoupled's), for the members and for the reduced elements rom
+   energy per cycle, at the case's amplitudes am_l (CaseAmplitude), for the members and for the reduced elements rom
    (each moving with its stuck-mode coordinates phi x the case's scale, by AFT, one harmonic, 256 samples):
-     nv[j na + l] = (D_members,nv - D_members,fixed) - (D_rom,nv - D_rom,fixed)   joint j
+     nv[j NCASE + l] = (D_members,nv - D_members,fixed) - (D_rom,nv - D_rom,fixed)   joint j
    The next fit adds it to its energy targets: its elements' fixed-load energy then aims at what, with their normal
    load varying, gives the members' energy with theirs varying (a defect correction: repeated, it converges when the
    rom's share changes little from fit to fit). nvmax: the largest |sum_j nv| at any am_l, relative to the input
    there. Unless quiet, prints the error of the rom's energy with the normal variation at the case's levels. */
-static PetscErrorCode NormalVariation(MPI_Comm comm, PetscBool quiet, const JRElements *nn, const JRElements *rom, const JRROMCase *cs, const PetscReal amod[], PetscReal amin, PetscReal amax, PetscInt na, PetscReal nv[], PetscReal *nvmax)
+static PetscErrorCode NormalVariation(const FitCtx *ctx, const JRElements *rom, PetscReal nv[], PetscReal *nvmax)
 {
-  const PetscInt nj = nn->njoints;
-  PetscReal      sc = 0, best = 0;
-  JRAFT         *af;
+  const JRElements *nn = ctx->nn;
+  const JRROMCase  *cs = ctx->cs;
+  const PetscInt    nj = nn->njoints, na = NCASE;
+  PetscReal         sc = 0, best = 0;
+  JRAFT            *af;
 
   PetscFunctionBeginUser;
   for (PetscInt j = 0; j < nj; j++) { /* phi is the mode's motion / its largest; the joints' motion in the case's units */
@@ -1075,7 +906,7 @@ static PetscErrorCode NormalVariation(MPI_Comm comm, PetscBool quiet, const JREl
   PetscCall(JRAFTCreate(1, 256, &af));
   *nvmax = 0;
   for (PetscInt l = 0; l < na; l++) {
-    const PetscReal am = 0.5 * amin * PetscPowReal(4 * amax / amin, l / (PetscReal)(na - 1)), a = sc * am;
+    const PetscReal am = CaseAmplitude(ctx, l), a = sc * am;
     PetscReal       tot = 0, fixed = 0;
     for (PetscInt j = 0; j < nj; j++) nv[j * na + l] = 0;
     for (PetscInt e = 0; e < nn->n; e++) {
@@ -1088,12 +919,12 @@ static PetscErrorCode NormalVariation(MPI_Comm comm, PetscBool quiet, const JREl
     for (PetscInt j = 0; j < nj; j++) tot += nv[j * na + l];
     *nvmax = PetscMax(*nvmax, PetscAbsReal(tot) / (cs->damp * am * am + fixed));
   }
-  for (PetscInt l = 0; !quiet && l < cs->nlev; l++) {
-    const PetscReal a = sc * amod[l];
+  for (PetscInt l = 0; !ctx->quiet && l < cs->nlev; l++) {
+    const PetscReal a = sc * ctx->amod[l];
     PetscReal       dm = 0, dr = 0;
     for (PetscInt e = 0; e < nn->n; e++) dm += EnergyNV(af, nn->kt[e], nn->kn[e], nn->mu[e], nn->n0[e], nn->phi[2 * e] * a, nn->phi[2 * e + 1] * a);
     for (PetscInt r = 0; r < rom->n; r++) dr += EnergyNV(af, rom->kt[r], rom->kn[r], rom->mu[r], rom->n0[r], rom->phi[2 * r] * a, rom->phi[2 * r + 1] * a);
-    PetscCall(Say(quiet, comm, "rom case level %g dissipation_error_normal_varying %+.3e (of the input per cycle; members %.4f)\n", (double)cs->level[l], (double)((dr - dm) / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * amod[l])), (double)(dm / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * amod[l]))));
+    PetscCall(Say(ctx->quiet, ctx->comm, "rom case level %g dissipation_error_normal_varying %+.3e (of the input per cycle; members %.4f)\n", (double)cs->level[l], (double)((dr - dm) / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * ctx->amod[l])), (double)(dm / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * ctx->amod[l]))));
   }
   PetscCall(JRAFTDestroy(&af));
   PetscFunctionReturn(0);
@@ -1152,448 +983,636 @@ PetscErrorCode JRROMFitSetFromOptions(MPI_Comm comm, JRROMFit *f)
   PetscFunctionReturn(0);
 }
 
-/* One fit (JRROMReduce): quiet, it prints nothing; nvin (NULL: none) is added to the case's energy targets; nvout
-   (NULL: not wanted; mode, jenkins_nv, with a case) gets NormalVariation's correction of this fit, nvmax its size */
-static PetscErrorCode ReducePass(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const JRROMCase *cs, const JRROMFit *fit, const char base[], PetscBool plot, PetscBool quiet, const PetscReal nvin[], PetscReal nvout[], PetscReal *nvmax, JRElements *rom)
+/* The checks of a fit, and its kind: jenkins or jenkins_nv joints, -rom_joint_motion */
+static PetscErrorCode FitCheck(FitCtx *ctx)
 {
-  PetscInt     nj = nn->njoints, ns = 128, cnt = 0, nmax;
-  PetscReal    fr[3] = {0.25, 0.6, 0.95}, perturb = 0, efrom = 0.02, wcase = 10.0, wgross = 1.0, wtotal = 20.0, wstiff = 1e4, *amod = NULL, amin = 0, amax = 0;
-  const PetscInt ncase = 24;
-  PetscBool    refine = PETSC_FALSE, search = PETSC_TRUE;
-  PetscBool    nv;
-  MemberDelta *md;
-  PetscInt    *jn, *joff;
-  PetscBool    spread = PETSC_FALSE, modef = PETSC_FALSE;
-  PetscReal   *ek, *ef, *ekn, *en0, *emu, *ep = NULL, *er = NULL, *loops = NULL, *mk, *mf, **xj, *rmsv, *rms0v, *dlo, *dhi, *muv, *knv;
-  PetscInt    *mjv, *itsv;
-  TangentFit  *tf;
-  FILE        *fp  = NULL;
-  char         csv[PETSC_MAX_PATH_LEN + 32], tmp[PETSC_MAX_PATH_LEN + 48];
+  const JRElements *nn = ctx->nn;
+  MPI_Comm          comm = ctx->comm;
 
   PetscFunctionBeginUser;
-  PetscCheck(nn->joint && nj > 0 && !nn->members, comm, PETSC_ERR_ARG_WRONG, "-rom_elements needs joints (the first reduction): -rom_joints strips|bolts|between|sides|zones");
-  PetscCheck(m >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_elements %" PetscInt_FMT ": 0 (the members themselves) or more elements per joint", m);
+  ctx->nj = nn->njoints;
+  PetscCheck(nn->joint && ctx->nj > 0 && !nn->members, comm, PETSC_ERR_ARG_WRONG, "-rom_elements needs joints (the first reduction): -rom_joints strips|bolts|between|sides|zones");
+  PetscCheck(ctx->m >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_elements %" PetscInt_FMT ": 0 (the members themselves) or more elements per joint", ctx->m);
   PetscCheck(nn->ntypes == 1, comm, PETSC_ERR_SUP, "The second reduction needs one element type in the interface");
-  nv = (PetscBool)!strcmp(nn->typename[0], JRCONTACTJENKINSNV);
-  PetscCheck(nv || !strcmp(nn->typename[0], JRCONTACTJENKINS), comm, PETSC_ERR_SUP, "The second reduction fits jenkins and jenkins_nv joints, not %s", nn->typename[0]);
-  for (PetscInt i = 0; i < 3; i++) fr[i] = fit->fr[i];
-  efrom   = fit->efrom;
-  refine  = fit->refine;
-  perturb = fit->perturb;
-  ns      = fit->ns;
-  wcase   = fit->wcase;
-  wtotal  = fit->wtotal;
-  wgross  = fit->wgross;
-  wstiff  = fit->wstiff;
-  search  = fit->search;
-  spread  = (PetscBool)(fit->jmotion == 1);
-  modef   = (PetscBool)(fit->jmotion == 2);
-  PetscCheck(!(spread || modef) || (nn->pos && (!modef || nn->phi)), comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion %s needs the members' coordinates (node-to-node elements of an FE model)", spread ? "linear" : "mode");
-  /* every member as an element on its joint's motion: with the mode-shape weight w_e (its motion / the joint's in
-     the mode of interest), a Jenkins element moving w u is one moving u with w^2 kt and |w| f (same forces, same
-     energy); w = 1 is the plain first reduction (4.4) */
-  PetscCall(PetscMalloc2(nn->n, &mk, nn->n, &mf));
+  ctx->nv = (PetscBool)!strcmp(nn->typename[0], JRCONTACTJENKINSNV);
+  PetscCheck(ctx->nv || !strcmp(nn->typename[0], JRCONTACTJENKINS), comm, PETSC_ERR_SUP, "The second reduction fits jenkins and jenkins_nv joints, not %s", nn->typename[0]);
+  ctx->spread = (PetscBool)(ctx->fit->jmotion == 1);
+  ctx->modef  = (PetscBool)(ctx->fit->jmotion == 2);
+  PetscCheck(!(ctx->spread || ctx->modef) || (nn->pos && (!ctx->modef || nn->phi)), comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion %s needs the members' coordinates (node-to-node elements of an FE model)", ctx->spread ? "linear" : "mode");
+  PetscFunctionReturn(0);
+}
+
+/* Every member as an element on its joint's motion: with the mode-shape weight w_e (its motion / the joint's in the
+   mode of interest), a Jenkins element moving w u is one moving u with w^2 kt and |w| f (same forces, same energy);
+   w = 1 is the plain first reduction (4.4) */
+static PetscErrorCode MemberSprings(FitCtx *ctx)
+{
+  const JRElements *nn = ctx->nn;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(nn->n, &ctx->mk, nn->n, &ctx->mf));
   for (PetscInt e = 0; e < nn->n; e++) {
     /* linear, and mode's first reduction: the members on their own coordinates in the field, no weights; mode's
        second reduction: weights for jenkins_nv too (the fit sees the members' loops in the mode) */
-    const PetscReal w = wt && (!nv || modef) && !spread && !(modef && m == 0) ? wt[e] : 1.0;
-    mk[e]             = w * w * nn->kt[e];
-    mf[e]             = PetscAbsReal(w) * nn->mu[e] * PetscMax(nn->n0[e], 0.0);
+    const PetscReal w = ctx->wt && (!ctx->nv || ctx->modef) && !ctx->spread && !(ctx->modef && ctx->m == 0) ? ctx->wt[e] : 1.0;
+    ctx->mk[e]        = w * w * nn->kt[e];
+    ctx->mf[e]        = PetscAbsReal(w) * nn->mu[e] * PetscMax(nn->n0[e], 0.0);
   }
-  if (cs && cs->nlev > 0 && m > 0 && (!nv || modef)) {
-    PetscCall(CaseAmplitudes(comm, quiet, nn, mk, mf, cs, &amod));
-    if (amod) amin = amax = amod[0];
-    for (PetscInt l = 1; amod && l < cs->nlev; l++) {
-      amin = PetscMin(amin, amod[l]);
-      amax = PetscMax(amax, amod[l]);
-    }
-  }
-  if (m == 0) { /* the first reduction itself: the members, weighted, as elements on their joints */
-    PetscInt cnt0 = 0;
-    for (PetscInt e = 0; e < nn->n; e++) cnt0 += (nv || mk[e] > 0);
-    PetscCall(SetupList(rom, cnt0, nn->typename[0], PETSC_FALSE));
-    rom->njoints = nj;
-    if (spread || modef) PetscCall(PetscMalloc1(3 * cnt0 + 1, &rom->pos));
-    if (modef) PetscCall(PetscMalloc1(2 * cnt0 + 1, &rom->phi));
-    for (PetscInt e = 0, i = 0; e < nn->n; e++) {
-      if (!(nv || mk[e] > 0)) continue;
-      for (PetscInt c = 0; rom->pos && c < 3; c++) rom->pos[3 * i + c] = nn->pos[3 * e + c];
-      for (PetscInt c = 0; rom->phi && c < 2; c++) rom->phi[2 * i + c] = nn->phi[2 * e + c];
-      rom->kt[i]      = nv ? nn->kt[e] : mk[e];
-      rom->kn[i]      = nn->kn[e];
-      rom->mu[i]      = nn->mu[e];
-      rom->n0[i]      = nv ? nn->n0[e] : mf[e] / nn->mu[e];
-      rom->joint[i++] = nn->joint[e];
-    }
-    PetscCall(PetscNew(&rom->members));
-    PetscCall(JRElementsDuplicate(nn, rom->members));
-    PetscCall(PetscFree2(mk, mf));
-    PetscFunctionReturn(0);
-  }
-  /* members of each joint in contact at rest, sorted by slip displacement */
-  PetscCall(PetscCalloc2(nj, &jn, nj + 1, &joff));
-  PetscCall(PetscMalloc1(nn->n, &md));
-  for (PetscInt e = 0; e < nn->n; e++)
-    if (mf[e] > 0 && mk[e] > 0) jn[nn->joint[e]]++;
-  for (PetscInt j = 0; j < nj; j++) joff[j + 1] = joff[j] + jn[j];
-  for (PetscInt j = 0; j < nj; j++) jn[j] = 0;
-  for (PetscInt e = 0; e < nn->n; e++) {
-    if (!(mf[e] > 0 && mk[e] > 0)) continue;
-    {
-      const PetscInt j = nn->joint[e];
-      md[joff[j] + jn[j]].e     = e;
-      md[joff[j] + jn[j]].delta = mf[e] / mk[e];
-      jn[j]++;
-    }
-  }
-  for (PetscInt j = 0; j < nj; j++) {
-    PetscCheck(jn[j] > 0, comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no member in contact at rest: nothing to fit (change the regions)", j);
-    qsort(md + joff[j], (size_t)jn[j], sizeof(MemberDelta), CompareDelta);
-    cnt += PetscMin(m, jn[j]);
-  }
-  nmax = cnt + (modef && nv ? nj * m : 0); /* mode, jenkins_nv: up to m elements more per joint for its open members */
-  PetscCall(PetscMalloc5(nmax, &ek, nmax, &ef, nmax, &ekn, nmax, &en0, nmax, &emu));
-  if (spread || modef) PetscCall(PetscMalloc2(JR_EP * nmax + 1, &ep, nmax + 1, &er));
-  if (base && base[0]) {
-    PetscCall(PetscSNPrintf(csv, sizeof(csv), "%s_rom_loops.csv", base));
-    PetscCall(JRFileOpenTemp(comm, csv, &fp, tmp, sizeof(tmp)));
-    if (fp) fprintf(fp, "joint,amplitude,u_m,f_first_reduction_N,f_rom_N\n");
-  }
-  PetscCall(PetscMalloc1(6 * ns, &loops));
-  PetscCall(PetscMalloc3(nj, &tf, nj, &xj, nj, &mjv));
-  PetscCall(PetscMalloc7(nj, &itsv, nj, &rmsv, nj, &rms0v, nj, &dlo, nj, &dhi, nj, &muv, nj, &knv));
-  cnt = 0;
-  for (PetscInt j = 0; j < nj; j++) {
-    const MemberDelta *d  = md + joff[j];
-    const PetscInt     nm = jn[j];
-    PetscInt           mj = PetscMin(m, nm);
-    PetscReal          ftot = 0, ktot = 0, mu = 0, n0s = 0, knsum = 0, rms0 = 0, rms = 0, *x;
-    PetscInt           its = 0;
-    TangentFit         t;
-    LSQ                q;
-    for (PetscInt i = 0; i < nm; i++) {
-      const PetscInt e = d[i].e;
-      ftot += mf[e];
-      ktot += mk[e];
-      mu += nn->mu[e] * nn->n0[e];
-      n0s += nn->n0[e];
-      knsum += nn->kn[e];
-    }
-    mu /= n0s;
-    dlo[j] = dhi[j] = 0;
-    PetscCall(PetscMemzero(&t, sizeof(t)));
-    t.m  = mj;
-    t.ns = ns;
-    t.ks   = ktot / mj;
-    t.fs   = ftot / mj;
-    t.ftot = ftot;
-    t.wg   = wgross;
-    { /* amplitudes from the slip-force distribution */
-      PetscReal c = 0;
-      PetscInt  k = 0;
-      for (PetscInt a = 0; a < 3; a++) {
-        while (k < nm - 1 && c + mf[d[k].e] < fr[a] * ftot) {
-          c += mf[d[k].e];
-          k++;
-        }
-        t.amp[a] = d[k].delta;
-      }
-      t.amp[3] = 0.5 * d[0].delta;
-    }
-    { /* energy matched from the first slips (2% of the slip force) to the gross-slip amplitude */
-      PetscReal c = 0, a0;
-      PetscInt  k = 0;
-      while (k < nm - 1 && c + mf[d[k].e] < efrom * ftot) {
-        c += mf[d[k].e];
-        k++;
-      }
-      a0   = PetscMax(d[k].delta, 1.0001 * d[0].delta);
-      t.ne = 6 + (amod ? ncase : 0);
-      PetscCall(PetscMalloc4(t.ne, &t.ae, t.ne, &t.Et, t.ne, &t.En, t.ne, &t.we));
-      for (PetscInt i = 0; i < t.ne; i++) {
-        if (i < 6) { /* relative, over the joint's range */
-          t.ae[i] = a0 * PetscPowReal(t.amp[2] / a0, i / 5.0);
-          t.we[i] = 0.05;
-        } else { /* the case: the joint's range of motion over the levels (and a factor 2 either side), each
-                    amplitude's error relative to all the energy dissipated there (= put in, at resonance) */
-          const PetscReal uj = PetscAbsReal(cs->ujoint[j]), am = 0.5 * amin * PetscPowReal(4 * amax / amin, (i - 6) / (PetscReal)(ncase - 1));
-          t.ae[i] = uj * am;
-          t.we[i] = wcase / PetscSqrtReal((PetscReal)ncase);
-          t.En[i] = cs->damp * am * am + CaseDissipation(nn, mk, mf, cs, am);
-        }
-        t.Et[i] = 0;
-        for (PetscInt q = 0; q < nm; q++) t.Et[i] += JenkinsEnergy(mk[d[q].e], mf[d[q].e], t.ae[i], NULL, NULL);
-        if (i < 6) t.En[i] = t.Et[i];
-        else if (nvin) t.Et[i] += nvin[j * ncase + i - 6]; /* the normal-load variation (NormalVariation) */
-        if (!(t.En[i] > 0) || !(t.ae[i] > 0)) { /* nothing dissipated, nothing put in: no row */
-          t.En[i] = 1;
-          t.we[i] = 0;
-        }
-      }
-    }
-    PetscCall(PetscCalloc1(4 * ns, &t.target));
-    PetscCall(PetscMalloc2(ns, &t.Fk, ns, &t.Ff));
-    for (PetscInt a = 0; a < 4; a++) {
-      PetscReal fmax = 0;
-      for (PetscInt i = 0; i < nm; i++) JenkinsLoop(mk[d[i].e], mf[d[i].e], t.amp[a], ns, t.target + a * ns, NULL, NULL);
-      for (PetscInt s = 0; s < ns; s++) fmax = PetscMax(fmax, PetscAbsReal(t.target[a * ns + s]));
-      t.w[a] = (a == 3 ? wstiff : 1.0) / (fmax * PetscSqrtReal(4.0 * ns)); /* the stiffness weighs most */
-    }
-    /* start: m groups of members in equal steps of log(delta) (from the first slips to gross slip), each group one
-       element with the group's sums of kt and f: exact at full stick and at gross slip */
-    PetscCall(PetscCalloc1(3 * mj, &x));
-    {
-      const PetscReal l0 = PetscLogReal(d[0].delta), l1 = PetscLogReal(d[nm - 1].delta);
-      for (PetscInt i = 0; i < nm; i++) {
-        const PetscInt e = d[i].e;
-        PetscInt       g = l1 > l0 ? (PetscInt)(mj * (PetscLogReal(d[i].delta) - l0) / (l1 - l0)) : (mj * i) / nm;
-        g                = PetscMin(PetscMax(g, 0), mj - 1);
-        if (nm <= m) g = i;
-        x[g] += mk[e] / t.ks;
-        x[mj + g] += mf[e] / t.fs;
-      }
-      for (PetscInt g = 0; g < mj; g++) /* an empty group: a small element between its neighbours */
-        if (x[g] == 0) {
-          const PetscReal dl = PetscExpReal(l0 + (g + 0.5) * (l1 - l0) / mj);
-          x[mj + g]          = 1e-3;
-          x[g]               = 1e-3 * t.fs / (dl * t.ks);
-        }
-    }
-    if (nm > m) {
-      FixedFit  fx;
-      PetscReal *y, rsearch, rgroup;
-      PetscInt   its1 = 0;
-      /* 1. convex: the slip displacements of the start's groups (sum f / sum kt of each log-width group of members),
-         the forces fitted */
-      PetscCall(PetscMalloc4(mj, &fx.delta, 2 * mj, &fx.x, FitRows(&t) * 2 * mj, &fx.J2, mj, &y));
-      fx.t = &t;
-      for (PetscInt i = 0; i < mj; i++) {
-        fx.delta[i] = t.fs * x[mj + i] / (t.ks * x[i]);
-        y[i]        = x[mj + i];
-      }
-      { /* the start's residual: the groups' own slip displacements and forces */
-        PetscReal *r0, *J0;
-        PetscCall(PetscMalloc2(FitRows(&t), &r0, FitRows(&t) * mj, &J0));
-        PetscCall(FixedResidual(&fx, y, r0, J0));
-        rgroup = 0;
-        for (PetscInt i = 0; i < FitRows(&t); i++) rgroup += r0[i] * r0[i];
-        rgroup = PetscSqrtReal(rgroup);
-        PetscCall(PetscFree2(r0, J0));
-      }
-      dlo[j] = amod ? PetscMin(d[0].delta, 0.1 * PetscAbsReal(cs->ujoint[j]) * amin) : d[0].delta;
-      dhi[j] = PetscMin(d[nm - 1].delta, PetscMax(t.amp[2], amod ? 4 * PetscAbsReal(cs->ujoint[j]) * amax : 0.0));
-      if (search) PetscCall(SearchDelta(&t, dlo[j], dhi[j], mj, fx.delta, y, &rsearch));
-      for (PetscInt i = 0; i < mj; i++) y[i] *= 1 + perturb * (i % 3 == 0 ? 1.0 : i % 3 == 1 ? -1.0 : 0.5);
-      q.nx  = mj;
-      q.nr  = FitRows(&t);
-      q.fn  = FixedResidual;
-      q.ctx = &fx;
-      PetscCall(LSQSolve(&q, y, 0.0, &rms0, &rms, &its1));
-      rms0 = rgroup; /* reported: the fit against the groups it started from */
-      for (PetscInt i = 0; i < mj; i++) {
-        x[i]      = t.fs * y[i] / (fx.delta[i] * t.ks);
-        x[mj + i] = y[i];
-      }
-      its = its1;
-      PetscCall(PetscMalloc1(mj, &t.delta));
-      PetscCall(PetscArraycpy(t.delta, fx.delta, mj));
-      PetscCall(PetscFree4(fx.delta, fx.x, fx.J2, y));
-      /* 2. optional: slip displacements free too, from there */
-      if (refine) {
-        PetscReal r1;
-        for (PetscInt g = 0; g < mj; g++) {
-          x[g] = PetscMax(x[g], 1e-8);
-          x[mj + g] = PetscMax(x[mj + g], 1e-8);
-        }
-        q.nx  = 2 * mj;
-        q.nr  = FitRows(&t);
-        q.fn  = TangentResidual;
-        q.ctx = &t;
-        PetscCall(LSQSolve(&q, x, 1e-10, &r1, &rms, &its1));
-        its += its1;
-        for (PetscInt g = 0; g < mj; g++) t.delta[g] = t.fs * x[mj + g] / (t.ks * x[g]);
-      }
-    } else {
-      q.nx = 2 * mj; /* the members themselves: exact */
-      PetscCall(PetscMalloc2(FitRows(&t), &q.r, FitRows(&t) * 2 * mj, &q.J));
-      PetscCall(TangentResidual(&t, x, q.r, q.J));
-      for (PetscInt i = 0; i < 4 * ns; i++) rms += q.r[i] * q.r[i];
-      rms  = PetscSqrtReal(rms);
-      rms0 = rms;
-      PetscCall(PetscFree2(q.r, q.J));
-    }
-    tf[j]    = t;
-    xj[j]    = x;
-    mjv[j]   = mj;
-    itsv[j]  = its;
-    rmsv[j]  = rms;
-    rms0v[j] = rms0;
-    muv[j]   = mu;
-    knv[j]   = knsum;
-  }
-  if (amod && wtotal > 0 && (!nv || modef)) PetscCall(FitCoupled(comm, quiet, nvin, nn, mk, mf, cs, jn, m, wtotal, amin, amax, ncase, tf, xj, mjv, dlo, dhi, rmsv, itsv));
-  for (PetscInt j = 0; j < nj; j++) {
-    const MemberDelta *d  = md + joff[j];
-    const PetscInt     nm = jn[j];
-    PetscInt           mj = mjv[j], its = itsv[j], nits = 0;
-    PetscReal          ftot = tf[j].ftot, mu = muv[j], knsum = knv[j], rms = rmsv[j], rms0 = rms0v[j], nrms0 = 0, nrms = 0, *x = xj[j], *xn = NULL;
-    TangentFit         t = tf[j];
-    LSQ                q;
-    { /* elements the fit left without force carry nothing: dropped */
-      PetscInt kept = 0;
-      for (PetscInt i = 0; i < mj; i++)
-        if (x[mj + i] > 1e-9) {
-          x[kept]          = x[i];
-          x[2 * mj + kept] = x[mj + i]; /* forces behind the stiffnesses, shifted below */
-          kept++;
-        }
-      for (PetscInt i = 0; i < kept; i++) x[kept + i] = x[2 * mj + i];
-      mj = kept;
-      t.m = mj;
-      jn[j] = -mj - 1; /* the element count of this joint, marked (members counted above) */
-    }
-    for (PetscInt i = 0; i < mj; i++) {
-      ek[cnt + i]  = t.ks * x[i];
-      ef[cnt + i]  = t.fs * x[mj + i];
-      en0[cnt + i] = ef[cnt + i] / mu;
-      emu[cnt + i] = mu;
-      ekn[cnt + i] = 0;
-    }
-    if (spread) PetscCall(SpreadPoints(nn, d, nm, mj, mk, mf, ftot, ep + JR_EP * cnt));
-    if (modef) PetscCall(ModePoints(nn, j, d, nm, mj, mf, ftot, ek + cnt, er + cnt, ekn + cnt, ep + JR_EP * cnt));
-    if (modef && nv) { /* the open members (a gap: n0 <= 0), which close at large amplitude: up to m elements by gap */
-      PetscInt no = 0, ng;
-      for (PetscInt e = 0; e < nn->n; e++) no += (nn->joint[e] == j && !(nn->n0[e] > 0) && nn->kn[e] > 0);
-      ng = PetscMin(m, no);
-      if (ng) {
-        MemberDelta *od;
-        PetscCall(PetscMalloc1(no, &od));
-        for (PetscInt e = 0, i = 0; e < nn->n; e++)
-          if (nn->joint[e] == j && !(nn->n0[e] > 0) && nn->kn[e] > 0) {
-            od[i].e       = e;
-            od[i++].delta = -nn->n0[e] / nn->kn[e];
-          }
-        qsort(od, (size_t)no, sizeof(MemberDelta), CompareDelta);
-        PetscCall(OpenPoints(nn, od, no, ng, ek + cnt + mj, en0 + cnt + mj, ekn + cnt + mj, emu + cnt + mj, ep + JR_EP * (cnt + mj)));
-        for (PetscInt g = 0; g < ng; g++) {
-          ef[cnt + mj + g] = 0;
-          er[cnt + mj + g] = 1;
-        }
-        PetscCall(PetscFree(od));
-        mj += ng;
-        jn[j] = -mj - 1;
-      }
-    }
-    if (nv && !modef) { /* normal stiffnesses: the joint's normal load against its normal motion */
-      NormalFit nf;
-      PetscReal vsep = 0, nmx = 0;
-      PetscCall(PetscMemzero(&nf, sizeof(nf)));
-      for (PetscInt e = 0; e < nn->n; e++)
-        if (nn->joint[e] == j && nn->kn[e] > 0) vsep = PetscMax(vsep, PetscAbsReal(nn->n0[e]) / nn->kn[e]);
-      nf.m   = mj;
-      nf.nv  = 2 * ns + 1;
-      nf.n0  = en0 + cnt;
-      nf.kns = knsum / mj;
-      PetscCall(PetscMalloc3(nf.nv, &nf.v, nf.nv, &nf.target, mj, &xn));
-      for (PetscInt s = 0; s < nf.nv; s++) {
-        nf.v[s]      = vsep * (2.0 * s / (nf.nv - 1) - 1.0);
-        nf.target[s] = 0;
-        for (PetscInt e = 0; e < nn->n; e++)
-          if (nn->joint[e] == j) nf.target[s] += PetscMax(nn->n0[e] + nn->kn[e] * nf.v[s], 0.0);
-        nmx = PetscMax(nmx, nf.target[s]);
-      }
-      nf.w = 1.0 / (nmx * PetscSqrtReal((PetscReal)nf.nv));
-      for (PetscInt i = 0; i < mj; i++) xn[i] = 0;
-      { /* start: the groups' normal stiffness, as for kt */
-        PetscReal c = 0;
-        for (PetscInt i = 0; i < nm; i++) {
-          const PetscInt e = d[i].e;
-          PetscInt       g = nm <= m ? i : PetscMin(PetscMax((PetscInt)(mj * (c + 0.5 * mf[e]) / ftot), 0), mj - 1);
-          xn[g] += nn->kn[e] / nf.kns;
-          c += mf[e];
-        }
-        for (PetscInt g = 0; g < mj; g++) xn[g] = PetscMax(xn[g], 1e-3);
-      }
-      q.nx  = mj;
-      q.nr  = nf.nv;
-      q.fn  = NormalResidual;
-      q.ctx = &nf;
-      PetscCall(LSQSolve(&q, xn, 1e-10, &nrms0, &nrms, &nits));
-      for (PetscInt i = 0; i < mj; i++) ekn[cnt + i] = nf.kns * xn[i];
-      PetscCall(PetscFree3(nf.v, nf.target, xn));
-    }
-    PetscCall(Say(quiet, comm, "rom joint %" PetscInt_FMT " members %" PetscInt_FMT " elements %" PetscInt_FMT " amplitudes_m %.4e %.4e %.4e loop_residual %.3e start %.3e tao_its %" PetscInt_FMT, j, nm, mj, (double)t.amp[0], (double)t.amp[1], (double)t.amp[2], (double)rms, (double)rms0, its));
-    if (nv) PetscCall(Say(quiet, comm, " normal_residual %.3e start %.3e tao_its %" PetscInt_FMT, (double)nrms, (double)nrms0, nits));
-    PetscCall(Say(quiet, comm, "\n"));
-    if (fp)
-      for (PetscInt a = 0; a < 3; a++) {
-        PetscReal *Fr = loops;
-        for (PetscInt s = 0; s < ns; s++) Fr[s] = 0;
-        for (PetscInt i = 0; i < mj; i++) JenkinsLoop(ek[cnt + i], ef[cnt + i], t.amp[a], ns, Fr, NULL, NULL);
-        for (PetscInt s = 0; s <= ns; s++) fprintf(fp, "%" PetscInt_FMT ",%" PetscInt_FMT ",%.9e,%.9e,%.9e\n", j, a, (double)(t.amp[a] * PetscCosReal(2 * PETSC_PI * s / ns)), (double)t.target[a * ns + s % ns], (double)Fr[s % ns]);
-      }
-    cnt += mj;
-    PetscCall(PetscFree(x));
-    PetscCall(PetscFree(t.target));
-    PetscCall(PetscFree2(t.Fk, t.Ff));
-    PetscCall(PetscFree4(t.ae, t.Et, t.En, t.we));
-    PetscCall(PetscFree(t.delta));
-  }
-  if (amod) /* the fit at the case's estimated amplitudes: the error of all joints' dissipation, relative to the input */
-    for (PetscInt l = 0; l < cs->nlev; l++) {
-      PetscReal err = 0;
-      for (PetscInt j = 0, e = 0; j < nj; j++) {
-        const PetscReal x = PetscAbsReal(cs->ujoint[j]) * amod[l];
-        for (PetscInt i = 0; i < -jn[j] - 1; i++, e++) err += JenkinsEnergy(ek[e], ef[e], x, NULL, NULL);
-      }
-      err -= CaseDissipation(nn, mk, mf, cs, amod[l]);
-      PetscCall(Say(quiet, comm, "rom case level %g dissipation_error %+.4f (of the input per cycle)\n", (double)cs->level[l], (double)(err / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * amod[l]))));
-    }
-  if (base && base[0]) {
-    PetscCall(JRFileCommit(comm, &fp, tmp, csv));
-    if (plot) {
-      char      png[PETSC_MAX_PATH_LEN + 32], vars[2 * PETSC_MAX_PATH_LEN + 64];
-      PetscBool made;
-      PetscCall(PetscSNPrintf(png, sizeof(png), "%s_rom_loops.png", base));
-      PetscCall(PetscSNPrintf(vars, sizeof(vars), "data='%s'; nj=%" PetscInt_FMT, csv, PetscMin(nj, 12)));
-      PetscCall(JRPlot(comm, "plot_rom_loops.gp", png, vars, &made));
-      PetscCall(PetscPrintf(comm, "rom: wrote %s%s%s\n", csv, made ? ", " : "", made ? png : ""));
-    } else PetscCall(PetscPrintf(comm, "rom: wrote %s\n", csv));
-  }
-  /* the reduced elements, the first-reduction model as their members; spread: each a third at each of its points;
-     mode (jenkins_nv): each a half at each of its two points */
-  {
-    const PetscInt nc = spread ? 3 : (modef && nv ? 2 : 1);
-    PetscCall(SetupList(rom, nc * cnt, nn->typename[0], PETSC_FALSE));
-    if (spread || modef) PetscCall(PetscMalloc1(3 * nc * cnt, &rom->pos));
-    if (modef) PetscCall(PetscMalloc1(2 * nc * cnt, &rom->phi));
-    rom->njoints = nj;
-    for (PetscInt j = 0, e = 0; j < nj; j++)
-      for (PetscInt i = 0; i < -jn[j] - 1; i++, e++)
-        for (PetscInt c = 0; c < nc; c++) {
-          const PetscInt r = nc * e + c;
-          const PetscReal q = modef ? er[e] : 1.0; /* mode: the element moved to psi_t */
-          rom->kt[r]       = ek[e] * q * q / nc;
-          rom->kn[r]       = ekn[e] / nc;
-          rom->mu[r]       = emu[e];
-          rom->n0[r]       = en0[e] * PetscAbsReal(q) / nc;
-          rom->joint[r]    = j;
-          for (PetscInt k = 0; rom->pos && k < 3; k++) rom->pos[3 * r + k] = ep[JR_EP * e + 5 * c + k];
-          for (PetscInt k = 0; rom->phi && k < 2; k++) rom->phi[2 * r + k] = ep[JR_EP * e + 5 * c + 3 + k];
-        }
+  PetscFunctionReturn(0);
+}
+
+/* -rom_elements 0, the first reduction itself: the members, weighted, as elements on their joints */
+static PetscErrorCode FirstReduction(const FitCtx *ctx, JRElements *rom)
+{
+  const JRElements *nn = ctx->nn;
+  const PetscBool   nv = ctx->nv;
+  PetscInt          cnt0 = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < nn->n; e++) cnt0 += (nv || ctx->mk[e] > 0);
+  PetscCall(JRROMElementsSetUp(rom, cnt0, nn->typename[0], PETSC_FALSE));
+  rom->njoints = ctx->nj;
+  if (ctx->spread || ctx->modef) PetscCall(PetscMalloc1(3 * cnt0 + 1, &rom->pos));
+  if (ctx->modef) PetscCall(PetscMalloc1(2 * cnt0 + 1, &rom->phi));
+  for (PetscInt e = 0, i = 0; e < nn->n; e++) {
+    if (!(nv || ctx->mk[e] > 0)) continue;
+    for (PetscInt c = 0; rom->pos && c < 3; c++) rom->pos[3 * i + c] = nn->pos[3 * e + c];
+    for (PetscInt c = 0; rom->phi && c < 2; c++) rom->phi[2 * i + c] = nn->phi[2 * e + c];
+    rom->kt[i]      = nv ? nn->kt[e] : ctx->mk[e];
+    rom->kn[i]      = nn->kn[e];
+    rom->mu[i]      = nn->mu[e];
+    rom->n0[i]      = nv ? nn->n0[e] : ctx->mf[e] / nn->mu[e];
+    rom->joint[i++] = nn->joint[e];
   }
   PetscCall(PetscNew(&rom->members));
   PetscCall(JRElementsDuplicate(nn, rom->members));
-  if (nvout && amod && modef && nv) PetscCall(NormalVariation(comm, quiet, nn, rom, cs, amod, amin, amax, ncase, nvout, nvmax));
-  PetscCall(PetscFree(loops));
-  PetscCall(PetscFree3(tf, xj, mjv));
-  PetscCall(PetscFree7(itsv, rmsv, rms0v, dlo, dhi, muv, knv));
-  PetscCall(PetscFree5(ek, ef, ekn, en0, emu));
-  PetscCall(PetscFree2(ep, er));
-  PetscCall(PetscFree(md));
-  PetscCall(PetscFree2(jn, joff));
-  PetscCall(PetscFree2(mk, mf));
-  PetscCall(PetscFree(amod));
+  PetscFunctionReturn(0);
+}
+
+/* The members of each joint in contact at rest, sorted by slip displacement (md, jn, joff) */
+static PetscErrorCode SortMembers(FitCtx *ctx)
+{
+  const JRElements *nn = ctx->nn;
+  const PetscInt    nj = ctx->nj;
+  PetscInt         *jn, *joff;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc2(nj, &ctx->jn, nj + 1, &ctx->joff));
+  PetscCall(PetscMalloc1(nn->n, &ctx->md));
+  jn   = ctx->jn;
+  joff = ctx->joff;
+  for (PetscInt e = 0; e < nn->n; e++)
+    if (ctx->mf[e] > 0 && ctx->mk[e] > 0) jn[nn->joint[e]]++;
+  for (PetscInt j = 0; j < nj; j++) joff[j + 1] = joff[j] + jn[j];
+  for (PetscInt j = 0; j < nj; j++) jn[j] = 0;
+  for (PetscInt e = 0; e < nn->n; e++) {
+    const PetscInt j = nn->joint[e];
+    if (!(ctx->mf[e] > 0 && ctx->mk[e] > 0)) continue;
+    ctx->md[joff[j] + jn[j]].e     = e;
+    ctx->md[joff[j] + jn[j]].delta = ctx->mf[e] / ctx->mk[e];
+    jn[j]++;
+  }
+  for (PetscInt j = 0; j < nj; j++) {
+    PetscCheck(jn[j] > 0, ctx->comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no member in contact at rest: nothing to fit (change the regions)", j);
+    qsort(ctx->md + joff[j], (size_t)jn[j], sizeof(MemberDelta), CompareDelta);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Room for the joints' fits and their reduced elements; the loops' CSV opened (if base) */
+static PetscErrorCode FitAllocate(FitCtx *ctx)
+{
+  const PetscInt nj = ctx->nj;
+  PetscInt       cnt = 0, nmax;
+
+  PetscFunctionBeginUser;
+  for (PetscInt j = 0; j < nj; j++) cnt += PetscMin(ctx->m, ctx->jn[j]);
+  nmax = cnt + (ctx->modef && ctx->nv ? nj * ctx->m : 0); /* mode, jenkins_nv: up to m elements more per joint for its open members */
+  PetscCall(PetscMalloc5(nmax, &ctx->ek, nmax, &ctx->ef, nmax, &ctx->ekn, nmax, &ctx->en0, nmax, &ctx->emu));
+  if (ctx->spread || ctx->modef) PetscCall(PetscMalloc2(JR_EP * nmax + 1, &ctx->ep, nmax + 1, &ctx->er));
+  if (ctx->base && ctx->base[0]) {
+    PetscCall(PetscSNPrintf(ctx->csv, sizeof(ctx->csv), "%s_rom_loops.csv", ctx->base));
+    PetscCall(JRFileOpenTemp(ctx->comm, ctx->csv, &ctx->fp, ctx->tmp, sizeof(ctx->tmp)));
+    if (ctx->fp) fprintf(ctx->fp, "joint,amplitude,u_m,f_first_reduction_N,f_rom_N\n");
+  }
+  PetscCall(PetscCalloc2(nj, &ctx->jf, nj, &ctx->nel));
+  ctx->cnt = 0;
+  PetscFunctionReturn(0);
+}
+
+/* Joint j's sums over its members, the fit's scales and its loops' amplitudes: from the slip-force distribution, the
+   slip displacements below which the fractions -rom_fit_fractions of the slip force lie, and half the first (stuck) */
+static PetscErrorCode JointSetUp(FitCtx *ctx, PetscInt j)
+{
+  const JRElements  *nn = ctx->nn;
+  const MemberDelta *d  = ctx->md + ctx->joff[j];
+  const PetscInt     nm = ctx->jn[j], mj = PetscMin(ctx->m, nm);
+  JointFit          *f  = &ctx->jf[j];
+  TangentFit        *t  = &f->t;
+  PetscReal          ftot = 0, ktot = 0, mu = 0, n0s = 0, knsum = 0, c = 0;
+  PetscInt           k = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < nm; i++) {
+    const PetscInt e = d[i].e;
+    ftot += ctx->mf[e];
+    ktot += ctx->mk[e];
+    mu += nn->mu[e] * nn->n0[e];
+    n0s += nn->n0[e];
+    knsum += nn->kn[e];
+  }
+  mu /= n0s;
+  PetscCall(PetscMemzero(f, sizeof(*f)));
+  f->m    = mj;
+  f->mu   = mu;
+  f->kn   = knsum;
+  t->m    = mj;
+  t->ns   = ctx->fit->ns;
+  t->ks   = ktot / mj;
+  t->fs   = ftot / mj;
+  t->ftot = ftot;
+  t->wg   = ctx->fit->wgross;
+  for (PetscInt a = 0; a < 3; a++) {
+    while (k < nm - 1 && c + ctx->mf[d[k].e] < ctx->fit->fr[a] * ftot) {
+      c += ctx->mf[d[k].e];
+      k++;
+    }
+    t->amp[a] = d[k].delta;
+  }
+  t->amp[3] = 0.5 * d[0].delta;
+  PetscFunctionReturn(0);
+}
+
+/* Joint j's energy rows: 6 over its own range, from the first slips (-rom_fit_energy_from) to its gross-slip
+   amplitude, each relative to its own; with a case, NCASE over the joint's range of motion over the levels (and a
+   factor 2 either side), each amplitude's error relative to all the energy dissipated there (= put in, at resonance) */
+static PetscErrorCode TangentEnergyRows(FitCtx *ctx, PetscInt j)
+{
+  const MemberDelta *d  = ctx->md + ctx->joff[j];
+  const PetscInt     nm = ctx->jn[j];
+  const JRROMCase   *cs = ctx->cs;
+  TangentFit        *t  = &ctx->jf[j].t;
+  PetscReal          c = 0, a0;
+  PetscInt           k = 0;
+
+  PetscFunctionBeginUser;
+  while (k < nm - 1 && c + ctx->mf[d[k].e] < ctx->fit->efrom * t->ftot) {
+    c += ctx->mf[d[k].e];
+    k++;
+  }
+  a0    = PetscMax(d[k].delta, 1.0001 * d[0].delta);
+  t->ne = 6 + (ctx->amod ? NCASE : 0);
+  PetscCall(PetscMalloc4(t->ne, &t->ae, t->ne, &t->Et, t->ne, &t->En, t->ne, &t->we));
+  for (PetscInt i = 0; i < t->ne; i++) {
+    if (i < 6) { /* relative, over the joint's range */
+      t->ae[i] = a0 * PetscPowReal(t->amp[2] / a0, i / 5.0);
+      t->we[i] = 0.05;
+    } else { /* the case */
+      const PetscReal uj = PetscAbsReal(cs->ujoint[j]), am = CaseAmplitude(ctx, i - 6);
+      t->ae[i] = uj * am;
+      t->we[i] = ctx->fit->wcase / PetscSqrtReal((PetscReal)NCASE);
+      t->En[i] = cs->damp * am * am + CaseDissipation(ctx, am);
+    }
+    t->Et[i] = 0;
+    for (PetscInt q = 0; q < nm; q++) t->Et[i] += JenkinsEnergy(ctx->mk[d[q].e], ctx->mf[d[q].e], t->ae[i], NULL, NULL);
+    if (i < 6) t->En[i] = t->Et[i];
+    else if (ctx->nvin) t->Et[i] += ctx->nvin[j * NCASE + i - 6]; /* the normal-load variation (NormalVariation) */
+    if (!(t->En[i] > 0) || !(t->ae[i] > 0)) { /* nothing dissipated, nothing put in: no row */
+      t->En[i] = 1;
+      t->we[i] = 0;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Joint j's target loops, its members', at the four amplitudes, each weighted by its size; the stuck one by
+   -rom_fit_stiffness_weight */
+static PetscErrorCode TangentLoops(FitCtx *ctx, PetscInt j)
+{
+  const MemberDelta *d  = ctx->md + ctx->joff[j];
+  const PetscInt     nm = ctx->jn[j];
+  TangentFit        *t  = &ctx->jf[j].t;
+  const PetscInt     ns = t->ns;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(4 * ns, &t->target));
+  PetscCall(PetscMalloc2(ns, &t->Fk, ns, &t->Ff));
+  for (PetscInt a = 0; a < 4; a++) {
+    PetscReal fmax = 0;
+    for (PetscInt i = 0; i < nm; i++) JenkinsLoop(ctx->mk[d[i].e], ctx->mf[d[i].e], t->amp[a], ns, t->target + a * ns, NULL, NULL);
+    for (PetscInt s = 0; s < ns; s++) fmax = PetscMax(fmax, PetscAbsReal(t->target[a * ns + s]));
+    t->w[a] = (a == 3 ? ctx->fit->wstiff : 1.0) / (fmax * PetscSqrtReal(4.0 * ns)); /* the stiffness weighs most */
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Joint j's start: m groups of members in equal steps of log(delta) (from the first slips to gross slip), each group
+   one element with the group's sums of kt and f: exact at full stick and at gross slip */
+static PetscErrorCode TangentStart(FitCtx *ctx, PetscInt j)
+{
+  const MemberDelta *d  = ctx->md + ctx->joff[j];
+  const PetscInt     nm = ctx->jn[j];
+  JointFit          *f  = &ctx->jf[j];
+  const TangentFit  *t  = &f->t;
+  const PetscInt     mj = f->m;
+  const PetscReal    l0 = PetscLogReal(d[0].delta), l1 = PetscLogReal(d[nm - 1].delta);
+  PetscReal         *x;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(3 * mj, &x));
+  for (PetscInt i = 0; i < nm; i++) {
+    const PetscInt e = d[i].e;
+    PetscInt       g = l1 > l0 ? (PetscInt)(mj * (PetscLogReal(d[i].delta) - l0) / (l1 - l0)) : (mj * i) / nm;
+    g                = PetscMin(PetscMax(g, 0), mj - 1);
+    if (nm <= ctx->m) g = i;
+    x[g] += ctx->mk[e] / t->ks;
+    x[mj + g] += ctx->mf[e] / t->fs;
+  }
+  for (PetscInt g = 0; g < mj; g++) /* an empty group: a small element between its neighbours */
+    if (x[g] == 0) {
+      const PetscReal dl = PetscExpReal(l0 + (g + 0.5) * (l1 - l0) / mj);
+      x[mj + g]          = 1e-3;
+      x[g]               = 1e-3 * t->fs / (dl * t->ks);
+    }
+  f->x = x;
+  PetscFunctionReturn(0);
+}
+
+/* The residual norm of a fixed fit at y */
+static PetscErrorCode FixedNorm(FixedFit *fx, const PetscReal y[], PetscReal *norm)
+{
+  const PetscInt ld = FitRows(fx->t);
+  PetscReal     *r0, *J0, s = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(ld, &r0, ld * fx->t->m, &J0));
+  PetscCall(FixedResidual(fx, y, r0, J0));
+  for (PetscInt i = 0; i < ld; i++) s += r0[i] * r0[i];
+  *norm = PetscSqrtReal(s);
+  PetscCall(PetscFree2(r0, J0));
+  PetscFunctionReturn(0);
+}
+
+/* Joint j's convex fit: the slip displacements of the start's groups (sum f / sum kt of each log-width group of
+   members), or the best of the candidates over [dlo, dhi] (-rom_fit_search), fixed; the forces fitted. rms0: the
+   residual of the groups it started from */
+static PetscErrorCode FitConvex(FitCtx *ctx, PetscInt j)
+{
+  const MemberDelta *d  = ctx->md + ctx->joff[j];
+  const PetscInt     nm = ctx->jn[j];
+  const JRROMCase   *cs = ctx->cs;
+  JointFit          *f  = &ctx->jf[j];
+  TangentFit        *t  = &f->t;
+  const PetscInt     mj = f->m;
+  PetscReal         *x  = f->x, *y, rsearch, rms0, rms;
+  PetscInt           its1 = 0;
+  FixedFit           fx;
+  JRLSQ              q;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc4(mj, &fx.delta, 2 * mj, &fx.x, FitRows(t) * 2 * mj, &fx.J2, mj, &y));
+  fx.t = t;
+  for (PetscInt i = 0; i < mj; i++) {
+    fx.delta[i] = t->fs * x[mj + i] / (t->ks * x[i]);
+    y[i]        = x[mj + i];
+  }
+  PetscCall(FixedNorm(&fx, y, &f->rms0));
+  f->dlo = ctx->amod ? PetscMin(d[0].delta, 0.1 * PetscAbsReal(cs->ujoint[j]) * ctx->amin) : d[0].delta;
+  f->dhi = PetscMin(d[nm - 1].delta, PetscMax(t->amp[2], ctx->amod ? 4 * PetscAbsReal(cs->ujoint[j]) * ctx->amax : 0.0));
+  if (ctx->fit->search) PetscCall(SearchDelta(t, f->dlo, f->dhi, mj, fx.delta, y, &rsearch));
+  for (PetscInt i = 0; i < mj; i++) y[i] *= 1 + ctx->fit->perturb * (i % 3 == 0 ? 1.0 : i % 3 == 1 ? -1.0 : 0.5);
+  q.nx  = mj;
+  q.nr  = FitRows(t);
+  q.fn  = FixedResidual;
+  q.ctx = &fx;
+  PetscCall(JRLSQSolve(&q, y, 0.0, &rms0, &rms, &its1));
+  for (PetscInt i = 0; i < mj; i++) {
+    x[i]      = t->fs * y[i] / (fx.delta[i] * t->ks);
+    x[mj + i] = y[i];
+  }
+  f->rms = rms;
+  f->its = its1;
+  PetscCall(PetscMalloc1(mj, &t->delta));
+  PetscCall(PetscArraycpy(t->delta, fx.delta, mj));
+  PetscCall(PetscFree4(fx.delta, fx.x, fx.J2, y));
+  PetscFunctionReturn(0);
+}
+
+/* -rom_fit_refine: joint j's slip displacements free too, from its convex fit (not convex) */
+static PetscErrorCode FitRefine(FitCtx *ctx, PetscInt j)
+{
+  JointFit      *f  = &ctx->jf[j];
+  TangentFit    *t  = &f->t;
+  const PetscInt mj = f->m;
+  PetscReal     *x  = f->x, r1, rms;
+  PetscInt       its1 = 0;
+  JRLSQ          q;
+
+  PetscFunctionBeginUser;
+  for (PetscInt g = 0; g < mj; g++) {
+    x[g]      = PetscMax(x[g], 1e-8);
+    x[mj + g] = PetscMax(x[mj + g], 1e-8);
+  }
+  q.nx  = 2 * mj;
+  q.nr  = FitRows(t);
+  q.fn  = TangentResidual;
+  q.ctx = t;
+  PetscCall(JRLSQSolve(&q, x, 1e-10, &r1, &rms, &its1));
+  f->rms = rms;
+  f->its += its1;
+  for (PetscInt g = 0; g < mj; g++) t->delta[g] = t->fs * x[mj + g] / (t->ks * x[g]);
+  PetscFunctionReturn(0);
+}
+
+/* A joint with no more members than elements: the members themselves (the start), exact; rms: its loops' residual */
+static PetscErrorCode FitExact(FitCtx *ctx, PetscInt j)
+{
+  JointFit   *f = &ctx->jf[j];
+  TangentFit *t = &f->t;
+  PetscReal  *r, *J, rms = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(FitRows(t), &r, FitRows(t) * 2 * f->m, &J));
+  PetscCall(TangentResidual(t, f->x, r, J));
+  for (PetscInt i = 0; i < 4 * t->ns; i++) rms += r[i] * r[i];
+  rms     = PetscSqrtReal(rms);
+  f->rms  = rms;
+  f->rms0 = rms;
+  PetscCall(PetscFree2(r, J));
+  PetscFunctionReturn(0);
+}
+
+/* Joint j's own fit (JointFit): kt_i, f_i of its elements */
+static PetscErrorCode FitJoint(FitCtx *ctx, PetscInt j)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JointSetUp(ctx, j));
+  PetscCall(TangentEnergyRows(ctx, j));
+  PetscCall(TangentLoops(ctx, j));
+  PetscCall(TangentStart(ctx, j));
+  if (ctx->jn[j] > ctx->m) {
+    PetscCall(FitConvex(ctx, j));
+    if (ctx->fit->refine) PetscCall(FitRefine(ctx, j));
+  } else PetscCall(FitExact(ctx, j));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode JointFitDestroy(JointFit *f)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(f->x));
+  PetscCall(PetscFree(f->t.target));
+  PetscCall(PetscFree2(f->t.Fk, f->t.Ff));
+  PetscCall(PetscFree4(f->t.ae, f->t.Et, f->t.En, f->t.we));
+  PetscCall(PetscFree(f->t.delta));
+  PetscFunctionReturn(0);
+}
+
+/* -rom_joint_motion mode, jenkins_nv: joint j's open members (a gap: n0 <= 0), which close at large amplitude: up to
+   m elements by gap, after its fitted ones */
+static PetscErrorCode OpenMembers(FitCtx *ctx, PetscInt j)
+{
+  const JRElements *nn = ctx->nn;
+  const PetscInt    e0 = ctx->cnt + ctx->nel[j];
+  PetscInt          no = 0, ng;
+  MemberDelta      *od;
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < nn->n; e++) no += (nn->joint[e] == j && !(nn->n0[e] > 0) && nn->kn[e] > 0);
+  ng = PetscMin(ctx->m, no);
+  if (!ng) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(no, &od));
+  for (PetscInt e = 0, i = 0; e < nn->n; e++)
+    if (nn->joint[e] == j && !(nn->n0[e] > 0) && nn->kn[e] > 0) {
+      od[i].e       = e;
+      od[i++].delta = -nn->n0[e] / nn->kn[e];
+    }
+  qsort(od, (size_t)no, sizeof(MemberDelta), CompareDelta);
+  PetscCall(OpenPoints(ctx, od, no, ng, e0));
+  for (PetscInt g = 0; g < ng; g++) { /* no slip force; at their own motion */
+    ctx->ef[e0 + g] = 0;
+    ctx->er[e0 + g] = 1;
+  }
+  PetscCall(PetscFree(od));
+  ctx->nel[j] += ng;
+  PetscFunctionReturn(0);
+}
+
+/* Joint j's reduced elements (from ctx->cnt on) from its fit: those the fit left without force carry nothing and are
+   dropped; with -rom_joint_motion linear or mode, their points; mode, jenkins_nv: the open members' elements */
+static PetscErrorCode JointElements(FitCtx *ctx, PetscInt j)
+{
+  JointFit        *f  = &ctx->jf[j];
+  const TangentFit *t = &f->t;
+  const PetscInt   m0 = f->m, e0 = ctx->cnt;
+  PetscReal       *x  = f->x;
+  PetscInt         mj = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < m0; i++)
+    if (x[m0 + i] > 1e-9) {
+      x[mj]          = x[i];
+      x[2 * m0 + mj] = x[m0 + i]; /* forces behind the stiffnesses, shifted below */
+      mj++;
+    }
+  for (PetscInt i = 0; i < mj; i++) x[mj + i] = x[2 * m0 + i];
+  for (PetscInt i = 0; i < mj; i++) {
+    ctx->ek[e0 + i]  = t->ks * x[i];
+    ctx->ef[e0 + i]  = t->fs * x[mj + i];
+    ctx->en0[e0 + i] = ctx->ef[e0 + i] / f->mu;
+    ctx->emu[e0 + i] = f->mu;
+    ctx->ekn[e0 + i] = 0;
+  }
+  ctx->nel[j] = mj;
+  if (ctx->spread) PetscCall(SpreadPoints(ctx, j, mj));
+  if (ctx->modef) PetscCall(ModePoints(ctx, j, mj));
+  if (ctx->modef && ctx->nv) PetscCall(OpenMembers(ctx, j));
+  PetscFunctionReturn(0);
+}
+
+/* jenkins_nv (not mode): joint j's normal stiffnesses kn_i (the thesis's kv) fitted to its normal load-motion curve
+   sum_e max(n0_e + kn_e v, 0) over v from the separation of every member to as much compression */
+static PetscErrorCode FitNormal(FitCtx *ctx, PetscInt j)
+{
+  const JRElements  *nn = ctx->nn;
+  const MemberDelta *d  = ctx->md + ctx->joff[j];
+  const PetscInt     nm = ctx->jn[j], mj = ctx->nel[j], ns = ctx->fit->ns;
+  JointFit          *f  = &ctx->jf[j];
+  const PetscReal    ftot = f->t.ftot;
+  NormalFit          nf;
+  PetscReal          vsep = 0, nmx = 0, c = 0, *xn;
+  JRLSQ              q;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(&nf, sizeof(nf)));
+  for (PetscInt e = 0; e < nn->n; e++)
+    if (nn->joint[e] == j && nn->kn[e] > 0) vsep = PetscMax(vsep, PetscAbsReal(nn->n0[e]) / nn->kn[e]);
+  nf.m   = mj;
+  nf.nv  = 2 * ns + 1;
+  nf.n0  = ctx->en0 + ctx->cnt;
+  nf.kns = f->kn / mj;
+  PetscCall(PetscMalloc3(nf.nv, &nf.v, nf.nv, &nf.target, mj, &xn));
+  for (PetscInt s = 0; s < nf.nv; s++) {
+    nf.v[s]      = vsep * (2.0 * s / (nf.nv - 1) - 1.0);
+    nf.target[s] = 0;
+    for (PetscInt e = 0; e < nn->n; e++)
+      if (nn->joint[e] == j) nf.target[s] += PetscMax(nn->n0[e] + nn->kn[e] * nf.v[s], 0.0);
+    nmx = PetscMax(nmx, nf.target[s]);
+  }
+  nf.w = 1.0 / (nmx * PetscSqrtReal((PetscReal)nf.nv));
+  for (PetscInt i = 0; i < mj; i++) xn[i] = 0;
+  for (PetscInt i = 0; i < nm; i++) { /* start: the groups' normal stiffness, as for kt */
+    const PetscInt e = d[i].e;
+    PetscInt       g = nm <= ctx->m ? i : PetscMin(PetscMax((PetscInt)(mj * (c + 0.5 * ctx->mf[e]) / ftot), 0), mj - 1);
+    xn[g] += nn->kn[e] / nf.kns;
+    c += ctx->mf[e];
+  }
+  for (PetscInt g = 0; g < mj; g++) xn[g] = PetscMax(xn[g], 1e-3);
+  q.nx  = mj;
+  q.nr  = nf.nv;
+  q.fn  = NormalResidual;
+  q.ctx = &nf;
+  PetscCall(JRLSQSolve(&q, xn, 1e-10, &f->nrms0, &f->nrms, &f->nits));
+  for (PetscInt i = 0; i < mj; i++) ctx->ekn[ctx->cnt + i] = nf.kns * xn[i];
+  PetscCall(PetscFree3(nf.v, nf.target, xn));
+  PetscFunctionReturn(0);
+}
+
+/* Joint j's line (rom joint ...), and its loops at the three amplitudes in the CSV: the members' and its elements' */
+static PetscErrorCode JointReport(FitCtx *ctx, PetscInt j)
+{
+  const JointFit   *f  = &ctx->jf[j];
+  const TangentFit *t  = &f->t;
+  const PetscInt    ns = t->ns, mj = ctx->nel[j], e0 = ctx->cnt;
+  PetscReal        *Fr;
+
+  PetscFunctionBeginUser;
+  PetscCall(Say(ctx->quiet, ctx->comm, "rom joint %" PetscInt_FMT " members %" PetscInt_FMT " elements %" PetscInt_FMT " amplitudes_m %.4e %.4e %.4e loop_residual %.3e start %.3e tao_its %" PetscInt_FMT, j, ctx->jn[j], mj, (double)t->amp[0], (double)t->amp[1], (double)t->amp[2], (double)f->rms, (double)f->rms0, f->its));
+  if (ctx->nv) PetscCall(Say(ctx->quiet, ctx->comm, " normal_residual %.3e start %.3e tao_its %" PetscInt_FMT, (double)f->nrms, (double)f->nrms0, f->nits));
+  PetscCall(Say(ctx->quiet, ctx->comm, "\n"));
+  if (!ctx->fp) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(ns, &Fr));
+  for (PetscInt a = 0; a < 3; a++) {
+    for (PetscInt s = 0; s < ns; s++) Fr[s] = 0;
+    for (PetscInt i = 0; i < mj; i++) JenkinsLoop(ctx->ek[e0 + i], ctx->ef[e0 + i], t->amp[a], ns, Fr, NULL, NULL);
+    for (PetscInt s = 0; s <= ns; s++) fprintf(ctx->fp, "%" PetscInt_FMT ",%" PetscInt_FMT ",%.9e,%.9e,%.9e\n", j, a, (double)(t->amp[a] * PetscCosReal(2 * PETSC_PI * s / ns)), (double)t->target[a * ns + s % ns], (double)Fr[s % ns]);
+  }
+  PetscCall(PetscFree(Fr));
+  PetscFunctionReturn(0);
+}
+
+/* The fit at the case's estimated amplitudes: the error of all joints' dissipation at each level, relative to the
+   input (rom case level F dissipation_error) */
+static PetscErrorCode CaseErrors(const FitCtx *ctx)
+{
+  const JRROMCase *cs = ctx->cs;
+
+  PetscFunctionBeginUser;
+  for (PetscInt l = 0; l < cs->nlev; l++) {
+    PetscReal err = 0;
+    for (PetscInt j = 0, e = 0; j < ctx->nj; j++) {
+      const PetscReal x = PetscAbsReal(cs->ujoint[j]) * ctx->amod[l];
+      for (PetscInt i = 0; i < ctx->nel[j]; i++, e++) err += JenkinsEnergy(ctx->ek[e], ctx->ef[e], x, NULL, NULL);
+    }
+    err -= CaseDissipation(ctx, ctx->amod[l]);
+    PetscCall(Say(ctx->quiet, ctx->comm, "rom case level %g dissipation_error %+.4f (of the input per cycle)\n", (double)cs->level[l], (double)(err / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * ctx->amod[l]))));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The loops' CSV in place, and its plot (BASE_rom_loops.png) */
+static PetscErrorCode LoopsCommit(FitCtx *ctx)
+{
+  PetscFunctionBeginUser;
+  if (!(ctx->base && ctx->base[0])) PetscFunctionReturn(0);
+  PetscCall(JRFileCommit(ctx->comm, &ctx->fp, ctx->tmp, ctx->csv));
+  if (ctx->plot) {
+    char      png[PETSC_MAX_PATH_LEN + 32], vars[2 * PETSC_MAX_PATH_LEN + 64];
+    PetscBool made;
+    PetscCall(PetscSNPrintf(png, sizeof(png), "%s_rom_loops.png", ctx->base));
+    PetscCall(PetscSNPrintf(vars, sizeof(vars), "data='%s'; nj=%" PetscInt_FMT, ctx->csv, PetscMin(ctx->nj, 12)));
+    PetscCall(JRPlot(ctx->comm, "plot_rom_loops.gp", png, vars, &made));
+    PetscCall(PetscPrintf(ctx->comm, "rom: wrote %s%s%s\n", ctx->csv, made ? ", " : "", made ? png : ""));
+  } else PetscCall(PetscPrintf(ctx->comm, "rom: wrote %s\n", ctx->csv));
+  PetscFunctionReturn(0);
+}
+
+/* The reduced elements, the first-reduction model as their members; linear: each a third at each of its points;
+   mode (jenkins_nv): each a half at each of its two points */
+static PetscErrorCode AssembleElements(const FitCtx *ctx, JRElements *rom)
+{
+  const PetscInt nc = ctx->spread ? 3 : (ctx->modef && ctx->nv ? 2 : 1), cnt = ctx->cnt;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRROMElementsSetUp(rom, nc * cnt, ctx->nn->typename[0], PETSC_FALSE));
+  if (ctx->spread || ctx->modef) PetscCall(PetscMalloc1(3 * nc * cnt, &rom->pos));
+  if (ctx->modef) PetscCall(PetscMalloc1(2 * nc * cnt, &rom->phi));
+  rom->njoints = ctx->nj;
+  for (PetscInt j = 0, e = 0; j < ctx->nj; j++)
+    for (PetscInt i = 0; i < ctx->nel[j]; i++, e++)
+      for (PetscInt c = 0; c < nc; c++) {
+        const PetscInt  r = nc * e + c;
+        const PetscReal q = ctx->modef ? ctx->er[e] : 1.0; /* mode: the element moved to psi_t */
+        rom->kt[r]        = ctx->ek[e] * q * q / nc;
+        rom->kn[r]        = ctx->ekn[e] / nc;
+        rom->mu[r]        = ctx->emu[e];
+        rom->n0[r]        = ctx->en0[e] * PetscAbsReal(q) / nc;
+        rom->joint[r]     = j;
+        for (PetscInt k = 0; rom->pos && k < 3; k++) rom->pos[3 * r + k] = ctx->ep[JR_EP * e + 5 * c + k];
+        for (PetscInt k = 0; rom->phi && k < 2; k++) rom->phi[2 * r + k] = ctx->ep[JR_EP * e + 5 * c + 3 + k];
+      }
+  PetscCall(PetscNew(&rom->members));
+  PetscCall(JRElementsDuplicate(ctx->nn, rom->members));
+  PetscFunctionReturn(0);
+}
+
+/* Frees what a pass computed; the problem stays */
+static PetscErrorCode FitCtxReset(FitCtx *ctx)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt j = 0; ctx->jf && j < ctx->nj; j++) PetscCall(JointFitDestroy(&ctx->jf[j]));
+  PetscCall(PetscFree2(ctx->jf, ctx->nel));
+  PetscCall(PetscFree5(ctx->ek, ctx->ef, ctx->ekn, ctx->en0, ctx->emu));
+  PetscCall(PetscFree2(ctx->ep, ctx->er));
+  PetscCall(PetscFree(ctx->md));
+  PetscCall(PetscFree2(ctx->jn, ctx->joff));
+  PetscCall(PetscFree2(ctx->mk, ctx->mf));
+  PetscCall(PetscFree(ctx->amod));
+  ctx->amin = ctx->amax = 0;
+  ctx->cnt              = 0;
+  PetscFunctionReturn(0);
+}
+
+/* One fit (JRROMReduce) of the problem in ctx: quiet, it prints nothing; ctx->nvin (NULL: none) is added to the case's
+   energy targets; nvout (NULL: not wanted; mode, jenkins_nv, with a case) gets NormalVariation's correction of this
+   fit, nvmax its size */
+static PetscErrorCode ReducePass(FitCtx *ctx, PetscReal nvout[], PetscReal *nvmax, JRElements *rom)
+{
+  PetscFunctionBeginUser;
+  PetscCall(FitCheck(ctx));
+  PetscCall(MemberSprings(ctx));
+  if (ctx->cs && ctx->cs->nlev > 0 && ctx->m > 0 && (!ctx->nv || ctx->modef)) PetscCall(CaseAmplitudes(ctx));
+  if (ctx->m == 0) {
+    PetscCall(FirstReduction(ctx, rom));
+    PetscCall(FitCtxReset(ctx));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(SortMembers(ctx));
+  PetscCall(FitAllocate(ctx));
+  for (PetscInt j = 0; j < ctx->nj; j++) PetscCall(FitJoint(ctx, j));
+  if (ctx->amod && ctx->fit->wtotal > 0 && (!ctx->nv || ctx->modef)) PetscCall(FitCoupled(ctx));
+  for (PetscInt j = 0; j < ctx->nj; j++) {
+    PetscCall(JointElements(ctx, j));
+    if (ctx->nv && !ctx->modef) PetscCall(FitNormal(ctx, j));
+    PetscCall(JointReport(ctx, j));
+    ctx->cnt += ctx->nel[j];
+    PetscCall(JointFitDestroy(&ctx->jf[j]));
+  }
+  if (ctx->amod) PetscCall(CaseErrors(ctx));
+  PetscCall(LoopsCommit(ctx));
+  PetscCall(AssembleElements(ctx, rom));
+  if (nvout && ctx->amod && ctx->modef && ctx->nv) PetscCall(NormalVariation(ctx, rom, nvout, nvmax));
+  PetscCall(FitCtxReset(ctx));
   PetscFunctionReturn(0);
 }
 
@@ -1608,298 +1627,42 @@ static PetscErrorCode ReducePass(MPI_Comm comm, const JRElements *nn, PetscInt m
 */
 PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const JRROMCase *cs, const JRROMFit *fitin, const char base[], PetscBool plot, PetscBool quiet, JRElements *rom)
 {
-  const PetscInt na = 24; /* the case's amplitudes (ReducePass's ncase) */
-  PetscInt    npass;
-  PetscReal  *nvin, *nvout, nvmax = 0;
-  JRROMFit    own;
-  const JRROMFit *fit = fitin;
+  PetscInt  npass;
+  PetscReal *nvin, *nvout, nvmax = 0;
+  JRROMFit  own;
+  FitCtx    ctx;
 
   PetscFunctionBeginUser;
-  if (!fit) { /* the options, read here */
+  if (!fitin) { /* the options, read here */
     PetscCall(JRROMFitSetFromOptions(comm, &own));
-    fit = &own;
+    fitin = &own;
   }
-  npass = fit->npass;
+  PetscCall(PetscMemzero(&ctx, sizeof(ctx)));
+  ctx.comm = comm;
+  ctx.nn   = nn;
+  ctx.m    = m;
+  ctx.wt   = wt;
+  ctx.cs   = cs;
+  ctx.fit  = fitin;
+  ctx.plot = plot;
+  npass    = fitin->npass;
   /* nn->phi, the members' stuck-mode coordinates, is set (JRTaskFRF) for -rom_joint_motion mode only */
   if (!(nn->phi && m > 0 && npass >= 0 && cs && cs->nlev > 0 && cs->force > 0 && nn->ntypes == 1 && !strcmp(nn->typename[0], JRCONTACTJENKINSNV))) {
-    PetscCall(ReducePass(comm, nn, m, wt, cs, fit, quiet ? NULL : base, plot, quiet, NULL, NULL, &nvmax, rom));
+    ctx.base  = quiet ? NULL : base;
+    ctx.quiet = quiet;
+    PetscCall(ReducePass(&ctx, NULL, &nvmax, rom));
     PetscFunctionReturn(0);
   }
-  PetscCall(PetscCalloc2(na * nn->njoints, &nvin, na * nn->njoints, &nvout));
+  PetscCall(PetscCalloc2(NCASE * nn->njoints, &nvin, NCASE * nn->njoints, &nvout));
   for (PetscInt p = 0; p <= npass; p++) {
     if (p) PetscCall(JRElementsDestroy(rom));
-    PetscCall(ReducePass(comm, nn, m, wt, cs, fit, p == npass && !quiet ? base : NULL, plot, (PetscBool)(quiet || p < npass), p ? nvin : NULL, nvout, &nvmax, rom));
+    ctx.base  = p == npass && !quiet ? base : NULL;
+    ctx.quiet = (PetscBool)(quiet || p < npass);
+    ctx.nvin  = p ? nvin : NULL;
+    PetscCall(ReducePass(&ctx, nvout, &nvmax, rom));
     if (npass && !quiet) PetscCall(PetscPrintf(comm, "rom normal_variation pass %" PetscInt_FMT " of %" PetscInt_FMT " largest_share %.4f (of the input per cycle at the case's amplitudes, the fit's next correction)\n", p, npass, (double)nvmax));
-    PetscCall(PetscArraycpy(nvin, nvout, na * nn->njoints));
+    PetscCall(PetscArraycpy(nvin, nvout, NCASE * nn->njoints));
   }
   PetscCall(PetscFree2(nvin, nvout));
-  PetscFunctionReturn(0);
-}
-
-/* The coordinates of the members' nodes, xc[6 e + c] = x(vdof_a[3e + c]), x(vdof_b[3e + c]) on every rank (collective) */
-static PetscErrorCode MemberCoordinates(JRModel model, const JRElements *mem, PetscReal xc[])
-{
-  Vec                X;
-  const PetscScalar *x;
-  PetscInt           lo, hi;
-  PetscReal         *loc;
-  MPI_Comm           comm;
-
-  PetscFunctionBeginUser;
-  PetscCall(JRModelGetComm(model, &comm));
-  PetscCall(JRModelGetCoordinates(model, &X));
-  PetscCheck(X, comm, PETSC_ERR_ARG_WRONG, "A reduced model goes with an FE model (it needs node coordinates)");
-  PetscCall(VecGetOwnershipRange(X, &lo, &hi));
-  PetscCall(VecGetArrayRead(X, &x));
-  PetscCall(PetscCalloc1(6 * mem->n, &loc));
-  for (PetscInt e = 0; e < mem->n; e++)
-    for (PetscInt c = 0; c < 3; c++) {
-      const PetscInt da = mem->vdof_a[3 * e + c], db = mem->vdof_b[3 * e + c];
-      if (da >= lo && da < hi) loc[6 * e + c] = PetscRealPart(x[da - lo]);
-      if (db >= lo && db < hi) loc[6 * e + 3 + c] = PetscRealPart(x[db - lo]);
-    }
-  PetscCall(VecRestoreArrayRead(X, &x));
-  PetscCall(VecDestroy(&X));
-  PetscCall(MPIU_Allreduce(loc, xc, 6 * mem->n, MPIU_REAL, MPIU_SUM, comm));
-  PetscCall(PetscFree(loc));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode WriteSeq(PetscViewer v, const char name[], PetscInt n, PetscInt bs, const PetscReal a[])
-{
-  Vec          x;
-  PetscScalar *xa;
-
-  PetscFunctionBeginUser;
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n * bs, &x));
-  PetscCall(VecSetBlockSize(x, bs));
-  PetscCall(PetscObjectSetName((PetscObject)x, name));
-  PetscCall(VecGetArray(x, &xa));
-  for (PetscInt i = 0; i < n * bs; i++) xa[i] = a[i];
-  PetscCall(VecRestoreArray(x, &xa));
-  PetscCall(VecView(x, v));
-  PetscCall(VecDestroy(&x));
-  PetscFunctionReturn(0);
-}
-
-/* The first six columns of a saved element or member: joint, kt, kn, mu, n0, type */
-static void PutRow(const JRElements *el, PetscInt e, PetscReal r[])
-{
-  r[0] = el->joint[e];
-  r[1] = el->kt[e];
-  r[2] = el->kn[e];
-  r[3] = el->mu[e];
-  r[4] = el->n0[e];
-  r[5] = el->type[e];
-}
-
-static void GetRow(JRElements *el, PetscInt e, const PetscReal r[])
-{
-  el->joint[e] = (PetscInt)r[0];
-  el->kt[e]    = r[1];
-  el->kn[e]    = r[2];
-  el->mu[e]    = r[3];
-  el->n0[e]    = r[4];
-}
-
-#define JR_ROM_EL  6  /* joint, kt, kn, mu, n0, type */
-#define JR_ROM_MEM 24 /* joint, kt, kn, mu, n0, type, vdof_a[3], vdof_b[3], tdir[3], ndir[3], x_A[3], x_B[3] */
-
-/*
-  JRROMSave - write a reduced model (elements with members) to an HDF5 file: /rom/elements (joint, kt, kn, mu, n0,
-  type per element), /rom/members (joint, kt, kn, mu, n0, type, the 6 DOFs, t, n and the nodes' coordinates per
-  member), attributes njoints, types, stiffness_correction. Written by rank 0 to a temporary file, then renamed.
-*/
-PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, const char file[])
-{
-  MPI_Comm          comm;
-  PetscMPIInt       rank;
-  const JRElements *mem = rom->members;
-  PetscReal        *xc;
-
-  PetscFunctionBeginUser;
-  PetscCall(JRModelGetComm(model, &comm));
-  PetscCheck(mem && rom->joint, comm, PETSC_ERR_ARG_WRONG, "-rom_save: only a second-reduction model (-rom_elements m) is saved");
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCall(PetscMalloc1(6 * mem->n, &xc));
-  PetscCall(MemberCoordinates(model, mem, xc));
-  if (!rank) {
-    PetscViewer v;
-    char        tmp[PETSC_MAX_PATH_LEN + 32];
-    PetscReal  *a;
-    PetscInt    nj = rom->njoints;
-    PetscCall(JRFileTempName(PETSC_COMM_SELF, file, tmp, sizeof(tmp)));
-    PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, tmp, FILE_MODE_WRITE, &v));
-    PetscCall(PetscViewerHDF5PushGroup(v, "/rom"));
-    PetscCall(PetscMalloc1(JR_ROM_MEM * PetscMax(mem->n, rom->n), &a));
-    for (PetscInt e = 0; e < rom->n; e++) {
-      PutRow(rom, e, a + JR_ROM_EL * e);
-    }
-    PetscCall(WriteSeq(v, "elements", rom->n, JR_ROM_EL, a));
-    for (PetscInt e = 0; e < mem->n; e++) {
-      PetscReal *r = a + JR_ROM_MEM * e;
-      PutRow(mem, e, r);
-      for (PetscInt c = 0; c < 3; c++) {
-        r[6 + c]  = mem->vdof_a[3 * e + c];
-        r[9 + c]  = mem->vdof_b[3 * e + c];
-        r[12 + c] = mem->tdir[3 * e + c];
-        r[15 + c] = mem->ndir[3 * e + c];
-        r[18 + c] = xc[6 * e + c];
-        r[21 + c] = xc[6 * e + 3 + c];
-      }
-    }
-    PetscCall(WriteSeq(v, "members", mem->n, JR_ROM_MEM, a));
-    if (rom->pos && mem->pos) { /* -rom_joint_motion linear, mode: the elements' points, then the members' */
-      PetscReal *p;
-      PetscCall(PetscMalloc1(3 * (rom->n + mem->n), &p));
-      PetscCall(PetscArraycpy(p, rom->pos, 3 * rom->n));
-      PetscCall(PetscArraycpy(p + 3 * rom->n, mem->pos, 3 * mem->n));
-      PetscCall(WriteSeq(v, "positions", rom->n + mem->n, 3, p));
-      if (rom->phi && mem->phi) { /* mode: their stuck-mode coordinates likewise */
-        PetscCall(PetscArraycpy(p, rom->phi, 2 * rom->n));
-        PetscCall(PetscArraycpy(p + 2 * rom->n, mem->phi, 2 * mem->n));
-        PetscCall(WriteSeq(v, "mode_coordinates", rom->n + mem->n, 2, p));
-      }
-      PetscCall(PetscFree(p));
-    }
-    PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "njoints", PETSC_INT, &nj));
-    PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "element_type", PETSC_STRING, rom->typename[0]));
-    PetscCall(PetscViewerHDF5WriteAttribute(v, "members", "element_type", PETSC_STRING, mem->typename[0]));
-    PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "stiffness_correction", PETSC_REAL, &corr));
-    PetscCall(PetscViewerHDF5PopGroup(v));
-    PetscCall(PetscViewerDestroy(&v));
-    PetscCall(PetscFree(a));
-    PetscCall(JRFileRename(PETSC_COMM_SELF, tmp, file));
-  }
-  PetscCallMPI(MPI_Barrier(comm));
-  PetscCall(PetscFree(xc));
-  PetscCall(PetscPrintf(comm, "rom: saved %" PetscInt_FMT " elements in %" PetscInt_FMT " joints (%" PetscInt_FMT " members) to %s\n", rom->n, rom->njoints, mem->n, file));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode ReadSeq(PetscViewer v, const char file[], const char name[], PetscInt bs, PetscInt *n, PetscReal **a)
-{
-  Vec                x;
-  const PetscScalar *xa;
-  PetscInt           len;
-  PetscBool          has;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscViewerHDF5HasDataset(v, name, &has));
-  PetscCheck(has, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: no dataset /rom/%s (not a reduced model written by -rom_save)", file, name);
-  PetscCall(VecCreate(PETSC_COMM_SELF, &x));
-  PetscCall(VecSetBlockSize(x, bs));
-  PetscCall(PetscObjectSetName((PetscObject)x, name));
-  PetscCall(VecLoad(x, v));
-  PetscCall(VecGetSize(x, &len));
-  PetscCheck(len % bs == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: /rom/%s has %" PetscInt_FMT " values, not rows of %" PetscInt_FMT, file, name, len, bs);
-  *n = len / bs;
-  PetscCall(PetscMalloc1(len, a));
-  PetscCall(VecGetArrayRead(x, &xa));
-  for (PetscInt i = 0; i < len; i++) (*a)[i] = PetscRealPart(xa[i]);
-  PetscCall(VecRestoreArrayRead(x, &xa));
-  PetscCall(VecDestroy(&x));
-  PetscFunctionReturn(0);
-}
-
-/*
-  JRROMLoad - read a reduced model written by JRROMSave for this FE model: every member's nodes must be where the
-  file says (within 1e-9 of the model's size), else an error naming the file; corr: its stiffness correction.
-*/
-PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, PetscReal *corr)
-{
-  MPI_Comm    comm;
-  PetscViewer v;
-  PetscBool   exists, haspos, hasphi;
-  PetscReal  *a, *b, *xc, *pos = NULL, *phi = NULL, lo[3], hi[3], size = 0, worst = 0;
-  PetscInt    ne, nmem, nj = 0, ndof, bad = -1, npos = 0, nphi = 0;
-  char       *ty = NULL, *mty = NULL;
-  JRElements *mem;
-
-  PetscFunctionBeginUser;
-  PetscCall(JRModelGetComm(model, &comm));
-  PetscCall(PetscTestFile(file, 'r', &exists));
-  PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-rom_load %s: no such file (write one with -rom_save)", file);
-  {
-    char what[PETSC_MAX_PATH_LEN + 32];
-    PetscCall(PetscSNPrintf(what, sizeof(what), "-rom_load %s", file));
-    PetscCall(JRErrorContextPush(what));
-    PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, file, FILE_MODE_READ, &v));
-    PetscCall(JRErrorContextPop());
-  }
-  PetscCall(PetscViewerHDF5PushGroup(v, "/rom"));
-  PetscCall(ReadSeq(v, file, "elements", JR_ROM_EL, &ne, &a));
-  PetscCall(ReadSeq(v, file, "members", JR_ROM_MEM, &nmem, &b));
-  PetscCall(PetscViewerHDF5HasDataset(v, "positions", &haspos));
-  if (haspos) PetscCall(ReadSeq(v, file, "positions", 3, &npos, &pos));
-  PetscCall(PetscViewerHDF5HasDataset(v, "mode_coordinates", &hasphi));
-  if (hasphi) PetscCall(ReadSeq(v, file, "mode_coordinates", 2, &nphi, &phi));
-  PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "njoints", PETSC_INT, NULL, &nj));
-  PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "element_type", PETSC_STRING, NULL, &ty));
-  PetscCall(PetscViewerHDF5ReadAttribute(v, "members", "element_type", PETSC_STRING, NULL, &mty));
-  *corr = 1.0;
-  PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "stiffness_correction", PETSC_REAL, corr, corr));
-  PetscCall(PetscViewerHDF5PopGroup(v));
-  PetscCall(PetscViewerDestroy(&v));
-  PetscCheck(!strcmp(ty, JRCONTACTJENKINS) || !strcmp(ty, JRCONTACTJENKINSNV), comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: element type '%s' (jenkins or jenkins_nv)", file, ty);
-  PetscCheck(nj > 0 && ne > 0 && nmem > 0, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: %" PetscInt_FMT " joints, %" PetscInt_FMT " elements, %" PetscInt_FMT " members: an empty model", file, nj, ne, nmem);
-  PetscCall(JRModelGetNumDofs(model, &ndof));
-  PetscCall(SetupList(rom, ne, ty, PETSC_FALSE));
-  rom->njoints = nj;
-  for (PetscInt e = 0; e < ne; e++) {
-    GetRow(rom, e, a + JR_ROM_EL * e);
-    PetscCheck(rom->joint[e] >= 0 && rom->joint[e] < nj && rom->kt[e] > 0 && rom->mu[e] > 0, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: element %" PetscInt_FMT " has joint %" PetscInt_FMT " (0..%" PetscInt_FMT "), kt %g, mu %g: not a valid element", file, e, rom->joint[e], nj - 1, (double)rom->kt[e], (double)rom->mu[e]);
-  }
-  PetscCall(PetscNew(&mem));
-  PetscCall(SetupList(mem, nmem, mty, PETSC_TRUE));
-  mem->njoints = nj;
-  for (PetscInt e = 0; e < nmem; e++) {
-    const PetscReal *r = b + JR_ROM_MEM * e;
-    GetRow(mem, e, r);
-    PetscCheck(mem->joint[e] >= 0 && mem->joint[e] < nj, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT " has joint %" PetscInt_FMT ", outside 0..%" PetscInt_FMT, file, e, mem->joint[e], nj - 1);
-    for (PetscInt c = 0; c < 3; c++) {
-      mem->vdof_a[3 * e + c] = (PetscInt)r[6 + c];
-      mem->vdof_b[3 * e + c] = (PetscInt)r[9 + c];
-      mem->tdir[3 * e + c]   = r[12 + c];
-      mem->ndir[3 * e + c]   = r[15 + c];
-      PetscCheck(mem->vdof_a[3 * e + c] >= 0 && mem->vdof_a[3 * e + c] < ndof && mem->vdof_b[3 * e + c] >= 0 && mem->vdof_b[3 * e + c] < ndof, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT " has DOFs outside the model's 0..%" PetscInt_FMT ": the file is for another mesh", file, e, ndof - 1);
-    }
-  }
-  rom->members = mem;
-  if (haspos) { /* a model reduced with -rom_joint_motion linear: the points where its elements and members sit */
-    PetscCheck(npos == ne + nmem, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: /rom/positions has %" PetscInt_FMT " points, not one per element and member (%" PetscInt_FMT ")", file, npos, ne + nmem);
-    PetscCall(PetscMalloc1(3 * ne, &rom->pos));
-    PetscCall(PetscMalloc1(3 * nmem, &mem->pos));
-    PetscCall(PetscArraycpy(rom->pos, pos, 3 * ne));
-    PetscCall(PetscArraycpy(mem->pos, pos + 3 * ne, 3 * nmem));
-    PetscCall(PetscFree(pos));
-  }
-  if (hasphi) { /* reduced with -rom_joint_motion mode: their coordinates in the stuck mode of interest */
-    PetscCheck(haspos && nphi == ne + nmem, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: /rom/mode_coordinates has %" PetscInt_FMT " rows, not one per element and member (%" PetscInt_FMT ") with /rom/positions", file, nphi, ne + nmem);
-    PetscCall(PetscMalloc1(2 * ne, &rom->phi));
-    PetscCall(PetscMalloc1(2 * nmem, &mem->phi));
-    PetscCall(PetscArraycpy(rom->phi, phi, 2 * ne));
-    PetscCall(PetscArraycpy(mem->phi, phi + 2 * ne, 2 * nmem));
-    PetscCall(PetscFree(phi));
-  }
-  PetscCall(PetscMalloc1(6 * nmem, &xc));
-  PetscCall(MemberCoordinates(model, mem, xc));
-  PetscCall(JRModelGetBoundingBox(model, lo, hi));
-  for (PetscInt c = 0; c < 3; c++) size = PetscMax(size, hi[c] - lo[c]);
-  for (PetscInt e = 0; e < nmem; e++)
-    for (PetscInt c = 0; c < 3; c++) {
-      const PetscReal da = PetscAbsReal(xc[6 * e + c] - b[JR_ROM_MEM * e + 18 + c]), db = PetscAbsReal(xc[6 * e + 3 + c] - b[JR_ROM_MEM * e + 21 + c]);
-      if (PetscMax(da, db) > worst) {
-        worst = PetscMax(da, db);
-        bad   = e;
-      }
-    }
-  PetscCheck(worst <= 1e-9 * size, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT "'s nodes are %g m from where the file puts them: the file is for another mesh or partition (run with the options and ranks that saved it)", file, bad, (double)worst);
-  PetscCall(PetscPrintf(comm, "rom: loaded %" PetscInt_FMT " %s elements in %" PetscInt_FMT " joints (%" PetscInt_FMT " members, stiffness correction %.6f) from %s\n", ne, ty, nj, nmem, (double)*corr, file));
-  PetscCall(PetscFree(xc));
-  PetscCall(PetscFree(a));
-  PetscCall(PetscFree(b));
-  PetscCall(PetscFree(ty));
-  PetscCall(PetscFree(mty));
   PetscFunctionReturn(0);
 }

@@ -30,4 +30,26 @@ struct _p_JRReduce {
   /* results */
   PetscReal corr; /* the stiffness correction applied (1: none) */
 };
+
+/* An element list of n elements of one type with joints (and the node-to-node arrays if nodes), no DOFs: the second
+   reduction's elements (src/reduce/fit.c) and a loaded model's (src/reduce/io.c) */
+PETSC_INTERN PetscErrorCode JRROMElementsSetUp(JRElements *, PetscInt, const char[], PetscBool);
+
+/* The fit's least-squares solvers (src/reduce/lsq.c), on PETSC_COMM_SELF.
+   JRLSQSolve: r(x) -> min 1/2 |r|^2 with x >= lo by TAO (prefix rom_); fn(ctx, x, r, J) gives r and J (nr x nx,
+   column-major); rms0, rms: |r| before and after, x updated.
+   JRGram: the Gram system G = C^T C, cg = C^T b of the columns C (ld rows, nc columns, column-major) against b.
+   JRGramNNLS: the non-negative least squares of the columns sel[0..m) of a Gram system (G, c, bb = b.b), every
+   support tried (m <= 8); cost: |C y - b|^2.
+   JRActiveSetNNLS: min y^T A y - 2 c^T y over y >= 0 by the Lawson-Hanson active set, warm-started from y. */
+typedef struct {
+  PetscInt  nx, nr;
+  PetscErrorCode (*fn)(void *, const PetscReal[], PetscReal[], PetscReal[]);
+  void      *ctx;
+  PetscReal *r, *J;
+} JRLSQ;
+PETSC_INTERN PetscErrorCode JRLSQSolve(JRLSQ *, PetscReal[], PetscReal, PetscReal *, PetscReal *, PetscInt *);
+PETSC_INTERN void           JRGram(PetscInt, PetscInt, const PetscReal[], const PetscReal[], PetscReal[], PetscReal[]);
+PETSC_INTERN PetscErrorCode JRGramNNLS(PetscInt, const PetscReal[], const PetscReal[], PetscReal, PetscInt, const PetscInt[], PetscReal[], PetscReal *);
+PETSC_INTERN PetscErrorCode JRActiveSetNNLS(PetscInt, const PetscReal[], const PetscReal[], PetscReal[], PetscReal *);
 #endif
