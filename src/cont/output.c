@@ -99,6 +99,8 @@ static PetscErrorCode WriteHDF5Header(JRCont c, const Outputs *o, PetscViewer v)
       PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "direction", PETSC_STRING, dn[o->dir]));
     } else PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "dof", PETSC_INT, &o->dofs[i]));
   }
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "residual", PETSC_STRING, "per point: ||R|| / ||F f||, the harmonic-balance residual against the excitation in the solve space (-hbm_residual_tol bounds it)"));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "peaks", PETSC_STRING, "per level: peak_freq_hz, peak_amp_m of response 1 (attributes) and peaks_freq_hz, peaks_amp_m of every response (datasets): the maxima of the solution curve, each also a point of the curve"));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "peak_states", PETSC_STRING, "per level: every element's contact state at the peak, 0 full stick, 1 stick-slip without separation, 2 separation with stick-slip, 3 full separation"));
   PetscFunctionReturn(0);
 }
@@ -113,6 +115,9 @@ static PetscErrorCode WriteHDF5LevelAttributes(PetscViewer v, const char grp[], 
   PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "points", PETSC_INT, &b->np));
   PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "seconds", PETSC_REAL, &b->seconds));
   PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "complete", PETSC_BOOL, &b->complete));
+  if (!b->complete) PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "incomplete", PETSC_STRING, b->why[0] ? b->why : "stopped before the end of the range"));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "residual_max", PETSC_REAL, &b->resmax));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "peak_refine_solves", PETSC_INT, &b->refine_its));
   PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "peak_freq_hz", PETSC_REAL, &fhz));
   PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "peak_amp_m", PETSC_REAL, &b->apeak));
   PetscCall(PetscViewerHDF5WriteAttribute(v, grp, "peak_amp_over_force_m_per_N", PETSC_REAL, &aof));
@@ -143,7 +148,8 @@ static PetscErrorCode WriteHDF5Level(JRCont c, PetscViewer v, PetscInt l)
     {"amp",   c->nout, b->amp  },
     {"pp",    c->nout, b->pp   },
     {"a",     c->nmod, b->a    },
-    {"step",  1,       b->step }
+    {"step",  1,       b->step },
+    {"residual", 1,    b->res  }
   };
 
   PetscFunctionBeginUser;
@@ -152,6 +158,14 @@ static PetscErrorCode WriteHDF5Level(JRCont c, PetscViewer v, PetscInt l)
   PetscCall(PetscViewerHDF5PushGroup(v, grp));
   for (size_t s = 0; s < sizeof(sets) / sizeof(sets[0]); s++) PetscCall(WriteRank0(c->comm, v, sets[s].name, np * sets[s].bs, sets[s].bs, sets[s].data, NULL));
   PetscCall(WriteRank0(c->comm, v, "newton_its", np, 1, NULL, b->its));
+  {
+    PetscReal *f;
+    PetscCall(PetscMalloc1(c->nout, &f));
+    for (PetscInt o = 0; o < c->nout; o++) f[o] = b->wpk[o] / (2 * PETSC_PI);
+    PetscCall(WriteRank0(c->comm, v, "peaks_freq_hz", c->nout, 1, f, NULL));
+    PetscCall(WriteRank0(c->comm, v, "peaks_amp_m", c->nout, 1, b->apk, NULL));
+    PetscCall(PetscFree(f));
+  }
   PetscCall(WriteHDF5LevelAttributes(v, grp, b));
   PetscCall(PetscMalloc1(rank ? 0 : nel, &st));
   for (PetscInt i = 0; !rank && i < nel; i++) st[i] = (PetscInt)b->estate[i];
@@ -224,11 +238,11 @@ PetscErrorCode JRContWrite(JRCont c)
 PetscErrorCode JRContPrintSummary(JRCont c)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscPrintf(c->comm, "frf summary (%s continuation; peak of response 1, refined by a parabola; zeta_eq = energy dissipated per cycle / (8 pi mean kinetic energy) at the peak;\n  energy balance: largest |W_in - W_damping - W_contact| / W_in over the curve; elements at the peak: full stick / stick-slip / separation with stick-slip / full separation)\n", c->type_name));
-  PetscCall(PetscPrintf(c->comm, "  %10s %12s %13s %13s %10s %7s %7s %7s %9s %9s  %s\n", "F [N]", "peak [Hz]", "amp [m]", "amp/F [m/N]", "zeta_eq", "points", "newton", "retries", "time [s]", "balance", "states"));
+  PetscCall(PetscPrintf(c->comm, "frf summary (%s continuation; peak of response 1: the maximum of the solution curve; zeta_eq = energy dissipated per cycle / (8 pi mean kinetic energy) at the peak;\n  residual: largest ||R|| / ||F f|| of the curve's points; energy balance: largest |W_in - W_damping - W_contact| / W_in over the curve;\n  elements at the peak: full stick / stick-slip / separation with stick-slip / full separation)\n", c->type_name));
+  PetscCall(PetscPrintf(c->comm, "  %10s %12s %13s %13s %10s %7s %7s %7s %9s %9s %9s  %s\n", "F [N]", "peak [Hz]", "amp [m]", "amp/F [m/N]", "zeta_eq", "points", "newton", "retries", "time [s]", "residual", "balance", "states"));
   for (PetscInt lev = 0; lev < c->nlev; lev++) {
     JRContBranch *b = &c->br[lev];
-    PetscCall(PetscPrintf(c->comm, "  %10.4g %12.6g %13.5e %13.5e %10.4e %7" PetscInt_FMT " %7" PetscInt_FMT " %7" PetscInt_FMT " %9.3g %9.2e  %" PetscInt_FMT " / %" PetscInt_FMT " / %" PetscInt_FMT " / %" PetscInt_FMT "%s\n", (double)b->F, (double)(b->wpeak / (2 * PETSC_PI)), (double)b->apeak, (double)(b->apeak / b->F), (double)b->zeta, b->np, b->newton, b->retries, (double)b->seconds, (double)b->ebal, b->states[0], b->states[1], b->states[2], b->states[3], b->complete ? "" : "  (incomplete)"));
+    PetscCall(PetscPrintf(c->comm, "  %10.4g %12.6g %13.5e %13.5e %10.4e %7" PetscInt_FMT " %7" PetscInt_FMT " %7" PetscInt_FMT " %9.3g %9.2e %9.2e  %" PetscInt_FMT " / %" PetscInt_FMT " / %" PetscInt_FMT " / %" PetscInt_FMT "%s\n", (double)b->F, (double)(b->wpeak / (2 * PETSC_PI)), (double)b->apeak, (double)(b->apeak / b->F), (double)b->zeta, b->np, b->newton, b->retries, (double)b->seconds, (double)b->resmax, (double)b->ebal, b->states[0], b->states[1], b->states[2], b->states[3], b->complete ? "" : "  (incomplete)"));
   }
   PetscFunctionReturn(0);
 }

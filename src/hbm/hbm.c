@@ -47,6 +47,7 @@ PetscErrorCode JRHBMCreate(MPI_Comm comm, JRHBM *hbm)
   h->ecomm      = comm;
   h->H          = 1;
   h->Ns         = 64;
+  h->acctol     = 1e-8;
   h->fdof       = 0;
   h->level      = 1.0;
   h->jtype      = JR_HBM_JACOBIAN_ANALYTIC;
@@ -113,6 +114,7 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
   PetscCall(PetscOptionsReal("-hbm_gamma", "Structural damping H = gamma K (2.17) [-]", "JRHBMSetUp", h->gamma, &h->gamma, NULL));
   PetscCall(PetscOptionsReal("-hbm_zeta", "Modal viscous damping ratio, every mode [-]", "JRHBMSetUp", h->zeta, &h->zeta, NULL));
   PetscCall(PetscOptionsEnum("-hbm_jacobian", "Jacobian: analytic (element derivatives projected) or fd (finite differences, thesis 2.23)", "JRHBMSetUp", JRHBMJacobianTypes, (PetscEnum)h->jtype, (PetscEnum *)&h->jtype, NULL));
+  PetscCall(PetscOptionsReal("-hbm_residual_tol", "A solution is accepted when ||R|| <= tol ||F f||: the residual against the excitation in the same space (condensed: the joints' static motion under it)", "JRHBMSolve", h->acctol, &h->acctol, NULL));
   PetscCall(PetscOptionsBool("-hbm_view", "Print the harmonic-balance set-up", "JRHBMView", h->view, &h->view, NULL));
   if (!h->fdof_set) PetscCall(PetscOptionsInt("-frf_dof", "Excitation F sin(w t) at this DOF (0-based)", "JRHBMSetUp", h->fdof, &h->fdof, NULL));
   PetscCall(PetscOptionsString("-frf_force_file", "Excitation shape from a file instead (one value per DOF: .csv/.txt, .bin, .h5)", "JRHBMSetUp", h->ffile, h->ffile, sizeof(h->ffile), NULL));
@@ -136,6 +138,7 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
   PetscCheck(h->Ns >= 2 * h->H + 1, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_samples %" PetscInt_FMT " must be at least 2H+1 = %" PetscInt_FMT " for -hbm_harmonics %" PetscInt_FMT, h->Ns, 2 * h->H + 1, h->H);
   PetscCheck(h->gamma >= 0.0 && !PetscIsInfOrNanReal(h->gamma), h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_gamma %g: the structural damping coefficient must be non-negative", (double)h->gamma);
   PetscCheck(h->zeta >= 0.0 && !PetscIsInfOrNanReal(h->zeta), h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_zeta %g: the modal damping ratio must be non-negative", (double)h->zeta);
+  PetscCheck(h->acctol > 0.0 && h->acctol < 1.0, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_residual_tol %g: between 0 and 1 (relative to the excitation)", (double)h->acctol);
   h->setupcalled = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
@@ -416,6 +419,7 @@ PetscErrorCode JRHBMSetForceLevel(JRHBM h, PetscReal F)
     PetscCall(JRHBMGetOptionsPrefix(h, &pre));
     PetscCall(PetscOptionsHasName(NULL, pre, "-snes_atol", &set));
   }
+  h->rscale = PetscAbsReal(F) * fn + 1e-300;
   if (!set) PetscCall(SNESSetTolerances(h->snes, (h->cond ? 1e-10 : 1e-12) * PetscAbsReal(F) * fn + 1e-300, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscFunctionReturn(0);
 }

@@ -28,6 +28,7 @@ static PetscBool IsUserError(PetscErrorCode n)
   case PETSC_ERR_FILE_UNEXPECTED:
   case PETSC_ERR_USER_INPUT:
   case PETSC_ERR_SUP:
+  case PETSC_ERR_NOT_CONVERGED: /* an outcome the message explains (an incomplete curve, no solution at the start) */
     return PETSC_TRUE;
   default:
     return PETSC_FALSE;

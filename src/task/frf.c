@@ -481,6 +481,8 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   PetscCall(ViewBasis(&r));
   PetscCall(Solve(&r));
   PetscCall(Report(&r));
+  if (r.cont) PetscCall(JRContCheckComplete(r.cont)); /* an incomplete curve: an error once everything is written */
+  if (r.contr) PetscCall(JRContCheckComplete(r.contr));
   PetscCall(Destroy(&r));
   PetscFunctionReturn(0);
 }

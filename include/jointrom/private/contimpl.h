@@ -10,12 +10,17 @@ typedef struct {
   PetscInt        np, cap;
   PetscReal      *omega, *a, *amp, *pp, *step; /* per point: a over the nmod modal unknowns, amp and pp over the nout outputs */
   PetscInt       *its;
+  PetscReal      *x, *res;     /* per point: the unknowns in the solve space (n), the relative residual (JRHBMResidualNorm) */
   PetscInt        retries, states[4];
   PetscBool       complete;
+  char            why[256];     /* why an incomplete curve ended */
   PetscReal       seconds;
   PetscInt        newton;
-  PetscInt        kpeak;        /* the computed point of largest amplitude */
-  PetscReal       wpeak, apeak; /* the peak refined by a parabola through it and its neighbours */
+  PetscInt        kpeak;        /* the point of largest amplitude at response 1 (after the peaks are refined: the peak itself) */
+  PetscReal       wpeak, apeak; /* the peak of response 1: the maximum of the solution curve */
+  PetscReal      *wpk, *apk;    /* every response's own peak (nout) */
+  PetscInt        refine_its;   /* harmonic-balance solves spent refining the peaks */
+  PetscReal       resmax;       /* the largest relative residual of the curve's points */
   PetscReal       zeta, ebal;   /* equivalent damping ratio at the peak; worst energy imbalance of the curve */
   JRContactState *estate;       /* every element's state at the peak (rank 0) */
 } JRContBranch;
@@ -38,12 +43,17 @@ struct _p_JRCont {
   PetscReal         wmin, wmax, step0, stepmin, stepmax;
   PetscBool         range_set, secant, plot, normalize, write;
   PetscBool         quiet;                                      /* JRContSetQuiet(): no progress, peak lines or summary */
+  PetscBool         partial;                                    /* -cont_allow_partial: an incomplete curve is not an error */
+  PetscReal         itol;                                       /* -cont_interp_tol: linear interpolation error between points */
+  PetscReal         ptol;                                       /* -cont_peak_tol: the peaks' relative amplitude tolerance */
   PetscInt          maxpts, target, monitor, nlev, npoints;
   PetscInt          n, nmod, nout; /* n: the solve space; nmod: modal; nout: outputs */
   PetscReal        *levels;
   JRContBranch     *br;
   char              out[PETSC_MAX_PATH_LEN];
   Vec               amod; /* work: the modal unknowns of one point */
+  PetscReal        *ampw; /* work: the amplitudes and peak-to-peak of one point at the outputs (2 nout) */
+  struct _JRContPlaneWork *pw; /* work: solves on planes across the curve (src/cont/peak.c) */
 };
 
 PETSC_INTERN PetscErrorCode JRContCreate_Natural(JRCont);
@@ -51,7 +61,13 @@ PETSC_INTERN PetscErrorCode JRContCreate_Arclength(JRCont);
 
 /* src/cont/interface/cont.c: the steps every type shares */
 PETSC_INTERN PetscErrorCode JRContBranchStart(JRCont, PetscInt, JRContBranch *, Vec);
-PETSC_INTERN PetscErrorCode JRContBranchAdd(JRCont, JRContBranch *, PetscReal, Vec, PetscInt, PetscReal);
+PETSC_INTERN PetscErrorCode JRContBranchAdd(JRCont, JRContBranch *, PetscReal, Vec, PetscInt, PetscReal, PetscReal);
+PETSC_INTERN PetscErrorCode JRContOutputAmplitude(JRCont, PetscReal, Vec, PetscInt, PetscReal *);
+PETSC_INTERN PetscErrorCode JRContInterpolationError(JRCont, PetscReal, PetscReal, PetscReal, PetscReal, PetscReal, PetscReal, PetscReal, PetscReal, PetscReal *);
+PETSC_INTERN PetscErrorCode JRContRefinePeaks(JRCont, JRContBranch *);
+PETSC_INTERN PetscErrorCode JRContChordError(JRCont, JRContBranch *, Vec, PetscReal, PetscReal, PetscReal, PetscReal *, PetscInt *);
+PETSC_INTERN PetscErrorCode JRContPlaneWorkCreate(JRCont);
+PETSC_INTERN PetscErrorCode JRContPlaneWorkDestroy(JRCont);
 PETSC_INTERN PetscErrorCode JRContMonitor(JRCont, PetscInt, JRContBranch *);
 /* src/cont/output.c */
 PETSC_INTERN PetscErrorCode JRContPrintSummary(JRCont);

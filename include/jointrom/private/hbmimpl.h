@@ -72,6 +72,8 @@ struct _p_JRHBM {
   PetscReal        *ptxyz;        /* npts x 3 [m], NULL if none */
   char              ffile[PETSC_MAX_PATH_LEN];
   PetscReal        *fm, level;    /* modal force shape (unit level) and the level [N] */
+  PetscReal         rscale;       /* the excitation's norm in the solve space (condensed: the joints' static motion under it) */
+  PetscReal         acctol;       /* -hbm_residual_tol: a solution has ||R|| <= acctol rscale */
   PetscReal        *Phiout;       /* nout x nm */
   JRHBMJacobianType jtype;
   PetscInt          ngroups;

@@ -51,6 +51,8 @@ PetscErrorCode JRContCreate(MPI_Comm comm, JRCont *cont)
   c->plot    = PETSC_TRUE;
   c->write   = PETSC_TRUE;
   c->nlev    = 1;
+  c->itol    = 0.008;
+  c->ptol    = 1e-10;
   PetscCall(PetscMalloc1(1, &c->levels));
   c->levels[0] = 1.0;
   PetscCall(PetscStrncpy(c->out, "out/frf", sizeof(c->out)));
@@ -139,6 +141,8 @@ static PetscErrorCode BranchesDestroy(JRCont c)
   PetscFunctionBeginUser;
   for (PetscInt l = 0; c->br && l < c->nlev; l++) {
     PetscCall(PetscFree6(c->br[l].omega, c->br[l].a, c->br[l].amp, c->br[l].pp, c->br[l].step, c->br[l].its));
+    PetscCall(PetscFree2(c->br[l].x, c->br[l].res));
+    PetscCall(PetscFree2(c->br[l].wpk, c->br[l].apk));
     PetscCall(PetscFree(c->br[l].estate));
   }
   PetscCall(PetscFree(c->br));
@@ -190,6 +194,9 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
   PetscCall(PetscOptionsInt("-cont_points", "Natural continuation on this many equally spaced frequencies (no step adaptation; benchmarks)", "JRContSetFromOptions", c->npoints, &c->npoints, NULL));
   PetscCall(PetscOptionsInt("-cont_newton_target", "Newton iterations per point the step control aims at", "JRContSetFromOptions", c->target, &c->target, NULL));
   PetscCall(PetscOptionsEList("-cont_predictor", "Natural continuation predictor: secant or previous solution", "JRContSetFromOptions", preds, 2, preds[pred], &pred, NULL));
+  PetscCall(PetscOptionsBool("-cont_allow_partial", "A curve that cannot reach the end of its range (or turns back past its start) is written and reported, not an error", "JRContCheckComplete", c->partial, &c->partial, NULL));
+  PetscCall(PetscOptionsReal("-cont_interp_tol", "Largest relative error of linear interpolation between consecutive points of a curve (its step control); 0: no control", "JRContSolve", c->itol, &c->itol, NULL));
+  PetscCall(PetscOptionsReal("-cont_peak_tol", "Relative amplitude tolerance of the peaks, found by harmonic-balance solves along the curve", "JRContSolve", c->ptol, &c->ptol, NULL));
   PetscCall(PetscOptionsInt("-cont_monitor", "Progress: 0 none, 1 every 25th point and each level, 2 every point", "JRContSetFromOptions", c->monitor, &c->monitor, NULL));
   PetscCall(PetscOptionsRealArray("-frf_force", "Excitation levels F [N]: f(t) = F sin(w t) at -frf_dof", "JRContSetLevels", lv, &nl, &fl));
   PetscCall(PetscOptionsReal("-frf_omega_min", "Lowest frequency [rad/s]", "JRContSetRange", wmin, &wmin, &f1));
@@ -215,12 +222,15 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
   PetscCheck(c->npoints == 0 || (c->npoints >= 2 && natural), c->comm, PETSC_ERR_ARG_INCOMP, "-cont_points %" PetscInt_FMT ": at least 2, with -cont_type natural", c->npoints);
   PetscCheck(c->maxpts >= 2, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_max_points %" PetscInt_FMT ": at least 2", c->maxpts);
   PetscCheck(c->target >= 1, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_newton_target %" PetscInt_FMT ": at least 1", c->target);
+  PetscCheck(c->itol >= 0 && c->itol < 1, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_interp_tol %g: between 0 (no control) and 1", (double)c->itol);
+  PetscCheck(c->ptol > 0 && c->ptol < 0.1, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_peak_tol %g: between 0 and 0.1", (double)c->ptol);
   PetscCheck(c->step0 >= 0 && c->stepmin >= 0 && c->stepmax >= 0, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_step, -cont_step_min, -cont_step_max must be positive");
   PetscFunctionReturn(0);
 }
 
-/* Append the point (w, a) to the curve: its modal unknowns and its responses at the outputs */
-PetscErrorCode JRContBranchAdd(JRCont c, JRContBranch *b, PetscReal w, Vec a, PetscInt its, PetscReal step)
+/* Append the point (w, a) to the curve: its unknowns, modal unknowns and responses at the outputs; res: its relative
+   residual (JRHBMResidualNorm) */
+PetscErrorCode JRContBranchAdd(JRCont c, JRContBranch *b, PetscReal w, Vec a, PetscInt its, PetscReal step, PetscReal res)
 {
   const PetscScalar *x;
 
@@ -245,9 +255,26 @@ PetscErrorCode JRContBranchAdd(JRCont c, JRContBranch *b, PetscReal w, Vec a, Pe
     b->pp    = pp;
     b->step  = st;
     b->its   = it;
-    b->cap   = cap;
+    {
+      PetscReal *xs, *rs;
+      PetscCall(PetscMalloc2(cap * c->n, &xs, cap, &rs));
+      if (b->np) {
+        PetscCall(PetscArraycpy(xs, b->x, b->np * c->n));
+        PetscCall(PetscArraycpy(rs, b->res, b->np));
+      }
+      PetscCall(PetscFree2(b->x, b->res));
+      if (!b->wpk) PetscCall(PetscCalloc2(c->nout, &b->wpk, c->nout, &b->apk));
+      b->x   = xs;
+      b->res = rs;
+    }
+    b->cap = cap;
   }
   b->omega[b->np] = w;
+  b->res[b->np]   = res;
+  b->resmax       = PetscMax(b->resmax, res);
+  PetscCall(VecGetArrayRead(a, &x));
+  for (PetscInt i = 0; i < c->n; i++) b->x[b->np * c->n + i] = PetscRealPart(x[i]);
+  PetscCall(VecRestoreArrayRead(a, &x));
   PetscCall(JRHBMExpand(c->hbm, w, a, c->amod)); /* the branch keeps the modal unknowns */
   PetscCall(VecGetArrayRead(c->amod, &x));
   for (PetscInt i = 0; i < c->nmod; i++) b->a[b->np * c->nmod + i] = PetscRealPart(x[i]);
@@ -277,43 +304,15 @@ PetscErrorCode JRContBranchStart(JRCont c, PetscInt lev, JRContBranch *b, Vec a)
 {
   PetscInt  its;
   PetscBool conv;
+  PetscReal res;
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMLinearSolution(c->hbm, c->wmin, a));
-  PetscCall(JRHBMSolve(c->hbm, c->wmin, a, &its, &conv));
-  PetscCheck(conv, c->comm, PETSC_ERR_NOT_CONVERGED, "Level F = %g N: no solution at the start of the range, %g Hz (try a lower -frf_fmin, or -hbm_snes_* options)", (double)b->F, (double)(c->wmin / (2 * PETSC_PI)));
-  PetscCall(JRContBranchAdd(c, b, c->wmin, a, its, 0.0));
+  PetscCall(JRHBMSolveResidual(c->hbm, c->wmin, a, &its, &conv, &res));
+  PetscCheck(conv, c->comm, PETSC_ERR_NOT_CONVERGED, "Level F = %g N: no solution at the start of the range, %g Hz (relative residual %.2e; try a lower -frf_fmin, or -hbm_snes_* options)", (double)b->F, (double)(c->wmin / (2 * PETSC_PI)), (double)res);
+  PetscCall(JRContBranchAdd(c, b, c->wmin, a, its, 0.0, res));
   PetscCall(JRContMonitor(c, lev, b));
   PetscFunctionReturn(0);
-}
-
-/* The peak b->kpeak, refined to (b->wpeak, b->apeak) by the parabola through it and its two neighbours when the
-   frequencies are monotone there (not at a fold) */
-static void PeakRefine(JRCont c, JRContBranch *b)
-{
-  PetscInt k = 0;
-
-  for (PetscInt i = 1; i < b->np; i++)
-    if (b->amp[i * c->nout] > b->amp[k * c->nout]) k = i;
-  b->kpeak = k;
-  b->wpeak = b->omega[k];
-  b->apeak = b->amp[k * c->nout];
-  if (k > 0 && k < b->np - 1) {
-    const PetscReal x0 = b->omega[k - 1], x1 = b->omega[k], x2 = b->omega[k + 1];
-    const PetscReal y0 = b->amp[(k - 1) * c->nout], y1 = b->amp[k * c->nout], y2 = b->amp[(k + 1) * c->nout];
-    if ((x1 - x0) * (x2 - x1) > 0) {
-      /* y = y1 + p (x - x1) + q (x - x1)^2 */
-      const PetscReal d0 = x0 - x1, d2 = x2 - x1, s0 = (y0 - y1) / d0, s2 = (y2 - y1) / d2;
-      const PetscReal q = (s2 - s0) / (d2 - d0), p = s0 - q * d0;
-      if (q < 0) {
-        const PetscReal dx = -p / (2 * q);
-        if (PetscAbsReal(dx) <= PetscMax(PetscAbsReal(d0), PetscAbsReal(d2))) {
-          b->wpeak = x1 + dx;
-          b->apeak = y1 + p * dx + q * dx * dx;
-        }
-      }
-    }
-  }
 }
 
 /* a <- the modal unknowns of point k */
@@ -354,7 +353,7 @@ static PetscErrorCode Peak(JRCont c, PetscInt lev, Vec a)
   PetscInt      nel;
 
   PetscFunctionBeginUser;
-  PeakRefine(c, b);
+  PetscCall(JRContRefinePeaks(c, b));
   PetscCall(PeakDamping(c, b, a));
   PetscCall(PointUnknowns(c, b, b->kpeak, a));
   PetscCall(JRHBMContactStates(c->hbm, a, b->states));
@@ -396,6 +395,9 @@ static PetscErrorCode SolveSetUp(JRCont c, Vec *a)
   PetscCall(JRHBMCreateVecs(c->hbm, a, NULL));
   PetscCall(VecDestroy(&c->amod));
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, c->nmod, &c->amod));
+  PetscCall(PetscFree(c->ampw));
+  PetscCall(PetscMalloc1(2 * c->nout, &c->ampw));
+  PetscCall(JRContPlaneWorkCreate(c));
   if (c->ops->setup) PetscCall((*c->ops->setup)(c));
   PetscCall(BranchesDestroy(c));
   PetscCall(PetscCalloc1(c->nlev, &c->br));
@@ -417,8 +419,9 @@ static PetscErrorCode SolveLevel(JRCont c, PetscInt lev, Vec a)
   b->seconds = t1 - t0;
   PetscCall(Peak(c, lev, c->amod));
   if (c->quiet) PetscFunctionReturn(0);
-  if (c->monitor) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT "/%" PetscInt_FMT " F %g N done: %" PetscInt_FMT " points, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " retries, %.3g s%s\n", lev + 1, c->nlev, (double)b->F, b->np, b->newton, b->retries, (double)b->seconds, b->complete ? "" : " (incomplete: see above)"));
+  if (c->monitor) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT "/%" PetscInt_FMT " F %g N done: %" PetscInt_FMT " points, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " retries, largest relative residual %.2e, %.3g s%s\n", lev + 1, c->nlev, (double)b->F, b->np, b->newton, b->retries, (double)b->resmax, (double)b->seconds, b->complete ? "" : " (incomplete: see above)"));
   PetscCall(PetscPrintf(c->comm, "peak level %g freq_hz %.8g amp %.8e amp_over_force %.8e\n", (double)b->F, (double)(b->wpeak / (2 * PETSC_PI)), (double)b->apeak, (double)(b->apeak / b->F)));
+  for (PetscInt o = 1; o < c->nout; o++) PetscCall(PetscPrintf(c->comm, "response_peak level %g response %" PetscInt_FMT " freq_hz %.8g amp %.8e amp_over_force %.8e\n", (double)b->F, o + 1, (double)(b->wpk[o] / (2 * PETSC_PI)), (double)b->apk[o], (double)(b->apk[o] / b->F)));
   PetscFunctionReturn(0);
 }
 
@@ -432,6 +435,19 @@ PetscErrorCode JRContSolve(JRCont c)
   for (PetscInt lev = 0; lev < c->nlev; lev++) PetscCall(SolveLevel(c, lev, a));
   PetscCall(VecDestroy(&a));
   if (!c->quiet) PetscCall(JRContPrintSummary(c));
+  PetscFunctionReturn(0);
+}
+
+/* JRContCheckComplete - an error, after the curves are written, if a curve did not reach the end of its range (or
+   turned back past its start), unless -cont_allow_partial */
+PetscErrorCode JRContCheckComplete(JRCont c)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt l = 0; c->br && l < c->nlev; l++) {
+    JRContBranch *b = &c->br[l];
+    if (b->complete || c->partial) continue;
+    SETERRQ(c->comm, PETSC_ERR_NOT_CONVERGED, "level %" PetscInt_FMT " (F = %g N): the curve is incomplete: %s; the points computed are written (the peak is that of the part traced); -cont_step_min, -cont_max_points or -hbm_snes_* may help; -cont_allow_partial accepts partial curves", l + 1, (double)b->F, b->why[0] ? b->why : "it stopped before the end of the range");
+  }
   PetscFunctionReturn(0);
 }
 
@@ -463,9 +479,9 @@ PetscErrorCode JRContGetBranch(JRCont c, PetscInt lev, PetscInt *np, const Petsc
   PetscFunctionReturn(0);
 }
 
-/* Peak of the first output's amplitude on level lev [rad/s, m]: the computed point with the largest
-   amplitude, refined by the parabola through it and its two neighbours when the frequencies are monotone
-   there (not at a fold) */
+/* Peak of the first output's amplitude on level lev [rad/s, m]: the largest amplitude of the solution curve, found by
+   harmonic-balance solves between the computed points around it (JRContRefinePeaks; on a folded curve, the largest
+   of the branch) */
 PetscErrorCode JRContGetPeak(JRCont c, PetscInt lev, PetscReal *w, PetscReal *amp)
 {
   PetscFunctionBeginUser;
@@ -506,6 +522,16 @@ PetscErrorCode JRContGetDamping(JRCont c, PetscInt lev, PetscReal *zeta, PetscRe
   PetscFunctionReturn(0);
 }
 
+/* Whether level lev's curve reached the end of its range, and the largest relative residual of its points */
+PetscErrorCode JRContGetLevelComplete(JRCont c, PetscInt lev, PetscBool *complete, PetscReal *resmax)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(c->br && lev >= 0 && lev < c->nlev, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "No level %" PetscInt_FMT, lev);
+  if (complete) *complete = c->br[lev].complete;
+  if (resmax) *resmax = c->br[lev].resmax;
+  PetscFunctionReturn(0);
+}
+
 /* A level's wall time [s] (continuation only), points and Newton iterations */
 PetscErrorCode JRContGetLevelStats(JRCont c, PetscInt lev, PetscReal *seconds, PetscInt *points, PetscInt *newton)
 {
@@ -527,6 +553,8 @@ PetscErrorCode JRContDestroy(JRCont *cont)
   PetscCall(BranchesDestroy(c));
   PetscCall(PetscFree(c->levels));
   PetscCall(VecDestroy(&c->amod));
+  PetscCall(PetscFree(c->ampw));
+  PetscCall(JRContPlaneWorkDestroy(c));
   PetscCall(PetscFree(c));
   *cont = NULL;
   PetscFunctionReturn(0);

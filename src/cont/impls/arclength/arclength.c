@@ -23,6 +23,8 @@ typedef struct {
   PetscReal        aref, wref, ds, aunit;   /* aunit: the linearised response scale per unit level */
   PetscScalar     *tb, *tlu;                /* the tangent's bordered matrix and its LU ((n+1) x (n+1)) */
   PetscBLASInt    *tpiv;
+  PetscReal        dAk;                     /* d(amplitude at response 1)/d(scaled arclength) at x_k along t_k */
+  PetscReal        Anew;                    /* the amplitude at response 1 of the candidate point */
 } JRCont_Arclength;
 
 /* scaled inner product <x, y> over (a, w) */
@@ -212,20 +214,92 @@ static PetscErrorCode Start(JRCont c, PetscInt lev, JRContBranch *b, Vec a, Vec 
   PetscFunctionReturn(0);
 }
 
-/* Predictor x_k + ds t_k and corrector (Newton on the bordered system with the step ds): the new point x */
-static PetscErrorCode Correct(JRCont c, PetscReal ds, Vec x, PetscInt *its, SNESConvergedReason *reason)
+/* The harmonic-balance part of the corrector's last residual, relative (JRHBMResidualNorm) */
+static PetscErrorCode CorrectorResidual(JRCont c, PetscReal *rel)
 {
-  JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
+  JRCont_Arclength  *arc = (JRCont_Arclength *)c->data;
+  Vec                G;
+  const PetscScalar *g;
+  PetscScalar       *r;
 
   PetscFunctionBeginUser;
+  PetscCall(SNESGetFunction(arc->snes, &G, NULL, NULL));
+  PetscCall(VecGetArrayRead(G, &g));
+  PetscCall(VecGetArray(arc->r, &r));
+  for (PetscInt i = 0; i < c->n; i++) r[i] = g[i];
+  PetscCall(VecRestoreArray(arc->r, &r));
+  PetscCall(VecRestoreArrayRead(G, &g));
+  PetscCall(JRHBMResidualNorm(c->hbm, arc->r, rel));
+  PetscFunctionReturn(0);
+}
+
+/* Predictor x_k + ds t_k and corrector (Newton on the bordered system with the step ds): the new point x. It is a
+   solution (*ok) only if the SNES converged and the residual meets -hbm_residual_tol: a Newton that stalls on its step
+   test away from the curve is not one; a converged stop above the tolerance gets one more solve from where it is. */
+static PetscErrorCode Correct(JRCont c, PetscReal ds, Vec x, PetscInt *its, SNESConvergedReason *reason, PetscReal *rel, PetscBool *ok)
+{
+  JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
+  PetscReal         tol;
+  PetscInt          it;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMGetResidualTolerance(c->hbm, &tol));
   arc->ds = ds;
+  *its    = 0;
+  *rel    = PETSC_INFINITY;
   PetscCall(VecWAXPY(arc->xpred, ds, arc->tk, arc->xk));
   PetscCall(VecCopy(arc->xpred, x));
   PetscCall(PetscLogEventBegin(JR_ContStep, 0, 0, 0, 0));
-  PetscCall(SNESSolve(arc->snes, NULL, x));
+  for (PetscInt pass = 0; pass < 2; pass++) {
+    PetscCall(SNESSolve(arc->snes, NULL, x));
+    PetscCall(SNESGetConvergedReason(arc->snes, reason));
+    PetscCall(SNESGetIterationNumber(arc->snes, &it));
+    *its += it;
+    if (*reason <= 0) break;
+    PetscCall(CorrectorResidual(c, rel));
+    if (*rel <= tol) break;
+  }
   PetscCall(PetscLogEventEnd(JR_ContStep, 0, 0, 0, 0));
-  PetscCall(SNESGetConvergedReason(arc->snes, reason));
-  PetscCall(SNESGetIterationNumber(arc->snes, its));
+  *ok = *reason > 0 && *rel <= tol ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* d(amplitude at response 1)/d(scaled arclength) at x along the unit tangent t, by a difference of 1e-7 */
+static PetscErrorCode AmplitudeSlope(JRCont c, Vec x, Vec t, PetscReal A, PetscReal *dA)
+{
+  JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
+  const PetscReal   eps = 1e-7;
+  PetscReal         w, Ae;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(arc->d, eps, t, x));
+  PetscCall(Split(c, arc->d, arc->a, &w));
+  PetscCall(JRContOutputAmplitude(c, w, arc->a, 0, &Ae));
+  *dA = (Ae - A) / eps;
+  PetscFunctionReturn(0);
+}
+
+/* The linear interpolation error between x_k and x (its tangent tnew, its amplitude A) for the step ds */
+static PetscErrorCode StepError(JRCont c, JRContBranch *b, Vec x, Vec tnew, PetscReal ds, PetscReal *err, PetscReal *dA)
+{
+  JRCont_Arclength  *arc = (JRCont_Arclength *)c->data;
+  const PetscInt     k   = b->np - 1;
+  const PetscScalar *t0, *t1;
+  PetscReal          w, A, L;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(arc->d, -1.0, arc->xk, x)); /* the parameter's length between the points: the chord, which exceeds ds where the corrector went far */
+  PetscCall(ScaledDot(c, arc->d, arc->d, &L));
+  L = PetscMax(ds, PetscSqrtReal(L));
+  PetscCall(Split(c, x, arc->a, &w));
+  PetscCall(JRContOutputAmplitude(c, w, arc->a, 0, &A));
+  arc->Anew = A;
+  PetscCall(AmplitudeSlope(c, x, tnew, A, dA));
+  PetscCall(VecGetArrayRead(arc->tk, &t0));
+  PetscCall(VecGetArrayRead(tnew, &t1));
+  PetscCall(JRContInterpolationError(c, b->omega[k], b->amp[k * c->nout], L * PetscRealPart(t0[c->n]), L * arc->dAk, w, A, L * PetscRealPart(t1[c->n]), L * *dA, err));
+  PetscCall(VecRestoreArrayRead(tnew, &t1));
+  PetscCall(VecRestoreArrayRead(arc->tk, &t0));
   PetscFunctionReturn(0);
 }
 
@@ -237,6 +311,7 @@ static PetscErrorCode LandOnEnd(JRCont c, PetscInt lev, JRContBranch *b, Vec a, 
   PetscReal         wk, s;
   PetscInt          its;
   PetscBool         conv;
+  PetscReal         res;
   Vec               ak;
 
   PetscFunctionBeginUser;
@@ -245,11 +320,14 @@ static PetscErrorCode LandOnEnd(JRCont c, PetscInt lev, JRContBranch *b, Vec a, 
   s = (c->wmax - wk) / (w - wk);
   PetscCall(VecAXPBY(a, 1.0 - s, s, ak)); /* a <- s a + (1 - s) a_k */
   PetscCall(VecDestroy(&ak));
-  PetscCall(JRHBMSolve(c->hbm, c->wmax, a, &its, &conv));
+  PetscCall(JRHBMSolveResidual(c->hbm, c->wmax, a, &its, &conv, &res));
   if (conv) {
-    PetscCall(JRContBranchAdd(c, b, c->wmax, a, its, ds));
+    PetscCall(JRContBranchAdd(c, b, c->wmax, a, its, ds, res));
     b->complete = PETSC_TRUE;
-  } else PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: no solution exactly at the end of the range; the curve ends at %.6g Hz\n", lev + 1, (double)b->F, (double)(wk / (2 * PETSC_PI))));
+  } else {
+    PetscCall(PetscSNPrintf(b->why, sizeof(b->why), "no solution exactly at the end of the range; the curve ends at %.6g Hz", (double)(wk / (2 * PETSC_PI))));
+    PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: %s\n", lev + 1, (double)b->F, b->why));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -257,11 +335,13 @@ static PetscErrorCode LandOnEnd(JRCont c, PetscInt lev, JRContBranch *b, Vec a, 
    plotted (frequency over the range, decades of amplitude at the first output) against 5 degrees per step, so that
    peaks and folds get points where the curve bends (the full tangent also turns with invisible harmonics and modes,
    at every stick-slip kink of the sampled elements); within [dsmin, dsmax] */
-static PetscReal NextStep(JRCont c, JRContBranch *b, PetscInt its, PetscReal ds, PetscReal dsmin, PetscReal dsmax)
+static PetscReal NextStep(JRCont c, JRContBranch *b, PetscInt its, PetscReal err, PetscReal ds, PetscReal dsmin, PetscReal dsmax)
 {
   JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
   const PetscInt    k   = b->np - 1;
   PetscReal         fn  = PetscSqrtReal((PetscReal)c->target / PetscMax(its, 1)), fa = 2.0;
+
+  if (c->itol > 0) fn = PetscMin(fn, 0.9 * PetscSqrtReal(c->itol / PetscMax(err, 1e-12))); /* the error grows as ds^2 */
 
   if (k >= 2 && b->amp[k * c->nout] > 0 && b->amp[(k - 1) * c->nout] > 0 && b->amp[(k - 2) * c->nout] > 0) {
     const PetscReal d1w = (b->omega[k - 1] - b->omega[k - 2]) / arc->wref, d1a = PetscLog10Real(b->amp[(k - 1) * c->nout] / b->amp[(k - 2) * c->nout]);
@@ -276,7 +356,46 @@ static PetscReal NextStep(JRCont c, JRContBranch *b, PetscInt its, PetscReal ds,
   return PetscMax(dsmin, PetscMin(dsmax, ds));
 }
 
-/* Pseudo-arclength continuation over [wmin, wmax] at the current level */
+/* How far the corrector went from the predictor in the plane of the plot (frequency over the range, amplitude at
+   response 1 over the largest met), per unit of the predictor's own step in that plane: about the tangent of the
+   angle the plotted response turned by over the step (the full unknowns also jump with harmonics and modes nobody
+   plots, at every stick-slip kink of the sampled elements) */
+static PetscErrorCode PlotTurn(JRCont c, JRContBranch *b, PetscReal w, PetscReal *q)
+{
+  JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
+  const PetscInt    k   = b->np - 1;
+  PetscReal         wp, Ap, Aref = PetscMax(arc->Anew, 0), dp, dc;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i <= k; i++) Aref = PetscMax(Aref, b->amp[i * c->nout]);
+  Aref = Aref > 0 ? Aref : 1;
+  PetscCall(Split(c, arc->xpred, arc->a, &wp));
+  PetscCall(JRContOutputAmplitude(c, wp, arc->a, 0, &Ap));
+  dp = PetscSqrtReal(PetscSqr((wp - b->omega[k]) / arc->wref) + PetscSqr((Ap - b->amp[k * c->nout]) / Aref));
+  dc = PetscSqrtReal(PetscSqr((w - wp) / arc->wref) + PetscSqr((arc->Anew - Ap) / Aref));
+  *q = dp > 0 ? dc / dp : 0;
+  PetscFunctionReturn(0);
+}
+
+/* A rejected step: half the step (or what the interpolation error asks), and a message; *stop when it falls below
+   the smallest step (b->why says where the curve ends) */
+static PetscErrorCode Retry(JRCont c, PetscInt lev, JRContBranch *b, PetscReal wk, PetscReal factor, const char what[], PetscReal *ds, PetscReal dsmin, PetscBool *stop)
+{
+  PetscFunctionBeginUser;
+  b->retries++;
+  *ds *= factor;
+  *stop = *ds < dsmin ? PETSC_TRUE : PETSC_FALSE;
+  if (c->monitor && (!*stop || c->monitor > 1)) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: %s after %.6g Hz, retrying with step %.3g\n", lev + 1, (double)b->F, what, (double)(wk / (2 * PETSC_PI)), (double)*ds));
+  if (*stop) {
+    PetscCall(PetscSNPrintf(b->why, sizeof(b->why), "the corrector found no solution after %.6g Hz (%s) with steps down to %.3g (-cont_step_min)", (double)(wk / (2 * PETSC_PI)), what, (double)dsmin));
+    PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: stopped: %s\n", lev + 1, (double)b->F, b->why));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Pseudo-arclength continuation over [wmin, wmax] at the current level. A step is taken when the corrector gives a
+   solution (Correct) and linear interpolation from the last point is within -cont_interp_tol; else it is retried
+   shorter. */
 static PetscErrorCode JRContSolveLevel_Arclength(JRCont c, PetscInt lev, JRContBranch *b, Vec a)
 {
   JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
@@ -292,41 +411,75 @@ static PetscErrorCode JRContSolveLevel_Arclength(JRCont c, PetscInt lev, JRContB
   PetscCall(VecDuplicate(arc->xk, &tnew));
   PetscCall(VecDuplicate(arc->xk, &x));
   PetscCall(Start(c, lev, b, a, tnew));
+  PetscCall(AmplitudeSlope(c, arc->xk, arc->tk, b->amp[0], &arc->dAk));
   while (b->np < c->maxpts) {
-    PetscReal           wk, na;
-    PetscInt            its;
+    PetscReal           wk, na, res, err = 0, dA = 0;
+    PetscInt            its = 0;
+    PetscBool           ok = PETSC_FALSE, stop;
     SNESConvergedReason reason;
     PetscCall(Split(c, arc->xk, arc->a, &wk));
-    PetscCall(Correct(c, ds, x, &its, &reason));
+    PetscCall(Correct(c, ds, x, &its, &reason, &res, &ok));
     PetscCall(Split(c, x, a, &w));
-    if (reason <= 0 || PetscIsInfOrNanReal(w)) {
-      b->retries++;
-      ds *= 0.5;
-      if (c->monitor) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: corrector failed after %.6g Hz (%s), retrying with step %.3g\n", lev + 1, (double)b->F, (double)(wk / (2 * PETSC_PI)), SNESConvergedReasons[reason], (double)ds));
-      if (ds < dsmin) {
-        PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: stopped at %.6g Hz, the step fell below %.3g (-cont_step_min); the curve ends there\n", lev + 1, (double)b->F, (double)(wk / (2 * PETSC_PI)), (double)dsmin));
-        break;
-      }
+    if (!ok || PetscIsInfOrNanReal(w)) {
+      char what[96];
+      if (reason > 0) PetscCall(PetscSNPrintf(what, sizeof(what), "corrector stopped at relative residual %.2e (%s)", (double)res, SNESConvergedReasons[reason]));
+      else PetscCall(PetscSNPrintf(what, sizeof(what), "corrector failed (%s)", SNESConvergedReasons[reason]));
+      PetscCall(Retry(c, lev, b, wk, 0.5, what, &ds, dsmin, &stop));
+      if (stop) break;
       continue;
     }
     if (w >= c->wmax) {
       PetscCall(LandOnEnd(c, lev, b, a, w, ds));
       break;
     }
-    PetscCall(JRContBranchAdd(c, b, w, a, its, ds));
+    PetscCall(Tangent(c, x, arc->tk, tnew));
+    if (c->itol > 0) { /* the Hermite estimate; where it is not small, or the response as plotted turned by more than
+                          about 10 degrees from the predictor (stick-slip onsets bend it sharply), the curve's point
+                          halfway along the chord, solved for; past about 25 degrees also at a quarter and three
+                          quarters, which see an S that the middle may not */
+      PetscReal q;
+      PetscCall(StepError(c, b, x, tnew, ds, &err, &dA));
+      PetscCall(PlotTurn(c, b, w, &q));
+      if (err > 0.25 * c->itol || q > 0.2) {
+        const PetscReal ts[3] = {0.5, 0.25, 0.75};
+        PetscReal       e;
+        PetscInt        mits;
+        err = 0;
+        for (PetscInt i = 0; i < (q > 0.5 ? 3 : 1) && err <= c->itol; i++) {
+          PetscCall(JRContChordError(c, b, a, w, arc->Anew, ts[i], &e, &mits));
+          b->newton += mits;
+          err = PetscMax(err, e);
+        }
+      }
+      if (err > c->itol && ds > dsmin) { /* too coarse to interpolate: shorter */
+        char what[96];
+        PetscCall(PetscSNPrintf(what, sizeof(what), "interpolation error %.2e above -cont_interp_tol %.2e", (double)err, (double)c->itol));
+        PetscCall(Retry(c, lev, b, wk, PetscMax(PetscMax(0.2, 0.8 * PetscSqrtReal(c->itol / err)), dsmin / ds), what, &ds, dsmin, &stop));
+        continue;
+      }
+    }
+    PetscCall(JRContBranchAdd(c, b, w, a, its, ds, res));
     PetscCall(JRContMonitor(c, lev, b));
     PetscCall(VecNorm(a, NORM_2, &na)); /* the amplitude scale follows the largest response met: slipping joints respond far more than stuck ones */
     if (na > arc->aref) arc->aref = na; /* the next tangent is normalised in the new metric */
     if (w < c->wmin) {
-      PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: the curve turned back below the start of the range at %.6g Hz; stopped\n", lev + 1, (double)b->F, (double)(w / (2 * PETSC_PI))));
+      PetscCall(PetscSNPrintf(b->why, sizeof(b->why), "the curve turned back below the start of the range at %.6g Hz", (double)(w / (2 * PETSC_PI))));
+      PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: %s; stopped\n", lev + 1, (double)b->F, b->why));
       break;
     }
-    PetscCall(Tangent(c, x, arc->tk, tnew));
-    ds = NextStep(c, b, its, ds, dsmin, dsmax);
+    if (na >= arc->aref) { /* the metric changed: the tangent renormalised, its amplitude slope with it */
+      PetscCall(Tangent(c, x, arc->tk, tnew));
+      if (c->itol > 0) PetscCall(AmplitudeSlope(c, x, tnew, b->amp[(b->np - 1) * c->nout], &dA));
+    }
+    ds = NextStep(c, b, its, err, ds, dsmin, dsmax);
+    arc->dAk = dA;
     PetscCall(VecCopy(tnew, arc->tk));
     PetscCall(VecCopy(x, arc->xk));
   }
-  if (b->np >= c->maxpts) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: -cont_max_points %" PetscInt_FMT " reached before the end of the range\n", lev + 1, (double)b->F, c->maxpts));
+  if (b->np >= c->maxpts) {
+    PetscCall(PetscSNPrintf(b->why, sizeof(b->why), "-cont_max_points %" PetscInt_FMT " reached before the end of the range", c->maxpts));
+    PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: %s\n", lev + 1, (double)b->F, b->why));
+  }
   PetscCall(VecDestroy(&tnew));
   PetscCall(VecDestroy(&x));
   PetscFunctionReturn(0);

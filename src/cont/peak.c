@@ -1,0 +1,370 @@
+/*
+   JRCont: the peaks of a curve and the interpolation error between its points.
+
+   The peak of a response is the largest first-harmonic amplitude of the harmonic-balance solution curve, not of the
+   points the continuation happened to compute: between the computed points on either side of the largest one, the
+   curve is followed by exact solves on the hyperplanes  <x - x_{k-1}, d>_W = s  (x = (a, w), d = x_{k+1} - x_{k-1},
+   W the continuation's scaling: amplitudes by the curve's largest, frequency by the range), a family that crosses
+   the curve once between the two points whether the frequency is monotone there or the curve folds. The amplitude
+   A(s) is maximised by golden-section search on s, which needs no smoothness (friction-limited tops have kinks),
+   until the bound of a concave function through the bracket, max((A_m - A_lo)(hi - m)/(m - lo), (A_m - A_hi)(m -
+   lo)/(hi - m)), is below -cont_peak_tol of A_m. The peak is inserted into the curve as a point of its own, so the
+   written curve passes through it; every response has its own peak (JRContRefinePeaks).
+
+   JRContInterpolationError estimates how far linear interpolation between two consecutive points is from the curve:
+   the cubic Hermite curve through them with their tangents in the (frequency, amplitude) plane, at its middle, against
+   the chord at the same frequency (relative to the amplitude); the step control keeps it below -cont_interp_tol.
+*/
+#include <jointrom/private/contimpl.h>
+
+/* The first-harmonic amplitude at response o of the point (a, w), a in the solve space */
+PetscErrorCode JRContOutputAmplitude(JRCont c, PetscReal w, Vec a, PetscInt o, PetscReal *A)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMExpand(c->hbm, w, a, c->amod));
+  PetscCall(JRHBMResponse(c->hbm, c->amod, NULL, c->ampw, c->ampw + c->nout));
+  *A = c->ampw[o];
+  PetscFunctionReturn(0);
+}
+
+/* The relative error of linear interpolation between (w0, A0) and (w1, A1), given the derivatives (dw, dA) of the
+   curve at both ends times the parameter's length between them: the middle of the cubic Hermite curve against the
+   chord at its frequency (where the frequency is monotone), else against the chord's middle */
+PetscErrorCode JRContInterpolationError(JRCont c, PetscReal w0, PetscReal A0, PetscReal dw0, PetscReal dA0, PetscReal w1, PetscReal A1, PetscReal dw1, PetscReal dA1, PetscReal *err)
+{
+  const PetscReal wh = 0.5 * (w0 + w1) + (dw0 - dw1) / 8, ah = 0.5 * (A0 + A1) + (dA0 - dA1) / 8;
+  PetscReal       ac = 0.5 * (A0 + A1);
+
+  PetscFunctionBeginUser;
+  (void)c;
+  if ((w1 - w0) * dw0 > 0 && (w1 - w0) * dw1 > 0) ac = A0 + (wh - w0) * (A1 - A0) / (w1 - w0);
+  *err = PetscAbsReal(ah - ac) / PetscMax(PetscMax(PetscAbsReal(ah), PetscAbsReal(ac)), PETSC_SMALL * PetscMax(PetscAbsReal(A0), PetscAbsReal(A1)) + PETSC_MIN_REAL);
+  PetscFunctionReturn(0);
+}
+
+/* The work of the solves on planes: the unknowns a, residual R, dR/dw, Jacobian J, the bordered matrix and its LU */
+struct _JRContPlaneWork {
+  PetscInt      n;
+  Vec           a, R, Rw;
+  Mat           J;
+  PetscReal    *B, *lu, *dx, *W; /* (n+1)^2, (n+1)^2, n+1, n+1 (the scaling's weights) */
+  PetscBLASInt *piv;
+  PetscReal    *x0, *d, *xm;     /* the plane family's origin and normal; a point (n+1 each) */
+};
+typedef struct _JRContPlaneWork PeakWork;
+
+/* The work for the current sizes (JRContSolve's set-up) */
+PetscErrorCode JRContPlaneWorkCreate(JRCont c)
+{
+  PeakWork *pw;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRContPlaneWorkDestroy(c));
+  PetscCall(PetscNew(&pw));
+  pw->n = c->n;
+  PetscCall(JRHBMCreateVecs(c->hbm, &pw->a, &pw->J));
+  PetscCall(VecDuplicate(pw->a, &pw->R));
+  PetscCall(VecDuplicate(pw->a, &pw->Rw));
+  PetscCall(PetscMalloc6((c->n + 1) * (c->n + 1), &pw->B, (c->n + 1) * (c->n + 1), &pw->lu, c->n + 1, &pw->dx, c->n + 1, &pw->W, c->n + 1, &pw->x0, c->n + 1, &pw->d));
+  PetscCall(PetscMalloc2(c->n + 1, &pw->piv, c->n + 1, &pw->xm));
+  c->pw = pw;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRContPlaneWorkDestroy(JRCont c)
+{
+  PeakWork *pw = c->pw;
+
+  PetscFunctionBeginUser;
+  if (!pw) PetscFunctionReturn(0);
+  PetscCall(PetscFree6(pw->B, pw->lu, pw->dx, pw->W, pw->x0, pw->d));
+  PetscCall(PetscFree2(pw->piv, pw->xm));
+  PetscCall(VecDestroy(&pw->a));
+  PetscCall(VecDestroy(&pw->R));
+  PetscCall(VecDestroy(&pw->Rw));
+  PetscCall(MatDestroy(&pw->J));
+  PetscCall(PetscFree(c->pw));
+  PetscFunctionReturn(0);
+}
+
+/* (a, w) of x[0..n] */
+static PetscErrorCode Load(PeakWork *pw, const PetscReal *x, PetscReal *w)
+{
+  PetscScalar *v;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(pw->a, &v));
+  for (PetscInt i = 0; i < pw->n; i++) v[i] = x[i];
+  PetscCall(VecRestoreArray(pw->a, &v));
+  *w = x[pw->n];
+  PetscFunctionReturn(0);
+}
+
+/* <x - x0, d>_W */
+static PetscReal PlaneCoordinate(PeakWork *pw, const PetscReal *x)
+{
+  PetscReal s = 0;
+  for (PetscInt i = 0; i <= pw->n; i++) s += pw->W[i] * (x[i] - pw->x0[i]) * pw->d[i];
+  return s;
+}
+
+/* Newton on R(a, w) = 0, <x - x0, d>_W = s from the guess x (n+1; the solution on return): *ok when the relative
+   residual is below the acceptance tolerance and the last step negligible, or 1e-3 of that tolerance */
+static PetscErrorCode SolveOnPlane(JRCont c, PeakWork *pw, PetscReal s, PetscReal *x, PetscReal *res, PetscInt *its, PetscBool *ok)
+{
+  const PetscInt n = pw->n, m = n + 1;
+  PetscReal      tol, rel = PETSC_INFINITY, step = PETSC_INFINITY;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMGetResidualTolerance(c->hbm, &tol));
+  *ok  = PETSC_FALSE;
+  *its = 0;
+  for (PetscInt it = 0; it < 30; it++) {
+    PetscReal          w, g;
+    const PetscScalar *r, *j, *rw;
+    PetscBool          singular;
+    PetscCall(Load(pw, x, &w));
+    PetscCall(JRHBMComputeResidual(c->hbm, w, pw->a, pw->R));
+    PetscCall(JRHBMResidualNorm(c->hbm, pw->R, &rel));
+    g = PlaneCoordinate(pw, x) - s;
+    if (rel <= 1e-3 * tol || (rel <= tol && step <= 1e-10)) {
+      *ok = PETSC_TRUE;
+      break;
+    }
+    if (PetscIsInfOrNanReal(rel)) break;
+    PetscCall(JRHBMComputeJacobian(c->hbm, w, pw->a, pw->J, pw->Rw));
+    PetscCall(MatDenseGetArrayRead(pw->J, &j));
+    PetscCall(VecGetArrayRead(pw->Rw, &rw));
+    PetscCall(VecGetArrayRead(pw->R, &r));
+    for (PetscInt col = 0; col < n; col++) {
+      for (PetscInt row = 0; row < n; row++) pw->B[row + col * m] = j[row + col * n];
+      pw->B[n + col * m] = pw->W[col] * pw->d[col];
+    }
+    for (PetscInt row = 0; row < n; row++) pw->B[row + n * m] = rw[row];
+    pw->B[n + n * m] = pw->W[n] * pw->d[n];
+    for (PetscInt i = 0; i < n; i++) pw->dx[i] = r[i];
+    pw->dx[n] = g;
+    PetscCall(VecRestoreArrayRead(pw->R, &r));
+    PetscCall(VecRestoreArrayRead(pw->Rw, &rw));
+    PetscCall(MatDenseRestoreArrayRead(pw->J, &j));
+    PetscCall(JRDenseSolve(m, pw->B, m, pw->lu, pw->piv, pw->dx, &singular));
+    if (singular) break;
+    step = 0;
+    for (PetscInt i = 0; i <= n; i++) {
+      x[i] -= pw->dx[i];
+      step += pw->W[i] * pw->dx[i] * pw->dx[i];
+    }
+    step = PetscSqrtReal(step);
+    *its = it + 1;
+  }
+  *res = rel;
+  PetscFunctionReturn(0);
+}
+
+/* Move the last point of the curve to index pos (the arrays rotated by one) */
+static PetscErrorCode MoveLast(JRCont c, JRContBranch *b, PetscInt pos)
+{
+  const PetscInt last = b->np - 1;
+  struct {
+    PetscReal *p;
+    PetscInt   bs;
+  } arr[] = {
+    {b->omega, 1      },
+    {b->a,     c->nmod},
+    {b->amp,   c->nout},
+    {b->pp,    c->nout},
+    {b->step,  1      },
+    {b->x,     c->n   },
+    {b->res,   1      }
+  };
+  PetscReal *tmp;
+  PetscInt   it = b->its[last];
+
+  PetscFunctionBeginUser;
+  if (pos >= last) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(PetscMax(PetscMax(c->nmod, c->n), c->nout), &tmp));
+  for (size_t k = 0; k < sizeof(arr) / sizeof(arr[0]); k++) {
+    const PetscInt bs = arr[k].bs;
+    PetscCall(PetscArraycpy(tmp, arr[k].p + last * bs, bs));
+    PetscCall(PetscArraymove(arr[k].p + (pos + 1) * bs, arr[k].p + pos * bs, (last - pos) * bs));
+    PetscCall(PetscArraycpy(arr[k].p + pos * bs, tmp, bs));
+  }
+  PetscCall(PetscArraymove(b->its + pos + 1, b->its + pos, last - pos));
+  b->its[pos] = it;
+  PetscCall(PetscFree(tmp));
+  PetscFunctionReturn(0);
+}
+
+/* The scaling of the plane family: amplitudes by the largest of the curve's points, frequency by the range */
+static void Weights(JRCont c, JRContBranch *b, PeakWork *pw)
+{
+  PetscReal aref = 0;
+  for (PetscInt k = 0; k < b->np; k++) {
+    PetscReal s = 0;
+    for (PetscInt i = 0; i < c->n; i++) s += b->x[k * c->n + i] * b->x[k * c->n + i];
+    aref = PetscMax(aref, s);
+  }
+  for (PetscInt i = 0; i < c->n; i++) pw->W[i] = aref > 0 ? 1.0 / aref : 1.0;
+  pw->W[c->n] = 1.0 / ((c->wmax - c->wmin) * (c->wmax - c->wmin));
+}
+
+/* x (n+1) <- (x_k, w_k) of point k */
+static void PointX(JRCont c, JRContBranch *b, PetscInt k, PetscReal *x)
+{
+  for (PetscInt i = 0; i < c->n; i++) x[i] = b->x[k * c->n + i];
+  x[c->n] = b->omega[k];
+}
+
+/* Response o's peak: golden-section search along the curve between the neighbours of its largest point (which it
+   inserts into the curve); (*w, *A) the peak */
+static PetscErrorCode RefineOne(JRCont c, JRContBranch *b, PeakWork *pw, PetscInt o, PetscReal *wp, PetscReal *Ap)
+{
+  const PetscInt n = c->n, m = n + 1;
+  PetscInt       k = 0, total = 0;
+  PetscReal     *X, *xl, *xm, *xh, *xt, sl, sm, sh, s1, Al, Am, Ah, res = 0, resm;
+  PetscBool      moved = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 1; i < b->np; i++)
+    if (b->amp[i * c->nout + o] > b->amp[k * c->nout + o]) k = i;
+  *wp = b->omega[k];
+  *Ap = b->amp[k * c->nout + o];
+  if (k == 0 || k == b->np - 1) PetscFunctionReturn(0); /* the largest at an end of the range: the curve's maximum there */
+  PetscCall(PetscMalloc1(4 * m, &X));
+  xl = X;
+  xm = X + m;
+  xh = X + 2 * m;
+  xt = X + 3 * m;
+  PointX(c, b, k - 1, pw->x0);
+  PointX(c, b, k + 1, xh);
+  for (PetscInt i = 0; i <= n; i++) pw->d[i] = xh[i] - pw->x0[i];
+  PointX(c, b, k - 1, xl);
+  PointX(c, b, k, xm);
+  sl   = 0;
+  sm   = PlaneCoordinate(pw, xm);
+  sh   = PlaneCoordinate(pw, xh);
+  s1   = sm;
+  Al   = b->amp[(k - 1) * c->nout + o];
+  Am   = b->amp[k * c->nout + o];
+  Ah   = b->amp[(k + 1) * c->nout + o];
+  resm = b->res[k];
+  if (!(sm > sl && sm < sh)) { /* the curve doubles back between the neighbours: keep the computed point */
+    PetscCall(PetscFree(X));
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt it = 0; it < 80; it++) {
+    const PetscReal bound = PetscMax((Am - Al) * (sh - sm) / (sm - sl), (Am - Ah) * (sm - sl) / (sh - sm));
+    PetscReal       st, At, wt, f;
+    PetscInt        its = 0;
+    PetscBool       ok, right = (sh - sm) > (sm - sl) ? PETSC_TRUE : PETSC_FALSE;
+    if (bound <= c->ptol * Am) break;
+    st = right ? sm + 0.381966011250105 * (sh - sm) : sm - 0.381966011250105 * (sm - sl);
+    f  = right ? (st - sm) / (sh - sm) : (st - sl) / (sm - sl); /* the guess: linear between the bracket's points */
+    for (PetscInt i = 0; i <= n; i++) xt[i] = right ? (1 - f) * xm[i] + f * xh[i] : (1 - f) * xl[i] + f * xm[i];
+    PetscCall(SolveOnPlane(c, pw, st, xt, &res, &its, &ok));
+    total += its;
+    if (!ok) break; /* no solution on this plane: the best so far stands */
+    PetscCall(Load(pw, xt, &wt));
+    PetscCall(JRContOutputAmplitude(c, wt, pw->a, o, &At));
+    if (At > Am) { /* the new middle */
+      PetscReal *t = right ? xl : xh;
+      if (right) {
+        sl = sm;
+        Al = Am;
+      } else {
+        sh = sm;
+        Ah = Am;
+      }
+      if (right) xl = xm;
+      else xh = xm;
+      xm    = xt;
+      xt    = t;
+      sm    = st;
+      Am    = At;
+      resm  = res;
+      moved = PETSC_TRUE;
+    } else if (right) {
+      PetscReal *t = xh;
+      xh           = xt;
+      xt           = t;
+      sh           = st;
+      Ah           = At;
+    } else {
+      PetscReal *t = xl;
+      xl           = xt;
+      xt           = t;
+      sl           = st;
+      Al           = At;
+    }
+  }
+  b->refine_its += total;
+  if (moved) { /* the peak as a point of the curve, between k - 1 and k or k and k + 1 */
+    PetscReal w;
+    PetscCall(Load(pw, xm, &w));
+    PetscCall(JRContBranchAdd(c, b, w, pw->a, total, 0.0, resm));
+    PetscCall(MoveLast(c, b, sm < s1 ? k : k + 1));
+    *wp = w;
+    *Ap = Am;
+  }
+  PetscCall(PetscFree(X));
+  PetscFunctionReturn(0);
+}
+
+/* JRContRefinePeaks - every response's peak on the curve b (b->wpk, b->apk), response 1's also in b->wpeak, b->apeak
+   and b->kpeak; each peak inserted into the curve. The last response first, so that response 1's index holds. */
+PetscErrorCode JRContRefinePeaks(JRCont c, JRContBranch *b)
+{
+  PeakWork *pw = c->pw;
+
+  PetscFunctionBeginUser;
+  b->refine_its = 0;
+  Weights(c, b, pw);
+  for (PetscInt o = c->nout - 1; o >= 0; o--) PetscCall(RefineOne(c, b, pw, o, &b->wpk[o], &b->apk[o]));
+  b->kpeak = 0;
+  for (PetscInt i = 1; i < b->np; i++)
+    if (b->amp[i * c->nout] > b->amp[b->kpeak * c->nout]) b->kpeak = i;
+  b->wpeak = b->wpk[0];
+  b->apeak = b->apk[0];
+  PetscFunctionReturn(0);
+}
+
+/* JRContChordError - the curve's point at the fraction t of the way from the last point of b to the candidate (a, w)
+   (amplitude A at response 1), on the plane through that point of the chord normal to it, against linear
+   interpolation of response 1 between the two (at its frequency where the frequency is monotone, else at the chord's
+   point): the relative error; infinite when that point is not found. its: the Newton iterations spent. */
+PetscErrorCode JRContChordError(JRCont c, JRContBranch *b, Vec a, PetscReal w, PetscReal A, PetscReal t, PetscReal *err, PetscInt *its)
+{
+  PeakWork          *pw = c->pw;
+  const PetscInt     n = c->n, k = b->np - 1;
+  const PetscScalar *x;
+  PetscReal          n0 = 0, n1 = 0, s = 0, res, wm, Am, Ac, A0 = b->amp[k * c->nout], w0 = b->omega[k];
+  PetscBool          ok;
+
+  PetscFunctionBeginUser;
+  PointX(c, b, k, pw->x0);
+  PetscCall(VecGetArrayRead(a, &x));
+  for (PetscInt i = 0; i < n; i++) {
+    pw->d[i] = PetscRealPart(x[i]) - pw->x0[i];
+    n0 += pw->x0[i] * pw->x0[i];
+    n1 += PetscRealPart(x[i] * x[i]);
+  }
+  PetscCall(VecRestoreArrayRead(a, &x));
+  pw->d[n] = w - w0;
+  for (PetscInt i = 0; i < n; i++) pw->W[i] = 1.0 / PetscMax(PetscMax(n0, n1), PETSC_MIN_REAL);
+  pw->W[n] = 1.0 / ((c->wmax - c->wmin) * (c->wmax - c->wmin));
+  for (PetscInt i = 0; i <= n; i++) {
+    s += pw->W[i] * pw->d[i] * pw->d[i];
+    pw->xm[i] = pw->x0[i] + t * pw->d[i];
+  }
+  PetscCall(SolveOnPlane(c, pw, t * s, pw->xm, &res, its, &ok));
+  if (!ok) {
+    *err = PETSC_INFINITY;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(Load(pw, pw->xm, &wm));
+  PetscCall(JRContOutputAmplitude(c, wm, pw->a, 0, &Am));
+  Ac = (1 - t) * A0 + t * A;
+  if ((wm - w0) * (w - w0) > 0 && (w - wm) * (w - w0) > 0) Ac = A0 + (wm - w0) * (A - A0) / (w - w0);
+  *err = PetscAbsReal(Am - Ac) / PetscMax(PetscMax(Am, Ac), PETSC_MIN_REAL);
+  PetscFunctionReturn(0);
+}
