@@ -23,6 +23,18 @@ mpiexec -n 2 $J $args -frf_output_file "$tmp/np2" > /dev/null 2>&1
 d=$(paste -d, "$tmp/np1.csv" "$tmp/np2.csv" | awk -F, 'NR>1{n=NF/2; for(i=3;i<=n;i++){a=$i; b=$(i+n); e=(a-b)/(a==0?1:a); if(e<0)e=-e; if(e>m)m=e}; c++} END{printf "%.1e %d", m, c}')
 check "[ -s '$tmp/np2.csv' ] && [ \$(wc -l < '$tmp/np1.csv') = \$(wc -l < '$tmp/np2.csv') ] && awk -v d='${d% *}' 'BEGIN{exit !(d < 1e-8)}'" "30-DOF chain, 400 jenkins elements, H = 3: 1 and 2 ranks give the same curve (${d#* } points, max relative difference ${d% *})"
 
+# a curve is complete or the run fails loudly: chain_frf's 1 N curve reaches the end of its range through the stuck
+# resonance (207 Hz); a curve cut short by -cont_max_points is an error naming the level (exit 1, the points written)
+# unless -cont_allow_partial
+o=$($J -options_file runs/chain_frf.opts -frf_output_file "$tmp/chain" -frf_plot 0 -cont_monitor 0 2>&1); rc=$?
+r=$(echo "$o" | awk '/^frf summary/{f=1; next} f && $1 ~ /^[0-9.]+$/ {if ($10 > m) m = $10} END{print m + 0}')
+p1=$(echo "$o" | awk '/^peak level 1. /{print $5}')
+check "[ $rc = 0 ] && ! echo \"\$o\" | grep -q incomplete && awk -v r='$r' -v p='$p1' 'BEGIN{exit !(r <= 1e-8 && p > 206.5 && p < 207.5)}'" "chain_frf.opts: every curve complete (exit $rc), largest residual of every point $r (<= 1e-8), the 1 N peak at the stuck resonance: $p1 Hz"
+o=$($J $osc -frf_force 2 -cont_max_points 10 -frf_plot 0 -frf_output_file "$tmp/part" 2>&1); rc=$?
+check "[ $rc = 1 ] && [ \$(echo \"\$o\" | grep -c 'jointrom: error') = 1 ] && echo \"\$o\" | grep -q 'level 1 (F = 2. N): the curve is incomplete: -cont_max_points 10 reached' && [ \$(wc -l < '$tmp/part.csv') = 11 ]" "a curve cut short (-cont_max_points 10): exit $rc, one error line naming the level, its 10 points written"
+o=$($J $osc -frf_force 2 -cont_max_points 10 -cont_allow_partial -frf_plot 0 -frf_output_file "$tmp/part" 2>&1); rc=$?
+check "[ $rc = 0 ] && echo \"\$o\" | grep -q '(incomplete)'" "the same with -cont_allow_partial: exit $rc, the summary marks it incomplete"
+
 # SNES options reach the solver: the analytic Jacobian against PETSc's finite-difference test
 o=$($J $osc -frf_force 40 -frf_fmin 120 -frf_fmax 121 -cont_type natural -hbm_snes_test_jacobian -frf_output_file '' 2>&1)
 r=$(echo "$o" | grep -o '||J - Jfd||_F/||J||_F = [0-9.e+-]*' | awk '{print $NF}' | sort -g | tail -1)
