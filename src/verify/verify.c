@@ -78,6 +78,10 @@ struct _p_JRVerify {
   VerifyGroup *g;
   PetscReal   *loc, *fn, *acc, *y0, *x;  /* work: nm, nm, nm, 2 nm, one period of output 1 */
   PetscInt     nx;
+  PetscReal   *qs, *sn, *cs; /* the current period's modal displacements (N x nm); sin, cos at the N angles */
+  PetscReal   *ecoef;     /* harmonics 2..H of the last period's motion */
+  PetscReal   *ecs;       /* structural damping's correction for harmonics 2..H: per h, gamma (1 - h) Kg as_h, Kg ac_h */
+  PetscBool    corr;      /* gamma != 0 and H >= 2 */
   PetscReal    level, omega;
   TS           ts;
   Vec          y, yprev;
@@ -259,6 +263,17 @@ static PetscErrorCode RHSFunction(TS ts, PetscReal t, Vec Y, Vec G, void *ctx)
   q = y;
   p = y + nm;
   PetscCall(NonlinearForce(v, q, v->fn));
+  if (v->corr) { /* harmonics 2..H see gamma Kg as in the harmonic balance, not h gamma Kg: fn += sum_h es_h cos - ec_h sin */
+    const PetscReal s1 = PetscSinReal(v->omega * t), c1 = PetscCosReal(v->omega * t);
+    PetscReal       sh = s1, ch = c1;
+    for (PetscInt hh = 2; hh <= v->H; hh++) {
+      const PetscReal  sn = sh * c1 + ch * s1, cn = ch * c1 - sh * s1;
+      const PetscReal *es = v->ecs + 2 * (hh - 2) * nm, *ec = es + nm;
+      sh = sn;
+      ch = cn;
+      for (PetscInt i = 0; i < nm; i++) v->fn[i] += es[i] * ch - ec[i] * sh;
+    }
+  }
   for (PetscInt i = 0; i < nm; i++) {
     const PetscReal *k = h->Km + i * nm, *c = v->Cv + i * nm;
     PetscReal        r = s * h->fm[i] - v->fn[i];
@@ -369,6 +384,8 @@ PetscErrorCode JRVerifySetUp(JRVerify v)
       PetscCheck(!info, v->comm, PETSC_ERR_ARG_WRONG, "JRVerifySetUp: the mass matrix in the basis is singular (LAPACK getrf info %d)", (int)info);
     }
     PetscCall(PetscMalloc5(nm * nm, &v->Cv, nm, &v->loc, nm, &v->fn, nm, &v->acc, 2 * nm, &v->y0));
+    v->corr = (PetscBool)(h->gamma != 0.0 && v->H >= 2);
+    PetscCall(PetscMalloc2(2 * PetscMax(v->H - 1, 1) * nm, &v->ecoef, 2 * PetscMax(v->H - 1, 1) * nm, &v->ecs));
   }
   v->ngroups = h->ngroups;
   PetscCall(PetscCalloc1(v->ngroups, &v->g));
@@ -509,6 +526,45 @@ static PetscErrorCode Change(JRVerify v, PetscReal *d)
   PetscFunctionReturn(0);
 }
 
+/* Structural damping's correction from the harmonics 2..H of the modal motion, coef = [as_2 ac_2 | ... | as_H ac_H]
+   (nm each, the harmonic balance's layout): ecs = gamma (1 - h) Kg [as_h ac_h], which turns the viscous (gamma / w) Kg
+   (h gamma Kg on harmonic h) into the harmonic balance's gamma Kg on every harmonic up to H. It is taken from the last
+   period (from the harmonic-balance point during the first): exact at the periodic steady state. */
+static PetscErrorCode SetCorrection(JRVerify v, const PetscReal coef[])
+{
+  JRHBM          h  = v->hbm;
+  const PetscInt nm = v->nm;
+
+  PetscFunctionBeginUser;
+  if (!v->corr) PetscFunctionReturn(0);
+  PetscCall(JRGemm("N", "N", nm, 2 * (v->H - 1), nm, h->gamma, h->Kg ? h->Kg : h->Km, nm, coef, nm, 0.0, v->ecs, nm));
+  for (PetscInt hh = 2; hh <= v->H; hh++)
+    for (PetscInt i = 0; i < 2 * nm; i++) v->ecs[2 * (hh - 2) * nm + i] *= (PetscReal)(1 - hh);
+  PetscFunctionReturn(0);
+}
+
+/* The harmonics 2..H of the last period's modal motion (N samples at the angles 2 pi j / N), into coef */
+static PetscErrorCode PeriodHarmonics(JRVerify v, PetscInt N, const PetscReal sn[], const PetscReal cs[], PetscReal coef[])
+{
+  const PetscInt nm = v->nm;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArrayzero(coef, 2 * (v->H - 1) * nm));
+  for (PetscInt hh = 2; hh <= v->H; hh++) {
+    PetscReal *S = coef + 2 * (hh - 2) * nm, *C = S + nm;
+    for (PetscInt j = 0; j < N; j++) {
+      const PetscInt   m = (hh * j) % N;
+      const PetscReal  ws = 2.0 / N * sn[m], wc = 2.0 / N * cs[m], *q = v->qs + j * nm;
+      for (PetscInt i = 0; i < nm; i++) {
+        S[i] += ws * q[i];
+        C[i] += wc * q[i];
+      }
+    }
+  }
+  PetscCall(PetscLogFlops(4.0 * N * nm * (v->H - 1)));
+  PetscFunctionReturn(0);
+}
+
 /*
   JRVerifySolve - one harmonic-balance point checked by time integration: level F [N], frequency omega [rad/s], the
   point's modal harmonic coefficients a (nm (2H + 1), [a0 | as_1 ac_1 | ...]). Collective; every rank integrates the
@@ -536,12 +592,22 @@ PetscErrorCode JRVerifySolve(JRVerify v, PetscReal F, PetscReal omega, const Pet
   dt = T / N;
   if (N > v->nx) {
     PetscCall(PetscFree(v->x));
+    PetscCall(PetscFree3(v->qs, v->sn, v->cs));
     PetscCall(PetscMalloc1(N, &v->x));
+    PetscCall(PetscMalloc3(N * nm, &v->qs, N, &v->sn, N, &v->cs));
     v->nx = N;
+  }
+  for (PetscInt j = 0; j < N; j++) {
+    v->sn[j] = PetscSinReal(2 * PETSC_PI * j / N);
+    v->cs[j] = PetscCosReal(2 * PETSC_PI * j / N);
   }
   for (PetscInt i = 0; i < nm; i++)
     for (PetscInt j = 0; j < nm; j++) v->Cv[i * nm + j] = h->Cm[i * nm + j] + (h->gamma / omega) * (h->Kg ? h->Kg[i * nm + j] : h->Km[i * nm + j]);
   PetscCall(InitialState(v, omega, a, N));
+  if (v->corr) {
+    if (v->rest) PetscCall(PetscArrayzero(v->ecs, 2 * (v->H - 1) * nm));
+    else PetscCall(SetCorrection(v, a + 3 * nm));
+  }
   PetscCall(TSSetTimeStep(v->ts, dt));
   PetscCall(TSSetMaxTime(v->ts, (v->maxperiods + 1) * T));
   PetscCall(TSSetMaxSteps(v->ts, PETSC_MAX_INT));
@@ -557,7 +623,12 @@ PetscErrorCode JRVerifySolve(JRVerify v, PetscReal F, PetscReal omega, const Pet
       PetscCall(CommitSlip(v, y));
       for (PetscInt i = 0; i < nm; i++) x += h->Phiout[i] * y[i];
       v->x[j % N] = x; /* sample at the angle 2 pi j / N */
+      if (v->corr) PetscCall(PetscArraycpy(v->qs + (j % N) * nm, y, nm));
       PetscCall(VecRestoreArrayRead(v->y, &y));
+    }
+    if (v->corr) {
+      PetscCall(PeriodHarmonics(v, N, v->sn, v->cs, v->ecoef));
+      PetscCall(SetCorrection(v, v->ecoef));
     }
     PetscCall(Change(v, &d));
     PetscCall(VecCopy(v->y, v->yprev));
@@ -715,6 +786,8 @@ PetscErrorCode JRVerifyDestroy(JRVerify *vp)
   if (v->Mlu) PetscCall(PetscFree2(v->Mlu, v->piv));
   if (v->Cv) PetscCall(PetscFree5(v->Cv, v->loc, v->fn, v->acc, v->y0));
   PetscCall(PetscFree(v->x));
+  PetscCall(PetscFree3(v->qs, v->sn, v->cs));
+  PetscCall(PetscFree2(v->ecoef, v->ecs));
   PetscCall(TSDestroy(&v->ts));
   PetscCall(VecDestroy(&v->y));
   PetscCall(VecDestroy(&v->yprev));
