@@ -681,28 +681,39 @@ PetscErrorCode JRVerifySolve(JRVerify v, PetscReal F, PetscReal omega, const Pet
   PetscFunctionReturn(0);
 }
 
-/* The points of a level's curve to check: the largest amplitude of output 1 (the peak), then alternately below and
-   above it the first points whose amplitude has fallen to 2^(-m/2) of the peak's (m = 1, 2, ...: the half-power
-   points first); npt <= np distinct indices */
-static PetscErrorCode PickPoints(PetscInt np, const PetscReal amp[], PetscInt nout, PetscInt want, PetscInt idx[], PetscInt *npt)
+/* Whether point k of a curve lies where the continuation runs forward in frequency: between two folds it runs back,
+   and there (the middle branch of a fold pair, as in thesis 2.4.3's Duffing case) the response is unstable and the
+   time integration would leave it */
+static PetscBool Forward(PetscInt np, const PetscReal om[], PetscInt k)
+{
+  return (PetscBool)((k == 0 || om[k] >= om[k - 1]) && (k == np - 1 || om[k + 1] >= om[k]));
+}
+
+/* The points of a level's curve to check: the largest amplitude of output 1 (the peak; if it lies on a backward
+   segment, the nearest point on a forward one), then alternately below and above it the first forward points whose
+   amplitude has fallen to 2^(-m/2) of the peak's (m = 1, 2, ...: the half-power points first); n <= want distinct
+   indices */
+static PetscErrorCode PickPoints(PetscInt np, const PetscReal om[], const PetscReal amp[], PetscInt nout, PetscInt want, PetscInt idx[], PetscInt *npt)
 {
   PetscInt kp = 0, n = 0, m = 1, side = 0, stall = 0;
 
   PetscFunctionBeginUser;
   for (PetscInt i = 1; i < np; i++)
     if (amp[i * nout] > amp[kp * nout]) kp = i;
+  for (PetscInt d = 1; !Forward(np, om, kp) && d < np; d++) {
+    if (kp - d >= 0 && Forward(np, om, kp - d)) kp -= d;
+    else if (kp + d < np && Forward(np, om, kp + d)) kp += d;
+  }
   idx[n++] = kp;
   while (n < want && n < np && stall < 4 * want + 8) {
     const PetscReal target = amp[kp * nout] * PetscPowReal(2.0, -0.5 * m);
     PetscInt        pick   = -1;
     if (side == 0) {
       for (PetscInt i = kp - 1; i >= 0 && pick < 0; i--)
-        if (amp[i * nout] <= target) pick = i;
-      if (pick < 0 && kp > 0) pick = 0;
+        if (amp[i * nout] <= target && Forward(np, om, i)) pick = i;
     } else {
       for (PetscInt i = kp + 1; i < np && pick < 0; i++)
-        if (amp[i * nout] <= target) pick = i;
-      if (pick < 0 && kp < np - 1) pick = np - 1;
+        if (amp[i * nout] <= target && Forward(np, om, i)) pick = i;
     }
     if (pick >= 0) {
       PetscBool dup = PETSC_FALSE;
@@ -747,7 +758,7 @@ PetscErrorCode JRVerifyCurves(JRVerify v, JRHBM h, JRCont cont)
     PetscCall(JRContGetLevel(cont, lev, &F));
     PetscCall(JRContGetBranch(cont, lev, &np, &om, &aa, &amp));
     if (!np) continue;
-    PetscCall(PickPoints(np, amp, nout, v->npoints, idx, &n));
+    PetscCall(PickPoints(np, om, amp, nout, v->npoints, idx, &n));
     for (PetscInt i = 0; i < n; i++) {
       JRVerifyResult r;
       const PetscInt k = idx[i];
@@ -755,7 +766,7 @@ PetscErrorCode JRVerifyCurves(JRVerify v, JRHBM h, JRCont cont)
       PetscCall(JRVerifySolve(v, F, om[k], aa + k * h->n, &r));
       PetscCall(PetscPrintf(v->comm, "verify level %g freq_hz %.8g amplitude_hbm %.8e amplitude_time %.8e rel_diff %.3e higher_harmonics %.3e periods %" PetscInt_FMT " higher_harmonics_hbm %.3e phase_deg %.3e steps %" PetscInt_FMT " change %.2e seconds %.3g\n", (double)F, (double)fhz, (double)r.amp_hbm, (double)r.amp_time, (double)r.rel_diff, (double)r.higher_time, r.periods, (double)r.higher_hbm, (double)r.phase_deg, r.steps, (double)r.change, (double)r.seconds));
       if (!r.periodic) PetscCall(PetscPrintf(v->comm, "verify: WARNING level %g freq_hz %.8g: not periodic after %" PetscInt_FMT " periods (change over the last %.2e > -frf_verify_periodic_tol %g, or still decaying): raise -frf_verify_max_periods\n", (double)F, (double)fhz, r.periods, (double)r.change, (double)v->ptol));
-      if (r.rel_diff > v->tol) PetscCall(PetscPrintf(v->comm, "verify: WARNING level %g freq_hz %.8g: the time integration's first harmonic differs from the harmonic balance's by %.3e (> -frf_verify_tol %g); higher harmonics %.3e of the motion (%.3e in the harmonic balance)%s\n", (double)F, (double)fhz, (double)r.rel_diff, (double)v->tol, (double)r.higher_time, (double)r.higher_hbm, r.higher_time > r.higher_hbm + 0.5 * r.rel_diff ? ": more harmonics (-hbm_harmonics) may be needed" : ""));
+      if (r.rel_diff > v->tol) PetscCall(PetscPrintf(v->comm, "verify: WARNING level %g freq_hz %.8g: the time integration's first harmonic differs from the harmonic balance's by %.3e (> -frf_verify_tol %g); higher harmonics %.3e of the motion (%.3e in the harmonic balance)%s\n", (double)F, (double)fhz, (double)r.rel_diff, (double)v->tol, (double)r.higher_time, (double)r.higher_hbm, r.rel_diff > 0.5 ? ": the time integration settled on another response (the point is unstable, or near a fold where the harmonic balance's truncation moves it)" : r.higher_time > r.higher_hbm + 0.5 * r.rel_diff ? ": more harmonics (-hbm_harmonics) may be needed" : ""));
       worst = PetscMax(worst, r.rel_diff);
       tsum += r.seconds;
       npts++;
