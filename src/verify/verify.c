@@ -66,7 +66,7 @@ struct _p_JRVerify {
   /* options */
   PetscInt    npoints, steps, maxperiods;
   PetscReal   tol, ptol;
-  PetscBool   rest, setupcalled;
+  PetscBool   rest, setupcalled, view;
   /* the modal equations */
   PetscInt     nm, H, nc;
   PetscBool    identity;  /* Mm = I */
@@ -106,7 +106,7 @@ PetscErrorCode JRVerifyCreate(MPI_Comm comm, JRVerify *v)
 }
 
 /* -frf_verify_points N (0: off), -frf_verify_tol, -frf_verify_steps, -frf_verify_periodic_tol,
-   -frf_verify_max_periods, -frf_verify_from_rest; with -help also the TS's -frf_verify_ts_* */
+   -frf_verify_max_periods, -frf_verify_from_rest, -frf_verify_view; with -help also the TS's -frf_verify_ts_* */
 PetscErrorCode JRVerifySetFromOptions(JRVerify v)
 {
   PetscBool help;
@@ -118,6 +118,7 @@ PetscErrorCode JRVerifySetFromOptions(JRVerify v)
   PetscCall(PetscOptionsInt("-frf_verify_steps", "Time steps per period (raised to the explicit scheme's stability limit if needed)", "JRVerifySolve", v->steps, &v->steps, NULL));
   PetscCall(PetscOptionsReal("-frf_verify_periodic_tol", "Steady state: relative change of the state over a period (and its extrapolated rest) below this", "JRVerifySolve", v->ptol, &v->ptol, NULL));
   PetscCall(PetscOptionsInt("-frf_verify_max_periods", "At most this many periods per point", "JRVerifySolve", v->maxperiods, &v->maxperiods, NULL));
+  PetscCall(PetscOptionsBool("-frf_verify_view", "View the check's settings and the stiffest mode bound at set-up", "JRVerifyView", v->view, &v->view, NULL));
   PetscCall(PetscOptionsBool("-frf_verify_from_rest", "Start from rest instead of the harmonic balance's state at t = 0", "JRVerifySolve", v->rest, &v->rest, NULL));
   PetscOptionsEnd();
   PetscCall(PetscOptionsHasHelp(NULL, &help));
@@ -429,6 +430,7 @@ PetscErrorCode JRVerifySetUp(JRVerify v)
   }
   PetscCall(TSSetSolution(v->ts, v->y));
   v->setupcalled = PETSC_TRUE;
+  if (v->view) PetscCall(JRVerifyView(v, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -764,7 +766,7 @@ PetscErrorCode JRVerifyCurves(JRVerify v, JRHBM h, JRCont cont)
       const PetscInt k = idx[i];
       const PetscReal fhz = om[k] / (2 * PETSC_PI);
       PetscCall(JRVerifySolve(v, F, om[k], aa + k * h->n, &r));
-      PetscCall(PetscPrintf(v->comm, "verify level %g freq_hz %.8g amplitude_hbm %.8e amplitude_time %.8e rel_diff %.3e higher_harmonics %.3e periods %" PetscInt_FMT " higher_harmonics_hbm %.3e phase_deg %.3e steps %" PetscInt_FMT " change %.2e seconds %.3g\n", (double)F, (double)fhz, (double)r.amp_hbm, (double)r.amp_time, (double)r.rel_diff, (double)r.higher_time, r.periods, (double)r.higher_hbm, (double)r.phase_deg, r.steps, (double)r.change, (double)r.seconds));
+      PetscCall(PetscPrintf(v->comm, "verify level %g freq_hz %.12g amplitude_hbm %.10e amplitude_time %.10e rel_diff %.3e higher_harmonics %.3e periods %" PetscInt_FMT " higher_harmonics_hbm %.3e phase_deg %.3e steps %" PetscInt_FMT " change %.2e seconds %.3g\n", (double)F, (double)fhz, (double)r.amp_hbm, (double)r.amp_time, (double)r.rel_diff, (double)r.higher_time, r.periods, (double)r.higher_hbm, (double)r.phase_deg, r.steps, (double)r.change, (double)r.seconds));
       if (!r.periodic) PetscCall(PetscPrintf(v->comm, "verify: WARNING level %g freq_hz %.8g: not periodic after %" PetscInt_FMT " periods (change over the last %.2e > -frf_verify_periodic_tol %g, or still decaying): raise -frf_verify_max_periods\n", (double)F, (double)fhz, r.periods, (double)r.change, (double)v->ptol));
       if (r.rel_diff > v->tol) PetscCall(PetscPrintf(v->comm, "verify: WARNING level %g freq_hz %.8g: the time integration's first harmonic differs from the harmonic balance's by %.3e (> -frf_verify_tol %g); higher harmonics %.3e of the motion (%.3e in the harmonic balance)%s\n", (double)F, (double)fhz, (double)r.rel_diff, (double)v->tol, (double)r.higher_time, (double)r.higher_hbm, r.rel_diff > 0.5 ? ": the time integration settled on another response (the point is unstable, or near a fold where the harmonic balance's truncation moves it)" : r.higher_time > r.higher_hbm + 0.5 * r.rel_diff ? ": more harmonics (-hbm_harmonics) may be needed" : ""));
       worst = PetscMax(worst, r.rel_diff);
@@ -781,7 +783,12 @@ PetscErrorCode JRVerifyView(JRVerify v, PetscViewer viewer)
   PetscFunctionBeginUser;
   if (!viewer) viewer = PETSC_VIEWER_STDOUT_(v->comm);
   PetscCall(PetscViewerASCIIPrintf(viewer, "JRVerify: %" PetscInt_FMT " points per level, %" PetscInt_FMT " steps per period, periodic to %g in at most %" PetscInt_FMT " periods, from %s, warn above %g\n", v->npoints, v->steps, (double)v->ptol, v->maxperiods, v->rest ? "rest" : "the harmonic balance's state", (double)v->tol));
-  if (v->setupcalled) PetscCall(PetscViewerASCIIPrintf(viewer, "  %" PetscInt_FMT " modes, stiffest mode bound %g Hz\n", v->nm, (double)(PetscSqrtReal(v->wmax2) / (2 * PETSC_PI))));
+  if (v->setupcalled) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  %" PetscInt_FMT " modes, %" PetscInt_FMT " harmonics in the comparison, stiffest mode bound %g Hz (every friction element stuck)%s\n", v->nm, v->H, (double)(PetscSqrtReal(v->wmax2) / (2 * PETSC_PI)), v->corr ? "; structural damping on harmonics 2..H from the last period" : ""));
+    PetscCall(PetscViewerASCIIPushTab(viewer));
+    PetscCall(TSView(v->ts, viewer));
+    PetscCall(PetscViewerASCIIPopTab(viewer));
+  }
   PetscFunctionReturn(0);
 }
 
