@@ -508,7 +508,7 @@ static PetscErrorCode InitialState(JRVerify v, PetscReal omega, const PetscReal 
   PetscFunctionReturn(0);
 }
 
-/* The state's change over a period relative to its size, velocities scaled by 1/w */
+/* The state's change over a period relative to its size, velocities scaled by 1/w, rigid-body modes left out */
 static PetscErrorCode Change(JRVerify v, PetscReal *d)
 {
   const PetscReal *y, *yp;
@@ -518,7 +518,9 @@ static PetscErrorCode Change(JRVerify v, PetscReal *d)
   PetscCall(VecGetArrayRead(v->y, &y));
   PetscCall(VecGetArrayRead(v->yprev, &yp));
   for (PetscInt i = 0; i < 2 * v->nm; i++) {
+    const PetscInt  r  = i % v->nm;
     const PetscReal sc = i < v->nm ? 1.0 : 1.0 / v->omega;
+    if (v->hbm->pin && v->hbm->pin[r] != 0) continue; /* rigid-body modes: forced, periodic from the start; their large motion would hide the rest's change */
     s += PetscSqr(sc * (y[i] - yp[i]));
     n += PetscSqr(sc * y[i]);
   }
@@ -768,7 +770,7 @@ PetscErrorCode JRVerifyCurves(JRVerify v, JRHBM h, JRCont cont)
       PetscCall(JRVerifySolve(v, F, om[k], aa + k * h->n, &r));
       PetscCall(PetscPrintf(v->comm, "verify level %g freq_hz %.12g amplitude_hbm %.10e amplitude_time %.10e rel_diff %.3e higher_harmonics %.3e periods %" PetscInt_FMT " higher_harmonics_hbm %.3e phase_deg %.3e steps %" PetscInt_FMT " change %.2e seconds %.3g\n", (double)F, (double)fhz, (double)r.amp_hbm, (double)r.amp_time, (double)r.rel_diff, (double)r.higher_time, r.periods, (double)r.higher_hbm, (double)r.phase_deg, r.steps, (double)r.change, (double)r.seconds));
       if (!r.periodic) PetscCall(PetscPrintf(v->comm, "verify: WARNING level %g freq_hz %.8g: not periodic after %" PetscInt_FMT " periods (change over the last %.2e > -frf_verify_periodic_tol %g, or still decaying): raise -frf_verify_max_periods\n", (double)F, (double)fhz, r.periods, (double)r.change, (double)v->ptol));
-      if (r.rel_diff > v->tol) PetscCall(PetscPrintf(v->comm, "verify: WARNING level %g freq_hz %.8g: the time integration's first harmonic differs from the harmonic balance's by %.3e (> -frf_verify_tol %g); higher harmonics %.3e of the motion (%.3e in the harmonic balance)%s\n", (double)F, (double)fhz, (double)r.rel_diff, (double)v->tol, (double)r.higher_time, (double)r.higher_hbm, r.rel_diff > 0.5 ? ": the time integration settled on another response (the point is unstable, or near a fold where the harmonic balance's truncation moves it)" : r.higher_time > r.higher_hbm + 0.5 * r.rel_diff ? ": more harmonics (-hbm_harmonics) may be needed" : ""));
+      if (r.rel_diff > v->tol) PetscCall(PetscPrintf(v->comm, "verify: WARNING level %g freq_hz %.8g: the time integration's first harmonic differs from the harmonic balance's by %.3e (> -frf_verify_tol %g); higher harmonics %.3e of the response (%.3e in the harmonic balance)%s\n", (double)F, (double)fhz, (double)r.rel_diff, (double)v->tol, (double)r.higher_time, (double)r.higher_hbm, r.rel_diff > 0.5 ? ": the time integration settled on another response (the point is unstable, or near a fold where the harmonic balance's truncation moves it)" : ": the same modal equations, so the harmonic balance's truncation (-hbm_harmonics, -hbm_samples; the elements' motions may carry more higher harmonics than the response) or the time step (-frf_verify_steps)"));
       worst = PetscMax(worst, r.rel_diff);
       tsum += r.seconds;
       npts++;
