@@ -76,7 +76,7 @@ struct _p_JRVerify {
   PetscReal    wmax2;     /* bound of the stiffest eigenvalue, every friction element stuck [rad^2/s^2] */
   PetscInt     ngroups;
   VerifyGroup *g;
-  PetscReal   *loc, *fn, *acc, *y0, *x;  /* work: nm, nm, nm, 2 nm, one period of output 1 */
+  PetscReal   *loc, *fn, *acc, *x; /* work: nm, nm, nm, one period of output 1 */
   PetscInt     nx;
   PetscReal   *qs, *sn, *cs; /* the current period's modal displacements (N x nm); sin, cos at the N angles */
   PetscReal   *ecoef;     /* harmonics 2..H of the last period's motion */
@@ -106,13 +106,13 @@ PetscErrorCode JRVerifyCreate(MPI_Comm comm, JRVerify *v)
 }
 
 /* -frf_verify_points N (0: off), -frf_verify_tol, -frf_verify_steps, -frf_verify_periodic_tol,
-   -frf_verify_max_periods, -frf_verify_from_rest, -frf_verify_view; with -help also the TS's -frf_verify_ts_* */
+   -frf_verify_max_periods, -frf_verify_from_rest, -frf_verify_view (the TS's -frf_verify_ts_* are read at set-up) */
 PetscErrorCode JRVerifySetFromOptions(JRVerify v)
 {
   PetscBool help;
 
   PetscFunctionBeginUser;
-  PetscOptionsBegin(v->comm, NULL, "Time-integration check of the FRF points (-task frf)", "JRVerify");
+  PetscOptionsBegin(v->comm, NULL, "Time-integration check of the FRF points (-task frf; the scheme: -frf_verify_ts_type rk|ssp|euler, -frf_verify_ts_rk_type, default RK4)", "JRVerify");
   PetscCall(PetscOptionsInt("-frf_verify_points", "Points of each level checked by time integration (TS): the peak and N-1 on both sides of it; 0: off", "JRVerifyCurves", v->npoints, &v->npoints, NULL));
   PetscCall(PetscOptionsReal("-frf_verify_tol", "Warn when the first harmonics of time integration and harmonic balance differ by more than this (relative)", "JRVerifyCurves", v->tol, &v->tol, NULL));
   PetscCall(PetscOptionsInt("-frf_verify_steps", "Time steps per period (raised to the explicit scheme's stability limit if needed)", "JRVerifySolve", v->steps, &v->steps, NULL));
@@ -138,10 +138,31 @@ PetscErrorCode JRVerifyGetNumPoints(JRVerify v, PetscInt *n)
   PetscFunctionReturn(0);
 }
 
+/* What JRVerifySetUp made from the JRHBM */
+static PetscErrorCode Reset(JRVerify v)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt t = 0; t < v->ngroups; t++) PetscCall(PetscFree5(v->g[t].w, v->g[t].u, v->g[t].v, v->g[t].f, v->g[t].n));
+  PetscCall(PetscFree(v->g));
+  v->ngroups = 0;
+  if (v->Mlu) PetscCall(PetscFree2(v->Mlu, v->piv));
+  if (v->Cv) PetscCall(PetscFree4(v->Cv, v->loc, v->fn, v->acc));
+  PetscCall(PetscFree2(v->ecoef, v->ecs));
+  PetscCall(PetscFree(v->x));
+  PetscCall(PetscFree3(v->qs, v->sn, v->cs));
+  v->nx = 0;
+  PetscCall(TSDestroy(&v->ts));
+  PetscCall(VecDestroy(&v->y));
+  PetscCall(VecDestroy(&v->yprev));
+  v->setupcalled = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* The harmonic balance whose points are checked (set up before JRVerifySetUp); another one resets the check */
 PetscErrorCode JRVerifySetHBM(JRVerify v, JRHBM h)
 {
   PetscFunctionBeginUser;
-  if (v->hbm != h) v->setupcalled = PETSC_FALSE;
+  if (v->hbm != h) PetscCall(Reset(v));
   v->hbm = h;
   PetscFunctionReturn(0);
 }
@@ -384,7 +405,7 @@ PetscErrorCode JRVerifySetUp(JRVerify v)
       PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bn, &bn, v->Mlu, &bn, v->piv, &info));
       PetscCheck(!info, v->comm, PETSC_ERR_ARG_WRONG, "JRVerifySetUp: the mass matrix in the basis is singular (LAPACK getrf info %d)", (int)info);
     }
-    PetscCall(PetscMalloc5(nm * nm, &v->Cv, nm, &v->loc, nm, &v->fn, nm, &v->acc, 2 * nm, &v->y0));
+    PetscCall(PetscMalloc4(nm * nm, &v->Cv, nm, &v->loc, nm, &v->fn, nm, &v->acc));
     v->corr = (PetscBool)(h->gamma != 0.0 && v->H >= 2);
     PetscCall(PetscMalloc2(2 * PetscMax(v->H - 1, 1) * nm, &v->ecoef, 2 * PetscMax(v->H - 1, 1) * nm, &v->ecs));
   }
@@ -801,16 +822,7 @@ PetscErrorCode JRVerifyDestroy(JRVerify *vp)
   PetscFunctionBeginUser;
   if (!vp || !*vp) PetscFunctionReturn(0);
   v = *vp;
-  for (PetscInt t = 0; t < v->ngroups; t++) PetscCall(PetscFree5(v->g[t].w, v->g[t].u, v->g[t].v, v->g[t].f, v->g[t].n));
-  PetscCall(PetscFree(v->g));
-  if (v->Mlu) PetscCall(PetscFree2(v->Mlu, v->piv));
-  if (v->Cv) PetscCall(PetscFree5(v->Cv, v->loc, v->fn, v->acc, v->y0));
-  PetscCall(PetscFree(v->x));
-  PetscCall(PetscFree3(v->qs, v->sn, v->cs));
-  PetscCall(PetscFree2(v->ecoef, v->ecs));
-  PetscCall(TSDestroy(&v->ts));
-  PetscCall(VecDestroy(&v->y));
-  PetscCall(VecDestroy(&v->yprev));
+  PetscCall(Reset(v));
   PetscCall(PetscFree(v));
   *vp = NULL;
   PetscFunctionReturn(0);
