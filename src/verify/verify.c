@@ -619,7 +619,7 @@ PetscErrorCode JRVerifySolve(JRVerify v, PetscReal F, PetscReal omega, const Pet
     PetscCall(PetscFree(v->x));
     PetscCall(PetscFree3(v->qs, v->sn, v->cs));
     PetscCall(PetscMalloc1(N, &v->x));
-    PetscCall(PetscMalloc3(N * nm, &v->qs, N, &v->sn, N, &v->cs));
+    PetscCall(PetscMalloc3(v->corr ? N * nm : 1, &v->qs, N, &v->sn, N, &v->cs)); /* the modal samples only for the damping correction */
     v->nx = N;
   }
   for (PetscInt j = 0; j < N; j++) {
