@@ -31,7 +31,7 @@ PETSC_EXTERN PetscErrorCode JRFinalizePackage(void);
 
 /* Log stages, one per pipeline stage, and events, one per costly phase (see -log_view; src/sys/log.c) */
 PETSC_EXTERN PetscLogStage  JR_StageModel, JR_StagePreload, JR_StageInterface, JR_StageModes, JR_StageReduce, JR_StageSolve, JR_StagePost;
-PETSC_EXTERN PetscLogEvent  JR_InterfaceSetUp, JR_ReduceJoints, JR_ReduceSelect, JR_ReduceFit, JR_ReduceHBM;
+PETSC_EXTERN PetscLogEvent  JR_InterfaceSetUp, JR_ReduceJoints, JR_ReduceSelect, JR_ReduceFit, JR_ReduceHBM, JR_Verify;
 PETSC_EXTERN PetscErrorCode JRLogRegister(void);
 PETSC_EXTERN PetscClassId  JR_CONTACT_CLASSID, JR_MODEL_CLASSID, JR_HBM_CLASSID;
 PETSC_EXTERN PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep;
@@ -428,6 +428,29 @@ PETSC_EXTERN PetscErrorCode JRContGetDamping(JRCont, PetscInt, PetscReal *, Pets
 PETSC_EXTERN PetscErrorCode JRContGetLevelStats(JRCont, PetscInt, PetscReal *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRContWrite(JRCont);
 PETSC_EXTERN PetscErrorCode JRContDestroy(JRCont *);
+
+/* ------------------------------------------------------------------------------------------ */
+/* JRVerify: FRF points checked by direct time integration of the same modal equations (TS)    */
+/* ------------------------------------------------------------------------------------------ */
+typedef struct _p_JRVerify *JRVerify;
+/* One point's check: the first-harmonic amplitude of output 1 by harmonic balance and by time integration [m], their
+   relative difference and phase difference [deg], the higher harmonics' share of the motion (RMS of harmonics >= 2 over
+   RMS of harmonics >= 1) in the time integration and in the harmonic balance, the periods integrated, the steps per
+   period, the last period's relative change of the state, whether it was periodic, and the wall time [s] */
+typedef struct {
+  PetscReal amp_hbm, amp_time, rel_diff, phase_deg, higher_time, higher_hbm, change, seconds;
+  PetscInt  periods, steps;
+  PetscBool periodic;
+} JRVerifyResult;
+PETSC_EXTERN PetscErrorCode JRVerifyCreate(MPI_Comm, JRVerify *);
+PETSC_EXTERN PetscErrorCode JRVerifySetFromOptions(JRVerify);
+PETSC_EXTERN PetscErrorCode JRVerifySetHBM(JRVerify, JRHBM);
+PETSC_EXTERN PetscErrorCode JRVerifySetUp(JRVerify);
+PETSC_EXTERN PetscErrorCode JRVerifySolve(JRVerify, PetscReal, PetscReal, const PetscReal[], JRVerifyResult *);
+PETSC_EXTERN PetscErrorCode JRVerifyCurves(JRVerify, JRHBM, JRCont);
+PETSC_EXTERN PetscErrorCode JRVerifyGetNumPoints(JRVerify, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRVerifyView(JRVerify, PetscViewer);
+PETSC_EXTERN PetscErrorCode JRVerifyDestroy(JRVerify *);
 
 /* ------------------------------------------------------------------------------------------ */
 /* JRPost: contact maps at the peaks and the comparison of two models (BASE = -frf_output_file) */

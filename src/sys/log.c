@@ -2,7 +2,7 @@
 #include <jointrom.h>
 
 PetscLogStage JR_StageModel, JR_StagePreload, JR_StageInterface, JR_StageModes, JR_StageReduce, JR_StageSolve, JR_StagePost;
-PetscLogEvent JR_InterfaceSetUp, JR_ReduceJoints, JR_ReduceSelect, JR_ReduceFit, JR_ReduceHBM;
+PetscLogEvent JR_InterfaceSetUp, JR_ReduceJoints, JR_ReduceSelect, JR_ReduceFit, JR_ReduceHBM, JR_Verify;
 
 PetscErrorCode JRLogRegister(void)
 {
@@ -22,5 +22,7 @@ PetscErrorCode JRLogRegister(void)
   PetscCall(PetscLogEventRegister("JR_ReduceSelect", id, &JR_ReduceSelect));
   PetscCall(PetscLogEventRegister("JR_ReduceFit", id, &JR_ReduceFit));
   PetscCall(PetscLogEventRegister("JR_ReduceHBM", id, &JR_ReduceHBM));
+  PetscCall(PetscClassIdRegister("JRVerify", &id));
+  PetscCall(PetscLogEventRegister("JR_Verify", id, &JR_Verify));
   PetscFunctionReturn(0);
 }

@@ -12,8 +12,8 @@
 extern const char *const JROptionNames[]; /* generated from the sources by src/sys/optnames.sh */
 
 /* jointrom's option groups, checked before the work; a nested solver's options inside them are read later */
-static const char *const Groups[]  = {"task", "model_", "preload_", "interface_", "modes_", "rom_", "hbm_", "cont_", "frf_", "element_", NULL};
-static const char *const Nested[]  = {"snes_", "ksp_", "pc_", "eps_", "st_", "tao_", "bv_", "ds_", "rg_", "fn_", "mat_", "vec_", "dm_", "petsc", "mg_", "sub_", NULL};
+static const char *const Groups[]  = {"task", "model_", "preload_", "interface_", "modes_", "rom_", "hbm_", "cont_", "frf_verify_", "frf_", "element_", NULL};
+static const char *const Nested[]  = {"snes_", "ksp_", "ts_", "pc_", "eps_", "st_", "tao_", "bv_", "ds_", "rg_", "fn_", "mat_", "vec_", "dm_", "petsc", "mg_", "sub_", NULL};
 static const char *const Viewers[] = {"view", "monitor", "converged_reason", "draw", NULL};
 
 static size_t Distance(const char *a, const char *b)

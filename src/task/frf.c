@@ -88,6 +88,7 @@ typedef struct {
   JRHBM              hbm, hbmr, hbmc; /* node-to-node (or matrices), reduced, the one whose curves a frf run reports */
   JRCont             cont, contr, contc;
   JRElements         el, elr, elj;   /* node-to-node elements, reduced elements, the joints' members */
+  JRVerify           ver;             /* -frf_verify_points: the curves' points checked by time integration */
   PetscInt          *pair, romm, fdof, nout, odof[21], dir, nd, no;
   PetscReal          at[3], oat[63], fdist;
   char               base[PETSC_MAX_PATH_LEN];
@@ -168,6 +169,8 @@ static PetscErrorCode SetFromOptions(FRFRun *r)
     if (r->red) PetscCall(JRReduceSetCase(r->red, wmin, wmax, PetscMin(nl, 64), lv));
     PetscCall(JRContDestroy(&c));
   }
+  PetscCall(JRVerifyCreate(comm, &r->ver));
+  PetscCall(JRVerifySetFromOptions(r->ver));
   if (r->help) PetscFunctionReturn(0);
   PetscCall(JRPostCreate(comm, &r->post));
   PetscCall(JRPostSetOutput(r->post, r->base, r->plot));
@@ -438,6 +441,7 @@ static PetscErrorCode Report(FRFRun *r)
 static PetscErrorCode Destroy(FRFRun *r)
 {
   PetscFunctionBeginUser;
+  PetscCall(JRVerifyDestroy(&r->ver));
   PetscCall(JRContDestroy(&r->contr));
   PetscCall(JRContDestroy(&r->cont));
   PetscCall(JRHBMDestroy(&r->hbmr));
@@ -480,6 +484,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   PetscCall(SetUpModels(&r));
   PetscCall(ViewBasis(&r));
   PetscCall(Solve(&r));
+  PetscCall(JRVerifyCurves(r.ver, r.hbmc, r.contc));
   PetscCall(Report(&r));
   if (r.cont) PetscCall(JRContCheckComplete(r.cont)); /* an incomplete curve: an error once everything is written */
   if (r.contr) PetscCall(JRContCheckComplete(r.contr));
