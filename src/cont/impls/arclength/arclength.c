@@ -437,7 +437,7 @@ static PetscErrorCode JRContSolveLevel_Arclength(JRCont c, PetscInt lev, JRContB
                           about 10 degrees from the predictor (stick-slip onsets bend it sharply), the curve's point
                           halfway along the chord, solved for; past about 25 degrees also at a quarter and three
                           quarters, which see an S that the middle may not */
-      PetscReal q;
+      PetscReal q = 0;
       PetscCall(StepError(c, b, x, tnew, ds, &err, &dA));
       PetscCall(PlotTurn(c, b, w, &q));
       if (err > 0.25 * c->itol || q > 0.2) {
