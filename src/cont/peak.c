@@ -109,8 +109,8 @@ static PetscReal PlaneCoordinate(PeakWork *pw, const PetscReal *x)
 }
 
 /* Newton on R(a, w) = 0, <x - x0, d>_W = s from the guess x (n+1; the solution on return): *ok when the relative
-   residual is below the acceptance tolerance and the last step negligible, or 1e-3 of that tolerance */
-static PetscErrorCode SolveOnPlane(JRCont c, PeakWork *pw, PetscReal s, PetscReal *x, PetscReal *res, PetscInt *its, PetscBool *ok)
+   residual is below rtol, or below the acceptance tolerance with the last step negligible */
+static PetscErrorCode SolveOnPlane(JRCont c, PeakWork *pw, PetscReal s, PetscReal rtol, PetscReal *x, PetscReal *res, PetscInt *its, PetscBool *ok)
 {
   const PetscInt n = pw->n, m = n + 1;
   PetscReal      tol, rel = PETSC_INFINITY, step = PETSC_INFINITY;
@@ -127,7 +127,7 @@ static PetscErrorCode SolveOnPlane(JRCont c, PeakWork *pw, PetscReal s, PetscRea
     PetscCall(JRHBMComputeResidual(c->hbm, w, pw->a, pw->R));
     PetscCall(JRHBMResidualNorm(c->hbm, pw->R, &rel));
     g = PlaneCoordinate(pw, x) - s;
-    if (rel <= 1e-3 * tol || (rel <= tol && step <= 1e-10)) {
+    if (rel <= rtol || (rel <= tol && step <= 1e-10)) {
       *ok = PETSC_TRUE;
       break;
     }
@@ -221,10 +221,11 @@ static PetscErrorCode RefineOne(JRCont c, JRContBranch *b, PeakWork *pw, PetscIn
 {
   const PetscInt n = c->n, m = n + 1;
   PetscInt       k = 0, total = 0;
-  PetscReal     *X, *xl, *xm, *xh, *xt, sl, sm, sh, s1, Al, Am, Ah, res = 0, resm;
+  PetscReal     *X, *xl, *xm, *xh, *xt, sl, sm, sh, s1, Al, Am, Ah, res = 0, resm, tol;
   PetscBool      moved = PETSC_FALSE;
 
   PetscFunctionBeginUser;
+  PetscCall(JRHBMGetResidualTolerance(c->hbm, &tol));
   for (PetscInt i = 1; i < b->np; i++)
     if (b->amp[i * c->nout + o] > b->amp[k * c->nout + o]) k = i;
   *wp = b->omega[k];
@@ -261,7 +262,7 @@ static PetscErrorCode RefineOne(JRCont c, JRContBranch *b, PeakWork *pw, PetscIn
     st = right ? sm + 0.381966011250105 * (sh - sm) : sm - 0.381966011250105 * (sm - sl);
     f  = right ? (st - sm) / (sh - sm) : (st - sl) / (sm - sl); /* the guess: linear between the bracket's points */
     for (PetscInt i = 0; i <= n; i++) xt[i] = right ? (1 - f) * xm[i] + f * xh[i] : (1 - f) * xl[i] + f * xm[i];
-    PetscCall(SolveOnPlane(c, pw, st, xt, &res, &its, &ok));
+    PetscCall(SolveOnPlane(c, pw, st, 1e-3 * tol, xt, &res, &its, &ok));
     total += its;
     if (!ok) break; /* no solution on this plane: the best so far stands */
     PetscCall(Load(pw, xt, &wt));
@@ -356,7 +357,7 @@ PetscErrorCode JRContChordError(JRCont c, JRContBranch *b, Vec a, PetscReal w, P
     s += pw->W[i] * pw->d[i] * pw->d[i];
     pw->xm[i] = pw->x0[i] + t * pw->d[i];
   }
-  PetscCall(SolveOnPlane(c, pw, t * s, pw->xm, &res, its, &ok));
+  PetscCall(SolveOnPlane(c, pw, t * s, 1e-6, pw->xm, &res, its, &ok)); /* the amplitude to about 1e-4: enough to judge the chord */
   if (!ok) {
     *err = PETSC_INFINITY;
     PetscFunctionReturn(0);

@@ -440,7 +440,7 @@ static PetscErrorCode JRContSolveLevel_Arclength(JRCont c, PetscInt lev, JRContB
       PetscReal q = 0;
       PetscCall(StepError(c, b, x, tnew, ds, &err, &dA));
       PetscCall(PlotTurn(c, b, w, &q));
-      if (err > 0.25 * c->itol || q > 0.2) {
+      if (err > 0.5 * c->itol || q > 0.35) {
         const PetscReal ts[3] = {0.5, 0.25, 0.75};
         PetscReal       e;
         PetscInt        mits;
