@@ -4,12 +4,15 @@
    -cont_*, -frf_*, -element_*, not the nested solvers' -hbm_snes_* and the like) that nothing read is an error
    naming it and, where one is close, the option it was probably meant to be. JROptionsWarnUnused, at the end of a
    run, warns about every other option nothing read (a nested solver's option is read only when that solver runs).
+   JROptionsCheckValues, at the start, stops a run given one of jointrom's options that take a number or a choice
+   without a value (PETSc would keep the default).
 */
 #include <jointrom.h>
 #include <slepceps.h>
 #include <petsctao.h>
 
-extern const char *const JROptionNames[]; /* generated from the sources by src/sys/optnames.sh */
+extern const char *const JROptionNames[];     /* generated from the sources by src/sys/optnames.sh */
+extern const char *const JROptionValued[][2]; /* the options that take a value: name, what the value is */
 
 /* jointrom's option groups, checked before the work; a nested solver's options inside them are read later */
 static const char *const Groups[]  = {"task", "model_", "preload_", "interface_", "modes_", "rom_", "hbm_", "cont_", "frf_", "element_", NULL};
@@ -85,6 +88,28 @@ static PetscErrorCode Describe(const char *name, const char *what, char msg[], s
   if (Known(opt)) PetscCall(PetscSNPrintf(msg, len, "%s is not used by %s", opt, what));
   else if (near) PetscCall(PetscSNPrintf(msg, len, "unknown option %s (did you mean %s?)", opt, near));
   else PetscCall(PetscSNPrintf(msg, len, "unknown option %s", opt));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JROptionsCheckValues - at the start of a run, before anything reads jointrom's options (every option is still
+  unused then, so the database lists it with its value): an error for the first of jointrom's options that take a
+  number or a choice given without a value, which PETSc would take as the default.
+*/
+PetscErrorCode JROptionsCheckValues(MPI_Comm comm)
+{
+  PetscInt n;
+  char   **names, **values, msg[512] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  for (PetscInt i = 0; i < n && !msg[0]; i++) {
+    if (values[i] && values[i][0]) continue;
+    for (PetscInt k = 0; JROptionValued[k][0]; k++)
+      if (!strcmp(names[i], JROptionValued[k][0] + 1)) PetscCall(PetscSNPrintf(msg, sizeof(msg), "%s is given without a value: it takes %s", JROptionValued[k][0], JROptionValued[k][1]));
+  }
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  PetscCheck(!msg[0], comm, PETSC_ERR_USER_INPUT, "%s", msg);
   PetscFunctionReturn(0);
 }
 
