@@ -460,6 +460,7 @@ PETSC_EXTERN PetscErrorCode JRTableDestroy(JRTable *);
 PETSC_EXTERN PetscErrorCode JRMatLoadFile(MPI_Comm, const char[], const char[], Mat *);
 PETSC_EXTERN PetscErrorCode JRMatSaveFile(Mat, const char[], const char[]);
 PETSC_EXTERN PetscErrorCode JRVecLoadFile(MPI_Comm, const char[], PetscInt, PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRFileCheckHDF5(MPI_Comm, const char[], const char[], const char[], const char[]);
 
 /* Write a file atomically: open a temporary beside it, rename on close. Temporary names come from
    JRFileTempName (registered: removed if the run is stopped by SIGTERM, SIGINT or SIGHUP) and are

@@ -106,11 +106,7 @@ PetscErrorCode JRModesSetFromOptions(JRModes md)
   PetscCall(PetscOptionsString("-save", "Write the modes to this HDF5 file for -modes_load", "JRModesSolve", md->save, md->save, sizeof(md->save), NULL));
   PetscOptionsEnd();
   PetscCheck(md->nev >= 1, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_nev %" PetscInt_FMT ": at least one mode", md->nev);
-  if (md->load[0]) {
-    PetscBool ok;
-    PetscCall(PetscTestFile(md->load, 'r', &ok));
-    PetscCheck(ok, md->comm, PETSC_ERR_FILE_OPEN, "-modes_load %s: cannot read the file", md->load);
-  }
+  if (md->load[0]) PetscCall(JRFileCheckHDF5(md->comm, "-modes_load", md->load, "/jointrom_modes", "write one with -modes_save"));
   PetscFunctionReturn(0);
 }
 

@@ -6,6 +6,7 @@
 */
 #include <jointrom.h>
 #include <slepcsys.h>
+#include <hdf5.h>
 
 static PetscBool      jr_error_trace = PETSC_FALSE; /* traceback for user errors too */
 static PetscErrorCode jr_user_error  = 0;           /* the code of the user error reported, 0 if none */
@@ -83,6 +84,7 @@ PetscErrorCode JRErrorHandlerPush(void)
   PetscCall(PetscOptionsHasName(NULL, NULL, "-on_error_attach_debugger", &dbg));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-start_in_debugger", &sid));
   if (dbg || sid) jr_error_trace = PETSC_TRUE;
+  if (!jr_error_trace) H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* HDF5's stack dump; the error raised says which file */
   PetscCall(PetscPushErrorHandler(Handler, NULL));
   PetscFunctionReturn(0);
 }

@@ -64,6 +64,39 @@ static PetscErrorCode FileReadable(MPI_Comm comm, const char file[], const char 
   PetscFunctionReturn(0);
 }
 
+/*
+  JRFileCheckHDF5 - before any work, that file (named by option) is an HDF5 file holding group (an absolute path, e.g.
+  "/rom"): else an error naming the option and the file, hint saying how to make a good one. HDF5's own error
+  stack is not printed (JRErrorHandlerPush).
+*/
+PetscErrorCode JRFileCheckHDF5(MPI_Comm comm, const char option[], const char file[], const char group[], const char hint[])
+{
+  PetscMPIInt rank;
+  int         err = 0; /* 1 unreadable, 2 not HDF5, 3 does not open, 4 no group */
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) {
+    PetscBool ok;
+    PetscCall(PetscTestFile(file, 'r', &ok));
+    if (!ok) err = 1;
+    else if (H5Fis_hdf5(file) <= 0) err = 2;
+    else {
+      hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+      if (f < 0) err = 3;
+      else {
+        if (H5Lexists(f, group, H5P_DEFAULT) <= 0) err = 4;
+        H5Fclose(f);
+      }
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+  PetscCheck(err != 1, comm, PETSC_ERR_FILE_OPEN, "%s %s: cannot read the file", option, file);
+  PetscCheck(err != 2 && err != 3, comm, PETSC_ERR_FILE_UNEXPECTED, "%s %s: not an HDF5 file, or a truncated or corrupt one (%s)", option, file, hint);
+  PetscCheck(err != 4, comm, PETSC_ERR_FILE_UNEXPECTED, "%s %s: an HDF5 file without the group %s (%s)", option, file, group, hint);
+  PetscFunctionReturn(0);
+}
+
 /* ---- Matrix Market ---- */
 
 /* a Matrix Market file's contents: size, symmetry and the entries (0-based indices) */
