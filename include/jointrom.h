@@ -493,6 +493,8 @@ PETSC_EXTERN PetscErrorCode JRErrorHandlerPush(void);
 PETSC_EXTERN int            JRErrorExit(PetscErrorCode);
 PETSC_EXTERN PetscErrorCode JRErrorContextPush(const char[]);
 PETSC_EXTERN PetscErrorCode JRErrorContextPop(void);
+PETSC_EXTERN PetscErrorCode JRErrorCatchPush(void);
+PETSC_EXTERN PetscErrorCode JRErrorCatchPop(char[], size_t);
 /* Options nothing read: an error before the work (jointrom's own), a warning at the end (src/sys/options.c) */
 PETSC_EXTERN PetscErrorCode JROptionsCheck(MPI_Comm, const char[]);
 PETSC_EXTERN PetscErrorCode JROptionsCheckValues(MPI_Comm);

@@ -74,6 +74,34 @@ PetscErrorCode JRErrorContextPop(void)
   PetscFunctionReturn(0);
 }
 
+/* A library call tried for its error alone (JRErrorCatchPush ... JRErrorCatchPop): the first message kept, nothing
+   printed */
+static char jr_caught[512];
+
+static PetscErrorCode CatchHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+{
+  (void)comm, (void)line, (void)fun, (void)file, (void)ctx;
+  if (p == PETSC_ERROR_INITIAL && !jr_caught[0]) snprintf(jr_caught, sizeof(jr_caught), "%s", mess && mess[0] ? mess : "(no message)");
+  return n;
+}
+
+PetscErrorCode JRErrorCatchPush(void)
+{
+  PetscFunctionBeginUser;
+  jr_caught[0] = 0;
+  PetscCall(PetscPushErrorHandler(CatchHandler, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* The message of the first error raised since JRErrorCatchPush ("" if none) */
+PetscErrorCode JRErrorCatchPop(char msg[], size_t len)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(PetscStrncpy(msg, jr_caught, len));
+  PetscFunctionReturn(0);
+}
+
 /* Install the handler (after SlepcInitialize) */
 PetscErrorCode JRErrorHandlerPush(void)
 {
