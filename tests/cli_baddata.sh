@@ -80,10 +80,12 @@ mtx M2.mtx "2 2 2
 refused "indefinite K with a positive diagonal" "Stiffness matrix $tmp/K2.mtx is not positive semidefinite" $J $osc -model_stiffness "$tmp/K2.mtx" -model_mass "$tmp/M2.mtx" -model_elements '' -frf_output_file
 refused "indefinite M with a positive diagonal" "Mass matrix $tmp/K2.mtx is not positive definite: 1 negative and 0 zero eigenvalues" $J $osc -model_stiffness "$tmp/M2.mtx" -model_mass "$tmp/K2.mtx" -model_elements '' -frf_output_file
 refused "indefinite K on 2 ranks" "Stiffness matrix $tmp/K2.mtx is not positive semidefinite" -np2 $J $osc -model_stiffness "$tmp/K2.mtx" -model_mass "$tmp/M2.mtx" -model_elements '' -frf_output_file
-# 3. an option that takes a number or a choice, given without one
+# 3. an option that takes a number or a choice, given without one (or a number option given something else)
 refused "-frf_force without a value" "-frf_force is given without a value: it takes a number or a list of numbers" $J $osc -frf_force -frf_output_file
 refused "-hbm_harmonics without a value" "-hbm_harmonics is given without a value: it takes an integer" $J $osc -hbm_harmonics -frf_output_file
 refused "-cont_type without a value" "-cont_type is given without a value: it takes one of the choices" $J $osc -cont_type -frf_output_file
+refused "-frf_force 1,2x" "-frf_force 1,2x: '2x' is not a number; it takes a number or a list of numbers" $J $osc -frf_force 1,2x -frf_output_file
+refused "-frf_output 0-0 (an empty range)" "-frf_output 0-0: '0-0' is not an integer; it takes an integer or a list of integers" $J $osc -frf_output 0-0 -frf_output_file
 printf -- '-task frf\n-hbm_samples\n' > "$tmp/run.opts"
 refused "-hbm_samples without a value in an options file" "-hbm_samples is given without a value: it takes an integer" $J $osc -options_file "$tmp/run.opts" -frf_output_file
 # 4. CSV rows: as many fields as the header, at least one element; a byte-order mark skipped
