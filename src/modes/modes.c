@@ -235,6 +235,11 @@ static PetscErrorCode ModesLoad(JRModes md, const char file[])
   }
   PetscCall(VecCreateMPI(md->comm, PETSC_DECIDE, nm, &lam));
   PetscCall(PetscObjectSetName((PetscObject)lam, "omega2"));
+  {
+    char what[PETSC_MAX_PATH_LEN + 32];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "-modes_load %s", file));
+    PetscCall(JRErrorContextPush(what)); /* a library's error on the datasets read below names the file */
+  }
   PetscCall(VecLoad(lam, v));
   PetscCall(VecScatterCreateToAll(lam, &sc, &all));
   PetscCall(VecScatterBegin(sc, lam, all, INSERT_VALUES, SCATTER_FORWARD));
@@ -244,6 +249,7 @@ static PetscErrorCode ModesLoad(JRModes md, const char file[])
   PetscCall(VecGetArrayRead(all, &l));
   for (PetscInt i = 0; i < md->nm; i++) md->lambda[i] = PetscRealPart(l[i]);
   PetscCall(VecRestoreArrayRead(all, &l));
+  for (PetscInt i = 0; i < md->nm; i++) PetscCheck(!PetscIsInfOrNanReal(md->lambda[i]), md->comm, PETSC_ERR_FILE_UNEXPECTED, "mode %" PetscInt_FMT " has omega^2 = %g rad^2/s^2, not a finite number", i + 1, (double)md->lambda[i]);
   PetscCall(VecScatterDestroy(&sc));
   PetscCall(VecDestroy(&all));
   PetscCall(VecDestroy(&lam));
@@ -254,7 +260,13 @@ static PetscErrorCode ModesLoad(JRModes md, const char file[])
     PetscCall(PetscObjectSetName((PetscObject)md->phi[i], name));
     PetscCall(VecGetSize(md->phi[i], &nf));
     PetscCall(VecLoad(md->phi[i], v));
+    {
+      PetscReal nrm;
+      PetscCall(VecNorm(md->phi[i], NORM_INFINITY, &nrm));
+      PetscCheck(!PetscIsInfOrNanReal(nrm), md->comm, PETSC_ERR_FILE_UNEXPECTED, "mode %" PetscInt_FMT " holds a value that is not a finite number", i + 1);
+    }
   }
+  PetscCall(JRErrorContextPop());
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscViewerDestroy(&v));
   PetscCall(VecDestroy(&x));
