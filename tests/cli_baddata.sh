@@ -105,6 +105,8 @@ head -c 2000 "$tmp/modes.h5" > "$tmp/cut.h5"
 refused "-modes_load of a random file" "-modes_load $tmp/junk.h5: not an HDF5 file, or a truncated or corrupt one" $J $osc -modes_load "$tmp/junk.h5" -frf_output_file
 refused "-modes_load of a truncated modes file" "-modes_load $tmp/cut.h5: not an HDF5 file, or a truncated or corrupt one" $J $osc -modes_load "$tmp/cut.h5" -frf_output_file
 refused "-modes_load of another program's HDF5" "-modes_load $tmp/bom.h5: an HDF5 file without the group /jointrom_modes" $J $osc -modes_load "$tmp/bom.h5" -frf_output_file
+head -c 100 /dev/urandom > "$tmp/K.bin"
+refused "-model_stiffness of a random PETSc binary file" "the matrix file $tmp/K.bin: " $J $osc -model_stiffness "$tmp/K.bin" -frf_output_file
 refused "-rom_load of a random file, before the model" "-rom_load $tmp/junk.h5: not an HDF5 file" $J $brb -rom_load "$tmp/junk.h5" -frf_output_file
 refused "-preload_load of a random .h5, before the model" "-preload_load $tmp/junk.h5: not an HDF5 file" $J $brb -preload_load "$tmp/junk.h5" -frf_output_file
 refused "-preload_load of a modes file" "-preload_load $tmp/modes.h5: an HDF5 file without the group /preload" $J $brb -preload_load "$tmp/modes.h5" -frf_output_file

@@ -393,21 +393,31 @@ PetscErrorCode JRMatLoadFile(MPI_Comm comm, const char spec[], const char group[
   if (!strcmp(ext, "mtx")) PetscCall(LoadMtx(comm, file, A));
   else if (!strcmp(ext, "bin") || !strcmp(ext, "dat") || !strcmp(ext, "petsc")) {
     PetscViewer v;
+    char        what[PETSC_MAX_PATH_LEN + 32];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "the matrix file %s", file));
+    PetscCall(JRErrorContextPush(what)); /* PETSc's error on a truncated or corrupt file names it */
     PetscCall(PetscViewerBinaryOpen(comm, file, FILE_MODE_READ, &v));
     PetscCall(MatCreate(comm, A));
     PetscCall(MatSetType(*A, MATAIJ));
     PetscCall(MatLoad(*A, v));
     PetscCall(PetscViewerDestroy(&v));
+    PetscCall(JRErrorContextPop());
   } else if (!strcmp(ext, "h5") || !strcmp(ext, "hdf5")) {
     PetscViewer v;
     PetscBool   has;
+    char        what[PETSC_MAX_PATH_LEN + 32];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "the matrix file %s", file));
+    PetscCall(JRErrorContextPush(what));
     PetscCall(PetscViewerHDF5Open(comm, file, FILE_MODE_READ, &v));
+    PetscCall(JRErrorContextPop());
     PetscCall(PetscViewerHDF5HasAttribute(v, grp, "MATLAB_sparse", &has));
     PetscCheck(has, comm, PETSC_ERR_FILE_UNEXPECTED, "HDF5 file %s: no sparse matrix in group /%s (expected MATLAB v7.3 sparse layout: attribute MATLAB_sparse, datasets jc, ir, data; name another group as %s:/group)", file, grp, file);
     PetscCall(MatCreate(comm, A));
     PetscCall(MatSetType(*A, MATAIJ));
     PetscCall(PetscObjectSetName((PetscObject)*A, grp));
+    PetscCall(JRErrorContextPush(what));
     PetscCall(MatLoad(*A, v));
+    PetscCall(JRErrorContextPop());
     PetscCall(PetscViewerDestroy(&v));
   } else SETERRQ(comm, PETSC_ERR_SUP, "Matrix file %s: unknown extension '.%s' (use .mtx Matrix Market, .bin PETSc binary or .h5 HDF5)", file, ext);
   PetscFunctionReturn(0);

@@ -37,7 +37,7 @@ static PetscErrorCode CheckMatrix(JRModel m, Mat A, const char *what, const char
   PetscCheck(r == c, m->comm, PETSC_ERR_ARG_SIZ, "%s matrix %s is %" PetscInt_FMT " x %" PetscInt_FMT ", not square", what, file, r, c);
   PetscCheck(n < 0 || r == n, m->comm, PETSC_ERR_ARG_SIZ, "%s matrix %s is %" PetscInt_FMT " x %" PetscInt_FMT ", the stiffness matrix is %" PetscInt_FMT " x %" PetscInt_FMT, what, file, r, c, n, n);
   PetscCall(MatNorm(A, NORM_MAX, &amax));
-  PetscCheck(!PetscIsInfOrNanReal(amax), m->comm, PETSC_ERR_FP, "%s matrix %s has non-finite entries", what, file);
+  PetscCheck(!PetscIsInfOrNanReal(amax), m->comm, PETSC_ERR_FILE_UNEXPECTED, "%s matrix %s has entries that are not finite numbers", what, file);
   PetscCall(MatTranspose(A, MAT_INITIAL_MATRIX, &At));
   PetscCall(MatAXPY(At, -1.0, A, DIFFERENT_NONZERO_PATTERN));
   PetscCall(MatNorm(At, NORM_MAX, &dmax));
