@@ -53,6 +53,7 @@ mtx Ksize.mtx "1 1 1x
 refused "Matrix Market size line '1 1 1x'" "$tmp/Ksize.mtx: bad size line '1 1 1x'" $J $osc -model_stiffness "$tmp/Ksize.mtx" -frf_output_file
 printf 'type,dof_a,dof_b,kt,kn,mu,n0,ndof_a,ndof_b\njenkins,0,-1,3e5,,0.1,100,,\njenkins,0,-1,abc,,0.1,100,,\n' > "$tmp/el_abc.csv"
 refused "element CSV value 'abc'" "CSV file $tmp/el_abc.csv line 3, column 4 ('kt'): 'abc' is not a finite number" $J $osc -model_elements "$tmp/el_abc.csv" -frf_output_file
+refused "element CSV value 'abc' on 2 ranks" "CSV file $tmp/el_abc.csv line 3, column 4 ('kt'): 'abc' is not a finite number" -np2 $J $osc -model_elements "$tmp/el_abc.csv" -frf_output_file
 printf 'type,dof_a,dof_b,kt,kn,mu,n0,ndof_a,ndof_b\njenkins,0,-1,3e5,,0.1,inf,,\n' > "$tmp/el_inf.csv"
 refused "element CSV value inf" "CSV file $tmp/el_inf.csv line 2, column 7 ('n0'): 'inf' is not a finite number" $J $osc -model_elements "$tmp/el_inf.csv" -frf_output_file
 printf 'type,dof_a,dof_b,kt,kn,mu,n0,ndof_a,ndof_b\njenkins,0.5,-1,3e5,,0.1,100,,\n' > "$tmp/el_dof.csv"

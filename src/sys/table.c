@@ -9,6 +9,7 @@
 #include <errno.h>
 
 struct _p_JRTable {
+  MPI_Comm  comm;  /* every rank holds the same table: its errors are raised on every rank */
   char     *file;
   PetscInt  ncol, nrow;
   char    **head;  /* ncol names */
@@ -61,6 +62,7 @@ PetscErrorCode JRTableRead(MPI_Comm comm, const char file[], JRTable *table)
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(PetscNew(&t));
   PetscCall(PetscStrallocpy(file, &t->file));
+  t->comm = comm;
   if (rank == 0) {
     FILE *fp = fopen(file, "rb");
     if (fp) {
@@ -190,7 +192,7 @@ PetscErrorCode JRTableGetColumn(JRTable t, const char name[], PetscBool required
   for (PetscInt k = 0; k < t->ncol; k++)
     if (!strcmp(t->head[k], name)) col = k;
   if (col < 0) {
-    PetscCheck(!required, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "CSV file %s has no column '%s' (its header names %" PetscInt_FMT " columns, first '%s')", t->file, name, t->ncol, t->head[0]);
+    PetscCheck(!required, t->comm, PETSC_ERR_FILE_UNEXPECTED, "CSV file %s has no column '%s' (its header names %" PetscInt_FMT " columns, first '%s')", t->file, name, t->ncol, t->head[0]);
     for (PetscInt i = 0; i < t->nrow; i++) vals[i] = def;
     PetscFunctionReturn(0);
   }
@@ -199,12 +201,12 @@ PetscErrorCode JRTableGetColumn(JRTable t, const char name[], PetscBool required
     char       *end;
     double      x;
     if (!*s) {
-      PetscCheck(!required, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "CSV file %s line %" PetscInt_FMT ": column '%s' is empty", t->file, t->line[i], name);
+      PetscCheck(!required, t->comm, PETSC_ERR_FILE_UNEXPECTED, "CSV file %s line %" PetscInt_FMT ": column '%s' is empty", t->file, t->line[i], name);
       vals[i] = def;
       continue;
     }
     x = strtod(s, &end);
-    PetscCheck(end != s && !*end && isfinite(x), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "CSV file %s line %" PetscInt_FMT ", column %" PetscInt_FMT " ('%s'): '%s' is not a finite number", t->file, t->line[i], col + 1, name, s);
+    PetscCheck(end != s && !*end && isfinite(x), t->comm, PETSC_ERR_FILE_UNEXPECTED, "CSV file %s line %" PetscInt_FMT ", column %" PetscInt_FMT " ('%s'): '%s' is not a finite number", t->file, t->line[i], col + 1, name, s);
     vals[i] = (PetscReal)x;
   }
   PetscFunctionReturn(0);
