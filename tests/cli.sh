@@ -96,4 +96,4 @@ expect_error "empty joint CSV" "is empty" $J -task element -element_joint "$tmp/
 printf 'kt,mu,n0\n' > "$tmp/header.csv"
 expect_error "joint CSV without rows" "no element rows" $J -task element -element_joint "$tmp/header.csv"
 expect_error "missing joint CSV" "Cannot open the CSV file $tmp/none.csv" $J -task element -element_joint "$tmp/none.csv"
-expect_error "unwritable loop file" "Cannot write the file /nonexistent/dir/loop.csv" $J -task element -element_loop /nonexistent/dir/loop
+expect_error "unwritable loop file" "-element_loop /nonexistent/dir/loop: cannot write in the directory /nonexistent/dir" $J -task element -element_loop /nonexistent/dir/loop

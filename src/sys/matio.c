@@ -540,12 +540,16 @@ PetscErrorCode JRVecLoadFile(MPI_Comm comm, const char spec[], PetscInt n, Petsc
     VecScatter         sc;
     PetscInt           N;
     const PetscScalar *a;
+    char               what[PETSC_MAX_PATH_LEN + 32];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "the force vector file %s", file));
+    PetscCall(JRErrorContextPush(what)); /* PETSc's error on a truncated or corrupt file names it */
     if (!strcmp(ext, "bin")) PetscCall(PetscViewerBinaryOpen(comm, file, FILE_MODE_READ, &v));
     else PetscCall(PetscViewerHDF5Open(comm, file, FILE_MODE_READ, &v));
     PetscCall(VecCreate(comm, &x));
     PetscCall(PetscObjectSetName((PetscObject)x, grp));
     PetscCall(VecLoad(x, v));
     PetscCall(PetscViewerDestroy(&v));
+    PetscCall(JRErrorContextPop());
     PetscCall(VecGetSize(x, &N));
     PetscCheck(N == n, comm, PETSC_ERR_FILE_UNEXPECTED, "Force vector %s has %" PetscInt_FMT " entries, the model has %" PetscInt_FMT " DOFs", file, N, n);
     PetscCall(VecScatterCreateToAll(x, &sc, &xs));
