@@ -355,6 +355,17 @@ static PetscErrorCode ExtractModes(JRModes md, PetscInt n, PetscInt nrb, PetscBo
     perm[i] = i;
   }
   PetscCall(PetscSortRealWithPermutation(nconv, lam, perm));
+  if (nconv) { /* K positive semidefinite: no eigenvalue below round-off, -1e-6 of the mean K_ii / M_ii */
+    PetscReal kd, md_;
+    Vec       d;
+    PetscCall(MatCreateVecs(md->K, &d, NULL));
+    PetscCall(MatGetDiagonal(md->K, d));
+    PetscCall(VecSum(d, &kd));
+    PetscCall(MatGetDiagonal(md->M, d));
+    PetscCall(VecSum(d, &md_));
+    PetscCall(VecDestroy(&d));
+    PetscCheck(md_ <= 0 || lam[perm[0]] >= -1e-6 * PetscAbsReal(kd) / md_, md->comm, PETSC_ERR_ARG_WRONG, "The stiffness matrix is not positive semidefinite: an eigenvalue omega^2 = %g rad^2/s^2 is below -1e-6 x the mean K_ii/M_ii (%g)", (double)lam[perm[0]], (double)(PetscAbsReal(kd) / md_));
+  }
   md->nm = md->nev;
   PetscCall(PetscMalloc1(md->nm, &md->lambda));
   PetscCall(VecDuplicateVecs(x, md->nm, &md->phi));
