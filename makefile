@@ -59,9 +59,9 @@ build/%.o: %.c
 	$(PCC) -c $(JR_CFLAGS) $(SLEPC_CC_INCLUDES) -o $@ $<
 
 # the option names, for "did you mean" (src/sys/options.c), generated from the sources
-build/optnames.c: $(LIB_SRC) src/sys/optnames.sh
+build/optnames.c: $(LIB_SRC) src/jointrom.c src/sys/optnames.sh
 	@mkdir -p build
-	bash src/sys/optnames.sh $(LIB_SRC) > $@
+	bash src/sys/optnames.sh $(LIB_SRC) src/jointrom.c > $@
 
 build/optnames.o: build/optnames.c
 	$(PCC) -c $(JR_CFLAGS) -o $@ $<

@@ -488,6 +488,7 @@ PETSC_EXTERN PetscErrorCode JRTableDestroy(JRTable *);
 PETSC_EXTERN PetscErrorCode JRMatLoadFile(MPI_Comm, const char[], const char[], Mat *);
 PETSC_EXTERN PetscErrorCode JRMatSaveFile(Mat, const char[], const char[]);
 PETSC_EXTERN PetscErrorCode JRVecLoadFile(MPI_Comm, const char[], PetscInt, PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRFileCheckHDF5(MPI_Comm, const char[], const char[], const char[], const char[]);
 
 /* Write a file atomically: open a temporary beside it, rename on close. Temporary names come from
    JRFileTempName (registered: removed if the run is stopped by SIGTERM, SIGINT or SIGHUP) and are
@@ -520,8 +521,11 @@ PETSC_EXTERN PetscErrorCode JRErrorHandlerPush(void);
 PETSC_EXTERN int            JRErrorExit(PetscErrorCode);
 PETSC_EXTERN PetscErrorCode JRErrorContextPush(const char[]);
 PETSC_EXTERN PetscErrorCode JRErrorContextPop(void);
+PETSC_EXTERN PetscErrorCode JRErrorCatchPush(void);
+PETSC_EXTERN PetscErrorCode JRErrorCatchPop(char[], size_t);
 /* Options nothing read: an error before the work (jointrom's own), a warning at the end (src/sys/options.c) */
 PETSC_EXTERN PetscErrorCode JROptionsCheck(MPI_Comm, const char[]);
+PETSC_EXTERN PetscErrorCode JROptionsCheckValues(MPI_Comm);
 PETSC_EXTERN PetscErrorCode JROptionsWarnUnused(MPI_Comm);
 PETSC_EXTERN PetscErrorCode JROptionsHelpSolvers(MPI_Comm, PetscBool, PetscBool, PetscBool, PetscBool);
 /* The directory of an output base name exists (created if missing) and is writable, else an error naming option */

@@ -36,6 +36,7 @@ static PetscErrorCode Run(MPI_Comm comm)
 
   PetscFunctionBeginUser;
   PetscCall(JRInitializePackage());
+  PetscCall(JROptionsCheckValues(comm));
   PetscOptionsBegin(comm, NULL, "jointrom driver", "jointrom");
   PetscCall(PetscOptionsEList("-task", "What to do", "jointrom", Tasks, 5, Tasks[task], &task, NULL));
   PetscOptionsEnd();

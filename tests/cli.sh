@@ -84,7 +84,7 @@ expect_error "unknown task" "Unknown option frobnicate for -task" $J -task frobn
 printf 'kt,mu\n1e6,0.1\n' > "$tmp/nomu.csv"
 expect_error "joint CSV without the n0 column" "no column 'n0'" $J -task element -element_joint "$tmp/nomu.csv"
 printf 'kt,mu,n0\n1e6,0.1,abc\n' > "$tmp/nan.csv"
-expect_error "joint CSV with a non-number" "line 2: column 'n0' is 'abc', not a number" $J -task element -element_joint "$tmp/nan.csv"
+expect_error "joint CSV with a non-number" "line 2, column 3 ('n0'): 'abc' is not a finite number" $J -task element -element_joint "$tmp/nan.csv"
 printf 'kt,mu,n0\n1e6,0.1,10\n1e6,0.1\n' > "$tmp/short.csv"
 expect_error "joint CSV with a short row" "line 3: 2 fields, but the header has 3 columns" $J -task element -element_joint "$tmp/short.csv"
 printf 'kt,mu,n0\n-1e6,0.1,10\n' > "$tmp/negkt.csv"

@@ -84,7 +84,7 @@ expect_error "Matrix Market index out of range" "line 3: bad entry" $J -task frf
 expect_error "unknown matrix extension" "unknown extension '.csv'" $J -task frf -model_stiffness runs/oscillator/elements.csv -model_mass $M
 expect_error "element DOF out of range" "line 2: dof_a = 5 is out of range: DOFs are 0..0" $J -task frf -model_stiffness $K -model_mass $M -model_elements $tmp/el_range.csv
 expect_error "unknown element type" "line 2: unknown element type 'coulomb'" $J -task frf -model_stiffness $K -model_mass $M -model_elements $tmp/el_type.csv
-expect_error "non-numeric element value" "line 2: column 'kt' is 'abc', not a number" $J -task frf -model_stiffness $K -model_mass $M -model_elements $tmp/el_num.csv
+expect_error "non-numeric element value" "line 2, column 4 ('kt'): 'abc' is not a finite number" $J -task frf -model_stiffness $K -model_mass $M -model_elements $tmp/el_num.csv
 expect_error "normal DOFs on a jenkins element" "normal DOFs are only for jenkins_nv" $J -task frf -model_stiffness $K -model_mass $M -model_elements $tmp/el_normal.csv
 expect_error "jenkins_nv without normal DOFs" "a jenkins_nv element needs normal DOFs" $J -task frf -model_stiffness $K -model_mass $M -model_elements $tmp/el_nvdofs.csv
 expect_error "element table without dof_b" "has no column 'dof_b'" $J -task frf -model_stiffness $K -model_mass $M -model_elements $tmp/el_col.csv

@@ -54,6 +54,7 @@ else
   run cli_install bash tests/cli_install.sh
   run cli_signal bash tests/cli_signal.sh
   run cli_driver bash tests/cli_driver.sh
+  run cli_baddata bash tests/cli_baddata.sh
 fi
 rm -rf "$log"
 echo "$pass passed, $fail failed"

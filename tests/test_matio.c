@@ -1,7 +1,9 @@
 /*
    Matrix and vector files: a matrix written as Matrix Market, PETSc binary and HDF5 (MATLAB v7.3
    sparse) reads back equal to the original, general and symmetric; force vectors from text files,
-   with and without a header line.
+   with and without a header line; bad Matrix Market files refused with the line and what is wrong (a value that is
+   not a finite number, a field too many, an entry given twice, more entries than announced, a bad size line, an
+   index outside the size), a byte-order mark skipped.
 */
 #include "jrtest.h"
 
@@ -62,6 +64,63 @@ int main(int argc, char **argv)
     PetscCall(VecDestroy(&x));
     PetscCall(VecDestroy(&y));
     CHECK(eq && v == -1.0, "symmetric Matrix Market file: the lower triangle is mirrored (A01 = %g)", (double)v);
+    PetscCall(MatDestroy(&B));
+  }
+  { /* bad Matrix Market files (symmetric): each refused with its line and what is wrong */
+    const char *bad[][2] = {
+      {"2 2 3\n1 1 1\n2 1 abc\n2 2 1\n", "line 4: bad entry '2 1 abc': field 3 (the value) 'abc' is not a finite number"},
+      {"1 1 1\n1 1 inf\n", "line 3: bad entry '1 1 inf': field 3 (the value) 'inf' is not a finite number"},
+      {"1 1 1\n1 1 2 3\n", "line 3: bad entry '1 1 2 3': 4 fields"},
+      {"2 2 3\n1 1 1\n2 1 1\n1 2 1\n", "line 5: entry (2, 1) is given again (first at line 4)"},
+      {"1 1 1\n1 1 1\n1 1 1\n", "line 4: more entries than the 1 the size line announces"},
+      {"1 1\n1 1 1\n", "bad size line '1 1'"},
+      {"2 2 1\n3 1 1\n", "line 3: bad entry '3 1 1': indices are 1-based within the size 2 x 2"},
+    };
+    for (size_t k = 0; k < sizeof(bad) / sizeof(bad[0]); k++) {
+      char           file[256], msg[512];
+      PetscErrorCode ierr;
+      PetscCall(PetscSNPrintf(file, sizeof(file), "%s/bad%d.mtx", dir, (int)k));
+      if (!JRTestRank()) {
+        FILE *fp = fopen(file, "w");
+        fprintf(fp, "%%%%MatrixMarket matrix coordinate real symmetric\n%s", bad[k][0]);
+        fclose(fp);
+      }
+      PetscCallMPI(MPI_Barrier(PETSC_COMM_WORLD));
+      B = NULL;
+      PetscCall(JRErrorCatchPush());
+      ierr = JRMatLoadFile(PETSC_COMM_WORLD, file, "K", &B);
+      PetscCall(JRErrorCatchPop(msg, sizeof(msg)));
+      CHECK(ierr && strstr(msg, bad[k][1]), "bad Matrix Market file %d refused: %s", (int)k, msg);
+      if (!ierr) PetscCall(MatDestroy(&B));
+    }
+  }
+  { /* a byte-order mark before the banner is skipped; a general file keeps (1,2) and (2,1) apart */
+    char      file[256];
+    PetscReal a01 = 0, a10 = 0;
+    PetscCall(PetscSNPrintf(file, sizeof(file), "%s/bom.mtx", dir));
+    if (!JRTestRank()) {
+      FILE *fp = fopen(file, "w");
+      fprintf(fp, "\xEF\xBB\xBF%%%%MatrixMarket matrix coordinate real general\n2 2 3\n1 1 2\n1 2 -1\n2 2 2\n");
+      fclose(fp);
+    }
+    PetscCallMPI(MPI_Barrier(PETSC_COMM_WORLD));
+    PetscCall(JRMatLoadFile(PETSC_COMM_WORLD, file, "K", &B));
+    {
+      Mat               *sub;
+      IS                 is;
+      const PetscInt     rows[2] = {0, 1};
+      const PetscScalar *v;
+      PetscCall(ISCreateGeneral(PETSC_COMM_SELF, 2, rows, PETSC_COPY_VALUES, &is));
+      PetscCall(MatCreateSubMatrices(B, 1, &is, &is, MAT_INITIAL_MATRIX, &sub));
+      PetscCall(MatConvert(sub[0], MATSEQDENSE, MAT_INPLACE_MATRIX, &sub[0]));
+      PetscCall(MatDenseGetArrayRead(sub[0], &v));
+      a01 = PetscRealPart(v[2]); /* column-major */
+      a10 = PetscRealPart(v[1]);
+      PetscCall(MatDenseRestoreArrayRead(sub[0], &v));
+      PetscCall(MatDestroySubMatrices(1, &sub));
+      PetscCall(ISDestroy(&is));
+    }
+    CHECK(a01 == -1.0 && a10 == 0.0, "Matrix Market file after a byte-order mark, general: A01 = %g, A10 = %g", (double)a01, (double)a10);
     PetscCall(MatDestroy(&B));
   }
   /* force vectors from text: plain numbers, or a header line */

@@ -106,11 +106,7 @@ PetscErrorCode JRModesSetFromOptions(JRModes md)
   PetscCall(PetscOptionsString("-save", "Write the modes to this HDF5 file for -modes_load", "JRModesSolve", md->save, md->save, sizeof(md->save), NULL));
   PetscOptionsEnd();
   PetscCheck(md->nev >= 1, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_nev %" PetscInt_FMT ": at least one mode", md->nev);
-  if (md->load[0]) {
-    PetscBool ok;
-    PetscCall(PetscTestFile(md->load, 'r', &ok));
-    PetscCheck(ok, md->comm, PETSC_ERR_FILE_OPEN, "-modes_load %s: cannot read the file", md->load);
-  }
+  if (md->load[0]) PetscCall(JRFileCheckHDF5(md->comm, "-modes_load", md->load, "/jointrom_modes", "write one with -modes_save"));
   PetscFunctionReturn(0);
 }
 
@@ -239,6 +235,11 @@ static PetscErrorCode ModesLoad(JRModes md, const char file[])
   }
   PetscCall(VecCreateMPI(md->comm, PETSC_DECIDE, nm, &lam));
   PetscCall(PetscObjectSetName((PetscObject)lam, "omega2"));
+  {
+    char what[PETSC_MAX_PATH_LEN + 32];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "-modes_load %s", file));
+    PetscCall(JRErrorContextPush(what)); /* a library's error on the datasets read below names the file */
+  }
   PetscCall(VecLoad(lam, v));
   PetscCall(VecScatterCreateToAll(lam, &sc, &all));
   PetscCall(VecScatterBegin(sc, lam, all, INSERT_VALUES, SCATTER_FORWARD));
@@ -248,6 +249,7 @@ static PetscErrorCode ModesLoad(JRModes md, const char file[])
   PetscCall(VecGetArrayRead(all, &l));
   for (PetscInt i = 0; i < md->nm; i++) md->lambda[i] = PetscRealPart(l[i]);
   PetscCall(VecRestoreArrayRead(all, &l));
+  for (PetscInt i = 0; i < md->nm; i++) PetscCheck(!PetscIsInfOrNanReal(md->lambda[i]), md->comm, PETSC_ERR_FILE_UNEXPECTED, "mode %" PetscInt_FMT " has omega^2 = %g rad^2/s^2, not a finite number", i + 1, (double)md->lambda[i]);
   PetscCall(VecScatterDestroy(&sc));
   PetscCall(VecDestroy(&all));
   PetscCall(VecDestroy(&lam));
@@ -258,7 +260,13 @@ static PetscErrorCode ModesLoad(JRModes md, const char file[])
     PetscCall(PetscObjectSetName((PetscObject)md->phi[i], name));
     PetscCall(VecGetSize(md->phi[i], &nf));
     PetscCall(VecLoad(md->phi[i], v));
+    {
+      PetscReal nrm;
+      PetscCall(VecNorm(md->phi[i], NORM_INFINITY, &nrm));
+      PetscCheck(!PetscIsInfOrNanReal(nrm), md->comm, PETSC_ERR_FILE_UNEXPECTED, "mode %" PetscInt_FMT " holds a value that is not a finite number", i + 1);
+    }
   }
+  PetscCall(JRErrorContextPop());
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscViewerDestroy(&v));
   PetscCall(VecDestroy(&x));
@@ -347,6 +355,17 @@ static PetscErrorCode ExtractModes(JRModes md, PetscInt n, PetscInt nrb, PetscBo
     perm[i] = i;
   }
   PetscCall(PetscSortRealWithPermutation(nconv, lam, perm));
+  if (nconv) { /* K positive semidefinite: no eigenvalue below round-off, -1e-6 of the mean K_ii / M_ii */
+    PetscReal kd, md_;
+    Vec       d;
+    PetscCall(MatCreateVecs(md->K, &d, NULL));
+    PetscCall(MatGetDiagonal(md->K, d));
+    PetscCall(VecSum(d, &kd));
+    PetscCall(MatGetDiagonal(md->M, d));
+    PetscCall(VecSum(d, &md_));
+    PetscCall(VecDestroy(&d));
+    PetscCheck(md_ <= 0 || lam[perm[0]] >= -1e-6 * PetscAbsReal(kd) / md_, md->comm, PETSC_ERR_ARG_WRONG, "The stiffness matrix is not positive semidefinite: an eigenvalue omega^2 = %g rad^2/s^2 is below -1e-6 x the mean K_ii/M_ii (%g)", (double)lam[perm[0]], (double)(PetscAbsReal(kd) / md_));
+  }
   md->nm = md->nev;
   PetscCall(PetscMalloc1(md->nm, &md->lambda));
   PetscCall(VecDuplicateVecs(x, md->nm, &md->phi));

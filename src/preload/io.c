@@ -260,6 +260,11 @@ static PetscErrorCode ReadHDF5(JRPreload p, PetscInt *nrows, PetscReal **xo, Pet
   PetscFunctionBeginUser;
   PetscCall(PetscTestFile(p->load, 'r', &has));
   PetscCheck(has, p->comm, PETSC_ERR_FILE_OPEN, "-preload_load %s: cannot read the file", p->load);
+  {
+    char what[PETSC_MAX_PATH_LEN + 32];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "-preload_load %s", p->load));
+    PetscCall(JRErrorContextPush(what));
+  }
   PetscCall(PetscViewerHDF5Open(p->comm, p->load, FILE_MODE_READ, &v));
   PetscCall(PetscViewerHDF5PushGroup(v, "/preload"));
   for (int k = 0; k < 3; k++) {
@@ -273,6 +278,7 @@ static PetscErrorCode ReadHDF5(JRPreload p, PetscInt *nrows, PetscReal **xo, Pet
   }
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscViewerDestroy(&v));
+  PetscCall(JRErrorContextPop());
   PetscCall(VecGetSize(vN, &n));
   PetscCall(PetscMalloc3(3 * PetscMax(n, 1), &x, PetscMax(n, 1), &N, PetscMax(n, 1), &g));
   for (int k = 0; k < 3; k++) {
@@ -367,6 +373,38 @@ static PetscErrorCode MatchPairs(JRPreload p, const JRPairs *P, PetscInt n, cons
   }
   PetscCall(PetscFree(key));
   PetscCall(PetscFree(used));
+  PetscFunctionReturn(0);
+}
+
+/* Before any work: the -preload_load file reads (HDF5: a file with the group /preload; CSV: every row's five numbers,
+   N_static and v_gap not negative), each error naming the file and, in a CSV file, the line */
+PetscErrorCode JRPreloadCheckLoadFile(JRPreload p)
+{
+  const char *ext = strrchr(p->load, '.');
+  PetscInt    n;
+  PetscReal  *x, *N, *g;
+  JRTable     t;
+
+  PetscFunctionBeginUser;
+  if (ext && !strcmp(ext, ".h5")) {
+    PetscCall(JRFileCheckHDF5(p->comm, "-preload_load", p->load, "/preload", "write one with -preload_output_file, or give a CSV file"));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(ReadTable(p, &n, &x, &N, &g));
+  PetscCall(JRTableRead(p->comm, p->load, &t));
+  for (PetscInt r = 0; r < n; r++) {
+    PetscInt line;
+    PetscCall(JRTableGetLine(t, r, &line));
+    PetscCheck(N[r] >= 0, p->comm, PETSC_ERR_FILE_UNEXPECTED, "-preload_load %s line %" PetscInt_FMT ": N_static_N = %g; it must be >= 0", p->load, line, (double)N[r]);
+    PetscCheck(g[r] >= 0, p->comm, PETSC_ERR_FILE_UNEXPECTED, "-preload_load %s line %" PetscInt_FMT ": v_gap_m = %g; it must be >= 0", p->load, line, (double)g[r]);
+  }
+  if (n == 0) {
+    PetscInt line;
+    PetscCall(JRTableGetLine(t, -1, &line));
+    SETERRQ(p->comm, PETSC_ERR_FILE_UNEXPECTED, "-preload_load %s line %" PetscInt_FMT ": a header but no rows after it (one row per interface pair)", p->load, line);
+  }
+  PetscCall(JRTableDestroy(&t));
+  PetscCall(PetscFree3(x, N, g));
   PetscFunctionReturn(0);
 }
 

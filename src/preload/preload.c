@@ -197,6 +197,8 @@ PetscErrorCode JRPreloadSetFromOptions(JRPreload p)
   PetscCheck(!p->kp_set || (p->kp > 0 && PetscIsNormalReal(p->kp)), p->comm, PETSC_ERR_ARG_OUTOFRANGE, "-preload_penalty %g: a positive stiffness per area [N/m^3]", (double)p->kp);
   PetscCheck(!p->kv_set || (p->kv >= 0 && PetscIsNormalReal(p->kv + 1.0)), p->comm, PETSC_ERR_ARG_OUTOFRANGE, "-preload_kv %g: zero or a positive stiffness [N/m]", (double)p->kv);
   PetscCheck(p->open_gap > 0 && PetscIsNormalReal(p->open_gap), p->comm, PETSC_ERR_ARG_OUTOFRANGE, "-preload_open_gap %g: a positive distance [m]", (double)p->open_gap);
+  PetscCheck(p->load_tol > 0 && PetscIsNormalReal(p->load_tol), p->comm, PETSC_ERR_ARG_OUTOFRANGE, "-preload_load_tol %g: a positive distance [m]", (double)p->load_tol);
+  if (p->load[0]) PetscCall(JRPreloadCheckLoadFile(p));
   PetscFunctionReturn(0);
 }
 

@@ -167,7 +167,10 @@ static PetscErrorCode ReadSeq(PetscViewer v, const char file[], const char name[
   *n = len / bs;
   PetscCall(PetscMalloc1(len, a));
   PetscCall(VecGetArrayRead(x, &xa));
-  for (PetscInt i = 0; i < len; i++) (*a)[i] = PetscRealPart(xa[i]);
+  for (PetscInt i = 0; i < len; i++) {
+    (*a)[i] = PetscRealPart(xa[i]);
+    PetscCheck(!PetscIsInfOrNanReal((*a)[i]), PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: /rom/%s row %" PetscInt_FMT " holds %g, not a finite number", file, name, i / bs + 1, (double)(*a)[i]);
+  }
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(VecDestroy(&x));
   PetscFunctionReturn(0);

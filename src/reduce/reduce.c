@@ -401,6 +401,7 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
     PetscBool ok;
     PetscCall(PetscTestFile(r->load, 'r', &ok));
     PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "-rom_load %s: no such file (write one with -rom_save)", r->load);
+    PetscCall(JRFileCheckHDF5(comm, "-rom_load", r->load, "/rom", "write one with -rom_save"));
   }
   PetscCall(JRROMFitSetFromOptions(comm, &r->fit));
   r->setfromoptions = PETSC_TRUE;

@@ -6,6 +6,7 @@
 */
 #include <jointrom.h>
 #include <slepcsys.h>
+#include <hdf5.h>
 
 static PetscBool      jr_error_trace = PETSC_FALSE; /* traceback for user errors too */
 static PetscErrorCode jr_user_error  = 0;           /* the code of the user error reported, 0 if none */
@@ -74,6 +75,34 @@ PetscErrorCode JRErrorContextPop(void)
   PetscFunctionReturn(0);
 }
 
+/* A library call tried for its error alone (JRErrorCatchPush ... JRErrorCatchPop): the first message kept, nothing
+   printed */
+static char jr_caught[512];
+
+static PetscErrorCode CatchHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+{
+  (void)comm, (void)line, (void)fun, (void)file, (void)ctx;
+  if (p == PETSC_ERROR_INITIAL && !jr_caught[0]) snprintf(jr_caught, sizeof(jr_caught), "%s", mess && mess[0] ? mess : "(no message)");
+  return n;
+}
+
+PetscErrorCode JRErrorCatchPush(void)
+{
+  PetscFunctionBeginUser;
+  jr_caught[0] = 0;
+  PetscCall(PetscPushErrorHandler(CatchHandler, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* The message of the first error raised since JRErrorCatchPush ("" if none) */
+PetscErrorCode JRErrorCatchPop(char msg[], size_t len)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(PetscStrncpy(msg, jr_caught, len));
+  PetscFunctionReturn(0);
+}
+
 /* Install the handler (after SlepcInitialize) */
 PetscErrorCode JRErrorHandlerPush(void)
 {
@@ -84,6 +113,7 @@ PetscErrorCode JRErrorHandlerPush(void)
   PetscCall(PetscOptionsHasName(NULL, NULL, "-on_error_attach_debugger", &dbg));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-start_in_debugger", &sid));
   if (dbg || sid) jr_error_trace = PETSC_TRUE;
+  if (!jr_error_trace) H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* HDF5's stack dump; the error raised says which file */
   PetscCall(PetscPushErrorHandler(Handler, NULL));
   PetscFunctionReturn(0);
 }

@@ -64,12 +64,45 @@ static PetscErrorCode FileReadable(MPI_Comm comm, const char file[], const char 
   PetscFunctionReturn(0);
 }
 
+/*
+  JRFileCheckHDF5 - before any work, that file (named by option) is an HDF5 file holding group (an absolute path, e.g.
+  "/rom"): else an error naming the option and the file, hint saying how to make a good one. HDF5's own error
+  stack is not printed (JRErrorHandlerPush).
+*/
+PetscErrorCode JRFileCheckHDF5(MPI_Comm comm, const char option[], const char file[], const char group[], const char hint[])
+{
+  PetscMPIInt rank;
+  int         err = 0; /* 1 unreadable, 2 not HDF5, 3 does not open, 4 no group */
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) {
+    PetscBool ok;
+    PetscCall(PetscTestFile(file, 'r', &ok));
+    if (!ok) err = 1;
+    else if (H5Fis_hdf5(file) <= 0) err = 2;
+    else {
+      hid_t f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+      if (f < 0) err = 3;
+      else {
+        if (H5Lexists(f, group, H5P_DEFAULT) <= 0) err = 4;
+        H5Fclose(f);
+      }
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+  PetscCheck(err != 1, comm, PETSC_ERR_FILE_OPEN, "%s %s: cannot read the file", option, file);
+  PetscCheck(err != 2 && err != 3, comm, PETSC_ERR_FILE_UNEXPECTED, "%s %s: not an HDF5 file, or a truncated or corrupt one (%s)", option, file, hint);
+  PetscCheck(err != 4, comm, PETSC_ERR_FILE_UNEXPECTED, "%s %s: an HDF5 file without the group %s (%s)", option, file, group, hint);
+  PetscFunctionReturn(0);
+}
+
 /* ---- Matrix Market ---- */
 
 /* a Matrix Market file's contents: size, symmetry and the entries (0-based indices) */
 typedef struct {
   PetscInt   m, n, nz, sym;
-  PetscInt  *ii, *jj;
+  PetscInt  *ii, *jj, *line; /* line: each entry's line in the file (rank 0) */
   PetscReal *vv;
 } MtxData;
 
@@ -81,66 +114,167 @@ enum {
   MTX_BANNER, /* the first line is not a coordinate-matrix banner */
   MTX_KIND,   /* complex or pattern, or neither general nor symmetric */
   MTX_SIZE,   /* a bad size line */
-  MTX_ENTRY,  /* a bad entry line */
-  MTX_SHORT   /* fewer entries than the size line announces */
+  MTX_ENTRY,  /* a bad entry line (what is wrong in msg) */
+  MTX_SHORT,  /* fewer entries than the size line announces */
+  MTX_LONG    /* more entries than the size line announces */
 };
 
-/* The banner line (%%MatrixMarket matrix coordinate real|integer general|symmetric) and the size line
-   (rows columns entries): d->sym, d->m, d->n, d->nz */
-static PetscInt MtxReadHeader(FILE *fp, long *lineno, MtxData *d)
+/* a line holding nothing but blanks */
+static int Blank(const char *s)
 {
-  char line[1024];
+  while (*s && isspace((unsigned char)*s)) s++;
+  return !*s;
+}
+
+/* the whole of s (blanks around it allowed) as an integer; 0 if it is not one */
+static int ParseLong(const char *s, long *v)
+{
+  char *end;
+  errno = 0;
+  *v    = strtol(s, &end, 10);
+  return end != s && !*end && !errno;
+}
+
+/* the whole of s as a finite real; 0 if it is not one */
+static int ParseReal(const char *s, double *v)
+{
+  char *end;
+  *v = strtod(s, &end);
+  return end != s && !*end && isfinite(*v);
+}
+
+/* The line's blank-separated fields (at most max; *n all of them) */
+static void Fields(char *line, char *f[], int max, int *n)
+{
+  char *save = NULL;
+  *n         = 0;
+  for (char *t = strtok_r(line, " \t\r\n", &save); t; t = strtok_r(NULL, " \t\r\n", &save)) {
+    if (*n < max) f[*n] = t;
+    (*n)++;
+  }
+}
+
+/* The banner line (%%MatrixMarket matrix coordinate real|integer general|symmetric, after a UTF-8 byte-order mark if
+   there is one) and the size line (rows columns entries): d->sym, d->m, d->n, d->nz */
+static PetscInt MtxReadHeader(FILE *fp, long *lineno, MtxData *d, char msg[], size_t len)
+{
+  char  line[1024], *b = line;
+  char *f[4];
+  int   nf;
+  long  v[3];
 
   if (!fgets(line, sizeof(line), fp)) return MTX_EMPTY;
   *lineno = 1;
-  for (char *c = line; *c; c++) *c = (char)tolower((unsigned char)*c);
-  if (strncmp(line, "%%matrixmarket", 14) || !strstr(line, "matrix") || !strstr(line, "coordinate")) return MTX_BANNER;
-  if (strstr(line, "complex") || strstr(line, "pattern")) return MTX_KIND;
-  if (strstr(line, "symmetric")) d->sym = 1;
-  else if (!strstr(line, "general")) return MTX_KIND;
+  if (!strncmp(b, "\xEF\xBB\xBF", 3)) b += 3;
+  for (char *c = b; *c; c++) *c = (char)tolower((unsigned char)*c);
+  if (strncmp(b, "%%matrixmarket", 14) || !strstr(b, "matrix") || !strstr(b, "coordinate")) return MTX_BANNER;
+  if (strstr(b, "complex") || strstr(b, "pattern")) return MTX_KIND;
+  if (strstr(b, "symmetric")) d->sym = 1;
+  else if (!strstr(b, "general")) return MTX_KIND;
   while (fgets(line, sizeof(line), fp)) {
     (*lineno)++;
-    if (line[0] == '%' || line[0] == '\n') continue;
-    if (sscanf(line, "%" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT, &d->m, &d->n, &d->nz) != 3 || d->m < 0 || d->n < 0 || d->nz < 0) return MTX_SIZE;
-    break;
+    if (line[0] == '%' || Blank(line)) continue;
+    snprintf(msg, len, "%.200s", line);
+    msg[strcspn(msg, "\r\n")] = 0;
+    Fields(line, f, 4, &nf);
+    if (nf != 3) return MTX_SIZE;
+    for (int k = 0; k < 3; k++)
+      if (!ParseLong(f[k], &v[k]) || v[k] < 0) return MTX_SIZE;
+    d->m  = (PetscInt)v[0];
+    d->n  = (PetscInt)v[1];
+    d->nz = (PetscInt)v[2];
+    return MTX_OK;
   }
-  return MTX_OK;
+  return MTX_SIZE;
 }
 
-/* The d->nz entry lines "i j value" (1-based indices within the size, finite values) into d->ii, jj, vv;
-   a bad line's number and text in errline, msg */
+/* The d->nz entry lines "i j value" (1-based indices within the size, finite values) into d->ii, jj, vv and their
+   lines into d->line; then nothing but comments. A bad line's number in errline and what is wrong in msg */
 static PetscInt MtxReadEntries(FILE *fp, long *lineno, MtxData *d, PetscInt *errline, char msg[], size_t len)
 {
-  char     line[1024];
+  char     line[1024], text[256];
   PetscInt k = 0;
 
-  while (k < d->nz && fgets(line, sizeof(line), fp)) {
-    long   i, j;
-    double v;
-    char  *end;
+  while (fgets(line, sizeof(line), fp)) {
+    char       *f[4];
+    int         nf;
+    long        i, j;
+    double      v;
+    const char *what[3] = {"row", "column", "value"};
     (*lineno)++;
-    if (line[0] == '%' || line[0] == '\n') continue;
-    errno = 0;
-    i     = strtol(line, &end, 10);
-    j     = strtol(end, &end, 10);
-    v     = strtod(end, &end);
-    if (errno || i < 1 || i > d->m || j < 1 || j > d->n || !isfinite(v)) {
-      *errline = *lineno;
-      snprintf(msg, len, "%.200s", line);
+    if (line[0] == '%' || Blank(line)) continue;
+    *errline = *lineno;
+    snprintf(text, sizeof(text), "%.200s", line);
+    text[strcspn(text, "\r\n")] = 0;
+    if (k == d->nz) {
+      snprintf(msg, len, "more entries than the %" PetscInt_FMT " the size line announces", d->nz);
+      return MTX_LONG;
+    }
+    Fields(line, f, 4, &nf);
+    if (nf != 3) {
+      snprintf(msg, len, "bad entry '%s': %d fields, an entry is 'row column value'", text, nf);
       return MTX_ENTRY;
     }
-    d->ii[k] = i - 1;
-    d->jj[k] = j - 1;
-    d->vv[k] = v;
+    for (int c = 0; c < 3; c++) {
+      const int ok = c < 2 ? ParseLong(f[c], c ? &j : &i) : ParseReal(f[c], &v);
+      if (!ok) {
+        snprintf(msg, len, "bad entry '%s': field %d (the %s) '%.64s' is not %s", text, c + 1, what[c], f[c], c < 2 ? "an integer" : "a finite number");
+        return MTX_ENTRY;
+      }
+    }
+    if (i < 1 || i > d->m || j < 1 || j > d->n) {
+      snprintf(msg, len, "bad entry '%s': indices are 1-based within the size %" PetscInt_FMT " x %" PetscInt_FMT, text, d->m, d->n);
+      return MTX_ENTRY;
+    }
+    d->ii[k]   = i - 1;
+    d->jj[k]   = j - 1;
+    d->vv[k]   = v;
+    d->line[k] = *lineno;
     k++;
   }
   return k < d->nz ? MTX_SHORT : MTX_OK;
 }
 
+/* an entry's position (a symmetric file's entries by the triangle they stand for) and its line, to find duplicates */
+typedef struct {
+  PetscInt64 key;
+  PetscInt   line;
+} MtxKey;
+
+static int MtxKeyCompare(const void *a, const void *b)
+{
+  const MtxKey *x = (const MtxKey *)a, *y = (const MtxKey *)b;
+  return x->key < y->key ? -1 : x->key > y->key ? 1 : x->line < y->line ? -1 : x->line > y->line;
+}
+
+/* Every position given once (a symmetric file: (i, j) and (j, i) are the same entry) */
+static PetscErrorCode MtxCheckDuplicates(const MtxData *d, PetscInt *err, PetscInt *errline, char msg[], size_t len)
+{
+  MtxKey *key;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(d->nz ? d->nz : 1, &key));
+  for (PetscInt k = 0; k < d->nz; k++) {
+    const PetscInt i = d->sym ? PetscMax(d->ii[k], d->jj[k]) : d->ii[k], j = d->sym ? PetscMin(d->ii[k], d->jj[k]) : d->jj[k];
+    key[k].key  = (PetscInt64)i * d->n + j;
+    key[k].line = d->line[k];
+  }
+  qsort(key, (size_t)d->nz, sizeof(*key), MtxKeyCompare);
+  for (PetscInt k = 1; k < d->nz; k++) {
+    if (key[k].key != key[k - 1].key) continue;
+    *err     = MTX_ENTRY;
+    *errline = key[k].line;
+    snprintf(msg, len, "entry (%" PetscInt64_FMT ", %" PetscInt64_FMT ") is given again (first at line %" PetscInt_FMT ")%s", key[k].key / d->n + 1, key[k].key % d->n + 1, key[k - 1].line, d->sym ? "; a symmetric file holds one triangle" : "");
+    break;
+  }
+  PetscCall(PetscFree(key));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode MtxAlloc(MtxData *d)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc3(d->nz ? d->nz : 1, &d->ii, d->nz ? d->nz : 1, &d->jj, d->nz ? d->nz : 1, &d->vv));
+  PetscCall(PetscMalloc4(d->nz ? d->nz : 1, &d->ii, d->nz ? d->nz : 1, &d->jj, d->nz ? d->nz : 1, &d->vv, d->nz ? d->nz : 1, &d->line));
   PetscFunctionReturn(0);
 }
 
@@ -155,11 +289,12 @@ static PetscErrorCode MtxRead(const char file[], MtxData *d, PetscInt *err, Pets
     *err = MTX_OPEN;
     PetscFunctionReturn(0);
   }
-  *err = MtxReadHeader(fp, &lineno, d);
+  *err = MtxReadHeader(fp, &lineno, d, msg, len);
   if (!*err) {
     PetscCall(MtxAlloc(d));
     *err = MtxReadEntries(fp, &lineno, d, errline, msg, len);
   }
+  if (!*err) PetscCall(MtxCheckDuplicates(d, err, errline, msg, len));
   fclose(fp);
   PetscFunctionReturn(0);
 }
@@ -220,9 +355,9 @@ static PetscErrorCode MtxAssemble(MPI_Comm comm, const MtxData *d, Mat *A)
 static PetscErrorCode LoadMtx(MPI_Comm comm, const char file[], Mat *A)
 {
   PetscMPIInt rank;
-  MtxData     d   = {0, 0, 0, 0, NULL, NULL, NULL};
+  MtxData     d   = {0, 0, 0, 0, NULL, NULL, NULL, NULL};
   PetscInt    err = MTX_OK, errline = 0;
-  char        msg[256] = "";
+  char        msg[512] = "";
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
@@ -230,15 +365,16 @@ static PetscErrorCode LoadMtx(MPI_Comm comm, const char file[], Mat *A)
   PetscCallMPI(MPI_Bcast(&err, 1, MPIU_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(&errline, 1, MPIU_INT, 0, comm));
   PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
+  if (err && d.ii) PetscCall(PetscFree4(d.ii, d.jj, d.vv, d.line));
   PetscCheck(err != MTX_OPEN, comm, PETSC_ERR_FILE_OPEN, "Cannot open the Matrix Market file %s", file);
   PetscCheck(err != MTX_EMPTY && err != MTX_BANNER, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: the first line must be '%%%%MatrixMarket matrix coordinate real general' (or symmetric)", file);
   PetscCheck(err != MTX_KIND, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: only real or integer coordinate matrices, general or symmetric, are supported", file);
-  PetscCheck(err != MTX_SIZE, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: bad size line (expected 'rows columns entries')", file);
-  PetscCheck(err != MTX_ENTRY, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s line %" PetscInt_FMT ": bad entry '%s' (indices are 1-based within the size, values finite)", file, errline, msg);
-  PetscCheck(err != MTX_SHORT, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: fewer entries than the size line announces", file);
+  PetscCheck(err != MTX_SIZE, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: bad size line '%s' (expected 'rows columns entries', three non-negative integers)", file, msg);
+  PetscCheck(err != MTX_ENTRY && err != MTX_LONG, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s line %" PetscInt_FMT ": %s", file, errline, msg);
+  PetscCheck(err != MTX_SHORT, comm, PETSC_ERR_FILE_UNEXPECTED, "Matrix Market file %s: fewer entries than the %" PetscInt_FMT " the size line announces", file, d.nz);
   PetscCall(MtxBcast(comm, rank, &d));
   PetscCall(MtxAssemble(comm, &d, A));
-  PetscCall(PetscFree3(d.ii, d.jj, d.vv));
+  PetscCall(PetscFree4(d.ii, d.jj, d.vv, d.line));
   PetscFunctionReturn(0);
 }
 
@@ -257,21 +393,31 @@ PetscErrorCode JRMatLoadFile(MPI_Comm comm, const char spec[], const char group[
   if (!strcmp(ext, "mtx")) PetscCall(LoadMtx(comm, file, A));
   else if (!strcmp(ext, "bin") || !strcmp(ext, "dat") || !strcmp(ext, "petsc")) {
     PetscViewer v;
+    char        what[PETSC_MAX_PATH_LEN + 32];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "the matrix file %s", file));
+    PetscCall(JRErrorContextPush(what)); /* PETSc's error on a truncated or corrupt file names it */
     PetscCall(PetscViewerBinaryOpen(comm, file, FILE_MODE_READ, &v));
     PetscCall(MatCreate(comm, A));
     PetscCall(MatSetType(*A, MATAIJ));
     PetscCall(MatLoad(*A, v));
     PetscCall(PetscViewerDestroy(&v));
+    PetscCall(JRErrorContextPop());
   } else if (!strcmp(ext, "h5") || !strcmp(ext, "hdf5")) {
     PetscViewer v;
     PetscBool   has;
+    char        what[PETSC_MAX_PATH_LEN + 32];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "the matrix file %s", file));
+    PetscCall(JRErrorContextPush(what));
     PetscCall(PetscViewerHDF5Open(comm, file, FILE_MODE_READ, &v));
+    PetscCall(JRErrorContextPop());
     PetscCall(PetscViewerHDF5HasAttribute(v, grp, "MATLAB_sparse", &has));
     PetscCheck(has, comm, PETSC_ERR_FILE_UNEXPECTED, "HDF5 file %s: no sparse matrix in group /%s (expected MATLAB v7.3 sparse layout: attribute MATLAB_sparse, datasets jc, ir, data; name another group as %s:/group)", file, grp, file);
     PetscCall(MatCreate(comm, A));
     PetscCall(MatSetType(*A, MATAIJ));
     PetscCall(PetscObjectSetName((PetscObject)*A, grp));
+    PetscCall(JRErrorContextPush(what));
     PetscCall(MatLoad(*A, v));
+    PetscCall(JRErrorContextPop());
     PetscCall(PetscViewerDestroy(&v));
   } else SETERRQ(comm, PETSC_ERR_SUP, "Matrix file %s: unknown extension '.%s' (use .mtx Matrix Market, .bin PETSc binary or .h5 HDF5)", file, ext);
   PetscFunctionReturn(0);
@@ -394,12 +540,16 @@ PetscErrorCode JRVecLoadFile(MPI_Comm comm, const char spec[], PetscInt n, Petsc
     VecScatter         sc;
     PetscInt           N;
     const PetscScalar *a;
+    char               what[PETSC_MAX_PATH_LEN + 32];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "the force vector file %s", file));
+    PetscCall(JRErrorContextPush(what)); /* PETSc's error on a truncated or corrupt file names it */
     if (!strcmp(ext, "bin")) PetscCall(PetscViewerBinaryOpen(comm, file, FILE_MODE_READ, &v));
     else PetscCall(PetscViewerHDF5Open(comm, file, FILE_MODE_READ, &v));
     PetscCall(VecCreate(comm, &x));
     PetscCall(PetscObjectSetName((PetscObject)x, grp));
     PetscCall(VecLoad(x, v));
     PetscCall(PetscViewerDestroy(&v));
+    PetscCall(JRErrorContextPop());
     PetscCall(VecGetSize(x, &N));
     PetscCheck(N == n, comm, PETSC_ERR_FILE_UNEXPECTED, "Force vector %s has %" PetscInt_FMT " entries, the model has %" PetscInt_FMT " DOFs", file, N, n);
     PetscCall(VecScatterCreateToAll(x, &sc, &xs));

@@ -4,12 +4,15 @@
    -cont_*, -frf_*, -element_*, not the nested solvers' -hbm_snes_* and the like) that nothing read is an error
    naming it and, where one is close, the option it was probably meant to be. JROptionsWarnUnused, at the end of a
    run, warns about every other option nothing read (a nested solver's option is read only when that solver runs).
+   JROptionsCheckValues, at the start, stops a run given one of jointrom's options that take a number or a choice
+   without a value (PETSc would keep the default), or a number option a value that is not a whole number.
 */
 #include <jointrom.h>
 #include <slepceps.h>
 #include <petsctao.h>
 
-extern const char *const JROptionNames[]; /* generated from the sources by src/sys/optnames.sh */
+extern const char *const JROptionNames[];     /* generated from the sources by src/sys/optnames.sh */
+extern const char *const JROptionValued[][2]; /* the options that take a value: name, what the value is */
 
 /* jointrom's option groups, checked before the work; a nested solver's options inside them are read later */
 static const char *const Groups[]  = {"task", "model_", "preload_", "interface_", "modes_", "rom_", "hbm_", "cont_", "frf_verify_", "frf_", "element_", NULL};
@@ -85,6 +88,75 @@ static PetscErrorCode Describe(const char *name, const char *what, char msg[], s
   if (Known(opt)) PetscCall(PetscSNPrintf(msg, len, "%s is not used by %s", opt, what));
   else if (near) PetscCall(PetscSNPrintf(msg, len, "unknown option %s (did you mean %s?)", opt, near));
   else PetscCall(PetscSNPrintf(msg, len, "unknown option %s", opt));
+  PetscFunctionReturn(0);
+}
+
+/* PETSc's names for default values, which its number parsers take */
+static PetscBool PetscWord(const char *s)
+{
+  return (PetscBool)(!strncmp(s, "PETSC_", 6) || !strcmp(s, "DEFAULT") || !strcmp(s, "DECIDE") || !strcmp(s, "DETERMINE"));
+}
+
+/* s (one item of len characters) a whole number: a real, or an integer (in a list also a range a-b, b > a, as PETSc's
+   integer lists take) */
+static PetscBool ItemOK(const char *s, size_t len, PetscBool integer, PetscBool list)
+{
+  char  item[64], *end;
+  if (!len || len >= sizeof(item)) return PETSC_FALSE;
+  memcpy(item, s, len);
+  item[len] = 0;
+  if (PetscWord(item)) return PETSC_TRUE;
+  if (integer) {
+    const long long a = strtoll(item, &end, 10);
+    if (end != item && list && *end == '-' && end[1]) { /* a range a-b: a, ..., b - 1 */
+      const char     *b0 = end + 1;
+      const long long b  = strtoll(b0, &end, 10);
+      if (end == b0 || b <= a) return PETSC_FALSE;
+    }
+  } else (void)strtod(item, &end);
+  return (PetscBool)(end != item && !*end);
+}
+
+/*
+  JROptionsCheckValues - at the start of a run, before anything reads jointrom's options (every option is still
+  unused then, so the database lists it with its value): an error for the first of jointrom's options that take a
+  number (or a list of them) given without a value, which PETSc would take as the default, or with one that is not a
+  whole number, which PETSc would refuse without naming the option. A choice without a value is an error too.
+*/
+PetscErrorCode JROptionsCheckValues(MPI_Comm comm)
+{
+  PetscInt n;
+  char   **names, **values, msg[512] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  for (PetscInt i = 0; i < n && !msg[0]; i++) {
+    for (PetscInt k = 0; JROptionValued[k][0] && !msg[0]; k++) {
+      const char *kind = JROptionValued[k][1], *v = values[i];
+      PetscBool   integer, list, number;
+      if (strcmp(names[i], JROptionValued[k][0] + 1)) continue;
+      if (!v || !v[0]) {
+        PetscCall(PetscSNPrintf(msg, sizeof(msg), "%s is given without a value: it takes %s", JROptionValued[k][0], kind));
+        break;
+      }
+      integer = (PetscBool)!strncmp(kind, "an integer", 10);
+      number  = (PetscBool)(integer || !strncmp(kind, "a number", 8));
+      list    = (PetscBool)(strstr(kind, "list") != NULL);
+      if (!number) break;
+      for (const char *p = v;;) {
+        const char  *c   = list ? strchr(p, ',') : NULL;
+        const size_t len = c ? (size_t)(c - p) : strlen(p);
+        if (!ItemOK(p, len, integer, list)) {
+          PetscCall(PetscSNPrintf(msg, sizeof(msg), "%s %s: '%.*s' is not %s; it takes %s", JROptionValued[k][0], v, (int)PetscMin(len, 64), p, integer ? "an integer" : "a number", kind));
+          break;
+        }
+        if (!c) break;
+        p = c + 1;
+      }
+    }
+  }
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  PetscCheck(!msg[0], comm, PETSC_ERR_USER_INPUT, "%s", msg);
   PetscFunctionReturn(0);
 }
 

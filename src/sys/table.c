@@ -1,18 +1,21 @@
 /*
    CSV tables with a header line, read on rank 0 and broadcast so every rank parses the same text
-   (and reports the same error). Lines starting with '#' and blank lines are skipped. Columns are
-   found by header name; every error names the file, the line and the column.
+   (and reports the same error). A UTF-8 byte-order mark, lines starting with '#' and blank lines are
+   skipped; every row has as many fields as the header. Columns are found by header name; every error
+   names the file, the line and the column.
 */
 #include <jointrom.h>
 #include <ctype.h>
 #include <errno.h>
 
 struct _p_JRTable {
+  MPI_Comm  comm;  /* every rank holds the same table: its errors are raised on every rank */
   char     *file;
   PetscInt  ncol, nrow;
   char    **head;  /* ncol names */
   char    **cell;  /* nrow*ncol trimmed strings (point into text) */
   PetscInt *line;  /* file line number of each row */
+  PetscInt  hline; /* and of the header */
   char     *text;
 };
 
@@ -59,6 +62,7 @@ PetscErrorCode JRTableRead(MPI_Comm comm, const char file[], JRTable *table)
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(PetscNew(&t));
   PetscCall(PetscStrallocpy(file, &t->file));
+  t->comm = comm;
   if (rank == 0) {
     FILE *fp = fopen(file, "rb");
     if (fp) {
@@ -78,7 +82,9 @@ PetscErrorCode JRTableRead(MPI_Comm comm, const char file[], JRTable *table)
   if (rank) PetscCall(PetscMalloc1(len + 1, &t->text));
   PetscCallMPI(MPI_Bcast(t->text, (PetscMPIInt)(len + 1), MPI_CHAR, 0, comm));
 
-  for (p = t->text; p && *p;) {
+  p = t->text;
+  if (!strncmp(p, "\xEF\xBB\xBF", 3)) p += 3; /* a UTF-8 byte-order mark */
+  for (; p && *p;) {
     char *s = p, *nl = strchr(p, '\n');
     if (nl) *nl = 0;
     p = nl ? nl + 1 : NULL;
@@ -86,7 +92,8 @@ PetscErrorCode JRTableRead(MPI_Comm comm, const char file[], JRTable *table)
     s = Trim(s);
     if (!*s || *s == '#') continue;
     if (!t->head) {
-      t->ncol = CountFields(s);
+      t->hline = lineno;
+      t->ncol  = CountFields(s);
       PetscCall(PetscMalloc1(t->ncol, &t->head));
       Split(s, t->head);
       for (PetscInt k = 0; k < t->ncol; k++) {
@@ -159,11 +166,12 @@ PetscErrorCode JRTableGetHeader(JRTable t, PetscInt k, const char **name)
   PetscFunctionReturn(0);
 }
 
-/* The file line number of a row, for error messages */
+/* The file line number of a row (row -1: the header), for error messages */
 PetscErrorCode JRTableGetLine(JRTable t, PetscInt row, PetscInt *line)
 {
   PetscFunctionBeginUser;
-  *line = t->line[row];
+  PetscCheck(row >= -1 && row < t->nrow, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Row %" PetscInt_FMT " outside the %" PetscInt_FMT " rows of %s", row, t->nrow, t->file);
+  *line = row < 0 ? t->hline : t->line[row];
   PetscFunctionReturn(0);
 }
 
@@ -174,8 +182,8 @@ PetscErrorCode JRTableGetFileName(JRTable t, const char **file)
   PetscFunctionReturn(0);
 }
 
-/* Numeric column by name. required: the column and every cell must be present and numeric;
-   otherwise a missing column or an empty cell gives def. */
+/* Numeric column by name: every cell a finite number (strtod taking the whole cell; no nan, inf or overflow).
+   required: the column and every cell must be present; otherwise a missing column or an empty cell gives def. */
 PetscErrorCode JRTableGetColumn(JRTable t, const char name[], PetscBool required, PetscReal def, PetscReal vals[])
 {
   PetscInt col = -1;
@@ -184,7 +192,7 @@ PetscErrorCode JRTableGetColumn(JRTable t, const char name[], PetscBool required
   for (PetscInt k = 0; k < t->ncol; k++)
     if (!strcmp(t->head[k], name)) col = k;
   if (col < 0) {
-    PetscCheck(!required, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "CSV file %s has no column '%s' (its header names %" PetscInt_FMT " columns, first '%s')", t->file, name, t->ncol, t->head[0]);
+    PetscCheck(!required, t->comm, PETSC_ERR_FILE_UNEXPECTED, "CSV file %s has no column '%s' (its header names %" PetscInt_FMT " columns, first '%s')", t->file, name, t->ncol, t->head[0]);
     for (PetscInt i = 0; i < t->nrow; i++) vals[i] = def;
     PetscFunctionReturn(0);
   }
@@ -193,13 +201,12 @@ PetscErrorCode JRTableGetColumn(JRTable t, const char name[], PetscBool required
     char       *end;
     double      x;
     if (!*s) {
-      PetscCheck(!required, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "CSV file %s line %" PetscInt_FMT ": column '%s' is empty", t->file, t->line[i], name);
+      PetscCheck(!required, t->comm, PETSC_ERR_FILE_UNEXPECTED, "CSV file %s line %" PetscInt_FMT ": column '%s' is empty", t->file, t->line[i], name);
       vals[i] = def;
       continue;
     }
-    errno = 0;
-    x     = strtod(s, &end);
-    PetscCheck(end != s && !*end && errno != ERANGE, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "CSV file %s line %" PetscInt_FMT ": column '%s' is '%s', not a number", t->file, t->line[i], name, s);
+    x = strtod(s, &end);
+    PetscCheck(end != s && !*end && isfinite(x), t->comm, PETSC_ERR_FILE_UNEXPECTED, "CSV file %s line %" PetscInt_FMT ", column %" PetscInt_FMT " ('%s'): '%s' is not a finite number", t->file, t->line[i], col + 1, name, s);
     vals[i] = (PetscReal)x;
   }
   PetscFunctionReturn(0);

@@ -79,17 +79,23 @@ static PetscErrorCode ReadJoint(MPI_Comm comm, const char file[], PetscBool norm
   PetscFunctionBeginUser;
   PetscCall(JRTableRead(comm, file, &t));
   PetscCall(JRTableGetSize(t, &n, NULL));
-  PetscCheck(n > 0, comm, PETSC_ERR_FILE_UNEXPECTED, "Joint file %s (-element_joint) has a header but no element rows", file);
+  if (n == 0) {
+    PetscInt line;
+    PetscCall(JRTableGetLine(t, -1, &line));
+    SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "Joint file %s (-element_joint) line %" PetscInt_FMT ": a header but no element rows after it", file, line);
+  }
   PetscCall(PetscMalloc4(n, &kt, n, &kn, n, &mu, n, &n0));
   PetscCall(JRTableGetColumn(t, "kt", PETSC_TRUE, 0.0, kt));
   PetscCall(JRTableGetColumn(t, "kn", normal, 0.0, kn));
   PetscCall(JRTableGetColumn(t, "mu", PETSC_TRUE, 0.0, mu));
   PetscCall(JRTableGetColumn(t, "n0", PETSC_TRUE, 0.0, n0));
   for (PetscInt e = 0; e < n; e++) {
-    PetscCheck(PetscIsNormalReal(kt[e]) && kt[e] > 0.0, comm, PETSC_ERR_FILE_UNEXPECTED, "Joint file %s, element row %" PetscInt_FMT ": kt = %g must be positive [N/m]", file, e + 1, (double)kt[e]);
-    PetscCheck(kn[e] >= 0.0 && !PetscIsInfOrNanReal(kn[e]), comm, PETSC_ERR_FILE_UNEXPECTED, "Joint file %s, element row %" PetscInt_FMT ": kn = %g must be non-negative [N/m]", file, e + 1, (double)kn[e]);
-    PetscCheck(mu[e] >= 0.0 && !PetscIsInfOrNanReal(mu[e]), comm, PETSC_ERR_FILE_UNEXPECTED, "Joint file %s, element row %" PetscInt_FMT ": mu = %g must be non-negative", file, e + 1, (double)mu[e]);
-    PetscCheck(!PetscIsInfOrNanReal(n0[e]) && (normal || n0[e] >= 0.0), comm, PETSC_ERR_FILE_UNEXPECTED, "Joint file %s, element row %" PetscInt_FMT ": n0 = %g must be finite%s [N]", file, e + 1, (double)n0[e], normal ? "" : " and non-negative for jenkins");
+    PetscInt line;
+    PetscCall(JRTableGetLine(t, e, &line));
+    PetscCheck(PetscIsNormalReal(kt[e]) && kt[e] > 0.0, comm, PETSC_ERR_FILE_UNEXPECTED, "Joint file %s line %" PetscInt_FMT ": kt = %g must be positive [N/m]", file, line, (double)kt[e]);
+    PetscCheck(kn[e] >= 0.0 && !PetscIsInfOrNanReal(kn[e]), comm, PETSC_ERR_FILE_UNEXPECTED, "Joint file %s line %" PetscInt_FMT ": kn = %g must be non-negative [N/m]", file, line, (double)kn[e]);
+    PetscCheck(mu[e] >= 0.0 && !PetscIsInfOrNanReal(mu[e]), comm, PETSC_ERR_FILE_UNEXPECTED, "Joint file %s line %" PetscInt_FMT ": mu = %g must be non-negative", file, line, (double)mu[e]);
+    PetscCheck(!PetscIsInfOrNanReal(n0[e]) && (normal || n0[e] >= 0.0), comm, PETSC_ERR_FILE_UNEXPECTED, "Joint file %s line %" PetscInt_FMT ": n0 = %g must be finite%s [N]", file, line, (double)n0[e], normal ? "" : " and non-negative for jenkins");
   }
   PetscCall(JRContactSetElements(c, n, kt, kn, mu, n0));
   PetscCall(PetscFree4(kt, kn, mu, n0));

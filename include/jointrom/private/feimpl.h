@@ -28,6 +28,7 @@ typedef struct {
   PetscBool  rigidtie;          /* bolt ends tie their footprints rigidly (else: distributing, RBE3-like) */
   PetscBool  tied;              /* the interface pairs tied (a stuck interface) instead of free */
   PetscBool  petscfe;           /* assemble with PETSc's generic PetscFE integration instead of the Q2 kernel */
+  PetscReal  memlimit;          /* memory a generated mesh's model may need [GiB] (-model_memory_limit; 0: available) */
   char       file[PETSC_MAX_PATH_LEN];
   char       tangent[8];
   /* the discretisation */
@@ -52,7 +53,15 @@ typedef struct {
   PetscReal *Kf; /* n x n, row-major */
 } JRFEDenseBlock;
 
+/* the size of a generated mesh's model, estimated from the mesh parameters before the mesh is built */
+typedef struct {
+  PetscReal cells, nodes, dofs, nnz; /* nnz: of K (and of M) */
+  PetscReal km, total;               /* bytes: K and M; all, with the eigensolver's shifted matrix and factorisation */
+} JRFEMeshSize;
+
 /* the mesh: geometry.c, gmsh.c */
+PETSC_INTERN PetscErrorCode JRFEMeshEstimate(const Model_FE *, PetscBool, JRFEMeshSize *);
+PETSC_INTERN PetscErrorCode JRFEMeshCheckMemory(MPI_Comm, const Model_FE *, PetscBool);
 PETSC_INTERN PetscErrorCode JRFEGeometryBeam(MPI_Comm, Model_FE *, DM *);
 PETSC_INTERN PetscErrorCode JRFEGeometryLap(MPI_Comm, Model_FE *, DM *);
 PETSC_INTERN PetscErrorCode JRFEGeometryGmsh(MPI_Comm, Model_FE *, DM *);

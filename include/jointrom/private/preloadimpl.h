@@ -71,5 +71,6 @@ PETSC_INTERN PetscErrorCode JRPreloadSetUpSystem(JRPreload);
 PETSC_INTERN PetscErrorCode JRPreloadAssembleJacobian(JRPreload, const JRPairs *, Mat);
 /* src/preload/io.c */
 PETSC_INTERN PetscErrorCode JRPreloadLoadResults(JRPreload);
+PETSC_INTERN PetscErrorCode JRPreloadCheckLoadFile(JRPreload);
 
 #endif

@@ -6,6 +6,7 @@
    kn [N/m], mu [-], n0 [N]. Every error names the file and the line.
 */
 #include <jointrom/private/modelimpl.h>
+#include <errno.h>
 
 static PetscErrorCode ParseDof(MPI_Comm comm, JRTable t, const char *col, PetscInt row, PetscInt ndof, PetscBool required, PetscInt *dof)
 {
@@ -23,8 +24,9 @@ static PetscErrorCode ParseDof(MPI_Comm comm, JRTable t, const char *col, PetscI
     *dof = -1;
     PetscFunctionReturn(0);
   }
-  v = strtol(s, &end, 10);
-  PetscCheck(end != s && !*end, comm, PETSC_ERR_FILE_UNEXPECTED, "Element file %s line %" PetscInt_FMT ": column '%s' is '%s', not a DOF number", file, line, col, s);
+  errno = 0;
+  v     = strtol(s, &end, 10);
+  PetscCheck(end != s && !*end && !errno, comm, PETSC_ERR_FILE_UNEXPECTED, "Element file %s line %" PetscInt_FMT ": column '%s' is '%s', not a DOF number", file, line, col, s);
   PetscCheck(v >= -1 && v < ndof, comm, PETSC_ERR_FILE_UNEXPECTED, "Element file %s line %" PetscInt_FMT ": %s = %ld is out of range: DOFs are 0..%" PetscInt_FMT " (-1 = ground)", file, line, col, v, ndof - 1);
   *dof = (PetscInt)v;
   PetscFunctionReturn(0);
@@ -41,6 +43,8 @@ PetscErrorCode JRElementsReadCSV(MPI_Comm comm, const char file[], PetscInt ndof
   PetscCall(JRElementsDestroy(el));
   PetscCall(JRTableRead(comm, file, &t));
   PetscCall(JRTableGetSize(t, &n, NULL));
+  PetscCall(JRTableGetLine(t, -1, &line));
+  PetscCheck(n > 0, comm, PETSC_ERR_FILE_UNEXPECTED, "Element file %s line %" PetscInt_FMT ": a header but no element rows after it (one element per row: type,dof_a,dof_b,kt,kn,mu,n0,ndof_a,ndof_b)", file, line);
   {
     const char *need[] = {"type", "dof_a", "dof_b", "kt", "mu", "n0"};
     for (size_t i = 0; i < sizeof(need) / sizeof(need[0]); i++) {

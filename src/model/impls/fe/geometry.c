@@ -13,6 +13,7 @@
    through each half height.
 */
 #include <jointrom/private/feimpl.h>
+#include <unistd.h>
 
 /* grid lines: n cells of equal size over each segment [b_i, b_{i+1}] of size at most hs[i] */
 static PetscErrorCode GridLines(PetscInt nseg, const PetscReal b[], const PetscReal hs[], PetscInt minc, PetscInt *n, PetscReal **x)
@@ -28,6 +29,107 @@ static PetscErrorCode GridLines(PetscInt nseg, const PetscReal b[], const PetscR
   }
   (*x)[k] = b[nseg];
   *n      = tot;
+  PetscFunctionReturn(0);
+}
+
+/* the number of cells GridLines makes (a real: a mesh too fine to build is still counted) */
+static PetscReal GridCount(PetscInt nseg, const PetscReal b[], const PetscReal hs[], PetscInt minc)
+{
+  PetscReal n = 0;
+  for (PetscInt s = 0; s < nseg; s++) n += PetscMax((PetscReal)minc, PetscCeilReal((b[s + 1] - b[s]) / hs[s] - 1e-9));
+  return n;
+}
+
+/* along one grid direction of n cells of order p: the nodes, and the sum over them of the nodes each one shares a
+   cell with (vertex nodes 2p + 1, or p + 1 at the ends; nodes inside a cell p + 1) */
+static void Grid1D(PetscReal n, PetscInt p, PetscReal *nodes, PetscReal *couple)
+{
+  *nodes  = p * n + 1;
+  *couple = (n - 1) * (2 * p + 1) + 2 * (p + 1) + n * (p - 1) * (p + 1);
+}
+
+/*
+  JRFEMeshEstimate - the size of the beam's (lap false) or lap joint's model from its mesh parameters alone, before the
+  mesh is built: the grid of JRFEGeometryBeam / JRFEGeometryLap taken as a full box (holes and the second set of nodes
+  on the contact plane left out: a few per cent), the nonzeros of K as the tensor product of the couplings along each
+  direction (exact for a box), 9 per pair of coupled nodes. Memory: K, M and the eigensolver's shifted K - sigma M in
+  AIJ (a value and a column index per nonzero), and its sparse LDL^T factorisation, about 10 N^(4/3) entries for N
+  DOFs in 13 bytes each (MUMPS on these beams), plus 50 MB for the program. Checked against real runs of brb and
+  lap1 (-model_view prints both): within 15 per cent.
+*/
+PetscErrorCode JRFEMeshEstimate(const Model_FE *fe, PetscBool lap, JRFEMeshSize *est)
+{
+  PetscReal nx, ny, nz, n[3], c[3];
+
+  PetscFunctionBeginUser;
+  if (lap) {
+    const PetscReal xl = fe->L1 - fe->Llap, xr = fe->L1, xe = fe->L1 - fe->Llap + fe->L2;
+    const PetscReal bx[4] = {0, xl, xr, xe}, hx[3] = {fe->h * fe->grade, fe->h, fe->h * fe->grade};
+    const PetscReal by[2] = {0, fe->W}, hy[1] = {fe->h}, bz[3] = {0, 0.5 * fe->H, fe->H}, hz[2] = {fe->h, fe->h};
+    nx = GridCount(3, bx, hx, 1);
+    ny = GridCount(1, by, hy, 2);
+    nz = GridCount(2, bz, hz, 2);
+  } else {
+    const PetscReal bx[2] = {0, fe->L1}, by[2] = {0, fe->W}, bz[2] = {0, fe->H}, h[1] = {fe->h};
+    nx = GridCount(1, bx, h, 1);
+    ny = GridCount(1, by, h, 1);
+    nz = GridCount(1, bz, h, 1);
+  }
+  Grid1D(nx, fe->order, &n[0], &c[0]);
+  Grid1D(ny, fe->order, &n[1], &c[1]);
+  Grid1D(nz, fe->order, &n[2], &c[2]);
+  est->cells = nx * ny * nz;
+  est->nodes = n[0] * n[1] * n[2];
+  est->dofs  = 3 * est->nodes;
+  est->nnz   = 9 * c[0] * c[1] * c[2];
+  est->km    = 2 * est->nnz * (sizeof(PetscScalar) + sizeof(PetscInt));
+  est->total = 1.5 * est->km + 13 * 10 * PetscPowReal(est->dofs, 4.0 / 3.0) + 50e6;
+  PetscFunctionReturn(0);
+}
+
+/* the memory this run may use [bytes]: -model_memory_limit, or what the machine has available (MemAvailable in
+   /proc/meminfo, else the free physical pages); 0 if unknown */
+static PetscErrorCode MemoryAvailable(MPI_Comm comm, PetscReal limit_gib, PetscReal *bytes)
+{
+  double      avail = 0;
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  *bytes = limit_gib * 1073741824.0;
+  if (limit_gib > 0) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) {
+    FILE *fp = fopen("/proc/meminfo", "r");
+    char  line[256];
+    if (fp) {
+      while (fgets(line, sizeof(line), fp)) {
+        double kb;
+        if (sscanf(line, "MemAvailable: %lf kB", &kb) == 1) avail = kb * 1024.0;
+      }
+      fclose(fp);
+    }
+#if defined(_SC_AVPHYS_PAGES) && defined(_SC_PAGESIZE)
+    if (!avail) avail = (double)sysconf(_SC_AVPHYS_PAGES) * (double)sysconf(_SC_PAGESIZE);
+#endif
+  }
+  PetscCallMPI(MPI_Bcast(&avail, 1, MPI_DOUBLE, 0, comm));
+  *bytes = (PetscReal)avail;
+  PetscFunctionReturn(0);
+}
+
+/* JRFEMeshCheckMemory - before the mesh is built: an error if the model would need more memory than this run may use */
+PetscErrorCode JRFEMeshCheckMemory(MPI_Comm comm, const Model_FE *fe, PetscBool lap)
+{
+  JRFEMeshSize    est;
+  const PetscReal gib = 1073741824.0;
+  PetscReal       avail;
+
+  PetscFunctionBeginUser;
+  PetscCall(MemoryAvailable(comm, fe->memlimit, &avail));
+  PetscCall(JRFEMeshEstimate(fe, lap, &est));
+  PetscCall(PetscInfo(NULL, "mesh estimate: %g cells, %g nodes, %g nonzeros in K, %g GiB for K and M, %g GiB in all; %g GiB available\n", (double)est.cells, (double)est.nodes, (double)est.nnz, (double)(est.km / gib), (double)(est.total / gib), (double)(avail / gib)));
+  PetscCheck(!avail || est.total <= avail, comm, PETSC_ERR_ARG_OUTOFRANGE, "-model_mesh_h %g: the mesh would have %.3g nodes (%.3g DOFs), about %.3g GiB for K and M and %.3g GiB in all with the eigensolver's factorisation, more than the %.3g GiB %s (a coarser -model_mesh_h, or -model_memory_limit GiB)", (double)fe->h, (double)est.nodes, (double)est.dofs, (double)(est.km / gib), (double)(est.total / gib), (double)(avail / gib), fe->memlimit > 0 ? "of -model_memory_limit" : "available");
+  PetscCheck(est.dofs < (PetscReal)PETSC_MAX_INT, comm, PETSC_ERR_ARG_OUTOFRANGE, "-model_mesh_h %g: the mesh would have %.3g DOFs, more than this PETSc's integers count (%d)", (double)fe->h, (double)est.dofs, (int)PETSC_MAX_INT);
   PetscFunctionReturn(0);
 }
 

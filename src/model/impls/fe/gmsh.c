@@ -55,9 +55,27 @@ PetscErrorCode JRFEGeometryGmsh(MPI_Comm comm, Model_FE *fe, DM *dm)
   PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "Cannot open the Gmsh file %s (-model_file)", fe->file);
   PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
   {
-    char what[PETSC_MAX_PATH_LEN + 64];
+    char        what[PETSC_MAX_PATH_LEN + 64];
+    PetscMPIInt size, rank;
     PetscCall(PetscSNPrintf(what, sizeof(what), "the Gmsh file %s (-model_file)", fe->file));
     PetscCall(JRErrorContextPush(what));
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    if (size > 1) { /* rank 0 reads the file for every rank: a bad one read there first, alone, so that every rank
+                       stops with its error */
+      char msg[512] = "";
+      if (!rank) {
+        DM             trial = NULL;
+        PetscErrorCode ierr;
+        PetscCall(JRErrorCatchPush());
+        ierr = DMPlexCreateFromFile(PETSC_COMM_SELF, fe->file, "jointrom", PETSC_FALSE, &trial);
+        PetscCall(JRErrorCatchPop(msg, sizeof(msg)));
+        if (!ierr) PetscCall(DMDestroy(&trial));
+        else if (!msg[0]) PetscCall(PetscStrncpy(msg, "cannot be read", sizeof(msg)));
+      }
+      PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
+      PetscCheck(!msg[0], comm, PETSC_ERR_FILE_UNEXPECTED, "%s", msg);
+    }
     PetscCall(DMPlexCreateFromFile(comm, fe->file, "jointrom", PETSC_TRUE, dm));
     PetscCall(JRErrorContextPop());
   }

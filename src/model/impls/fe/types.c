@@ -42,6 +42,7 @@ static PetscErrorCode JRModelSetFromOptions_FE(JRModel m, PetscOptionItems *Pets
     fe->petscfe = a == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
   if (ft->kind != KIND_GMSH) PetscCall(PetscOptionsReal("-model_mesh_h", "Element size [m] (over the lap; outside it times -model_mesh_grade)", "JRModelSetUp", fe->h, &fe->h, NULL));
+  if (ft->kind != KIND_GMSH) PetscCall(PetscOptionsReal("-model_memory_limit", "Memory the model may need [GiB], estimated from the mesh parameters before the mesh is built (0: what the machine has available)", "JRModelSetUp", fe->memlimit, &fe->memlimit, NULL));
   if (ft->kind == KIND_BEAM) {
     PetscCall(PetscOptionsReal("-model_length", "Beam length along x [m]", "JRModelSetUp", fe->L1, &fe->L1, NULL));
     PetscCall(PetscOptionsReal("-model_width", "Beam width along y [m]", "JRModelSetUp", fe->W, &fe->W, NULL));
@@ -96,11 +97,13 @@ static PetscErrorCode JRModelSetUp_FE(JRModel m)
   PetscFunctionBeginUser;
   PetscCheck(fe->tangent[0] == 'x' || fe->tangent[0] == 'y', m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-model_tangent %s: x or y", fe->tangent);
   if (ft->kind != KIND_GMSH) PetscCall(CheckPositive(m->comm, "-model_mesh_h", fe->h));
+  PetscCheck(fe->memlimit >= 0 && !PetscIsInfOrNanReal(fe->memlimit), m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-model_memory_limit %g: a size in GiB, or 0 for the memory available", (double)fe->memlimit);
   PetscCall(DMDestroy(&fe->dm));
   if (ft->kind == KIND_BEAM) {
     PetscCall(CheckPositive(m->comm, "-model_length", fe->L1));
     PetscCall(CheckPositive(m->comm, "-model_width", fe->W));
     PetscCall(CheckPositive(m->comm, "-model_height", fe->H));
+    PetscCall(JRFEMeshCheckMemory(m->comm, fe, PETSC_FALSE));
     PetscCall(JRFEGeometryBeam(m->comm, fe, &fe->dm));
   } else if (ft->kind == KIND_LAP) {
     PetscCall(CheckPositive(m->comm, "-model_length_a", fe->L1));
@@ -114,6 +117,7 @@ static PetscErrorCode JRModelSetUp_FE(JRModel m)
     PetscCall(CheckPositive(m->comm, "-model_mesh_grade", fe->grade));
     PetscCheck(fe->nbolts >= 0, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-model_nbolts %" PetscInt_FMT ": must be non-negative", fe->nbolts);
     PetscCheck(fe->nbolts <= 1 || fe->pitch >= fe->dwasher, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-model_bolt_pitch %g m: the washers (diameter %g m) would overlap", (double)fe->pitch, (double)fe->dwasher);
+    PetscCall(JRFEMeshCheckMemory(m->comm, fe, PETSC_TRUE));
     PetscCall(JRFEGeometryLap(m->comm, fe, &fe->dm));
   } else PetscCall(JRFEGeometryGmsh(m->comm, fe, &fe->dm));
   PetscCall(JRFESetUp(m, fe));
@@ -131,6 +135,13 @@ static PetscErrorCode JRModelView_FE(JRModel m, PetscViewer viewer)
   nc = ce - cs;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nc, 1, MPIU_INT, MPI_SUM, m->comm));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  %s: %" PetscInt_FMT " hexahedra, order %" PetscInt_FMT ", %" PetscInt_FMT " nodes, %" PetscInt_FMT " DOFs%s\n", ft->preset, nc, fe->order, fe->nnodes, m->ndof, fe->clamp ? ", end x = 0 clamped" : ", free-free"));
+  if (ft->kind != KIND_GMSH) {
+    JRFEMeshSize est;
+    MatInfo      info;
+    PetscCall(JRFEMeshEstimate(fe, ft->kind == KIND_LAP ? PETSC_TRUE : PETSC_FALSE, &est));
+    PetscCall(MatGetInfo(m->K, MAT_GLOBAL_SUM, &info));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  estimate before the mesh: %.0f nodes, %.0f nonzeros in K (it has %.0f), %.3g GiB for K and M, %.3g GiB in all with the eigensolver\n", (double)est.nodes, (double)est.nnz, (double)info.nz_used, (double)(est.km / 1073741824.0), (double)(est.total / 1073741824.0)));
+  }
   PetscCall(PetscViewerASCIIPrintf(viewer, "  material: E %g Pa, nu %g, rho %g kg/m^3; volume %.6g m^3\n", (double)fe->E, (double)fe->nu, (double)fe->rho, (double)fe->volume));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  mass %.9g kg from M, density x volume %.9g kg (relative difference %.1e)\n", (double)m->mass, (double)m->volume_mass, (double)PetscAbsReal(m->mass / m->volume_mass - 1.0)));
   if (fe->lap || ft->kind == KIND_GMSH) {

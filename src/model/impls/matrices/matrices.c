@@ -3,7 +3,7 @@
    brought in and small systems checked. -model_stiffness FILE, -model_mass FILE, optional
    -model_damping FILE (viscous C), optional -model_elements FILE.csv. Formats by extension
    (src/sys/matio.c): .mtx, .bin, .h5 (groups K, M, C by default). K, M (and C) must be square, of
-   one size, and symmetric.
+   one size, and symmetric; M positive definite, K positive semidefinite (checked by LDL^T inertia).
 */
 #include <jointrom/private/modelimpl.h>
 
@@ -37,12 +37,74 @@ static PetscErrorCode CheckMatrix(JRModel m, Mat A, const char *what, const char
   PetscCheck(r == c, m->comm, PETSC_ERR_ARG_SIZ, "%s matrix %s is %" PetscInt_FMT " x %" PetscInt_FMT ", not square", what, file, r, c);
   PetscCheck(n < 0 || r == n, m->comm, PETSC_ERR_ARG_SIZ, "%s matrix %s is %" PetscInt_FMT " x %" PetscInt_FMT ", the stiffness matrix is %" PetscInt_FMT " x %" PetscInt_FMT, what, file, r, c, n, n);
   PetscCall(MatNorm(A, NORM_MAX, &amax));
-  PetscCheck(!PetscIsInfOrNanReal(amax), m->comm, PETSC_ERR_FP, "%s matrix %s has non-finite entries", what, file);
+  PetscCheck(!PetscIsInfOrNanReal(amax), m->comm, PETSC_ERR_FILE_UNEXPECTED, "%s matrix %s has entries that are not finite numbers", what, file);
   PetscCall(MatTranspose(A, MAT_INITIAL_MATRIX, &At));
   PetscCall(MatAXPY(At, -1.0, A, DIFFERENT_NONZERO_PATTERN));
   PetscCall(MatNorm(At, NORM_MAX, &dmax));
   PetscCall(MatDestroy(&At));
   PetscCheck(dmax <= 1e-10 * amax, m->comm, PETSC_ERR_ARG_WRONG, "%s matrix %s is not symmetric: max |A - A^T| = %g, max |A| = %g", what, file, (double)dmax, (double)amax);
+  PetscFunctionReturn(0);
+}
+
+#if defined(PETSC_HAVE_MUMPS)
+/* The inertia of A by an LDL^T factorisation (MUMPS, null pivots counted as zero eigenvalues) */
+static PetscErrorCode Inertia(Mat A, PetscInt *nneg, PetscInt *nzero)
+{
+  Mat            F;
+  MatFactorInfo  info;
+  MatFactorError ferr;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetFactor(A, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &F));
+  PetscCall(MatMumpsSetIcntl(F, 13, 1)); /* the root front factorised on one rank: the inertia is exact in parallel */
+  PetscCall(MatMumpsSetIcntl(F, 24, 1)); /* null pivots detected */
+  PetscCall(MatFactorInfoInitialize(&info));
+  PetscCall(MatCholeskyFactorSymbolic(F, A, NULL, &info));
+  PetscCall(MatCholeskyFactorNumeric(F, A, &info));
+  PetscCall(MatFactorGetError(F, &ferr));
+  if (ferr) {
+    *nneg  = 0;
+    *nzero = 1;
+  } else PetscCall(MatGetInertia(F, nneg, nzero, NULL));
+  PetscCall(MatDestroy(&F));
+  PetscFunctionReturn(0);
+}
+#endif
+
+/* Before any work: M positive definite, and K positive semidefinite beyond round-off, i.e. no eigenvalue of
+   K phi = omega^2 M phi below -1e-8 s, s = max_i |K_ii| / M_ii (at most the largest eigenvalue): by Sylvester's
+   law of inertia, the negative pivots of LDL^T factorisations of M and of K + 1e-8 s M count them */
+static PetscErrorCode CheckDefinite(JRModel m, const char *kfile, const char *mfile)
+{
+  Vec       dk, dm;
+  PetscReal dmin, s;
+  PetscInt  nneg = 0, nzero = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateVecs(m->K, &dk, &dm));
+  PetscCall(MatGetDiagonal(m->M, dm));
+  PetscCall(VecMin(dm, NULL, &dmin));
+  PetscCheck(dmin > 0, m->comm, PETSC_ERR_ARG_WRONG, "Mass matrix %s is not positive definite: a diagonal entry is %g (every DOF needs a positive mass)", mfile, (double)dmin);
+#if defined(PETSC_HAVE_MUMPS)
+  PetscCall(Inertia(m->M, &nneg, &nzero));
+  PetscCheck(!nneg && !nzero, m->comm, PETSC_ERR_ARG_WRONG, "Mass matrix %s is not positive definite: %" PetscInt_FMT " negative and %" PetscInt_FMT " zero eigenvalues", mfile, nneg, nzero);
+#endif
+  PetscCall(MatGetDiagonal(m->K, dk));
+  PetscCall(VecAbs(dk));
+  PetscCall(VecPointwiseDivide(dk, dk, dm));
+  PetscCall(VecMax(dk, NULL, &s));
+  PetscCall(VecDestroy(&dk));
+  PetscCall(VecDestroy(&dm));
+#if defined(PETSC_HAVE_MUMPS)
+  if (s > 0) {
+    Mat A;
+    PetscCall(MatDuplicate(m->K, MAT_COPY_VALUES, &A));
+    PetscCall(MatAXPY(A, 1e-8 * s, m->M, DIFFERENT_NONZERO_PATTERN));
+    PetscCall(Inertia(A, &nneg, &nzero));
+    PetscCall(MatDestroy(&A));
+  }
+  PetscCheck(!nneg, m->comm, PETSC_ERR_ARG_WRONG, "Stiffness matrix %s is not positive semidefinite: %" PetscInt_FMT " eigenvalue%s of K phi = omega^2 M phi (M from %s) below -1e-8 x max |K_ii|/M_ii = %g rad^2/s^2", kfile, nneg, nneg > 1 ? "s" : "", mfile, (double)(-1e-8 * s));
+#endif
   PetscFunctionReturn(0);
 }
 
@@ -63,10 +125,12 @@ static PetscErrorCode JRModelSetUp_Matrices(JRModel m)
       PetscCall(JRMatLoadFile(m->comm, mm->C, "C", &m->C));
       PetscCall(CheckMatrix(m, m->C, "Damping", mm->C, m->ndof));
     }
+    PetscCall(CheckDefinite(m, mm->K, mm->M));
   } else {
     PetscCall(CheckMatrix(m, m->K, "Stiffness", "(given)", -1));
     PetscCall(CheckMatrix(m, m->M, "Mass", "(given)", m->ndof));
     if (m->C) PetscCall(CheckMatrix(m, m->C, "Damping", "(given)", m->ndof));
+    PetscCall(CheckDefinite(m, "(given)", "(given)"));
   }
   if (mm->elements[0]) PetscCall(JRElementsReadCSV(m->comm, mm->elements, m->ndof, &m->el));
   for (PetscInt e = 0; e < m->el.n; e++) {
