@@ -182,6 +182,7 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
 
   PetscFunctionBeginUser;
   PetscCall(JRContRegisterAll());
+  for (PetscInt i = 0; i < nl; i++) lv[i] = i < c->nlev ? c->levels[i] : 0; /* -help shows the levels set */
   PetscOptionsBegin(c->comm, NULL, "Continuation (JRCont) and frequency-response output", "JRCont");
   PetscCall(PetscOptionsFList("-cont_type", "Continuation: natural (step in frequency) or arclength (pseudo-arclength, passes turning points)", "JRContSetType", JRContList, c->type_name[0] ? c->type_name : JRCONTARCLENGTH, type, sizeof(type), &flg));
   if (flg) PetscCall(JRContSetType(c, type));
