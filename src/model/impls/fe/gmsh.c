@@ -45,7 +45,7 @@ static PetscErrorCode CopyNamedLabel(DM dm, const char *name, const char *to, Pe
 
 PetscErrorCode JRFEGeometryGmsh(MPI_Comm comm, Model_FE *fe, DM *dm)
 {
-  PetscBool ok;
+  PetscBool ok, given;
   PetscInt  na, nb, cs, ce;
   DM        dist = NULL;
 
@@ -53,7 +53,9 @@ PetscErrorCode JRFEGeometryGmsh(MPI_Comm comm, Model_FE *fe, DM *dm)
   PetscCheck(fe->file[0], comm, PETSC_ERR_USER_INPUT, "-model_type gmsh needs -model_file FILE.msh");
   PetscCall(PetscTestFile(fe->file, 'r', &ok));
   PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "Cannot open the Gmsh file %s (-model_file)", fe->file);
-  PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-dm_plex_gmsh_use_regions", &given)); /* PETSc's reader takes the physical
+                                                                                      groups as labels only from its options: set for the read, then cleared */
+  if (!given) PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
   {
     char        what[PETSC_MAX_PATH_LEN + 64];
     PetscMPIInt size, rank;
@@ -78,6 +80,7 @@ PetscErrorCode JRFEGeometryGmsh(MPI_Comm comm, Model_FE *fe, DM *dm)
     }
     PetscCall(DMPlexCreateFromFile(comm, fe->file, "jointrom", PETSC_TRUE, dm));
     PetscCall(JRErrorContextPop());
+    if (!given) PetscCall(PetscOptionsClearValue(NULL, "-dm_plex_gmsh_use_regions"));
   }
   PetscCall(DMCreateLabel(*dm, JR_LABEL_BODY));
   PetscCall(DMCreateLabel(*dm, JR_LABEL_CONTACT));
