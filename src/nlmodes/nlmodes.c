@@ -1,0 +1,527 @@
+/*
+   JRNLModes: a nonlinear mode of a structure with friction contact elements, by the extended periodic motion concept
+   (EPMC, Krack 2015; src/hbm/epmc.c): the backbone of the stuck mode of interest, its frequency and damping ratio
+   D = xi / (2 w) against its modal amplitude q, from the stuck limit to gross slip.
+
+   Continuation: natural, in log q, over -nlm_points amplitudes spaced evenly in log q between -nlm_amp_min and
+   -nlm_amp_max, steps at most -nlm_step_max decades, halved when Newton fails; the predictor is the secant through
+   the last two solutions of the scaled unknowns y = [a / q | w / w0 | xi / w0], which vary slowly with log q (a
+   friction backbone has no fold in amplitude). The corrector is a SNES (prefix nlm_, newtondense) on the EPMC's
+   n + 2 equations, scaled by q w0^2 (the harmonic balance) and q (the normalisation).
+*/
+#include <jointrom/private/nlmodesimpl.h>
+#include <petscviewerhdf5.h>
+
+PetscErrorCode JRNLModesCreate(MPI_Comm comm, JRNLModes *nlm)
+{
+  JRNLModes m;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRInitializePackage());
+  PetscCall(PetscNew(&m));
+  m->comm    = comm;
+  m->mode    = 1;
+  m->npts    = 30;
+  m->dmax    = 0.1;
+  m->maxcuts = 12;
+  m->plot    = PETSC_TRUE;
+  PetscCall(PetscStrncpy(m->out, "out/nlmodes", sizeof(m->out)));
+  *nlm = m;
+  PetscFunctionReturn(0);
+}
+
+/* The harmonic balance whose mode is followed (a reference is kept: the caller keeps it alive) */
+PetscErrorCode JRNLModesSetHBM(JRNLModes m, JRHBM hbm)
+{
+  PetscFunctionBeginUser;
+  m->hbm         = hbm;
+  m->setupcalled = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/*
+  Options: -nlm_mode k (the k-th elastic mode of the stuck structure), -nlm_amp_min, -nlm_amp_max (modal amplitudes of
+  the mass-normalised mode; default: 0.1 and 3 times the amplitudes at which the first and the last friction element
+  slip), -nlm_points, -nlm_step_max, -nlm_max_cuts, -nlm_output_file, -nlm_plot, -nlm_view; -nlm_snes_* on the
+  corrector
+*/
+PetscErrorCode JRNLModesSetFromOptions(JRNLModes m)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(m->comm, NULL, "Nonlinear modes by EPMC (JRNLModes)", "JRNLModes");
+  PetscCall(PetscOptionsInt("-nlm_mode", "Which elastic mode of the stuck structure (1: the first elastic mode)", "JRNLModesSetUp", m->mode, &m->mode, NULL));
+  PetscCall(PetscOptionsReal("-nlm_amp_min", "Smallest modal amplitude q of the mass-normalised mode [m kg^1/2] (default: 0.1 x the amplitude at which the first element slips)", "JRNLModesSetUp", m->amin, &m->amin, NULL));
+  PetscCall(PetscOptionsReal("-nlm_amp_max", "Largest modal amplitude q [m kg^1/2] (default: 3 x the amplitude at which the last element slips)", "JRNLModesSetUp", m->amax, &m->amax, NULL));
+  PetscCall(PetscOptionsInt("-nlm_points", "Points of the backbone, evenly spaced in log q", "JRNLModesSolve", m->npts, &m->npts, NULL));
+  PetscCall(PetscOptionsReal("-nlm_step_max", "Largest continuation step in log10 q [decades]: longer intervals are split", "JRNLModesSolve", m->dmax, &m->dmax, NULL));
+  PetscCall(PetscOptionsInt("-nlm_max_cuts", "Step halvings after a failed Newton solve before the backbone stops", "JRNLModesSolve", m->maxcuts, &m->maxcuts, NULL));
+  PetscCall(PetscOptionsString("-nlm_output_file", "Output base name: BASE.h5, BASE.csv, BASE.png ('' for none)", "JRNLModesWrite", m->out, m->out, sizeof(m->out), NULL));
+  PetscCall(PetscOptionsBool("-nlm_plot", "Draw BASE.png (frequency and damping ratio against amplitude)", "JRNLModesWrite", m->plot, &m->plot, NULL));
+  PetscCall(PetscOptionsBool("-nlm_view", "Print the nonlinear-mode set-up", "JRNLModesView", m->view, &m->view, NULL));
+  PetscOptionsEnd();
+  PetscCheck(m->mode >= 1, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-nlm_mode %" PetscInt_FMT ": the elastic modes are numbered from 1", m->mode);
+  PetscCheck(m->amin >= 0 && m->amax >= 0, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-nlm_amp_min %g, -nlm_amp_max %g: modal amplitudes are positive", (double)m->amin, (double)m->amax);
+  PetscCheck(!(m->amin > 0 && m->amax > 0) || m->amax > m->amin, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-nlm_amp_max %g must exceed -nlm_amp_min %g", (double)m->amax, (double)m->amin);
+  PetscCheck(m->npts >= 2 && m->npts <= 100000, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-nlm_points %" PetscInt_FMT ": between 2 and 100000", m->npts);
+  PetscCheck(m->dmax > 0 && m->dmax <= 2, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-nlm_step_max %g: a step in decades of amplitude, in (0, 2]", (double)m->dmax);
+  PetscCheck(m->maxcuts >= 0 && m->maxcuts <= 40, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-nlm_max_cuts %" PetscInt_FMT ": between 0 and 40", m->maxcuts);
+  m->setupcalled = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* The output base name of -nlm_output_file ('' for none) */
+PetscErrorCode JRNLModesGetOutputBase(JRNLModes m, const char **base)
+{
+  PetscFunctionBeginUser;
+  *base = m->out;
+  PetscFunctionReturn(0);
+}
+
+/* y (scaled) -> x = [q y_a | w0 y_w | w0 y_xi] */
+static PetscErrorCode Unscale(JRNLModes m, Vec y, Vec x)
+{
+  const PetscScalar *ya;
+  PetscScalar       *xa;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(y, &ya));
+  PetscCall(VecGetArray(x, &xa));
+  for (PetscInt i = 0; i < m->n; i++) xa[i] = m->q * ya[i];
+  xa[m->n]     = m->w0 * ya[m->n];
+  xa[m->n + 1] = m->w0 * ya[m->n + 1];
+  PetscCall(VecRestoreArray(x, &xa));
+  PetscCall(VecRestoreArrayRead(y, &ya));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FormFunction(SNES snes, Vec y, Vec F, void *ctx)
+{
+  JRNLModes    m = (JRNLModes)ctx;
+  PetscScalar *f;
+
+  PetscFunctionBeginUser;
+  (void)snes;
+  PetscCall(Unscale(m, y, m->xr));
+  PetscCall(JRHBMComputeEPMC(m->hbm, m->q, m->xr, F, NULL));
+  PetscCall(VecGetArray(F, &f));
+  for (PetscInt i = 0; i < m->n; i++) f[i] /= m->q * m->w0 * m->w0;
+  f[m->n] /= m->q;
+  f[m->n + 1] /= m->q;
+  PetscCall(VecRestoreArray(F, &f));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FormJacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
+{
+  JRNLModes    m = (JRNLModes)ctx;
+  PetscScalar *j;
+  const PetscInt n = m->n, N = m->N;
+
+  PetscFunctionBeginUser;
+  (void)snes;
+  (void)P;
+  PetscCall(Unscale(m, y, m->xr));
+  PetscCall(JRHBMComputeEPMC(m->hbm, m->q, m->xr, m->rr, J));
+  PetscCall(MatDenseGetArray(J, &j));
+  for (PetscInt c = 0; c < N; c++) {
+    const PetscReal sc = c < n ? m->q : m->w0;
+    for (PetscInt r = 0; r < N; r++) j[r + c * N] *= sc / (r < n ? m->q * m->w0 * m->w0 : m->q);
+  }
+  PetscCall(MatDenseRestoreArray(J, &j));
+  PetscFunctionReturn(0);
+}
+
+/* The default amplitude range: the modal amplitudes at which the first and the last friction element in contact
+   start to slip in the stuck mode, q_e = mu n0 / (kt |u_e|) with u_e the element's motion in the mode */
+static PetscErrorCode DefaultRange(JRNLModes m)
+{
+  const JRElements *el;
+  PetscReal        *u, lo = PETSC_MAX_REAL, hi = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMGetElements(m->hbm, &el));
+  PetscCall(PetscMalloc1(PetscMax(el->n, 1), &u));
+  PetscCall(JRHBMStuckModeMotion(m->hbm, m->kmode, u, NULL));
+  for (PetscInt e = 0; e < el->n; e++) {
+    const char *t = el->typename[el->type[e]];
+    PetscReal   qe;
+    if (strncmp(t, "jenkins", 7) || el->n0[e] <= 0 || el->mu[e] <= 0 || el->kt[e] <= 0 || PetscAbsReal(u[e]) < 1e-300) continue;
+    qe = el->mu[e] * el->n0[e] / (el->kt[e] * PetscAbsReal(u[e]));
+    lo = PetscMin(lo, qe);
+    hi = PetscMax(hi, qe);
+  }
+  PetscCall(PetscFree(u));
+  PetscCheck(hi > 0 || (m->amin > 0 && m->amax > 0), m->comm, PETSC_ERR_ARG_WRONG, "Nonlinear modes: no friction element slips in this mode; give the range with -nlm_amp_min and -nlm_amp_max");
+  if (m->amin <= 0) m->amin = 0.1 * lo;
+  if (m->amax <= 0) m->amax = 3 * hi;
+  PetscCheck(m->amax > m->amin, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "Nonlinear modes: -nlm_amp_max %g must exceed -nlm_amp_min %g", (double)m->amax, (double)m->amin);
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRNLModesSetUp - the harmonic balance (JRHBMSetUp), the stuck mode of interest (-nlm_mode among the elastic modes:
+  stuck frequencies above 1e-4 of the highest), the EPMC system (JRHBMSetEPMC), the amplitude range and the corrector
+*/
+PetscErrorCode JRNLModesSetUp(JRNLModes m)
+{
+  PetscInt   nm, nf, ne = 0;
+  PetscReal *f, fmax = 0;
+
+  PetscFunctionBeginUser;
+  if (m->setupcalled) PetscFunctionReturn(0);
+  PetscCheck(m->hbm, m->comm, PETSC_ERR_ARG_WRONGSTATE, "JRNLModesSetHBM() first");
+  PetscCall(JRHBMSetUp(m->hbm));
+  PetscCall(JRHBMGetSizes(m->hbm, &nm, NULL, &m->n));
+  PetscCall(PetscMalloc1(nm, &f));
+  PetscCall(JRHBMStickFrequencies(m->hbm, &nf, f));
+  for (PetscInt i = 0; i < nf; i++) fmax = PetscMax(fmax, f[i]);
+  m->kmode = -1;
+  for (PetscInt i = 0; i < nf && m->kmode < 0; i++)
+    if (f[i] > 1e-4 * fmax && ++ne == m->mode) m->kmode = i;
+  PetscCall(PetscFree(f));
+  PetscCheck(m->kmode >= 0, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-nlm_mode %" PetscInt_FMT ": the stuck structure has %" PetscInt_FMT " elastic modes in the basis of %" PetscInt_FMT " modes (-hbm_modes)", m->mode, ne, nm);
+  PetscCall(JRHBMSetEPMC(m->hbm, m->kmode, &m->w0));
+  PetscCall(JRHBMGetEPMCMode(m->hbm, NULL, NULL, &m->xi0));
+  if (m->amin <= 0 || m->amax <= 0) PetscCall(DefaultRange(m));
+  PetscCall(JRHBMGetOutputs(m->hbm, &m->nout, NULL));
+  m->N = m->n + 2;
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, m->N, &m->y));
+  PetscCall(VecDuplicate(m->y, &m->f));
+  PetscCall(VecDuplicate(m->y, &m->xr));
+  PetscCall(VecDuplicate(m->y, &m->rr));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, m->n, &m->a));
+  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, m->N, m->N, NULL, &m->J));
+  PetscCall(SNESCreate(PETSC_COMM_SELF, &m->snes));
+  PetscCall(SNESSetOptionsPrefix(m->snes, "nlm_"));
+  PetscCall(SNESSetFunction(m->snes, m->f, FormFunction, m));
+  PetscCall(SNESSetJacobian(m->snes, m->J, m->J, FormJacobian, m));
+  PetscCall(SNESSetType(m->snes, SNESNEWTONDENSE));
+  PetscCall(SNESSetTolerances(m->snes, 1e-11, 1e-13, 1e-14, 40, 10000));
+  PetscCall(SNESSetFromOptions(m->snes));
+  m->setupcalled = PETSC_TRUE;
+  if (m->view) PetscCall(JRNLModesView(m, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* One corrector solve at the modal amplitude q from the guess in m->y; converged: SNES converged, residual finite */
+static PetscErrorCode Correct(JRNLModes m, PetscReal q, PetscInt *its, PetscBool *converged)
+{
+  SNESConvergedReason reason;
+
+  PetscFunctionBeginUser;
+  m->q = q;
+  PetscCall(SNESSolve(m->snes, NULL, m->y));
+  PetscCall(SNESGetConvergedReason(m->snes, &reason));
+  PetscCall(SNESGetIterationNumber(m->snes, its));
+  *converged = reason > 0 ? PETSC_TRUE : PETSC_FALSE;
+  if (*converged) { /* a positive frequency */
+    const PetscScalar *ya;
+    PetscCall(VecGetArrayRead(m->y, &ya));
+    if (!(PetscRealPart(ya[m->n]) > 0.05)) *converged = PETSC_FALSE;
+    PetscCall(VecRestoreArrayRead(m->y, &ya));
+  }
+  m->newton += *its;
+  m->solves++;
+  PetscFunctionReturn(0);
+}
+
+/* The point just solved (m->y at m->q): stored, with its responses and its energy balance, and printed */
+static PetscErrorCode Record(JRNLModes m, PetscInt its)
+{
+  const PetscScalar *ya;
+  PetscScalar       *aa;
+  const PetscInt     k = m->np, n = m->n;
+  PetscReal          w, xi, ed, enl, win, exi;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(m->y, &ya));
+  PetscCall(VecGetArray(m->a, &aa));
+  for (PetscInt i = 0; i < n; i++) aa[i] = m->q * ya[i];
+  w  = m->w0 * PetscRealPart(ya[n]);
+  xi = m->w0 * PetscRealPart(ya[n + 1]);
+  PetscCall(VecRestoreArray(m->a, &aa));
+  PetscCall(VecRestoreArrayRead(m->y, &ya));
+  PetscCall(JRHBMEPMCWork(m->hbm, w, xi, m->a, &exi));
+  m->qs[k]    = m->q;
+  m->omega[k] = w;
+  m->xi[k]    = xi;
+  m->its[k]   = its;
+  PetscCall(VecGetArrayRead(m->a, &ya));
+  PetscCall(PetscArraycpy(m->as + k * n, ya, n));
+  PetscCall(VecRestoreArrayRead(m->a, &ya));
+  PetscCall(JRHBMResponse(m->hbm, m->a, NULL, m->amp + k * m->nout, NULL));
+  PetscCall(JRHBMEnergy(m->hbm, w, m->a, &win, &ed, &enl));
+  m->bal[k] = exi > 0 ? PetscAbsReal(exi - ed - enl) / exi : 0;
+  m->np++;
+  PetscCall(PetscPrintf(m->comm, "backbone point %" PetscInt_FMT " amplitude %.10e freq_hz %.10g damping_ratio %.8e xi %.6e amp_1 %.6e newton %" PetscInt_FMT "\n", k, (double)m->q, (double)(w / (2 * PETSC_PI)), (double)(xi / (2 * w)), (double)xi, (double)m->amp[k * m->nout], its));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRNLModesSolve - the backbone: -nlm_points amplitudes from -nlm_amp_min to -nlm_amp_max, one line
+  "backbone point <i> amplitude <q> freq_hz <f> damping_ratio <D> xi <xi> amp_1 <m> newton <its>" per point. A point
+  that cannot be reached after -nlm_max_cuts halvings of the step ends the backbone (JRNLModesGetStats: complete
+  false). Collective.
+*/
+PetscErrorCode JRNLModesSolve(JRNLModes m)
+{
+  const PetscReal lmin = PetscLogReal(m->amin), lmax = PetscLogReal(m->amax), dln = m->dmax * PetscLogReal(10.0);
+  PetscReal      *yp, *yq, lp = 0, lq = 0; /* the last two solutions (scaled) and their log q */
+  PetscInt        have = 0, its;
+  PetscBool       ok;
+  PetscLogDouble  t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRNLModesSetUp(m));
+  PetscCall(PetscTime(&t0));
+  m->np       = 0;
+  m->complete = PETSC_TRUE;
+  m->newton = m->solves = 0;
+  PetscCall(PetscFree6(m->qs, m->omega, m->xi, m->amp, m->as, m->bal));
+  PetscCall(PetscFree(m->its));
+  PetscCall(PetscMalloc6(m->npts, &m->qs, m->npts, &m->omega, m->npts, &m->xi, m->npts * m->nout, &m->amp, m->npts * m->n, &m->as, m->npts, &m->bal));
+  PetscCall(PetscMalloc1(m->npts, &m->its));
+  PetscCall(PetscMalloc2(m->N, &yp, m->N, &yq));
+  { /* the linear mode: x = q psi sin(w0 t), xi = xi0 */
+    const PetscReal *psi;
+    PetscScalar     *ya;
+    PetscInt         nm;
+    PetscCall(JRHBMGetSizes(m->hbm, &nm, NULL, NULL));
+    PetscCall(JRHBMGetEPMCMode(m->hbm, NULL, &psi, NULL));
+    PetscCall(VecZeroEntries(m->y));
+    PetscCall(VecGetArray(m->y, &ya));
+    for (PetscInt i = 0; i < nm; i++) ya[nm + i] = psi[i];
+    ya[m->n]     = 1.0;
+    ya[m->n + 1] = m->xi0 / m->w0;
+    PetscCall(VecRestoreArray(m->y, &ya));
+  }
+  PetscCall(Correct(m, m->amin, &its, &ok));
+  PetscCheck(ok, m->comm, PETSC_ERR_NOT_CONVERGED, "Nonlinear modes: no solution at the smallest amplitude -nlm_amp_min %g from the linear mode (%g Hz); try a smaller -nlm_amp_min or -nlm_snes_max_it", (double)m->amin, (double)(m->w0 / (2 * PETSC_PI)));
+  PetscCall(Record(m, its));
+  {
+    const PetscScalar *ya;
+    PetscCall(VecGetArrayRead(m->y, &ya));
+    for (PetscInt i = 0; i < m->N; i++) yq[i] = PetscRealPart(ya[i]);
+    PetscCall(VecRestoreArrayRead(m->y, &ya));
+    lq   = lmin;
+    have = 1;
+  }
+  for (PetscInt p = 1; p < m->npts && m->complete; p++) {
+    const PetscReal target = lmin + (lmax - lmin) * p / (m->npts - 1);
+    PetscReal       step   = PetscMin(dln, target - lq);
+    PetscInt        cuts = 0, itp = 0;
+    while (lq < target - 1e-14 * PetscMax(1, PetscAbsReal(target))) {
+      const PetscReal ln = PetscMin(lq + step, target);
+      PetscScalar    *ya;
+      PetscCall(VecGetArray(m->y, &ya)); /* the secant predictor in log q (the last solution if only one) */
+      for (PetscInt i = 0; i < m->N; i++) ya[i] = yq[i] + (have > 1 ? (ln - lq) * (yq[i] - yp[i]) / (lq - lp) : 0.0);
+      PetscCall(VecRestoreArray(m->y, &ya));
+      PetscCall(Correct(m, PetscExpReal(ln), &its, &ok));
+      itp += its;
+      if (ok) {
+        const PetscScalar *yc;
+        PetscCall(PetscArraycpy(yp, yq, m->N));
+        lp = lq;
+        PetscCall(VecGetArrayRead(m->y, &yc));
+        for (PetscInt i = 0; i < m->N; i++) yq[i] = PetscRealPart(yc[i]);
+        PetscCall(VecRestoreArrayRead(m->y, &yc));
+        lq   = ln;
+        have = 2;
+        if (its <= 4) step = PetscMin(dln, 1.5 * step);
+      } else if (++cuts > m->maxcuts) {
+        m->complete = PETSC_FALSE;
+        PetscCall(PetscPrintf(m->comm, "nlmodes: WARNING the backbone stops at amplitude %g: Newton failed %" PetscInt_FMT " times towards %g (-nlm_max_cuts)\n", (double)PetscExpReal(lq), cuts, (double)PetscExpReal(target)));
+        break;
+      } else step *= 0.5;
+    }
+    if (m->complete) PetscCall(Record(m, itp));
+  }
+  PetscCall(PetscFree2(yp, yq));
+  PetscCall(PetscTime(&t1));
+  m->seconds = t1 - t0;
+  PetscFunctionReturn(0);
+}
+
+/* The backbone: np points, the modal amplitude q, omega [rad/s], xi [1/s], the responses' first-harmonic amplitudes
+   (np x nout) [m] and the harmonics (np x n); any pointer may be NULL */
+PetscErrorCode JRNLModesGetBackbone(JRNLModes m, PetscInt *np, const PetscReal **q, const PetscReal **omega, const PetscReal **xi, const PetscReal **amp, const PetscReal **a)
+{
+  PetscFunctionBeginUser;
+  if (np) *np = m->np;
+  if (q) *q = m->qs;
+  if (omega) *omega = m->omega;
+  if (xi) *xi = m->xi;
+  if (amp) *amp = m->amp;
+  if (a) *a = m->as;
+  PetscFunctionReturn(0);
+}
+
+/* The solve's wall time [s], its Newton iterations, and whether the backbone reached -nlm_amp_max */
+PetscErrorCode JRNLModesGetStats(JRNLModes m, PetscReal *seconds, PetscInt *newton, PetscBool *complete)
+{
+  PetscFunctionBeginUser;
+  if (seconds) *seconds = m->seconds;
+  if (newton) *newton = m->newton;
+  if (complete) *complete = m->complete;
+  PetscFunctionReturn(0);
+}
+
+/* One dataset from rank 0 (collective) */
+static PetscErrorCode WriteRank0(MPI_Comm comm, PetscViewer v, const char name[], PetscInt len, PetscInt bs, const PetscReal r[], const PetscInt iv[])
+{
+  Vec          x;
+  PetscScalar *xa;
+  PetscMPIInt  rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank) len = 0;
+  PetscCall(VecCreateMPI(comm, len, PETSC_DETERMINE, &x));
+  if (bs > 1) PetscCall(VecSetBlockSize(x, bs));
+  PetscCall(PetscObjectSetName((PetscObject)x, name));
+  PetscCall(VecGetArray(x, &xa));
+  for (PetscInt i = 0; i < len; i++) xa[i] = r ? r[i] : (PetscReal)iv[i];
+  PetscCall(VecRestoreArray(x, &xa));
+  PetscCall(VecView(x, v));
+  PetscCall(VecDestroy(&x));
+  PetscFunctionReturn(0);
+}
+
+/* BASE.csv: point,q,omega_rad_s,freq_hz,damping_ratio,xi,amp_1..amp_n,newton,balance */
+static PetscErrorCode WriteCSV(JRNLModes m, const char csv[])
+{
+  char  tmp[PETSC_MAX_PATH_LEN + 32];
+  FILE *fp;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRFileOpenTemp(m->comm, csv, &fp, tmp, sizeof(tmp)));
+  if (fp) {
+    fprintf(fp, "point,q,omega_rad_s,freq_hz,damping_ratio,xi");
+    for (PetscInt o = 0; o < m->nout; o++) fprintf(fp, ",amp_%" PetscInt_FMT, o + 1);
+    fprintf(fp, ",newton,balance\n");
+    for (PetscInt k = 0; k < m->np; k++) {
+      fprintf(fp, "%" PetscInt_FMT ",%.12e,%.12g,%.12g,%.10e,%.10e", k, (double)m->qs[k], (double)m->omega[k], (double)(m->omega[k] / (2 * PETSC_PI)), (double)(m->xi[k] / (2 * m->omega[k])), (double)m->xi[k]);
+      for (PetscInt o = 0; o < m->nout; o++) fprintf(fp, ",%.10e", (double)m->amp[k * m->nout + o]);
+      fprintf(fp, ",%" PetscInt_FMT ",%.3e\n", m->its[k], (double)m->bal[k]);
+    }
+  }
+  PetscCall(JRFileCommit(m->comm, &fp, tmp, csv));
+  PetscFunctionReturn(0);
+}
+
+/* BASE.h5: the root's attributes (options, units, the mode) and the backbone's datasets */
+static PetscErrorCode WriteHDF5(JRNLModes m, const char h5[])
+{
+  char        tmp[PETSC_MAX_PATH_LEN + 32], *opts;
+  PetscViewer v;
+  PetscReal  *f, *d, f0 = m->w0 / (2 * PETSC_PI), d0 = m->xi0 / (2 * m->w0);
+  PetscInt    nm, H;
+  const char *damping;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMGetSizes(m->hbm, &nm, &H, NULL));
+  PetscCall(JRHBMGetDampingDescription(m->hbm, &damping));
+  PetscCall(JRFileTempName(m->comm, h5, tmp, sizeof(tmp)));
+  PetscCall(PetscViewerHDF5Open(m->comm, tmp, FILE_MODE_WRITE, &v));
+  PetscCall(PetscOptionsGetAll(NULL, &opts));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "options", PETSC_STRING, opts));
+  PetscCall(PetscFree(opts));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "method", PETSC_STRING, "extended periodic motion concept (Krack 2015): harmonic balance of the free motion with the negative damping -xi M; damping_ratio = xi / (2 omega)"));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "units", PETSC_STRING, "SI: q modal amplitude of the mass-normalised stuck mode [m kg^1/2], omega rad/s, freq_hz Hz, xi 1/s, amp m (first harmonic at each response)"));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "damping", PETSC_STRING, damping));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "harmonics", PETSC_INT, &H));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "modes", PETSC_INT, &nm));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "mode_elastic", PETSC_INT, &m->mode));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "mode_index", PETSC_INT, &m->kmode));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "stuck_freq_hz", PETSC_REAL, &f0));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "stuck_damping_ratio", PETSC_REAL, &d0));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "complete", PETSC_BOOL, &m->complete));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "layout_a", PETSC_STRING, "per point: [a0 | as_1 ac_1 | ... | as_H ac_H], each block over the modes"));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "balance", PETSC_STRING, "per point: |W_xi - W_damping - W_contact| / W_xi, the work of the negative damping per cycle against the dissipated energy"));
+  PetscCall(PetscMalloc2(m->np, &f, m->np, &d));
+  for (PetscInt k = 0; k < m->np; k++) {
+    f[k] = m->omega[k] / (2 * PETSC_PI);
+    d[k] = m->xi[k] / (2 * m->omega[k]);
+  }
+  PetscCall(WriteRank0(m->comm, v, "q", m->np, 1, m->qs, NULL));
+  PetscCall(WriteRank0(m->comm, v, "omega", m->np, 1, m->omega, NULL));
+  PetscCall(WriteRank0(m->comm, v, "freq_hz", m->np, 1, f, NULL));
+  PetscCall(WriteRank0(m->comm, v, "damping_ratio", m->np, 1, d, NULL));
+  PetscCall(WriteRank0(m->comm, v, "xi", m->np, 1, m->xi, NULL));
+  PetscCall(WriteRank0(m->comm, v, "amp", m->np * m->nout, m->nout, m->amp, NULL));
+  PetscCall(WriteRank0(m->comm, v, "a", m->np * m->n, m->n, m->as, NULL));
+  PetscCall(WriteRank0(m->comm, v, "balance", m->np, 1, m->bal, NULL));
+  PetscCall(WriteRank0(m->comm, v, "newton_its", m->np, 1, NULL, m->its));
+  PetscCall(PetscFree2(f, d));
+  PetscCall(PetscViewerDestroy(&v));
+  PetscCall(JRFileRename(m->comm, tmp, h5));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRNLModesWrite - BASE.h5 (every point: q, omega, freq_hz, damping_ratio, xi, amp, a, balance, newton_its), BASE.csv
+  and BASE.png (share/plot_backbone.gp: frequency and damping ratio against the amplitude of response 1); BASE is
+  -nlm_output_file ('' writes nothing), -nlm_plot 0 leaves out the PNG
+*/
+PetscErrorCode JRNLModesWrite(JRNLModes m)
+{
+  char      h5[PETSC_MAX_PATH_LEN + 8], csv[PETSC_MAX_PATH_LEN + 8], png[PETSC_MAX_PATH_LEN + 8];
+  PetscBool made = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  if (!m->out[0] || !m->np) PetscFunctionReturn(0);
+  PetscCall(PetscSNPrintf(h5, sizeof(h5), "%s.h5", m->out));
+  PetscCall(PetscSNPrintf(csv, sizeof(csv), "%s.csv", m->out));
+  PetscCall(PetscSNPrintf(png, sizeof(png), "%s.png", m->out));
+  PetscCall(WriteCSV(m, csv));
+  PetscCall(WriteHDF5(m, h5));
+  if (m->plot) {
+    char     vars[3 * PETSC_MAX_PATH_LEN];
+    PetscInt H;
+    PetscCall(JRHBMGetSizes(m->hbm, NULL, &H, NULL));
+    PetscCall(PetscSNPrintf(vars, sizeof(vars), "data='%s'; ttl='nonlinear mode: elastic stuck mode %" PetscInt_FMT " (%.5g Hz stuck), EPMC, H = %" PetscInt_FMT "'", csv, m->mode, (double)(m->w0 / (2 * PETSC_PI)), H));
+    PetscCall(JRPlot(m->comm, "plot_backbone.gp", png, vars, &made));
+  }
+  PetscCall(PetscPrintf(m->comm, "nlmodes: wrote %s, %s%s%s\n", h5, csv, made ? ", " : "", made ? png : ""));
+  PetscFunctionReturn(0);
+}
+
+/* The mode followed, its linear limit, the range and the corrector; after a solve, the backbone's ranges */
+PetscErrorCode JRNLModesView(JRNLModes m, PetscViewer viewer)
+{
+  PetscFunctionBeginUser;
+  if (!viewer) viewer = PETSC_VIEWER_STDOUT_(m->comm);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "nlmodes: elastic stuck mode %" PetscInt_FMT " (mode %" PetscInt_FMT " of the basis): %.8g Hz, linear damping ratio %.6e; modal amplitude %g .. %g, %" PetscInt_FMT " points, steps <= %g decades\n", m->mode, m->kmode, (double)(m->w0 / (2 * PETSC_PI)), (double)(m->xi0 / (2 * m->w0)), (double)m->amin, (double)m->amax, m->npts, (double)m->dmax));
+  if (m->np) {
+    PetscReal fl = PETSC_MAX_REAL, fh = 0, dl = PETSC_MAX_REAL, dh = 0;
+    for (PetscInt k = 0; k < m->np; k++) {
+      const PetscReal f = m->omega[k] / (2 * PETSC_PI), d = m->xi[k] / (2 * m->omega[k]);
+      fl = PetscMin(fl, f);
+      fh = PetscMax(fh, f);
+      dl = PetscMin(dl, d);
+      dh = PetscMax(dh, d);
+    }
+    PetscCall(PetscViewerASCIIPrintf(viewer, "nlmodes: %" PetscInt_FMT " points%s, frequency %.6g .. %.6g Hz, damping ratio %.4e .. %.4e, %" PetscInt_FMT " solves, %" PetscInt_FMT " Newton iterations, %.3g s\n", m->np, m->complete ? "" : " (incomplete)", (double)fl, (double)fh, (double)dl, (double)dh, m->solves, m->newton, (double)m->seconds));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRNLModesDestroy(JRNLModes *nlm)
+{
+  JRNLModes m = *nlm;
+
+  PetscFunctionBeginUser;
+  if (!m) PetscFunctionReturn(0);
+  PetscCall(SNESDestroy(&m->snes));
+  PetscCall(VecDestroy(&m->y));
+  PetscCall(VecDestroy(&m->f));
+  PetscCall(VecDestroy(&m->xr));
+  PetscCall(VecDestroy(&m->rr));
+  PetscCall(VecDestroy(&m->a));
+  PetscCall(MatDestroy(&m->J));
+  PetscCall(PetscFree6(m->qs, m->omega, m->xi, m->amp, m->as, m->bal));
+  PetscCall(PetscFree(m->its));
+  PetscCall(PetscFree(m));
+  *nlm = NULL;
+  PetscFunctionReturn(0);
+}
