@@ -41,9 +41,9 @@ PetscErrorCode JRNLModesSetHBM(JRNLModes m, JRHBM hbm)
 
 /*
   Options: -nlm_mode k (the k-th elastic mode of the stuck structure), -nlm_amp_min, -nlm_amp_max (modal amplitudes of
-  the mass-normalised mode; default: 0.1 and 3 times the amplitudes at which the first and the last friction element
-  slip), -nlm_points, -nlm_step_max, -nlm_max_cuts, -nlm_output_file, -nlm_plot, -nlm_view; -nlm_snes_* on the
-  corrector
+  the mass-normalised mode; default: 0.1 times the amplitude at which the first friction element slips, 3 times the one
+  by which the elements holding 95% of the slip force slip), -nlm_points, -nlm_step_max, -nlm_max_cuts,
+  -nlm_output_file, -nlm_plot, -nlm_view; -nlm_snes_* on the corrector
 */
 PetscErrorCode JRNLModesSetFromOptions(JRNLModes m)
 {
@@ -51,7 +51,7 @@ PetscErrorCode JRNLModesSetFromOptions(JRNLModes m)
   PetscOptionsBegin(m->comm, NULL, "Nonlinear modes by EPMC (JRNLModes)", "JRNLModes");
   PetscCall(PetscOptionsInt("-nlm_mode", "Which elastic mode of the stuck structure (1: the first elastic mode)", "JRNLModesSetUp", m->mode, &m->mode, NULL));
   PetscCall(PetscOptionsReal("-nlm_amp_min", "Smallest modal amplitude q of the mass-normalised mode [m kg^1/2] (default: 0.1 x the amplitude at which the first element slips)", "JRNLModesSetUp", m->amin, &m->amin, NULL));
-  PetscCall(PetscOptionsReal("-nlm_amp_max", "Largest modal amplitude q [m kg^1/2] (default: 3 x the amplitude at which the last element slips)", "JRNLModesSetUp", m->amax, &m->amax, NULL));
+  PetscCall(PetscOptionsReal("-nlm_amp_max", "Largest modal amplitude q [m kg^1/2] (default: 3 x the amplitude by which the elements holding 95 percent of the slip force slip)", "JRNLModesSetUp", m->amax, &m->amax, NULL));
   PetscCall(PetscOptionsInt("-nlm_points", "Points of the backbone, evenly spaced in log q", "JRNLModesSolve", m->npts, &m->npts, NULL));
   PetscCall(PetscOptionsReal("-nlm_step_max", "Largest continuation step in log10 q [decades]: longer intervals are split", "JRNLModesSolve", m->dmax, &m->dmax, NULL));
   PetscCall(PetscOptionsInt("-nlm_max_cuts", "Step halvings after a failed Newton solve before the backbone stops", "JRNLModesSolve", m->maxcuts, &m->maxcuts, NULL));
@@ -131,27 +131,37 @@ static PetscErrorCode FormJacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
   PetscFunctionReturn(0);
 }
 
-/* The default amplitude range: the modal amplitudes at which the first and the last friction element in contact
-   start to slip in the stuck mode, q_e = mu n0 / (kt |u_e|) with u_e the element's motion in the mode */
+/* The default amplitude range: from the modal amplitudes q_e = mu n0 / (kt |u_e|) at which each friction element in
+   contact starts to slip in the stuck mode (u_e: its motion in the mode), 0.1 x the first to 3 x the one by which the
+   elements holding 95% of the interface's slip force mu n0 slip (elements near a neutral line barely move) */
 static PetscErrorCode DefaultRange(JRNLModes m)
 {
   const JRElements *el;
-  PetscReal        *u, lo = PETSC_MAX_REAL, hi = 0;
+  PetscReal        *u, *qe, tot = 0, sum = 0, lo = 0, hi = 0;
+  PetscInt         *perm, nq = 0;
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMGetElements(m->hbm, &el));
-  PetscCall(PetscMalloc1(PetscMax(el->n, 1), &u));
+  PetscCall(PetscMalloc3(PetscMax(el->n, 1), &u, PetscMax(el->n, 1), &qe, PetscMax(el->n, 1), &perm));
   PetscCall(JRHBMStuckModeMotion(m->hbm, m->kmode, u, NULL));
   for (PetscInt e = 0; e < el->n; e++) {
     const char *t = el->typename[el->type[e]];
-    PetscReal   qe;
     if (strncmp(t, "jenkins", 7) || el->n0[e] <= 0 || el->mu[e] <= 0 || el->kt[e] <= 0 || PetscAbsReal(u[e]) < 1e-300) continue;
-    qe = el->mu[e] * el->n0[e] / (el->kt[e] * PetscAbsReal(u[e]));
-    lo = PetscMin(lo, qe);
-    hi = PetscMax(hi, qe);
+    qe[nq]   = el->mu[e] * el->n0[e] / (el->kt[e] * PetscAbsReal(u[e]));
+    perm[nq] = e;
+    tot += el->mu[e] * el->n0[e];
+    nq++;
   }
-  PetscCall(PetscFree(u));
-  PetscCheck(hi > 0 || (m->amin > 0 && m->amax > 0), m->comm, PETSC_ERR_ARG_WRONG, "Nonlinear modes: no friction element slips in this mode; give the range with -nlm_amp_min and -nlm_amp_max");
+  PetscCheck(nq || (m->amin > 0 && m->amax > 0), m->comm, PETSC_ERR_ARG_WRONG, "Nonlinear modes: no friction element slips in this mode; give the range with -nlm_amp_min and -nlm_amp_max");
+  if (nq) {
+    PetscCall(PetscSortRealWithArrayInt(nq, qe, perm));
+    lo = qe[0];
+    for (PetscInt i = 0; i < nq && sum < 0.95 * tot; i++) {
+      sum += el->mu[perm[i]] * el->n0[perm[i]];
+      hi = qe[i];
+    }
+  }
+  PetscCall(PetscFree3(u, qe, perm));
   if (m->amin <= 0) m->amin = 0.1 * lo;
   if (m->amax <= 0) m->amax = 3 * hi;
   PetscCheck(m->amax > m->amin, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "Nonlinear modes: -nlm_amp_max %g must exceed -nlm_amp_min %g", (double)m->amax, (double)m->amin);
@@ -491,7 +501,7 @@ PetscErrorCode JRNLModesView(JRNLModes m, PetscViewer viewer)
 {
   PetscFunctionBeginUser;
   if (!viewer) viewer = PETSC_VIEWER_STDOUT_(m->comm);
-  PetscCall(PetscViewerASCIIPrintf(viewer, "nlmodes: elastic stuck mode %" PetscInt_FMT " (mode %" PetscInt_FMT " of the basis): %.8g Hz, linear damping ratio %.6e; modal amplitude %g .. %g, %" PetscInt_FMT " points, steps <= %g decades\n", m->mode, m->kmode, (double)(m->w0 / (2 * PETSC_PI)), (double)(m->xi0 / (2 * m->w0)), (double)m->amin, (double)m->amax, m->npts, (double)m->dmax));
+  if (!m->np) PetscCall(PetscViewerASCIIPrintf(viewer, "nlmodes: elastic stuck mode %" PetscInt_FMT " (mode %" PetscInt_FMT " of the basis): %.8g Hz, linear damping ratio %.6e; modal amplitude %g .. %g, %" PetscInt_FMT " points, steps <= %g decades\n", m->mode, m->kmode, (double)(m->w0 / (2 * PETSC_PI)), (double)(m->xi0 / (2 * m->w0)), (double)m->amin, (double)m->amax, m->npts, (double)m->dmax));
   if (m->np) {
     PetscReal fl = PETSC_MAX_REAL, fh = 0, dl = PETSC_MAX_REAL, dh = 0;
     for (PetscInt k = 0; k < m->np; k++) {
