@@ -46,6 +46,7 @@ else
   done
   run cli bash tests/cli.sh
   run cli_frf bash tests/cli_frf.sh
+  run cli_nlmodes bash tests/cli_nlmodes.sh
   run cli_verify bash tests/cli_verify.sh
   run cli_modes bash tests/cli_modes.sh
   run cli_preload bash tests/cli_preload.sh
