@@ -31,7 +31,7 @@ PETSC_EXTERN PetscErrorCode JRFinalizePackage(void);
 
 /* Log stages, one per pipeline stage, and events, one per costly phase (see -log_view; src/sys/log.c) */
 PETSC_EXTERN PetscLogStage  JR_StageModel, JR_StagePreload, JR_StageInterface, JR_StageModes, JR_StageReduce, JR_StageSolve, JR_StagePost;
-PETSC_EXTERN PetscLogEvent  JR_InterfaceSetUp, JR_ReduceJoints, JR_ReduceSelect, JR_ReduceFit, JR_ReduceHBM, JR_Verify;
+PETSC_EXTERN PetscLogEvent  JR_InterfaceSetUp, JR_ReduceJoints, JR_ReduceSelect, JR_ReduceFit, JR_ReduceHBM, JR_Verify, JR_NLModesSolve;
 PETSC_EXTERN PetscErrorCode JRLogRegister(void);
 PETSC_EXTERN PetscClassId  JR_CONTACT_CLASSID, JR_MODEL_CLASSID, JR_HBM_CLASSID;
 PETSC_EXTERN PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep;

@@ -24,7 +24,8 @@ PetscErrorCode JRNLModesCreate(MPI_Comm comm, JRNLModes *nlm)
   m->npts    = 30;
   m->dmax    = 0.1;
   m->maxcuts = 12;
-  m->plot    = PETSC_TRUE;
+  m->plot      = PETSC_TRUE;
+  m->arclength = PETSC_TRUE;
   PetscCall(PetscStrncpy(m->out, "out/nlmodes", sizeof(m->out)));
   *nlm = m;
   PetscFunctionReturn(0);
@@ -47,6 +48,9 @@ PetscErrorCode JRNLModesSetHBM(JRNLModes m, JRHBM hbm)
 */
 PetscErrorCode JRNLModesSetFromOptions(JRNLModes m)
 {
+  static const char *const Conts[] = {"natural", "arclength"};
+  PetscInt                 ct      = m->arclength ? 1 : 0;
+
   PetscFunctionBeginUser;
   PetscOptionsBegin(m->comm, NULL, "Nonlinear modes by EPMC (JRNLModes)", "JRNLModes");
   PetscCall(PetscOptionsInt("-nlm_mode", "Which elastic mode of the stuck structure (1: the first elastic mode)", "JRNLModesSetUp", m->mode, &m->mode, NULL));
@@ -54,11 +58,13 @@ PetscErrorCode JRNLModesSetFromOptions(JRNLModes m)
   PetscCall(PetscOptionsReal("-nlm_amp_max", "Largest modal amplitude q [m kg^1/2] (default: 3 x the amplitude by which the elements holding 95 percent of the slip force slip)", "JRNLModesSetUp", m->amax, &m->amax, NULL));
   PetscCall(PetscOptionsInt("-nlm_points", "Points of the backbone, evenly spaced in log q", "JRNLModesSolve", m->npts, &m->npts, NULL));
   PetscCall(PetscOptionsReal("-nlm_step_max", "Largest continuation step in log10 q [decades]: longer intervals are split", "JRNLModesSolve", m->dmax, &m->dmax, NULL));
+  PetscCall(PetscOptionsEList("-nlm_continuation", "Continuation in the amplitude: arclength (pseudo-arclength in the scaled unknowns and log q: through folds) or natural (in log q, at the -nlm_points amplitudes exactly)", "JRNLModesSolve", Conts, 2, Conts[m->arclength ? 1 : 0], &ct, NULL));
   PetscCall(PetscOptionsInt("-nlm_max_cuts", "Step halvings after a failed Newton solve before the backbone stops", "JRNLModesSolve", m->maxcuts, &m->maxcuts, NULL));
   PetscCall(PetscOptionsString("-nlm_output_file", "Output base name: BASE.h5, BASE.csv, BASE.png ('' for none)", "JRNLModesWrite", m->out, m->out, sizeof(m->out), NULL));
   PetscCall(PetscOptionsBool("-nlm_plot", "Draw BASE.png (frequency and damping ratio against amplitude)", "JRNLModesWrite", m->plot, &m->plot, NULL));
   PetscCall(PetscOptionsBool("-nlm_view", "Print the nonlinear-mode set-up", "JRNLModesView", m->view, &m->view, NULL));
   PetscOptionsEnd();
+  m->arclength = ct == 1 ? PETSC_TRUE : PETSC_FALSE;
   PetscCheck(m->mode >= 1, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-nlm_mode %" PetscInt_FMT ": the elastic modes are numbered from 1", m->mode);
   PetscCheck(m->amin >= 0 && m->amax >= 0, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-nlm_amp_min %g, -nlm_amp_max %g: modal amplitudes are positive", (double)m->amin, (double)m->amax);
   PetscCheck(!(m->amin > 0 && m->amax > 0) || m->amax > m->amin, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-nlm_amp_max %g must exceed -nlm_amp_min %g", (double)m->amax, (double)m->amin);
@@ -128,6 +134,70 @@ static PetscErrorCode FormJacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
     for (PetscInt r = 0; r < N; r++) j[r + c * N] *= sc / (r < n ? m->q * m->w0 * m->w0 : m->q);
   }
   PetscCall(MatDenseRestoreArray(J, &j));
+  PetscFunctionReturn(0);
+}
+
+/* Arclength: z = [y | s = log q], the EPMC equations at q = e^s and the constraint t^T (z - zp) = 0 */
+static PetscErrorCode FormFunctionArc(SNES snes, Vec z, Vec F, void *ctx)
+{
+  JRNLModes          m = (JRNLModes)ctx;
+  const PetscScalar *za;
+  PetscScalar       *fa;
+  PetscReal          c = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(z, &za));
+  PetscCall(VecGetArray(F, &fa));
+  m->q = PetscExpReal(PetscRealPart(za[m->N]));
+  PetscCall(VecPlaceArray(m->yv, za));
+  PetscCall(VecPlaceArray(m->fv, fa));
+  PetscCall(FormFunction(snes, m->yv, m->fv, m));
+  PetscCall(VecResetArray(m->yv));
+  PetscCall(VecResetArray(m->fv));
+  for (PetscInt i = 0; i <= m->N; i++) c += m->tz[i] * (PetscRealPart(za[i]) - m->zp[i]);
+  fa[m->N] = c;
+  PetscCall(VecRestoreArray(F, &fa));
+  PetscCall(VecRestoreArrayRead(z, &za));
+  PetscFunctionReturn(0);
+}
+
+/* d/ds of the scaled equations: the harmonic balance's rows scale with q except through the nonlinearity,
+   dF_i/ds = sum_{j < n} Js_ij y_j - F_i; the normalisation's scaled rows do not depend on q */
+static PetscErrorCode FormJacobianArc(SNES snes, Vec z, Mat J, Mat P, void *ctx)
+{
+  JRNLModes          m = (JRNLModes)ctx;
+  const PetscScalar *za, *js, *rr;
+  PetscScalar       *ja;
+  const PetscInt     n = m->n, N = m->N, N1 = m->N + 1;
+
+  PetscFunctionBeginUser;
+  (void)P;
+  PetscCall(VecGetArrayRead(z, &za));
+  m->q = PetscExpReal(PetscRealPart(za[N]));
+  PetscCall(VecPlaceArray(m->yv, za));
+  PetscCall(FormJacobian(snes, m->yv, m->J, m->J, m));
+  PetscCall(VecResetArray(m->yv));
+  PetscCall(MatDenseGetArrayRead(m->J, &js));
+  PetscCall(VecGetArrayRead(m->rr, &rr));
+  PetscCall(MatDenseGetArrayWrite(J, &ja));
+  for (PetscInt c = 0; c < N; c++) {
+    for (PetscInt r = 0; r < N; r++) ja[r + c * N1] = js[r + c * N];
+    ja[N + c * N1] = m->tz[c];
+  }
+  for (PetscInt r = 0; r < N; r++) {
+    PetscReal d = 0;
+    if (r < n) {
+      for (PetscInt j = 0; j < n; j++) d += PetscRealPart(js[r + j * N] * za[j]);
+      d -= PetscRealPart(rr[r]) / (m->q * m->w0 * m->w0);
+    }
+    ja[r + N * N1] = d;
+  }
+  ja[N + N * N1] = m->tz[N];
+  PetscCall(MatDenseRestoreArrayWrite(J, &ja));
+  PetscCall(VecRestoreArrayRead(m->rr, &rr));
+  PetscCall(MatDenseRestoreArrayRead(m->J, &js));
+  PetscCall(VecRestoreArrayRead(z, &za));
+  PetscCall(JRMatDenseAssemble(J));
   PetscFunctionReturn(0);
 }
 
@@ -208,6 +278,21 @@ PetscErrorCode JRNLModesSetUp(JRNLModes m)
   PetscCall(SNESSetType(m->snes, SNESNEWTONDENSE));
   PetscCall(SNESSetTolerances(m->snes, 1e-11, 1e-13, 1e-14, 40, 10000));
   PetscCall(SNESSetFromOptions(m->snes));
+  if (m->arclength) {
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, m->N + 1, &m->z));
+    PetscCall(VecDuplicate(m->z, &m->fz));
+    PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, m->N, NULL, &m->yv));
+    PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, m->N, NULL, &m->fv));
+    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, m->N + 1, m->N + 1, NULL, &m->Ja));
+    PetscCall(PetscCalloc2(m->N + 1, &m->zp, m->N + 1, &m->tz));
+    PetscCall(SNESCreate(PETSC_COMM_SELF, &m->snesa));
+    PetscCall(SNESSetOptionsPrefix(m->snesa, "nlm_"));
+    PetscCall(SNESSetFunction(m->snesa, m->fz, FormFunctionArc, m));
+    PetscCall(SNESSetJacobian(m->snesa, m->Ja, m->Ja, FormJacobianArc, m));
+    PetscCall(SNESSetType(m->snesa, SNESNEWTONDENSE));
+    PetscCall(SNESSetTolerances(m->snesa, 1e-11, 1e-13, 1e-14, 40, 10000));
+    PetscCall(SNESSetFromOptions(m->snesa));
+  }
   m->setupcalled = PETSC_TRUE;
   if (m->view) PetscCall(JRNLModesView(m, NULL));
   PetscFunctionReturn(0);
@@ -235,6 +320,38 @@ static PetscErrorCode Correct(JRNLModes m, PetscReal q, PetscInt *its, PetscBool
   PetscFunctionReturn(0);
 }
 
+/* Room for cap points (the backbone's arrays grown, their contents kept) */
+static PetscErrorCode Reserve(JRNLModes m, PetscInt cap)
+{
+  PetscReal *qs, *om, *xi, *amp, *as, *bal;
+  PetscInt  *its;
+
+  PetscFunctionBeginUser;
+  if (cap <= m->cap) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc6(cap, &qs, cap, &om, cap, &xi, cap * m->nout, &amp, cap * m->n, &as, cap, &bal));
+  PetscCall(PetscMalloc1(cap, &its));
+  if (m->np) {
+    PetscCall(PetscArraycpy(qs, m->qs, m->np));
+    PetscCall(PetscArraycpy(om, m->omega, m->np));
+    PetscCall(PetscArraycpy(xi, m->xi, m->np));
+    PetscCall(PetscArraycpy(amp, m->amp, m->np * m->nout));
+    PetscCall(PetscArraycpy(as, m->as, m->np * m->n));
+    PetscCall(PetscArraycpy(bal, m->bal, m->np));
+    PetscCall(PetscArraycpy(its, m->its, m->np));
+  }
+  PetscCall(PetscFree6(m->qs, m->omega, m->xi, m->amp, m->as, m->bal));
+  PetscCall(PetscFree(m->its));
+  m->qs    = qs;
+  m->omega = om;
+  m->xi    = xi;
+  m->amp   = amp;
+  m->as    = as;
+  m->bal   = bal;
+  m->its   = its;
+  m->cap   = cap;
+  PetscFunctionReturn(0);
+}
+
 /* The point just solved (m->y at m->q): stored, with its responses and its energy balance, and printed */
 static PetscErrorCode Record(JRNLModes m, PetscInt its)
 {
@@ -244,6 +361,7 @@ static PetscErrorCode Record(JRNLModes m, PetscInt its)
   PetscReal          w, xi, ed, enl, win, exi;
 
   PetscFunctionBeginUser;
+  if (m->np == m->cap) PetscCall(Reserve(m, PetscMax(2 * m->cap, m->npts)));
   PetscCall(VecGetArrayRead(m->y, &ya));
   PetscCall(VecGetArray(m->a, &aa));
   for (PetscInt i = 0; i < n; i++) aa[i] = m->q * ya[i];
@@ -268,10 +386,102 @@ static PetscErrorCode Record(JRNLModes m, PetscInt its)
 }
 
 /*
-  JRNLModesSolve - the backbone: -nlm_points amplitudes from -nlm_amp_min to -nlm_amp_max, one line
-  "backbone point <i> amplitude <q> freq_hz <f> damping_ratio <D> xi <xi> amp_1 <m> newton <its>" per point. A point
-  that cannot be reached after -nlm_max_cuts halvings of the step ends the backbone (JRNLModesGetStats: complete
-  false). Collective.
+  The backbone by pseudo-arclength from the first point y0 (at log q = lmin): steps h along the secant of the last two
+  points in z = [y | log q] (the first along log q), at most the spacing of -nlm_points in log q and -nlm_step_max,
+  each corrected on the plane t^T (z - zp) = 0 through the predictor zp; the last point is a natural solve at
+  -nlm_amp_max. Every accepted point is recorded.
+*/
+static PetscErrorCode SolveArclength(JRNLModes m, const PetscReal y0[], PetscReal lmin, PetscReal lmax, PetscReal dln)
+{
+  const PetscInt  N1 = m->N + 1, maxpts = 50 * m->npts + 1000;
+  const PetscReal hmax = PetscMin(dln, (lmax - lmin) / (m->npts - 1));
+  PetscReal      *zk, *zq, h = hmax;
+  PetscInt        cuts = 0, its, itp = 0;
+  PetscBool       prev = PETSC_FALSE, ok;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(N1, &zk, N1, &zq));
+  PetscCall(PetscArraycpy(zk, y0, m->N));
+  zk[m->N] = lmin;
+  while (zk[m->N] < lmax - 1e-12 * PetscMax(1, PetscAbsReal(lmax))) {
+    PetscReal nt = 0;
+    if (m->np >= maxpts) {
+      m->complete = PETSC_FALSE;
+      PetscCall(PetscPrintf(m->comm, "nlmodes: WARNING the backbone stops at amplitude %g after %" PetscInt_FMT " points without reaching -nlm_amp_max\n", (double)PetscExpReal(zk[m->N]), m->np));
+      break;
+    }
+    for (PetscInt i = 0; i < N1; i++) { /* the unit tangent: the secant, or along log q at the start */
+      m->tz[i] = prev ? zk[i] - zq[i] : (i == m->N ? 1.0 : 0.0);
+      nt += m->tz[i] * m->tz[i];
+    }
+    nt = PetscSqrtReal(nt);
+    for (PetscInt i = 0; i < N1; i++) {
+      m->tz[i] /= nt;
+      m->zp[i] = zk[i] + h * m->tz[i];
+    }
+    if (m->zp[m->N] >= lmax) { /* the end of the range: a natural solve at -nlm_amp_max from the predictor there */
+      const PetscReal f = (lmax - zk[m->N]) / (m->zp[m->N] - zk[m->N]);
+      PetscScalar    *ya;
+      PetscCall(VecGetArray(m->y, &ya));
+      for (PetscInt i = 0; i < m->N; i++) ya[i] = zk[i] + f * (m->zp[i] - zk[i]);
+      PetscCall(VecRestoreArray(m->y, &ya));
+      PetscCall(Correct(m, m->amax, &its, &ok));
+      itp += its;
+      if (ok) {
+        PetscCall(Record(m, itp));
+        break;
+      }
+    } else {
+      PetscScalar        *za;
+      SNESConvergedReason reason;
+      PetscCall(VecGetArray(m->z, &za));
+      for (PetscInt i = 0; i < N1; i++) za[i] = m->zp[i];
+      PetscCall(VecRestoreArray(m->z, &za));
+      PetscCall(SNESSolve(m->snesa, NULL, m->z));
+      PetscCall(SNESGetConvergedReason(m->snesa, &reason));
+      PetscCall(SNESGetIterationNumber(m->snesa, &its));
+      m->newton += its;
+      m->solves++;
+      itp += its;
+      PetscCall(VecGetArray(m->z, &za));
+      ok = reason > 0 && PetscRealPart(za[m->n]) > 0.05 && PetscRealPart(za[m->N]) > lmin - 10 * dln ? PETSC_TRUE : PETSC_FALSE;
+      if (ok) {
+        PetscScalar *ya;
+        PetscCall(PetscArraycpy(zq, zk, N1));
+        for (PetscInt i = 0; i < N1; i++) zk[i] = PetscRealPart(za[i]);
+        prev = PETSC_TRUE;
+        m->q = PetscExpReal(zk[m->N]);
+        PetscCall(VecGetArray(m->y, &ya));
+        for (PetscInt i = 0; i < m->N; i++) ya[i] = zk[i];
+        PetscCall(VecRestoreArray(m->y, &ya));
+      }
+      PetscCall(VecRestoreArray(m->z, &za));
+      if (ok) {
+        PetscCall(Record(m, itp));
+        itp  = 0;
+        cuts = 0;
+        if (its <= 4) h = PetscMin(hmax, 1.5 * h);
+        else if (its > 8) h *= 0.7;
+        continue;
+      }
+    }
+    h *= 0.5;
+    if (++cuts > m->maxcuts) {
+      m->complete = PETSC_FALSE;
+      PetscCall(PetscPrintf(m->comm, "nlmodes: WARNING the backbone stops at amplitude %g: Newton failed %" PetscInt_FMT " times (-nlm_max_cuts)\n", (double)PetscExpReal(zk[m->N]), cuts));
+      break;
+    }
+  }
+  PetscCall(PetscFree2(zk, zq));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRNLModesSolve - the backbone from -nlm_amp_min to -nlm_amp_max, one line
+  "backbone point <i> amplitude <q> freq_hz <f> damping_ratio <D> xi <xi> amp_1 <m> newton <its>" per point: by
+  pseudo-arclength (-nlm_continuation arclength: at least -nlm_points points, every accepted one) or natural
+  continuation (exactly the -nlm_points amplitudes). A point that cannot be reached after -nlm_max_cuts halvings of
+  the step ends the backbone (JRNLModesGetStats: complete false). Collective.
 */
 PetscErrorCode JRNLModesSolve(JRNLModes m)
 {
@@ -283,14 +493,12 @@ PetscErrorCode JRNLModesSolve(JRNLModes m)
 
   PetscFunctionBeginUser;
   PetscCall(JRNLModesSetUp(m));
+  PetscCall(PetscLogEventBegin(JR_NLModesSolve, 0, 0, 0, 0));
   PetscCall(PetscTime(&t0));
   m->np       = 0;
   m->complete = PETSC_TRUE;
   m->newton = m->solves = 0;
-  PetscCall(PetscFree6(m->qs, m->omega, m->xi, m->amp, m->as, m->bal));
-  PetscCall(PetscFree(m->its));
-  PetscCall(PetscMalloc6(m->npts, &m->qs, m->npts, &m->omega, m->npts, &m->xi, m->npts * m->nout, &m->amp, m->npts * m->n, &m->as, m->npts, &m->bal));
-  PetscCall(PetscMalloc1(m->npts, &m->its));
+  PetscCall(Reserve(m, m->npts));
   PetscCall(PetscMalloc2(m->N, &yp, m->N, &yq));
   { /* the linear mode: x = q psi sin(w0 t), xi = xi0 */
     const PetscReal *psi;
@@ -316,38 +524,42 @@ PetscErrorCode JRNLModesSolve(JRNLModes m)
     lq   = lmin;
     have = 1;
   }
-  for (PetscInt p = 1; p < m->npts && m->complete; p++) {
-    const PetscReal target = lmin + (lmax - lmin) * p / (m->npts - 1);
-    PetscReal       step   = PetscMin(dln, target - lq);
-    PetscInt        cuts = 0, itp = 0;
-    while (lq < target - 1e-14 * PetscMax(1, PetscAbsReal(target))) {
-      const PetscReal ln = PetscMin(lq + step, target);
-      PetscScalar    *ya;
-      PetscCall(VecGetArray(m->y, &ya)); /* the secant predictor in log q (the last solution if only one) */
-      for (PetscInt i = 0; i < m->N; i++) ya[i] = yq[i] + (have > 1 ? (ln - lq) * (yq[i] - yp[i]) / (lq - lp) : 0.0);
-      PetscCall(VecRestoreArray(m->y, &ya));
-      PetscCall(Correct(m, PetscExpReal(ln), &its, &ok));
-      itp += its;
-      if (ok) {
-        const PetscScalar *yc;
-        PetscCall(PetscArraycpy(yp, yq, m->N));
-        lp = lq;
-        PetscCall(VecGetArrayRead(m->y, &yc));
-        for (PetscInt i = 0; i < m->N; i++) yq[i] = PetscRealPart(yc[i]);
-        PetscCall(VecRestoreArrayRead(m->y, &yc));
-        lq   = ln;
-        have = 2;
-        if (its <= 4) step = PetscMin(dln, 1.5 * step);
-      } else if (++cuts > m->maxcuts) {
-        m->complete = PETSC_FALSE;
-        PetscCall(PetscPrintf(m->comm, "nlmodes: WARNING the backbone stops at amplitude %g: Newton failed %" PetscInt_FMT " times towards %g (-nlm_max_cuts)\n", (double)PetscExpReal(lq), cuts, (double)PetscExpReal(target)));
-        break;
-      } else step *= 0.5;
+  if (m->arclength) PetscCall(SolveArclength(m, yq, lmin, lmax, dln));
+  else {
+    for (PetscInt p = 1; p < m->npts && m->complete; p++) {
+      const PetscReal target = lmin + (lmax - lmin) * p / (m->npts - 1);
+      PetscReal       step   = PetscMin(dln, target - lq);
+      PetscInt        cuts = 0, itp = 0;
+      while (lq < target - 1e-14 * PetscMax(1, PetscAbsReal(target))) {
+        const PetscReal ln = PetscMin(lq + step, target);
+        PetscScalar    *ya;
+        PetscCall(VecGetArray(m->y, &ya)); /* the secant predictor in log q (the last solution if only one) */
+        for (PetscInt i = 0; i < m->N; i++) ya[i] = yq[i] + (have > 1 ? (ln - lq) * (yq[i] - yp[i]) / (lq - lp) : 0.0);
+        PetscCall(VecRestoreArray(m->y, &ya));
+        PetscCall(Correct(m, PetscExpReal(ln), &its, &ok));
+        itp += its;
+        if (ok) {
+          const PetscScalar *yc;
+          PetscCall(PetscArraycpy(yp, yq, m->N));
+          lp = lq;
+          PetscCall(VecGetArrayRead(m->y, &yc));
+          for (PetscInt i = 0; i < m->N; i++) yq[i] = PetscRealPart(yc[i]);
+          PetscCall(VecRestoreArrayRead(m->y, &yc));
+          lq   = ln;
+          have = 2;
+          if (its <= 4) step = PetscMin(dln, 1.5 * step);
+        } else if (++cuts > m->maxcuts) {
+          m->complete = PETSC_FALSE;
+          PetscCall(PetscPrintf(m->comm, "nlmodes: WARNING the backbone stops at amplitude %g: Newton failed %" PetscInt_FMT " times towards %g (-nlm_max_cuts)\n", (double)PetscExpReal(lq), cuts, (double)PetscExpReal(target)));
+          break;
+        } else step *= 0.5;
+      }
+      if (m->complete) PetscCall(Record(m, itp));
     }
-    if (m->complete) PetscCall(Record(m, itp));
   }
   PetscCall(PetscFree2(yp, yq));
   PetscCall(PetscTime(&t1));
+  PetscCall(PetscLogEventEnd(JR_NLModesSolve, 0, 0, 0, 0));
   m->seconds = t1 - t0;
   PetscFunctionReturn(0);
 }
@@ -529,6 +741,13 @@ PetscErrorCode JRNLModesDestroy(JRNLModes *nlm)
   PetscCall(VecDestroy(&m->rr));
   PetscCall(VecDestroy(&m->a));
   PetscCall(MatDestroy(&m->J));
+  PetscCall(SNESDestroy(&m->snesa));
+  PetscCall(VecDestroy(&m->z));
+  PetscCall(VecDestroy(&m->fz));
+  PetscCall(VecDestroy(&m->yv));
+  PetscCall(VecDestroy(&m->fv));
+  PetscCall(MatDestroy(&m->Ja));
+  PetscCall(PetscFree2(m->zp, m->tz));
   PetscCall(PetscFree6(m->qs, m->omega, m->xi, m->amp, m->as, m->bal));
   PetscCall(PetscFree(m->its));
   PetscCall(PetscFree(m));

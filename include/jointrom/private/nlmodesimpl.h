@@ -18,11 +18,16 @@ struct _p_JRNLModes {
   PetscInt    n, N, nout;       /* harmonic unknowns, with w and xi, responses */
   PetscReal   w0, xi0;          /* the stuck mode: circular frequency, linear equivalent damping [1/s] */
   PetscReal   q;                /* the modal amplitude the SNES solves at */
+  PetscBool   arclength;        /* -nlm_continuation arclength (else natural in log q) */
   SNES        snes;             /* on every rank (PETSC_COMM_SELF), prefix nlm_, on the scaled unknowns */
   Vec         y, f, xr, rr, a;  /* scaled unknowns and residual; raw unknowns and residual; the harmonics (n) */
   Mat         J;
+  SNES        snesa;            /* arclength: the same equations bordered by log q and the arclength constraint */
+  Vec         z, fz, yv, fv;    /* [y | log q] and its residual (N + 1); views of their first N entries */
+  Mat         Ja;
+  PetscReal  *zp, *tz;          /* the predictor and the unit tangent (N + 1) */
   /* the backbone, one entry per point */
-  PetscInt    np;
+  PetscInt    np, cap;
   PetscReal  *qs, *omega, *xi, *amp, *as, *bal; /* amp: np x nout; as: np x n */
   PetscInt   *its;
   PetscInt    newton, solves;
