@@ -3,11 +3,12 @@
    (EPMC, Krack 2015; src/hbm/epmc.c): the backbone of the stuck mode of interest, its frequency and damping ratio
    D = xi / (2 w) against its modal amplitude q, from the stuck limit to gross slip.
 
-   Continuation: natural, in log q, over -nlm_points amplitudes spaced evenly in log q between -nlm_amp_min and
-   -nlm_amp_max, steps at most -nlm_step_max decades, halved when Newton fails; the predictor is the secant through
-   the last two solutions of the scaled unknowns y = [a / q | w / w0 | xi / w0], which vary slowly with log q (a
-   friction backbone has no fold in amplitude). The corrector is a SNES (prefix nlm_, newtondense) on the EPMC's
-   n + 2 equations, scaled by q w0^2 (the harmonic balance) and q (the normalisation).
+   Continuation in the scaled unknowns y = [a / q | w / w0 | xi / w0], which vary slowly with s = log q, from
+   -nlm_amp_min to -nlm_amp_max: pseudo-arclength in z = [y | s] along the secant of the last two points (the default,
+   every accepted point kept), or natural in s at -nlm_points amplitudes evenly spaced in s; steps at most
+   -nlm_step_max decades, halved when Newton fails. The correctors are SNESs (prefix nlm_, newtondense) on the EPMC's
+   n + 2 equations scaled by q w0^2 (the harmonic balance) and q (the normalisation), bordered for arclength by s and
+   the constraint t^T (z - zp) = 0.
 */
 #include <jointrom/private/nlmodesimpl.h>
 #include <petscviewerhdf5.h>
@@ -19,11 +20,11 @@ PetscErrorCode JRNLModesCreate(MPI_Comm comm, JRNLModes *nlm)
   PetscFunctionBeginUser;
   PetscCall(JRInitializePackage());
   PetscCall(PetscNew(&m));
-  m->comm    = comm;
-  m->mode    = 1;
-  m->npts    = 30;
-  m->dmax    = 0.1;
-  m->maxcuts = 12;
+  m->comm      = comm;
+  m->mode      = 1;
+  m->npts      = 30;
+  m->dmax      = 0.1;
+  m->maxcuts   = 12;
   m->plot      = PETSC_TRUE;
   m->arclength = PETSC_TRUE;
   PetscCall(PetscStrncpy(m->out, "out/nlmodes", sizeof(m->out)));
@@ -43,8 +44,8 @@ PetscErrorCode JRNLModesSetHBM(JRNLModes m, JRHBM hbm)
 /*
   Options: -nlm_mode k (the k-th elastic mode of the stuck structure), -nlm_amp_min, -nlm_amp_max (modal amplitudes of
   the mass-normalised mode; default: 0.1 times the amplitude at which the first friction element slips, 3 times the one
-  by which the elements holding 95% of the slip force slip), -nlm_points, -nlm_step_max, -nlm_max_cuts,
-  -nlm_output_file, -nlm_plot, -nlm_view; -nlm_snes_* on the corrector
+  by which the elements holding 95% of the slip force slip), -nlm_continuation arclength|natural, -nlm_points,
+  -nlm_step_max, -nlm_max_cuts, -nlm_output_file, -nlm_plot, -nlm_view; -nlm_snes_* on the correctors
 */
 PetscErrorCode JRNLModesSetFromOptions(JRNLModes m)
 {
@@ -56,10 +57,10 @@ PetscErrorCode JRNLModesSetFromOptions(JRNLModes m)
   PetscCall(PetscOptionsInt("-nlm_mode", "Which elastic mode of the stuck structure (1: the first elastic mode)", "JRNLModesSetUp", m->mode, &m->mode, NULL));
   PetscCall(PetscOptionsReal("-nlm_amp_min", "Smallest modal amplitude q of the mass-normalised mode [m kg^1/2] (default: 0.1 x the amplitude at which the first element slips)", "JRNLModesSetUp", m->amin, &m->amin, NULL));
   PetscCall(PetscOptionsReal("-nlm_amp_max", "Largest modal amplitude q [m kg^1/2] (default: 3 x the amplitude by which the elements holding 95 percent of the slip force slip)", "JRNLModesSetUp", m->amax, &m->amax, NULL));
-  PetscCall(PetscOptionsInt("-nlm_points", "Points of the backbone, evenly spaced in log q", "JRNLModesSolve", m->npts, &m->npts, NULL));
+  PetscCall(PetscOptionsInt("-nlm_points", "Points of the backbone: at least this many (arclength), or exactly, evenly spaced in log q (natural)", "JRNLModesSolve", m->npts, &m->npts, NULL));
   PetscCall(PetscOptionsReal("-nlm_step_max", "Largest continuation step in log10 q [decades]: longer intervals are split", "JRNLModesSolve", m->dmax, &m->dmax, NULL));
   PetscCall(PetscOptionsEList("-nlm_continuation", "Continuation in the amplitude: arclength (pseudo-arclength in the scaled unknowns and log q: through folds) or natural (in log q, at the -nlm_points amplitudes exactly)", "JRNLModesSolve", Conts, 2, Conts[m->arclength ? 1 : 0], &ct, NULL));
-  PetscCall(PetscOptionsInt("-nlm_max_cuts", "Step halvings after a failed Newton solve before the backbone stops", "JRNLModesSolve", m->maxcuts, &m->maxcuts, NULL));
+  PetscCall(PetscOptionsInt("-nlm_max_cuts", "Step halvings in a row after failed Newton solves before the backbone stops (an error)", "JRNLModesSolve", m->maxcuts, &m->maxcuts, NULL));
   PetscCall(PetscOptionsString("-nlm_output_file", "Output base name: BASE.h5, BASE.csv, BASE.png ('' for none)", "JRNLModesWrite", m->out, m->out, sizeof(m->out), NULL));
   PetscCall(PetscOptionsBool("-nlm_plot", "Draw BASE.png (frequency and damping ratio against amplitude)", "JRNLModesWrite", m->plot, &m->plot, NULL));
   PetscCall(PetscOptionsBool("-nlm_view", "Print the nonlinear-mode set-up", "JRNLModesView", m->view, &m->view, NULL));
@@ -119,8 +120,8 @@ static PetscErrorCode FormFunction(SNES snes, Vec y, Vec F, void *ctx)
 
 static PetscErrorCode FormJacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
 {
-  JRNLModes    m = (JRNLModes)ctx;
-  PetscScalar *j;
+  JRNLModes      m = (JRNLModes)ctx;
+  PetscScalar   *j;
   const PetscInt n = m->n, N = m->N;
 
   PetscFunctionBeginUser;
