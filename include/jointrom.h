@@ -31,7 +31,7 @@ PETSC_EXTERN PetscErrorCode JRFinalizePackage(void);
 
 /* Log stages, one per pipeline stage, and events, one per costly phase (see -log_view; src/sys/log.c) */
 PETSC_EXTERN PetscLogStage  JR_StageModel, JR_StagePreload, JR_StageInterface, JR_StageModes, JR_StageReduce, JR_StageSolve, JR_StagePost;
-PETSC_EXTERN PetscLogEvent  JR_InterfaceSetUp, JR_ReduceJoints, JR_ReduceSelect, JR_ReduceFit, JR_ReduceHBM, JR_Verify;
+PETSC_EXTERN PetscLogEvent  JR_InterfaceSetUp, JR_ReduceJoints, JR_ReduceSelect, JR_ReduceFit, JR_ReduceHBM, JR_Verify, JR_NLModesSolve;
 PETSC_EXTERN PetscErrorCode JRLogRegister(void);
 PETSC_EXTERN PetscClassId  JR_CONTACT_CLASSID, JR_MODEL_CLASSID, JR_HBM_CLASSID;
 PETSC_EXTERN PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep;
@@ -367,6 +367,11 @@ PETSC_EXTERN PetscErrorCode JRHBMStickFrequencies(JRHBM, PetscInt *, PetscReal[]
 PETSC_EXTERN PetscErrorCode JRHBMGetDampingDescription(JRHBM, const char **);
 PETSC_EXTERN PetscErrorCode JRHBMView(JRHBM, PetscViewer);
 PETSC_EXTERN PetscErrorCode JRHBMDestroy(JRHBM *);
+/* the extended periodic motion concept's autonomous system (src/hbm/epmc.c): unknowns [a | w | xi] */
+PETSC_EXTERN PetscErrorCode JRHBMSetEPMC(JRHBM, PetscInt, PetscReal *);
+PETSC_EXTERN PetscErrorCode JRHBMGetEPMCMode(JRHBM, PetscReal *, const PetscReal **, PetscReal *);
+PETSC_EXTERN PetscErrorCode JRHBMComputeEPMC(JRHBM, PetscReal, Vec, Vec, Mat);
+PETSC_EXTERN PetscErrorCode JRHBMEPMCWork(JRHBM, PetscReal, PetscReal, Vec, PetscReal *);
 
 /* ------------------------------------------------------------------------------------------ */
 /* JRReduce: reduced-order joints, the first and the second reduction (prefix rom_)            */
@@ -428,6 +433,23 @@ PETSC_EXTERN PetscErrorCode JRContGetDamping(JRCont, PetscInt, PetscReal *, Pets
 PETSC_EXTERN PetscErrorCode JRContGetLevelStats(JRCont, PetscInt, PetscReal *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRContWrite(JRCont);
 PETSC_EXTERN PetscErrorCode JRContDestroy(JRCont *);
+
+/* ------------------------------------------------------------------------------------------ */
+/* JRNLModes: nonlinear modes by the extended periodic motion concept (EPMC), backbones of      */
+/* frequency and damping ratio against amplitude, options -nlm_*                               */
+/* ------------------------------------------------------------------------------------------ */
+typedef struct _p_JRNLModes *JRNLModes;
+PETSC_EXTERN PetscErrorCode JRNLModesCreate(MPI_Comm, JRNLModes *);
+PETSC_EXTERN PetscErrorCode JRNLModesSetHBM(JRNLModes, JRHBM);
+PETSC_EXTERN PetscErrorCode JRNLModesSetFromOptions(JRNLModes);
+PETSC_EXTERN PetscErrorCode JRNLModesGetOutputBase(JRNLModes, const char **);
+PETSC_EXTERN PetscErrorCode JRNLModesSetUp(JRNLModes);
+PETSC_EXTERN PetscErrorCode JRNLModesSolve(JRNLModes);
+PETSC_EXTERN PetscErrorCode JRNLModesGetBackbone(JRNLModes, PetscInt *, const PetscReal **, const PetscReal **, const PetscReal **, const PetscReal **, const PetscReal **);
+PETSC_EXTERN PetscErrorCode JRNLModesGetStats(JRNLModes, PetscReal *, PetscInt *, PetscBool *);
+PETSC_EXTERN PetscErrorCode JRNLModesWrite(JRNLModes);
+PETSC_EXTERN PetscErrorCode JRNLModesView(JRNLModes, PetscViewer);
+PETSC_EXTERN PetscErrorCode JRNLModesDestroy(JRNLModes *);
 
 /* ------------------------------------------------------------------------------------------ */
 /* JRVerify: FRF points checked by direct time integration of the same modal equations (TS)    */
@@ -535,6 +557,7 @@ PETSC_EXTERN PetscErrorCode JRFileCheckOutput(MPI_Comm, const char[], const char
 PETSC_EXTERN PetscErrorCode JRTaskElement(MPI_Comm);
 PETSC_EXTERN PetscErrorCode JRTaskFRF(MPI_Comm);
 PETSC_EXTERN PetscErrorCode JRTaskCompare(MPI_Comm);
+PETSC_EXTERN PetscErrorCode JRTaskNLModes(MPI_Comm);
 PETSC_EXTERN PetscErrorCode JRTaskModes(MPI_Comm);
 PETSC_EXTERN PetscErrorCode JRTaskPreload(MPI_Comm);
 

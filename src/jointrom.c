@@ -17,6 +17,8 @@ static const char help[] = "jointrom: reduced-order models of bolted joints by h
                            "            'mode <i> <Hz>' lines, HDF5 + XDMF for ParaView, PNG of the mode shapes\n"
                            "  compare   node-to-node and reduced-order joint model of one FE case in one run (-rom_joints,\n"
                            "            -rom_elements): FRF overlays, peak errors per level, wall times and their ratio\n"
+                           "  nlmodes   the backbone of a nonlinear mode (extended periodic motion concept): frequency and damping\n"
+                           "            ratio against amplitude from stick to gross slip, on the models of frf (HDF5, CSV, PNG)\n"
                            "  preload   a finite-element model and its bolt preload (static frictionless contact): normal load and\n"
                            "            gap of every interface pair, CSV + HDF5 + XDMF, PNG maps and mid-section profile\n\n";
 
@@ -25,9 +27,10 @@ typedef enum {
   TASK_FRF,
   TASK_MODES,
   TASK_PRELOAD,
-  TASK_COMPARE
+  TASK_COMPARE,
+  TASK_NLMODES
 } Task;
-static const char *const Tasks[] = {"element", "frf", "modes", "preload", "compare", "Task", "TASK_", NULL};
+static const char *const Tasks[] = {"element", "frf", "modes", "preload", "compare", "nlmodes", "Task", "TASK_", NULL};
 
 /* The task of -task, its objects' options read and checked before its work */
 static PetscErrorCode Run(MPI_Comm comm)
@@ -38,7 +41,7 @@ static PetscErrorCode Run(MPI_Comm comm)
   PetscCall(JRInitializePackage());
   PetscCall(JROptionsCheckValues(comm));
   PetscOptionsBegin(comm, NULL, "jointrom driver", "jointrom");
-  PetscCall(PetscOptionsEList("-task", "What to do", "jointrom", Tasks, 5, Tasks[task], &task, NULL));
+  PetscCall(PetscOptionsEList("-task", "What to do", "jointrom", Tasks, 6, Tasks[task], &task, NULL));
   PetscOptionsEnd();
   switch ((Task)task) {
   case TASK_ELEMENT:
@@ -55,6 +58,9 @@ static PetscErrorCode Run(MPI_Comm comm)
     break;
   case TASK_COMPARE:
     PetscCall(JRTaskCompare(comm));
+    break;
+  case TASK_NLMODES:
+    PetscCall(JRTaskNLModes(comm));
     break;
   }
   PetscCall(JROptionsWarnUnused(comm));

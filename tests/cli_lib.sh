@@ -37,6 +37,8 @@ run_file_check() { # run file
       grep -q '^-model_type brb' "$f" && extra="$extra -model_mesh_h 0.01 -cont_max_points 40 -cont_allow_partial" # FE: a coarse mesh, the options are what is checked
       grep -q '^-model_type lap' "$f" && extra="$extra -model_mesh_h 0.005 -model_mesh_grade 4 -cont_max_points 40 -cont_allow_partial"
       grep -q '^-rom_fit_select first' "$f" && extra="$extra -rom_fit_select_total 1000 -rom_fit_select_case 0" ;; # one pair: the selection runs, quickly (its own checks: cli_rom.sh)
+    "-task nlmodes") extra="-nlm_output_file $tmp/runfile -nlm_plot 0 -nlm_points 6"
+      grep -q '^-model_type brb' "$f" && extra="$extra -model_mesh_h 0.01" ;; # a coarse mesh: the options are what is checked
     "-task modes") extra="-modes_output_file '' -model_mesh_h 0.01" ;; # a coarse mesh: the options are what is checked
     "-task preload") extra="-preload_output_file '' -model_mesh_h 0.005 -model_mesh_grade 4"
       grep -q '^-model_type brb' "$f" && extra="-preload_output_file '' -model_mesh_h 0.01" ;; # as the other BRB runs

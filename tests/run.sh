@@ -41,11 +41,12 @@ else
     run "$(basename "$t")" "$t"
   done
   # the parallel pieces again on 2 ranks (elements and matrices split across ranks; test_fe: make test-long)
-  for t in test_hbm test_matio test_preload test_peaks; do
+  for t in test_hbm test_matio test_preload test_peaks test_nlmodes; do
     [ -x "build/tests/$t" ] && run "$t np2" mpiexec -n 2 "build/tests/$t"
   done
   run cli bash tests/cli.sh
   run cli_frf bash tests/cli_frf.sh
+  run cli_nlmodes bash tests/cli_nlmodes.sh
   run cli_verify bash tests/cli_verify.sh
   run cli_modes bash tests/cli_modes.sh
   run cli_preload bash tests/cli_preload.sh

@@ -609,6 +609,23 @@ PetscErrorCode JRHBMStuckModeMotion(JRHBM h, PetscInt k, PetscReal u[], PetscRea
   PetscFunctionReturn(0);
 }
 
+/* The k-th stuck mode in the basis (M-normalised, nm coefficients) and its circular frequency omega [rad/s]
+   (collective) */
+PetscErrorCode JRHBMStuckMode(JRHBM h, PetscInt k, PetscReal *omega, PetscReal q[])
+{
+  PetscReal *f;
+  PetscInt   nf;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCheck(k >= 0 && k < h->nm, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Stuck mode %" PetscInt_FMT ": the basis has %" PetscInt_FMT, k, h->nm);
+  PetscCall(PetscMalloc1(h->nm, &f));
+  PetscCall(StickEig(h, 1.0, &nf, f, k, q));
+  *omega = 2 * PETSC_PI * f[k];
+  PetscCall(PetscFree(f));
+  PetscFunctionReturn(0);
+}
+
 /*
   JRHBMStuckModeBalance - the energy balance of the k-th stuck mode q (M-normalised) at resonance, for the modal
   amplitude a: per cycle the excitation of level F puts in pi F |q.fm| a and the linear damping takes out

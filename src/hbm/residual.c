@@ -220,8 +220,8 @@ PetscErrorCode JRHBMNonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Petsc
 }
 
 /* Linear part of the residual (added to res), of the Jacobian (added to jac, may be NULL) and the
-   frequency derivative dR/dw (set, may be NULL) */
-static PetscErrorCode Linear(JRHBM h, PetscReal w, const PetscReal *a, PetscReal *res, PetscReal *jac, PetscReal *dw)
+   frequency derivative dR/dw (set, may be NULL); no excitation in the EPMC's autonomous system (JRHBMSetEPMC) */
+PetscErrorCode JRHBMLinear(JRHBM h, PetscReal w, const PetscReal *a, PetscReal *res, PetscReal *jac, PetscReal *dw)
 {
   const PetscInt nm = h->nm, n = h->n;
 
@@ -261,7 +261,7 @@ static PetscErrorCode Linear(JRHBM h, PetscReal w, const PetscReal *a, PetscReal
           jac[(oc + i) + (oc + j) * n] += dij;
         }
       }
-      res[os + i] += ds - bc - (hh == 1 ? h->level * h->fm[i] : 0.0);
+      res[os + i] += ds - bc - (hh == 1 && !h->epmc ? h->level * h->fm[i] : 0.0);
       res[oc + i] += dc + bs;
       if (dw) {
         dw[os + i] = -2.0 * hh * hw * ms - hh * cc;
@@ -285,7 +285,7 @@ PetscErrorCode JRHBMComputeResidual(JRHBM h, PetscReal w, Vec a, Vec R)
   PetscCall(VecGetArray(R, &r));
   PetscCall(JRHBMNonlinear(h, x, r, NULL));
   if (h->cond) PetscCall(JRHBMCondApply(h, w, x, r, NULL, NULL));
-  else PetscCall(Linear(h, w, x, r, NULL, NULL));
+  else PetscCall(JRHBMLinear(h, w, x, r, NULL, NULL));
   PetscCall(VecRestoreArray(R, &r));
   PetscCall(VecRestoreArrayRead(a, &x));
   PetscCall(PetscLogEventEnd(JR_HBMResidual, 0, 0, 0, 0));
@@ -308,7 +308,7 @@ PetscErrorCode JRHBMComputeJacobian(JRHBM h, PetscReal w, Vec a, Mat J, Vec Rw)
   if (Rw) PetscCall(VecGetArray(Rw, &rw));
   PetscCall(JRHBMNonlinear(h, x, res, j));
   if (h->cond) PetscCall(JRHBMCondApply(h, w, x, res, j, rw));
-  else PetscCall(Linear(h, w, x, res, j, rw));
+  else PetscCall(JRHBMLinear(h, w, x, res, j, rw));
   if (Rw) PetscCall(VecRestoreArray(Rw, &rw));
   PetscCall(MatDenseRestoreArrayWrite(J, &j));
   PetscCall(VecRestoreArrayRead(a, &x));

@@ -1,8 +1,8 @@
-/* Log stages, one per pipeline stage, and the interface's and the reduction's events: -log_view reads as the pipeline */
+/* Log stages, one per pipeline stage, and the interface's, the reduction's, the check's and the nonlinear modes' events: -log_view reads as the pipeline */
 #include <jointrom.h>
 
 PetscLogStage JR_StageModel, JR_StagePreload, JR_StageInterface, JR_StageModes, JR_StageReduce, JR_StageSolve, JR_StagePost;
-PetscLogEvent JR_InterfaceSetUp, JR_ReduceJoints, JR_ReduceSelect, JR_ReduceFit, JR_ReduceHBM, JR_Verify;
+PetscLogEvent JR_InterfaceSetUp, JR_ReduceJoints, JR_ReduceSelect, JR_ReduceFit, JR_ReduceHBM, JR_Verify, JR_NLModesSolve;
 
 PetscErrorCode JRLogRegister(void)
 {
@@ -24,5 +24,7 @@ PetscErrorCode JRLogRegister(void)
   PetscCall(PetscLogEventRegister("JR_ReduceHBM", id, &JR_ReduceHBM));
   PetscCall(PetscClassIdRegister("JRVerify", &id));
   PetscCall(PetscLogEventRegister("JR_Verify", id, &JR_Verify));
+  PetscCall(PetscClassIdRegister("JRNLModes", &id));
+  PetscCall(PetscLogEventRegister("JR_NLModesSolve", id, &JR_NLModesSolve));
   PetscFunctionReturn(0);
 }

@@ -1,7 +1,7 @@
 /*
    Options a run did not use. JROptionsCheck runs after every object of a task has read its options and before any
    heavy work: an option of jointrom's own (-task, -model_*, -preload_*, -interface_*, -modes_*, -rom_*, -hbm_*,
-   -cont_*, -frf_*, -element_*, not the nested solvers' -hbm_snes_* and the like) that nothing read is an error
+   -cont_*, -frf_*, -element_*, -nlm_*, not the nested solvers' -hbm_snes_* and the like) that nothing read is an error
    naming it and, where one is close, the option it was probably meant to be. JROptionsWarnUnused, at the end of a
    run, warns about every other option nothing read (a nested solver's option is read only when that solver runs).
    JROptionsCheckValues, at the start, stops a run given one of jointrom's options that take a number or a choice
@@ -15,7 +15,7 @@ extern const char *const JROptionNames[];     /* generated from the sources by s
 extern const char *const JROptionValued[][2]; /* the options that take a value: name, what the value is */
 
 /* jointrom's option groups, checked before the work; a nested solver's options inside them are read later */
-static const char *const Groups[]  = {"task", "model_", "preload_", "interface_", "modes_", "rom_", "hbm_", "cont_", "frf_verify_", "frf_", "element_", NULL};
+static const char *const Groups[]  = {"task", "model_", "preload_", "interface_", "modes_", "rom_", "hbm_", "cont_", "frf_verify_", "frf_", "element_", "nlm_", NULL};
 static const char *const Nested[]  = {"snes_", "ksp_", "ts_", "pc_", "eps_", "st_", "tao_", "bv_", "ds_", "rg_", "fn_", "mat_", "vec_", "dm_", "petsc", "mg_", "sub_", NULL};
 static const char *const Viewers[] = {"view", "monitor", "converged_reason", "draw", NULL};
 

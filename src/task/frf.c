@@ -14,7 +14,7 @@
    the stuck springs, by SLEPc); every element's contact state at each level's peak, BASE_contact.csv and
    the map BASE_contact.png in the four colours of thesis Figs 5.12-5.19.
 */
-#include <jointrom.h>
+#include <jointrom/private/taskimpl.h>
 #include <sys/resource.h>
 
 /* The full FE model with every element in contact at rest (n0 > 0) stuck: K + sum_e kt t t^T (+ kn n n^T)
@@ -79,6 +79,8 @@ static PetscErrorCode Curves(MPI_Comm comm, JRHBM hbm, const char base[], JRCont
 /* The run: its objects, what the options asked for, and the figures reported */
 typedef struct {
   MPI_Comm           comm;
+  PetscBool          nlmodes;         /* -task nlmodes: the backbone of a nonlinear mode instead of the curves */
+  JRNLModes          nlm;
   PetscBool          compare, help, fe, n2n, isrom, loaded, joints, stickfe, plot, set, oset;
   JRModel            model;
   JRPreload          pre;
@@ -105,8 +107,10 @@ static PetscErrorCode RunOptions(FRFRun *r)
 
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, NULL, "Frequency response (-task frf, -task compare)", "JRTaskFRF");
-  PetscCall(PetscOptionsString("-frf_output_file", "Output base name", "JRTaskFRF", r->base, r->base, sizeof(r->base), NULL));
-  PetscCall(PetscOptionsBool("-frf_plot", "Draw the PNG plots", "JRTaskFRF", r->plot, &r->plot, NULL));
+  if (!r->nlmodes) { /* -task nlmodes: -nlm_output_file, -nlm_plot (JRNLModesSetFromOptions) */
+    PetscCall(PetscOptionsString("-frf_output_file", "Output base name", "JRTaskFRF", r->base, r->base, sizeof(r->base), NULL));
+    PetscCall(PetscOptionsBool("-frf_plot", "Draw the PNG plots", "JRTaskFRF", r->plot, &r->plot, NULL));
+  }
   if (r->fe || r->help) PetscCall(PetscOptionsBool("-frf_stick_fe", "Also the natural frequencies of the whole FE model with every element stuck (SLEPc): the modal truncation error", "JRTaskFRF", r->stickfe, &r->stickfe, NULL));
   PetscOptionsEnd();
   PetscCheck(r->help || r->fe || !r->compare, comm, PETSC_ERR_ARG_WRONG, "-task compare needs an FE model with a contact interface (-model_type brb, lap1, lap3, lap, gmsh)");
@@ -140,6 +144,13 @@ static PetscErrorCode SetFromOptions(FRFRun *r)
     PetscCall(JRModelGetType(r->model, &mt));
     r->fe = (PetscBool)strcmp(mt, JRMODELMATRICES);
   }
+  if (r->nlmodes) {
+    const char *base;
+    PetscCall(JRNLModesCreate(comm, &r->nlm));
+    PetscCall(JRNLModesSetFromOptions(r->nlm));
+    PetscCall(JRNLModesGetOutputBase(r->nlm, &base));
+    PetscCall(PetscStrncpy(r->base, base, sizeof(r->base)));
+  }
   PetscCall(RunOptions(r));
   if (r->fe || r->help) {
     PetscCall(JRPreloadCreate(comm, &r->pre));
@@ -169,13 +180,15 @@ static PetscErrorCode SetFromOptions(FRFRun *r)
     if (r->red) PetscCall(JRReduceSetCase(r->red, wmin, wmax, PetscMin(nl, 64), lv));
     PetscCall(JRContDestroy(&c));
   }
-  PetscCall(JRVerifyCreate(comm, &r->ver));
-  PetscCall(JRVerifySetFromOptions(r->ver));
+  if (!r->nlmodes) {
+    PetscCall(JRVerifyCreate(comm, &r->ver));
+    PetscCall(JRVerifySetFromOptions(r->ver));
+  }
   if (r->help) PetscFunctionReturn(0);
   PetscCall(JRPostCreate(comm, &r->post));
   PetscCall(JRPostSetOutput(r->post, r->base, r->plot));
-  PetscCall(JROptionsCheck(comm, r->fe ? (r->compare ? "-task compare" : "-task frf on an FE model") : "-task frf on a matrices model"));
-  PetscCall(JRFileCheckOutput(comm, "-frf_output_file", r->base));
+  PetscCall(JROptionsCheck(comm, r->nlmodes ? "-task nlmodes" : r->fe ? (r->compare ? "-task compare" : "-task frf on an FE model") : "-task frf on a matrices model"));
+  PetscCall(JRFileCheckOutput(comm, r->nlmodes ? "-nlm_output_file" : "-frf_output_file", r->base));
   if (r->fe && r->romload[0] && !r->compare) PetscCall(JRHBMDestroy(&r->hbm));
   PetscFunctionReturn(0);
 }
@@ -366,6 +379,10 @@ static PetscErrorCode Solve(FRFRun *r)
   MPI_Comm comm = r->comm;
 
   PetscFunctionBeginUser;
+  if (r->nlmodes) {
+    PetscCall(JRTaskNLModesSolve(comm, r->nlm, r->hbmc));
+    PetscFunctionReturn(0);
+  }
   if (r->compare) {
     char bn[PETSC_MAX_PATH_LEN + 8], br[PETSC_MAX_PATH_LEN + 8];
     PetscCall(PetscSNPrintf(bn, sizeof(bn), "%s%s", r->base, r->base[0] ? "_n2n" : ""));
@@ -396,7 +413,7 @@ static PetscErrorCode Report(FRFRun *r)
   MPI_Comm comm = r->comm;
 
   PetscFunctionBeginUser;
-  if (r->n2n) {
+  if (r->n2n && r->contc) {
     PetscReal *fs, w, a, best = 0, fe[64];
     PetscInt   nf, nm;
     PetscCall(JRHBMGetSizes(r->hbmc, &nm, NULL, NULL));
@@ -442,6 +459,7 @@ static PetscErrorCode Destroy(FRFRun *r)
 {
   PetscFunctionBeginUser;
   PetscCall(JRVerifyDestroy(&r->ver));
+  PetscCall(JRNLModesDestroy(&r->nlm));
   PetscCall(JRContDestroy(&r->contr));
   PetscCall(JRContDestroy(&r->cont));
   PetscCall(JRHBMDestroy(&r->hbmr));
@@ -459,7 +477,7 @@ static PetscErrorCode Destroy(FRFRun *r)
 
 /* The pipeline: options (all, checked), model, preload and interface, modes and harmonic balance, reduction, curves,
    outputs */
-static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
+static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare, PetscBool nlmodes)
 {
   FRFRun r;
 
@@ -467,6 +485,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   PetscCall(PetscMemzero(&r, sizeof(r)));
   r.comm    = comm;
   r.compare = compare;
+  r.nlmodes = nlmodes;
   r.plot    = PETSC_TRUE;
   r.dir     = 2;
   r.nd      = 3;
@@ -484,7 +503,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
   PetscCall(SetUpModels(&r));
   PetscCall(ViewBasis(&r));
   PetscCall(Solve(&r));
-  PetscCall(JRVerifyCurves(r.ver, r.hbmc, r.contc));
+  if (r.ver) PetscCall(JRVerifyCurves(r.ver, r.hbmc, r.contc));
   PetscCall(Report(&r));
   if (r.cont) PetscCall(JRContCheckComplete(r.cont)); /* an incomplete curve: an error once everything is written */
   if (r.contr) PetscCall(JRContCheckComplete(r.contr));
@@ -495,7 +514,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare)
 PetscErrorCode JRTaskFRF(MPI_Comm comm)
 {
   PetscFunctionBeginUser;
-  PetscCall(FRF(comm, PETSC_FALSE));
+  PetscCall(FRF(comm, PETSC_FALSE, PETSC_FALSE));
   PetscFunctionReturn(0);
 }
 
@@ -507,6 +526,15 @@ PetscErrorCode JRTaskFRF(MPI_Comm comm)
 PetscErrorCode JRTaskCompare(MPI_Comm comm)
 {
   PetscFunctionBeginUser;
-  PetscCall(FRF(comm, PETSC_TRUE));
+  PetscCall(FRF(comm, PETSC_TRUE, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+/* -task nlmodes: the model, preload, interface, modes and harmonic balance of -task frf, then the backbone of a
+   nonlinear mode (src/task/nlmodes.c) */
+PetscErrorCode JRTaskFRFPipeline(MPI_Comm comm, PetscBool nlmodes)
+{
+  PetscFunctionBeginUser;
+  PetscCall(FRF(comm, PETSC_FALSE, nlmodes));
   PetscFunctionReturn(0);
 }

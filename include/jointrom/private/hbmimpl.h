@@ -110,6 +110,12 @@ struct _p_JRHBM {
   PetscReal        *ctmp;         /* ns + ns^2 work */
   PetscReal        *llu;          /* JRHBMLinearSolution(): LU of the Jacobian (ns x ns) and its pivots */
   PetscBLASInt     *lpiv;
+  /* the extended periodic motion concept (JRHBMSetEPMC, src/hbm/epmc.c): no excitation, a negative mass-proportional
+     damping -xi Mm, the stuck mode of interest epsi (M-normalised, nm) and its mass-weighted row ep = Mm epsi */
+  PetscBool         epmc;
+  PetscInt          emode;
+  PetscReal         eomega;
+  PetscReal        *epsi, *ep, *ework; /* ework: n + n^2 + n */
 };
 
 /* C = alpha op(A) op(B) + beta C, column-major (BLAS gemm; k = 0 only scales C) */
@@ -126,6 +132,8 @@ PETSC_INTERN PetscErrorCode JRHBMProjectionRowsDir(JRHBM, PetscInt, const PetscI
 /* src/hbm/residual.c: the residual and Jacobian, the solver at fixed frequency */
 PETSC_INTERN PetscErrorCode JRHBMNonlinear(JRHBM, const PetscReal *, PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode JRHBMSetUpSolver(JRHBM);
+PETSC_INTERN PetscErrorCode JRHBMLinear(JRHBM, PetscReal, const PetscReal *, PetscReal *, PetscReal *, PetscReal *);
+PETSC_INTERN PetscErrorCode JRHBMStuckMode(JRHBM, PetscInt, PetscReal *, PetscReal[]);
 
 /* src/hbm/condense.c: the condensation onto the joints */
 PETSC_INTERN PetscErrorCode JRHBMCondenseSetUp(JRHBM, const JRElements *);
