@@ -110,6 +110,7 @@ struct _p_JRHBM {
   PetscReal        *ctmp;         /* ns + ns^2 work */
   PetscReal        *llu;          /* JRHBMLinearSolution(): LU of the Jacobian (ns x ns) and its pivots */
   PetscBLASInt     *lpiv;
+  struct _JRHill   *hill;         /* JRHBMFloquet(): the work of Hill's method (src/hbm/hill.c) */
 };
 
 /* C = alpha op(A) op(B) + beta C, column-major (BLAS gemm; k = 0 only scales C) */
@@ -126,6 +127,9 @@ PETSC_INTERN PetscErrorCode JRHBMProjectionRowsDir(JRHBM, PetscInt, const PetscI
 /* src/hbm/residual.c: the residual and Jacobian, the solver at fixed frequency */
 PETSC_INTERN PetscErrorCode JRHBMNonlinear(JRHBM, const PetscReal *, PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode JRHBMSetUpSolver(JRHBM);
+
+/* src/hbm/hill.c: Floquet exponents */
+PETSC_INTERN PetscErrorCode JRHBMHillDestroy(JRHBM);
 
 /* src/hbm/condense.c: the condensation onto the joints */
 PETSC_INTERN PetscErrorCode JRHBMCondenseSetUp(JRHBM, const JRElements *);
