@@ -5,10 +5,10 @@
    fold:   the frequency is extreme at a point (consecutive steps change direction in w); located at the vertex of the
            parabola w(s) through that point and its neighbours, s the scaled arclength (chord lengths in the unknowns
            over their largest norm and in w over the range).
-   branch: det(dR/da) changes sign between two points away from a fold: the determinant of the bordered Jacobian,
-           sign(det J) sign(dw/ds), changes sign (kind simple); or the stability changes with no fold and no real
-           exponent crossing, a complex pair crossing the imaginary axis (kind pair). Located where the largest real
-           part crosses zero, by linear interpolation (the midpoint if it does not).
+   branch: the determinant of the bordered Jacobian, sign(det J) sign(dw/ds), changes sign and keeps its new sign for
+           two points (kind simple); or the stability changes, for two points, with no fold and no real exponent
+           crossing near: a complex pair crossing the imaginary axis (kind pair). Located where the largest real part
+           crosses zero, by linear interpolation (the midpoint if it does not).
 */
 #include <jointrom/private/contimpl.h>
 
@@ -72,11 +72,12 @@ static PetscErrorCode Detect(JRCont c, JRContBranch *b)
   const PetscInt np = b->np;
   PetscReal      xs = 0.0;
   PetscBool     *fold;
+  PetscInt      *sig;
 
   PetscFunctionBeginUser;
   PetscCall(PetscFree2(b->wfold, b->wbranch));
   PetscCall(PetscMalloc2(np, &b->wfold, np, &b->wbranch));
-  PetscCall(PetscCalloc1(np, &fold));
+  PetscCall(PetscCalloc2(np, &fold, np, &sig));
   b->nfold = b->nbranch = 0;
   for (PetscInt k = 0; k < np; k++) {
     PetscReal q = 0.0;
@@ -89,16 +90,26 @@ static PetscErrorCode Detect(JRCont c, JRContBranch *b)
       fold[k]              = PETSC_TRUE;
       b->wfold[b->nfold++] = FoldFrequency(c, b, k, xs);
     }
-  for (PetscInt k = 0; k < np - 1; k++) {
-    const PetscBool det = (PetscBool)(b->detsign[k] * b->detsign[k + 1] < 0), change = (PetscBool)(b->stable[k] != b->stable[k + 1]);
-    if (fold[k] || fold[k + 1] || !(det || change)) continue;
+  /* sigma_k = sign(det J) sign(dw) at point k (dw: the step to the next point): the sign of the bordered Jacobian's
+     determinant. A change held for two points on each side is a branch point; single-point blips beside folds, where
+     the two factors flip at neighbouring points, are not. */
+  for (PetscInt k = 0; k < np; k++) {
+    const PetscReal dw = k < np - 1 ? b->omega[k + 1] - b->omega[k] : b->omega[k] - b->omega[k - 1];
+    sig[k]             = b->detsign[k] * (dw > 0 ? 1 : dw < 0 ? -1 : 0);
+  }
+  for (PetscInt k = 1; k + 2 < np; k++) {
+    const PetscBool simple = (PetscBool)(sig[k] && sig[k - 1] == sig[k] && sig[k + 1] == sig[k + 2] && sig[k + 1] == -sig[k]);
+    PetscBool       pair   = (PetscBool)(b->stable[k - 1] == b->stable[k] && b->stable[k + 1] == b->stable[k + 2] && b->stable[k] != b->stable[k + 1]);
+    for (PetscInt j = k - 1; j <= k + 2 && pair; j++)
+      if (fold[j] || (j < k + 2 && b->detsign[j] != b->detsign[j + 1])) pair = PETSC_FALSE; /* a fold or a real exponent explains it */
+    if (!simple && !pair) continue;
     b->wbranch[b->nbranch] = CrossingFrequency(b, k);
-    if (!c->quiet) PetscCall(PetscPrintf(c->comm, "branch level %g freq_hz %.8g kind %s\n", (double)b->F, (double)(b->wbranch[b->nbranch] / (2 * PETSC_PI)), det ? "simple" : "pair"));
+    if (!c->quiet) PetscCall(PetscPrintf(c->comm, "branch level %g freq_hz %.8g kind %s\n", (double)b->F, (double)(b->wbranch[b->nbranch] / (2 * PETSC_PI)), simple ? "simple" : "pair"));
     b->nbranch++;
   }
   if (!c->quiet)
     for (PetscInt f = 0; f < b->nfold; f++) PetscCall(PetscPrintf(c->comm, "fold level %g freq_hz %.8g\n", (double)b->F, (double)(b->wfold[f] / (2 * PETSC_PI))));
-  PetscCall(PetscFree(fold));
+  PetscCall(PetscFree2(fold, sig));
   PetscFunctionReturn(0);
 }
 
