@@ -374,7 +374,7 @@ typedef enum {
   JR_HILL_SELECT_IMAG    /* |Im lambda| <= w / 2 (the fundamental strip) */
 } JRHillSelect;
 PETSC_EXTERN const char *const JRHillSelects[];
-PETSC_EXTERN PetscErrorCode JRHBMFloquet(JRHBM, PetscReal, Vec, JRHillSelect, PetscInt, PetscReal[], PetscReal[], PetscReal *, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRHBMFloquet(JRHBM, PetscReal, Vec, JRHillSelect, PetscInt, PetscInt *, PetscReal[], PetscReal[], PetscReal *, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMHillSupported(JRHBM, PetscBool *);
 
 /* ------------------------------------------------------------------------------------------ */

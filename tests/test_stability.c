@@ -190,6 +190,7 @@ static PetscErrorCode FoldedCase(const char *name, const Osc *o, const char *opt
   PetscCall(JRContGetBranch(p->cont, 0, &np, &om, &a, &amp));
   PetscCall(JRContGetStability(p->cont, 0, &st, &mr, &nf, &wf, &nb, NULL));
   PetscCall(JRHBMGetSolveSize(p->hbm, &n, NULL));
+  PetscCheck(st && mr, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "%s: no stability computed", name);
   /* the folds along the curve: the largest frequency, then back; the middle branch between them */
   {
     PetscInt kf = 0, kmin = 0;
@@ -256,11 +257,11 @@ int main(int argc, char **argv)
       PetscCall(ProblemCreate(3, K, M, C, 0, NULL, &p));
       PetscCall(JRHBMCreateVecs(p.hbm, &a, NULL));
       PetscCall(JRHBMLinearSolution(p.hbm, w, a));
-      PetscCall(JRHBMFloquet(p.hbm, w, a, sel, dmax, re, im, &mr, NULL));
+      PetscCall(JRHBMFloquet(p.hbm, w, a, sel, dmax, NULL, re, im, &mr, NULL));
       if (cs == 0) CHECK(MatchError(6, re, im, 6, lr, li, w, H) < 1e-8, "linear 3-DOF, viscous C, H = 3, all modes below (H + 1/2) w: Floquet exponents (strip |Im| <= w/2) = eigenvalues of K + l C + l^2 M mod i k w, relative error %.1e", MatchError(6, re, im, 6, lr, li, w, H));
       if (cs == 1) {
         CHECK(MatchError(6, re, im, 6, lr, li, w, 0) < 1e-8, "linear 3-DOF, highest mode at %.2f w: eigenvector criterion gives the eigenvalues themselves (k = 0), relative error %.1e", wn / w, MatchError(6, re, im, 6, lr, li, w, 0));
-        PetscCall(JRHBMFloquet(p.hbm, w, a, JR_HILL_SELECT_IMAG, dmax, re, im, &mr, NULL));
+        PetscCall(JRHBMFloquet(p.hbm, w, a, JR_HILL_SELECT_IMAG, dmax, NULL, re, im, &mr, NULL));
         CHECK(MatchError(6, re, im, 6, lr, li, w, H) > 1e-3, "linear 3-DOF, highest mode at %.2f w > (H + 1/2) w: the strip criterion misses it (error %.1e), as documented", wn / w, MatchError(6, re, im, 6, lr, li, w, H));
       }
       if (cs == 2) CHECK(MatchError(6, re, im, 6, lr, li, w, H) < 1e-8, "linear 3-DOF: SLEPc PEP path (-frf_stability_dense_max 0), exponents nearest the origin = eigenvalues mod i k w, relative error %.1e", MatchError(6, re, im, 6, lr, li, w, H));
@@ -273,14 +274,14 @@ int main(int argc, char **argv)
   {
     const Osc o = {1.0, 0.4, pow(2 * PETSC_PI * 10, 2), 2.0, 6e6, 0, 0, 0, 0, 0};
     Problem   p;
-    PetscCall(FoldedCase("Duffing H = 5", &o, "-hbm_physical -hbm_harmonics 5 -frf_force 2.0 -frf_fmin 5 -frf_fmax 25 -cont_max_points 3000", 5, 1e-3, 100, 400, &p));
+    PetscCall(FoldedCase("Duffing H = 5", &o, "-frf_stability -hbm_physical -hbm_harmonics 5 -frf_force 2.0 -frf_fmin 5 -frf_fmax 25 -cont_max_points 3000", 5, 1e-3, 100, 400, &p));
     PetscCall(ProblemDestroy(&p));
     /* the folds at H = 1 against the single-harmonic relation */
     {
       PetscInt         nf;
       const PetscReal *wf;
       double           w1, w2, e = PETSC_MAX_REAL;
-      PetscCall(Options("-hbm_physical -hbm_harmonics 1 -frf_force 2.0 -frf_fmin 5 -frf_fmax 25 -cont_max_points 3000"));
+      PetscCall(Options("-frf_stability -hbm_physical -hbm_harmonics 1 -frf_force 2.0 -frf_fmin 5 -frf_fmax 25 -cont_max_points 3000"));
       PetscCall(ProblemCreate(1, (double[]){o.k}, (double[]){o.m}, (double[]){o.c}, 1, (El[]){{"cubic", 0, -1, -1, -1, o.k3, 0, 0, 0}}, &p));
       PetscCall(JRContSolve(p.cont));
       PetscCall(JRContGetStability(p.cont, 0, NULL, NULL, &nf, &wf, NULL, NULL));
@@ -296,7 +297,7 @@ int main(int argc, char **argv)
     const double k = pow(2 * PETSC_PI * 10, 2);
     const Osc    o = {1.0, 0.4, k, 1.5, 0, 0.5 * k, k, 0.3, -k * 2e-3, 1};
     Problem      p;
-    PetscCall(FoldedCase("friction with a gap (jenkins_nv) H = 7", &o, "-hbm_physical -hbm_harmonics 7 -hbm_samples 256 -frf_force 1.5 -frf_fmin 5 -frf_fmax 25 -cont_max_points 3000", 7, 0.02, 100, 2000, &p));
+    PetscCall(FoldedCase("friction with a gap (jenkins_nv) H = 7", &o, "-frf_stability -hbm_physical -hbm_harmonics 7 -hbm_samples 256 -frf_force 1.5 -frf_fmin 5 -frf_fmax 25 -cont_max_points 3000", 7, 0.02, 100, 2000, &p));
     PetscCall(ProblemDestroy(&p));
   }
 

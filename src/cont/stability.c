@@ -135,7 +135,7 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   PetscCall(PetscMalloc3(b->np, &b->stable, b->np, &b->maxre, b->np, &b->detsign));
   for (PetscInt k = 0; k < b->np; k++) {
     PetscCall(LoadPoint(c, b, k, a));
-    PetscCall(JRHBMFloquet(c->hbm, b->omega[k], a, c->stabsel, c->stabdense, NULL, NULL, &b->maxre[k], &b->detsign[k]));
+    PetscCall(JRHBMFloquet(c->hbm, b->omega[k], a, c->stabsel, c->stabdense, NULL, NULL, NULL, &b->maxre[k], &b->detsign[k]));
     b->stable[k] = b->maxre[k] < c->stabtol * b->omega[k] ? 1 : 0;
     if (!b->stable[k]) nun++;
   }

@@ -14,7 +14,7 @@
 
    The quadratic problem is linearised, [0 I; -J -D1] z = lambda [I 0; 0 D2] z, and solved by LAPACK (QZ, dggev)
    or, above -frf_stability_dense_max unknowns, by SLEPc's PEP for the exponents nearest the origin. Of its
-   2 n exponents (n = nm (2H + 1)) the 2 nm physical ones are kept: those whose eigenvectors are centred on the
+   2 n exponents (n = nm (2H + 1), rigid-body modes left out) the 2 nm physical ones are kept: those whose eigenvectors are centred on the
    mean harmonic (JR_HILL_SELECT_VECTOR), or those with |Im lambda| <= w / 2 (JR_HILL_SELECT_IMAG).
 */
 #include <jointrom/private/hbmimpl.h>
@@ -24,7 +24,8 @@
 const char *const JRHillSelects[] = {"vector", "imag", "JRHillSelect", "JR_HILL_SELECT_", NULL};
 
 struct _JRHill {
-  PetscInt      N;                 /* nm (2H + 1) */
+  PetscInt      nk, *keep;         /* the modes kept: all but the rigid-body ones (pinned mean, section 1) */
+  PetscInt      N;                 /* nk (2H + 1) */
   Mat           J;                 /* dR/da (N x N, dense) */
   PetscReal    *JH, *D1, *D2;      /* N x N column-major: J with the structural damping of section 15, D1, D2 */
   PetscReal    *A, *B, *VR, *work; /* 2N x 2N pencil, its right eigenvectors, LAPACK work */
@@ -39,16 +40,22 @@ struct _JRHill {
 static PetscErrorCode HillWork(JRHBM h)
 {
   struct _JRHill *w;
-  const PetscInt  N = h->n;
+  PetscInt        N, nk = 0;
 
   PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < h->nm; i++)
+    if (!h->pin || h->pin[i] == 0.0) nk++;
+  N = nk * h->nc;
   if (h->hill && h->hill->N == N) PetscFunctionReturn(0);
   PetscCall(JRHBMHillDestroy(h));
   PetscCall(PetscNew(&w));
+  PetscCall(PetscMalloc1(nk, &w->keep));
+  for (PetscInt i = 0; i < h->nm; i++)
+    if (!h->pin || h->pin[i] == 0.0) w->keep[w->nk++] = i;
   w->N = N;
-  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, N, N, NULL, &w->J));
-  PetscCall(PetscMalloc4(N * N, &w->JH, N * N, &w->D1, N * N, &w->D2, N * N, &w->lu));
-  PetscCall(PetscMalloc2(N, &w->piv, 2 * N, &w->idx));
+  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, h->n, h->n, NULL, &w->J));
+  PetscCall(PetscMalloc4(N * N, &w->JH, N * N, &w->D1, N * N, &w->D2, h->n * h->n, &w->lu));
+  PetscCall(PetscMalloc2(h->n, &w->piv, 2 * N, &w->idx));
   PetscCall(PetscMalloc4(2 * N, &w->ar, 2 * N, &w->ai, 2 * N, &w->be, 2 * N, &w->key));
   h->hill = w;
   PetscFunctionReturn(0);
@@ -62,6 +69,7 @@ PetscErrorCode JRHBMHillDestroy(JRHBM h)
   PetscFunctionBeginUser;
   if (!w) PetscFunctionReturn(0);
   PetscCall(MatDestroy(&w->J));
+  PetscCall(PetscFree(w->keep));
   PetscCall(PetscFree4(w->JH, w->D1, w->D2, w->lu));
   PetscCall(PetscFree2(w->piv, w->idx));
   PetscCall(PetscFree4(w->ar, w->ai, w->be, w->key));
@@ -73,34 +81,39 @@ PetscErrorCode JRHBMHillDestroy(JRHBM h)
   PetscFunctionReturn(0);
 }
 
-/* JH, D1, D2 of the quadratic problem at frequency w from J (column-major, N x N) */
+/* JH, D1, D2 of the quadratic problem at frequency w from J (column-major, n x n), on the modes kept */
 static PetscErrorCode HillMatrices(JRHBM h, PetscReal w, const PetscReal *J)
 {
   struct _JRHill *hw = h->hill;
-  const PetscInt  nm = h->nm, N = hw->N;
+  const PetscInt  nm = h->nm, nk = hw->nk, N = hw->N, n = h->n, *kp = hw->keep;
   PetscReal      *JH = hw->JH, *D1 = hw->D1, *D2 = hw->D2;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscArraycpy(JH, J, N * N));
+  for (PetscInt bj = 0; bj < h->nc; bj++)
+    for (PetscInt j = 0; j < nk; j++)
+      for (PetscInt bi = 0; bi < h->nc; bi++)
+        for (PetscInt i = 0; i < nk; i++) JH[(bi * nk + i) + (bj * nk + j) * N] = J[(bi * nm + kp[i]) + (bj * nm + kp[j]) * n];
   PetscCall(PetscArrayzero(D1, N * N));
   PetscCall(PetscArrayzero(D2, N * N));
   for (PetscInt b = 0; b < h->nc; b++) { /* C + (gamma / w) Kg and M on every diagonal block */
-    const PetscInt o = b * nm;
-    for (PetscInt i = 0; i < nm; i++)
-      for (PetscInt j = 0; j < nm; j++) {
-        D1[(o + i) + (o + j) * N] = h->Cm[i * nm + j] + h->gamma / w * h->Kg[i * nm + j];
-        D2[(o + i) + (o + j) * N] = h->Mm[i * nm + j];
+    const PetscInt o = b * nk;
+    for (PetscInt i = 0; i < nk; i++)
+      for (PetscInt j = 0; j < nk; j++) {
+        const PetscInt q = kp[i] * nm + kp[j];
+        D1[(o + i) + (o + j) * N] = h->Cm[q] + h->gamma / w * h->Kg[q];
+        D2[(o + i) + (o + j) * N] = h->Mm[q];
       }
   }
   for (PetscInt hh = 1; hh <= h->H; hh++) {
-    const PetscInt  os = (2 * hh - 1) * nm, oc = 2 * hh * nm;
+    const PetscInt  os = (2 * hh - 1) * nk, oc = 2 * hh * nk;
     const PetscReal hw2 = 2.0 * hh * w, dg = (hh - 1) * h->gamma;
-    for (PetscInt i = 0; i < nm; i++)
-      for (PetscInt j = 0; j < nm; j++) {
-        D1[(os + i) + (oc + j) * N] = -hw2 * h->Mm[i * nm + j];
-        D1[(oc + i) + (os + j) * N] = hw2 * h->Mm[i * nm + j];
-        JH[(os + i) + (oc + j) * N] -= dg * h->Kg[i * nm + j]; /* gamma Kg -> h gamma Kg: (gamma / w) Kg at h w */
-        JH[(oc + i) + (os + j) * N] += dg * h->Kg[i * nm + j];
+    for (PetscInt i = 0; i < nk; i++)
+      for (PetscInt j = 0; j < nk; j++) {
+        const PetscInt q = kp[i] * nm + kp[j];
+        D1[(os + i) + (oc + j) * N] = -hw2 * h->Mm[q];
+        D1[(oc + i) + (os + j) * N] = hw2 * h->Mm[q];
+        JH[(os + i) + (oc + j) * N] -= dg * h->Kg[q]; /* gamma Kg -> h gamma Kg: (gamma / w) Kg at h w */
+        JH[(oc + i) + (os + j) * N] += dg * h->Kg[q];
       }
   }
   PetscFunctionReturn(0);
@@ -114,13 +127,13 @@ static PetscErrorCode DetSign(JRHBM h, const PetscReal *J, PetscInt *sign)
   PetscInt        s = 1;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscBLASIntCast(hw->N, &bn));
-  PetscCall(PetscArraycpy(hw->lu, J, hw->N * hw->N));
+  PetscCall(PetscBLASIntCast(h->n, &bn));
+  PetscCall(PetscArraycpy(hw->lu, J, h->n * h->n));
   PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bn, &bn, hw->lu, &bn, hw->piv, &info));
   PetscCheck(info >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK getrf: argument %d", (int)-info);
   if (info > 0) s = 0;
-  for (PetscInt i = 0; i < hw->N && s; i++) {
-    if (hw->lu[i + i * hw->N] < 0) s = -s;
+  for (PetscInt i = 0; i < h->n && s; i++) {
+    if (hw->lu[i + i * h->n] < 0) s = -s;
     if (hw->piv[i] != i + 1) s = -s;
   }
   *sign = s;
@@ -132,7 +145,7 @@ static PetscErrorCode DetSign(JRHBM h, const PetscReal *J, PetscInt *sign)
    c_+- = (ac -+ i as) / 2. */
 static PetscReal Centroid(JRHBM h, const PetscReal *vr, const PetscReal *vi)
 {
-  const PetscInt nm = h->nm;
+  const PetscInt nm = h->hill->nk;
   PetscReal      num = 0.0, den = 0.0;
 
   for (PetscInt i = 0; i < nm; i++) den += vr[i] * vr[i] + (vi ? vi[i] * vi[i] : 0.0);
@@ -149,7 +162,8 @@ static PetscReal Centroid(JRHBM h, const PetscReal *vr, const PetscReal *vi)
   return den > 0 ? num / den : 0.0;
 }
 
-/* All 2N exponents by QZ; key: the selection's measure of each (smaller is kept first) */
+/* All 2N exponents by QZ (eigenvectors only for the vector criterion); key: the selection's measure of each (smaller
+   is kept first) */
 static PetscErrorCode SolveDense(JRHBM h, PetscReal w, JRHillSelect sel, PetscInt *nev)
 {
   struct _JRHill *hw = h->hill;
@@ -180,7 +194,7 @@ static PetscErrorCode SolveDense(JRHBM h, PetscReal w, JRHillSelect sel, PetscIn
       hw->A[(N + i) + (N + j) * N2] = -hw->D1[i + j * N];
       hw->B[(N + i) + (N + j) * N2] = hw->D2[i + j * N];
     }
-  PetscCallBLAS("LAPACKggev", LAPACKggev_("N", "V", &bn, hw->A, &bn, hw->B, &bn, hw->ar, hw->ai, hw->be, &dummy, &one, hw->VR, &bn, hw->work, &hw->lwork, &info));
+  PetscCallBLAS("LAPACKggev", LAPACKggev_("N", sel == JR_HILL_SELECT_VECTOR ? "V" : "N", &bn, hw->A, &bn, hw->B, &bn, hw->ar, hw->ai, hw->be, &dummy, &one, hw->VR, &bn, hw->work, &hw->lwork, &info));
   PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Hill's method: LAPACK ggev failed (info %d) at %g Hz", (int)info, (double)(w / (2 * PETSC_PI)));
   for (PetscInt j = 0; j < N2; j++) {
     const PetscReal *v = hw->VR + j * N2;
@@ -208,7 +222,7 @@ static PetscErrorCode SolveDense(JRHBM h, PetscReal w, JRHillSelect sel, PetscIn
 static PetscErrorCode SolvePEP(JRHBM h, PetscReal w, PetscInt *nev)
 {
   struct _JRHill *hw = h->hill;
-  const PetscInt  N = hw->N, want = PetscMin(2 * h->nm + 8, 2 * N);
+  const PetscInt  N = hw->N, want = PetscMin(2 * hw->nk + 8, 2 * N);
   PetscInt        nconv;
   PetscReal      *p;
 
@@ -242,7 +256,7 @@ static PetscErrorCode SolvePEP(JRHBM h, PetscReal w, PetscInt *nev)
   PetscCall(PEPSetTarget(hw->pep, -1e-3 * w));
   PetscCall(PEPSolve(hw->pep));
   PetscCall(PEPGetConverged(hw->pep, &nconv));
-  PetscCheck(nconv >= 2 * h->nm, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Hill's method: SLEPc PEP found %" PetscInt_FMT " of the %" PetscInt_FMT " exponents needed at %g Hz (-hbm_hill_pep_* options tune it, or raise -frf_stability_dense_max)", nconv, 2 * h->nm, (double)(w / (2 * PETSC_PI)));
+  PetscCheck(nconv >= 2 * hw->nk, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Hill's method: SLEPc PEP found %" PetscInt_FMT " of the %" PetscInt_FMT " exponents needed at %g Hz (-hbm_hill_pep_* options tune it, or raise -frf_stability_dense_max)", nconv, 2 * hw->nk, (double)(w / (2 * PETSC_PI)));
   nconv = PetscMin(nconv, 2 * N);
   for (PetscInt j = 0; j < nconv; j++) {
     PetscScalar kr, ki;
@@ -262,13 +276,14 @@ static PetscErrorCode SolvePEP(JRHBM h, PetscReal w, PetscInt *nev)
   Input: sel, the selection of the 2 nm physical exponents (JR_HILL_SELECT_VECTOR: eigenvectors centred on the mean
   harmonic; JR_HILL_SELECT_IMAG: |Im| <= w / 2); densemax: the largest nm (2H + 1) solved by LAPACK's QZ (above it,
   SLEPc's PEP with prefix <hbm prefix>hbm_hill_, whose exponents nearest the origin are selected by |Im|).
-  Output: re, im (2 nm each, may be NULL): the exponents kept, largest real part first [1/s]; maxre: the largest real
-  part; detsign: the sign of det(dR/da) (0 if singular). An error for a condensed model (JRHBMHillSupported()).
+  Output: nexp = 2 ne, ne the modes other than rigid-body ones (whose mean is pinned: their exponents are the neutral
+  double zero of free drift, left out); re, im (room for 2 nm each, may be NULL): the nexp exponents kept, largest real
+  part first [1/s]; maxre: the largest real part; detsign: the sign of det(dR/da) (0 if singular). An error for a condensed model (JRHBMHillSupported()).
 */
-PetscErrorCode JRHBMFloquet(JRHBM h, PetscReal w, Vec a, JRHillSelect sel, PetscInt densemax, PetscReal re[], PetscReal im[], PetscReal *maxre, PetscInt *detsign)
+PetscErrorCode JRHBMFloquet(JRHBM h, PetscReal w, Vec a, JRHillSelect sel, PetscInt densemax, PetscInt *nexp, PetscReal re[], PetscReal im[], PetscReal *maxre, PetscInt *detsign)
 {
   struct _JRHill *hw;
-  const PetscInt  nk = 2 * h->nm;
+  PetscInt        nk;
   PetscReal      *out;
   PetscBool       ok;
 
@@ -277,6 +292,13 @@ PetscErrorCode JRHBMFloquet(JRHBM h, PetscReal w, Vec a, JRHillSelect sel, Petsc
   PetscCheck(ok, h->comm, PETSC_ERR_SUP, "Stability by Hill's method needs the modal unknowns: this model is condensed onto its joints (-hbm_condense no keeps the modes)");
   PetscCall(HillWork(h));
   hw = h->hill;
+  nk = 2 * hw->nk;
+  if (nexp) *nexp = nk;
+  if (!nk) { /* rigid-body modes only: neutral */
+    *maxre = 0.0;
+    if (detsign) *detsign = 1;
+    PetscFunctionReturn(0);
+  }
   PetscCall(PetscLogEventBegin(JR_HBMHill, 0, 0, 0, 0));
   PetscCall(JRHBMComputeJacobian(h, w, a, hw->J, NULL));
   PetscCall(PetscMalloc1(2 + 2 * nk, &out));

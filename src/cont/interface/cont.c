@@ -53,7 +53,7 @@ PetscErrorCode JRContCreate(MPI_Comm comm, JRCont *cont)
   c->nlev    = 1;
   c->itol    = 0.008;
   c->ptol    = 1e-10;
-  c->stab      = PETSC_TRUE;
+  c->stab      = PETSC_FALSE;
   c->stabsel   = JR_HILL_SELECT_IMAG;
   c->stabtol   = 1e-6;
   c->stabdense = 400;
