@@ -280,11 +280,23 @@ int main(int argc, char **argv)
     {
       PetscInt         nf;
       const PetscReal *wf;
+      const PetscInt  *st;
       double           w1, w2, e = PETSC_MAX_REAL;
       PetscCall(Options("-frf_stability -hbm_physical -hbm_harmonics 1 -frf_force 2.0 -frf_fmin 5 -frf_fmax 25 -cont_max_points 3000"));
       PetscCall(ProblemCreate(1, (double[]){o.k}, (double[]){o.m}, (double[]){o.c}, 1, (El[]){{"cubic", 0, -1, -1, -1, o.k3, 0, 0, 0}}, &p));
       PetscCall(JRContSolve(p.cont));
-      PetscCall(JRContGetStability(p.cont, 0, NULL, NULL, &nf, &wf, NULL, NULL));
+      PetscCall(JRContGetStability(p.cont, 0, &st, NULL, &nf, &wf, NULL, NULL));
+      { /* the default (eigenvector) criterion at H = 1, where the mean block's exponents tie with the middle branch's */
+        PetscInt         np, kf = 0, kmin, bad = 0;
+        const PetscReal *om;
+        PetscCall(JRContGetBranch(p.cont, 0, &np, &om, NULL, NULL));
+        for (PetscInt k = 1; k < np - 1 && !kf; k++)
+          if (om[k] > om[k - 1] && om[k] >= om[k + 1]) kf = k;
+        for (kmin = kf; kmin < np - 1 && om[kmin + 1] < om[kmin]; kmin++) { }
+        for (PetscInt k = 0; st && k < np; k++)
+          if ((k > kf + 1 && k < kmin - 1 && st[k]) || ((k < kf - 1 || k > kmin + 1) && !st[k])) bad++;
+        CHECK(st && kmin > kf + 3 && bad == 0, "Duffing H = 1, eigenvector criterion: the %" PetscInt_FMT " middle-branch points unstable, the rest stable (%" PetscInt_FMT " wrong)", kmin - kf - 3, bad);
+      }
       DuffingFolds(&o, &w1, &w2);
       if (nf == 2) e = fmax(fabs(wf[0] - w1) / w1, fabs(wf[1] - w2) / w2);
       CHECK(nf == 2 && e < 1e-3, "Duffing H = 1: %" PetscInt_FMT " folds reported at %.6g and %.6g Hz; the single-harmonic relation's at %.6g and %.6g Hz (relative error %.1e)", nf, nf > 0 ? wf[0] / (2 * PETSC_PI) : 0, nf > 1 ? wf[1] / (2 * PETSC_PI) : 0, w1 / (2 * PETSC_PI), w2 / (2 * PETSC_PI), e);

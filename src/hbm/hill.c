@@ -14,8 +14,9 @@
 
    The quadratic problem is linearised, [0 I; -J -D1] z = lambda [I 0; 0 D2] z, and solved by LAPACK (QZ, dggev)
    or, above -frf_stability_dense_max unknowns, by SLEPc's PEP for the exponents nearest the origin. Of its
-   2 n exponents (n = nm (2H + 1), rigid-body modes left out) the 2 nm physical ones are kept: those whose eigenvectors are centred on the
-   mean harmonic (JR_HILL_SELECT_VECTOR), or those with |Im lambda| <= w / 2 (JR_HILL_SELECT_IMAG).
+   2 n exponents (n = nm (2H + 1), rigid-body modes left out) the 2 nm physical ones are kept: those whose
+   eigenvectors are centred on the mean harmonic, ties (energy centroids within 1/2 of each other) to the smaller
+   |Im lambda| (JR_HILL_SELECT_VECTOR, the default), or those with |Im lambda| <= w / 2 (JR_HILL_SELECT_IMAG).
 */
 #include <jointrom/private/hbmimpl.h>
 #include <slepcpep.h>
@@ -213,6 +214,13 @@ static PetscErrorCode SolveDense(JRHBM h, PetscReal w, JRHillSelect sel, PetscIn
       hw->ai[j + 1] = -hw->ai[j];
       j++;
     } else hw->key[j] = PetscAbsReal(Centroid(h, v, NULL));
+  }
+  if (sel == JR_HILL_SELECT_VECTOR) { /* ties (centroids within 1/2 of each other) go to the smaller |Im| */
+    PetscReal imax = 0.0;
+    for (PetscInt j = 0; j < N2; j++)
+      if (hw->key[j] < PETSC_MAX_REAL) imax = PetscMax(imax, PetscAbsReal(hw->ai[j]));
+    for (PetscInt j = 0; j < N2; j++)
+      if (hw->key[j] < PETSC_MAX_REAL && imax > 0) hw->key[j] += 0.5 * PetscAbsReal(hw->ai[j]) / (imax * (1 + PETSC_SMALL));
   }
   *nev = N2;
   PetscFunctionReturn(0);

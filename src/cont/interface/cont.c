@@ -54,7 +54,7 @@ PetscErrorCode JRContCreate(MPI_Comm comm, JRCont *cont)
   c->itol    = 0.008;
   c->ptol    = 1e-10;
   c->stab      = PETSC_FALSE;
-  c->stabsel   = JR_HILL_SELECT_IMAG;
+  c->stabsel   = JR_HILL_SELECT_VECTOR;
   c->stabtol   = 1e-6;
   c->stabdense = 400;
   PetscCall(PetscMalloc1(1, &c->levels));
