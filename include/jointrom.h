@@ -35,6 +35,7 @@ PETSC_EXTERN PetscLogEvent  JR_InterfaceSetUp, JR_ReduceJoints, JR_ReduceSelect,
 PETSC_EXTERN PetscErrorCode JRLogRegister(void);
 PETSC_EXTERN PetscClassId  JR_CONTACT_CLASSID, JR_MODEL_CLASSID, JR_HBM_CLASSID;
 PETSC_EXTERN PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep;
+PETSC_EXTERN PetscLogEvent JR_HBMHill; /* Floquet exponents by Hill's method (src/hbm/hill.c) */
 
 /* ------------------------------------------------------------------------------------------ */
 /* JRContact: a batch of friction contact elements of one type (thesis chapter 3)             */
@@ -372,6 +373,14 @@ PETSC_EXTERN PetscErrorCode JRHBMSetEPMC(JRHBM, PetscInt, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMGetEPMCMode(JRHBM, PetscReal *, const PetscReal **, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMComputeEPMC(JRHBM, PetscReal, Vec, Vec, Mat);
 PETSC_EXTERN PetscErrorCode JRHBMEPMCWork(JRHBM, PetscReal, PetscReal, Vec, PetscReal *);
+/* Stability by Hill's method (src/hbm/hill.c): which 2 nm of the 2 nm (2H + 1) exponents are the physical ones */
+typedef enum {
+  JR_HILL_SELECT_VECTOR, /* eigenvectors centred on the mean harmonic (symmetry criterion) */
+  JR_HILL_SELECT_IMAG    /* |Im lambda| <= w / 2 (the fundamental strip) */
+} JRHillSelect;
+PETSC_EXTERN const char *const JRHillSelects[];
+PETSC_EXTERN PetscErrorCode JRHBMFloquet(JRHBM, PetscReal, Vec, JRHillSelect, PetscInt, PetscInt *, PetscReal[], PetscReal[], PetscReal *, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRHBMHillSupported(JRHBM, PetscBool *);
 
 /* ------------------------------------------------------------------------------------------ */
 /* JRReduce: reduced-order joints, the first and the second reduction (prefix rom_)            */
@@ -431,6 +440,7 @@ PETSC_EXTERN PetscErrorCode JRContGetLevel(JRCont, PetscInt, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRContGetPeakStates(JRCont, PetscInt, const JRContactState **);
 PETSC_EXTERN PetscErrorCode JRContGetDamping(JRCont, PetscInt, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRContGetLevelStats(JRCont, PetscInt, PetscReal *, PetscInt *, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRContGetStability(JRCont, PetscInt, const PetscInt **, const PetscReal **, PetscInt *, const PetscReal **, PetscInt *, const PetscReal **);
 PETSC_EXTERN PetscErrorCode JRContWrite(JRCont);
 PETSC_EXTERN PetscErrorCode JRContDestroy(JRCont *);
 

@@ -8,7 +8,7 @@ osc="-task frf -model_stiffness runs/oscillator/K.mtx -model_mass runs/oscillato
 # the oscillator run file: outputs written, one peak line per level, in the order of the levels
 o=$($J -options_file runs/oscillator_frf.opts -frf_output_file "$tmp/osc" -cont_monitor 0 2>&1)
 check "[ \$(echo \"\$o\" | grep -c '^peak level') = 5 ]" "oscillator_frf.opts: one 'peak level' line per force level"
-check "[ \"\$(head -c 4 '$tmp/osc.h5' | tail -c 3)\" = HDF ] && head -1 '$tmp/osc.csv' | grep -q '^level,F_N,omega_rad_s,freq_hz,amp_1$' && [ \$(wc -l < '$tmp/osc.csv') -gt 100 ]" "frf outputs: HDF5 file, CSV with header and the points"
+check "[ \"\$(head -c 4 '$tmp/osc.h5' | tail -c 3)\" = HDF ] && head -1 '$tmp/osc.csv' | grep -q '^level,F_N,omega_rad_s,freq_hz,amp_1,stable$' && [ \$(wc -l < '$tmp/osc.csv') -gt 100 ]" "frf outputs: HDF5 file, CSV with header and the points"
 if command -v gnuplot > /dev/null; then check "[ \"\$(head -c 4 '$tmp/osc.png' | tail -c 3)\" = PNG ]" "frf plot PNG written"; fi
 if command -v h5dump > /dev/null; then check "h5dump -a /response_1/dof '$tmp/osc.h5' | grep -q '(0): 0\$' && h5dump -a /response_1/name '$tmp/osc.h5' | grep -q '\"response 1 at DOF 0\"'" "frf HDF5: response 1 named by its DOF on a matrices model (/response_1 dof 0)"; fi
 # peak frequencies fall from sqrt((k+kt)/m) = 141.4 Hz towards sqrt(k/m) = 100 Hz as the force grows

@@ -55,7 +55,7 @@ d=$(paste <(echo "$a") <(echo "$b2") | awk '{for (i = 5; i <= 9; i += 2) {x = $i
 check "[ \$(echo \"\$b2\" | wc -l) = 5 ] && awk -v d=$d 'BEGIN{exit !(d < 1e-8)}'" "1 and 2 ranks: the same peaks (max relative difference $d)"
 # the responses are named by index and point, not by the DOF numbers of a partition
 h1=$(head -1 "$tmp/lev.csv"); h2=$(head -1 "$tmp/np2.csv")
-check "[ '$h1' = 'level,F_N,omega_rad_s,freq_hz,amp_1,amp_2' ] && [ '$h2' = '$h1' ]" "1 and 2 ranks: the same CSV header, responses by index: $h2"
+check "[ '$h1' = 'level,F_N,omega_rad_s,freq_hz,amp_1,amp_2,stable' ] && [ '$h2' = '$h1' ]" "1 and 2 ranks: the same CSV header, responses by index: $h2"
 if command -v h5dump > /dev/null; then
   n1=$(h5dump -a /response_1/name "$tmp/lev.h5" | grep -o '"response 1 [^"]*"'); n2=$(h5dump -a /response_1/name "$tmp/np2.h5" | grep -o '"response 1 [^"]*"')
   x2=$(h5dump -a /response_1/x_m "$tmp/np2.h5" | awk '/\(0\):/{print $2}')

@@ -41,7 +41,7 @@ else
     run "$(basename "$t")" "$t"
   done
   # the parallel pieces again on 2 ranks (elements and matrices split across ranks; test_fe: make test-long)
-  for t in test_hbm test_matio test_preload test_peaks test_nlmodes; do
+  for t in test_hbm test_matio test_preload test_peaks test_nlmodes test_stability; do
     [ -x "build/tests/$t" ] && run "$t np2" mpiexec -n 2 "build/tests/$t"
   done
   run cli bash tests/cli.sh

@@ -43,7 +43,8 @@ static PetscErrorCode ResponseName(PetscInt o, const PetscReal xyz[], PetscInt d
   PetscFunctionReturn(0);
 }
 
-/* BASE.csv: level,F_N,omega_rad_s,freq_hz,amp_1..amp_n[,pp_1..pp_n] (pp with H > 1), one row per point */
+/* BASE.csv: level,F_N,omega_rad_s,freq_hz,amp_1..amp_n[,pp_1..pp_n],stable (pp with H > 1; stable 1/0 by Hill's
+   method, -1 not computed), one row per point */
 static PetscErrorCode WriteCSV(JRCont c, const Outputs *o, const char csv[])
 {
   char  tmp[PETSC_MAX_PATH_LEN + 32];
@@ -56,7 +57,7 @@ static PetscErrorCode WriteCSV(JRCont c, const Outputs *o, const char csv[])
     for (PetscInt i = 0; i < o->nout; i++) fprintf(fp, ",amp_%" PetscInt_FMT, i + 1);
     if (o->H > 1)
       for (PetscInt i = 0; i < o->nout; i++) fprintf(fp, ",pp_%" PetscInt_FMT, i + 1);
-    fprintf(fp, "\n");
+    fprintf(fp, ",stable\n");
     for (PetscInt l = 0; l < c->nlev; l++) {
       JRContBranch *b = &c->br[l];
       for (PetscInt k = 0; k < b->np; k++) {
@@ -64,7 +65,7 @@ static PetscErrorCode WriteCSV(JRCont c, const Outputs *o, const char csv[])
         for (PetscInt i = 0; i < o->nout; i++) fprintf(fp, ",%.10e", (double)b->amp[k * o->nout + i]);
         if (o->H > 1)
           for (PetscInt i = 0; i < o->nout; i++) fprintf(fp, ",%.10e", (double)b->pp[k * o->nout + i]);
-        fprintf(fp, "\n");
+        fprintf(fp, ",%d\n", b->stable ? (int)b->stable[k] : -1);
       }
     }
   }
@@ -101,6 +102,7 @@ static PetscErrorCode WriteHDF5Header(JRCont c, const Outputs *o, PetscViewer v)
   }
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "residual", PETSC_STRING, "per point: ||R|| / ||F f||, the harmonic-balance residual against the excitation in the solve space (-hbm_residual_tol bounds it)"));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "peaks", PETSC_STRING, "per level: peak_freq_hz, peak_amp_m of response 1 (attributes) and peaks_freq_hz, peaks_amp_m of every response (datasets): the maxima of the solution curve, each also a point of the curve"));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "stability", PETSC_STRING, "per level (with -frf_stability): stable (1/0 per point, Hill's method), floquet_max_re (the largest real part of the kept Floquet exponents, 1/s), folds_freq_hz and branch_points_freq_hz (when there are any)"));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "peak_states", PETSC_STRING, "per level: every element's contact state at the peak, 0 full stick, 1 stick-slip without separation, 2 separation with stick-slip, 3 full separation"));
   PetscFunctionReturn(0);
 }
@@ -166,6 +168,17 @@ static PetscErrorCode WriteHDF5Level(JRCont c, PetscViewer v, PetscInt l)
     PetscCall(WriteRank0(c->comm, v, "peaks_amp_m", c->nout, 1, b->apk, NULL));
     PetscCall(PetscFree(f));
   }
+  if (b->stable) {
+    PetscReal *f;
+    PetscCall(WriteRank0(c->comm, v, "stable", np, 1, NULL, b->stable));
+    PetscCall(WriteRank0(c->comm, v, "floquet_max_re", np, 1, b->maxre, NULL));
+    PetscCall(PetscMalloc1(b->nfold + b->nbranch, &f));
+    for (PetscInt i = 0; i < b->nfold; i++) f[i] = b->wfold[i] / (2 * PETSC_PI);
+    for (PetscInt i = 0; i < b->nbranch; i++) f[b->nfold + i] = b->wbranch[i] / (2 * PETSC_PI);
+    if (b->nfold) PetscCall(WriteRank0(c->comm, v, "folds_freq_hz", b->nfold, 1, f, NULL));
+    if (b->nbranch) PetscCall(WriteRank0(c->comm, v, "branch_points_freq_hz", b->nbranch, 1, f + b->nfold, NULL));
+    PetscCall(PetscFree(f));
+  }
   PetscCall(WriteHDF5LevelAttributes(v, grp, b));
   PetscCall(PetscMalloc1(rank ? 0 : nel, &st));
   for (PetscInt i = 0; !rank && i < nel; i++) st[i] = (PetscInt)b->estate[i];
@@ -198,13 +211,13 @@ static PetscErrorCode Plot(JRCont c, const Outputs *o, const char csv[], const c
 
   PetscFunctionBeginUser;
   PetscCall(ResponseName(0, o->xyz, o->dir, o->dofs, name, sizeof(name)));
-  PetscCall(PetscSNPrintf(vars, sizeof(vars), "data='%s'; nlev=%" PetscInt_FMT "; normalize=%d; ttl='%s (%s continuation, H = %" PetscInt_FMT ")'", csv, c->nlev, (int)c->normalize, name, c->type_name, o->H));
+  PetscCall(PetscSNPrintf(vars, sizeof(vars), "data='%s'; nlev=%" PetscInt_FMT "; normalize=%d; scol=%" PetscInt_FMT "; ttl='%s (%s continuation, H = %" PetscInt_FMT ")'", csv, c->nlev, (int)c->normalize, 5 + c->nout * (o->H > 1 ? 2 : 1), name, c->type_name, o->H));
   PetscCall(JRPlot(c->comm, "plot_frf.gp", png, vars, made));
   PetscFunctionReturn(0);
 }
 
 /*
-  JRContWrite - BASE.h5 (every point), BASE.csv (level,F_N,omega_rad_s,freq_hz,amp_1..amp_n[,pp_1..pp_n]: the
+  JRContWrite - BASE.h5 (every point), BASE.csv (level,F_N,omega_rad_s,freq_hz,amp_1..amp_n[,pp_1..pp_n],stable: the
   responses by their index, 1-based) and BASE.png (response 1). The HDF5 group /response_<i> names response i:
   its point x_m, y_m, z_m and direction (JRHBMSetOutputPoints: an FE model) or its dof (a matrices model).
   BASE is -frf_output_file or JRContSetOutputBase ('' for none); -frf_plot 0 leaves out the PNG.

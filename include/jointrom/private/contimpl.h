@@ -23,6 +23,13 @@ typedef struct {
   PetscReal       resmax;       /* the largest relative residual of the curve's points */
   PetscReal       zeta, ebal;   /* equivalent damping ratio at the peak; worst energy imbalance of the curve */
   JRContactState *estate;       /* every element's state at the peak (rank 0) */
+  /* stability by Hill's method (src/cont/stability.c), per point after the level; NULL when not computed */
+  PetscInt       *stable;       /* 1 stable, 0 unstable */
+  PetscReal      *maxre;        /* the largest real part of the kept Floquet exponents [1/s] */
+  PetscInt       *detsign;      /* the sign of det(dR/da) */
+  PetscReal       stab_seconds; /* their wall time */
+  PetscInt        nfold, nbranch;
+  PetscReal      *wfold, *wbranch; /* the folds' and branch points' frequencies [rad/s] */
 } JRContBranch;
 
 /* A continuation type (-cont_type): its create function fills these */
@@ -54,6 +61,10 @@ struct _p_JRCont {
   Vec               amod; /* work: the modal unknowns of one point */
   PetscReal        *ampw; /* work: the amplitudes and peak-to-peak of one point at the outputs (2 nout) */
   struct _JRContPlaneWork *pw; /* work: solves on planes across the curve (src/cont/peak.c) */
+  PetscBool         stab;       /* -frf_stability: Floquet exponents, folds and branch points of every point */
+  JRHillSelect      stabsel;    /* -frf_stability_select */
+  PetscReal         stabtol;    /* -frf_stability_tol: stable if every kept exponent has Re < tol w */
+  PetscInt          stabdense;  /* -frf_stability_dense_max */
 };
 
 PETSC_INTERN PetscErrorCode JRContCreate_Natural(JRCont);
@@ -69,6 +80,9 @@ PETSC_INTERN PetscErrorCode JRContChordError(JRCont, JRContBranch *, Vec, PetscR
 PETSC_INTERN PetscErrorCode JRContPlaneWorkCreate(JRCont);
 PETSC_INTERN PetscErrorCode JRContPlaneWorkDestroy(JRCont);
 PETSC_INTERN PetscErrorCode JRContMonitor(JRCont, PetscInt, JRContBranch *);
+/* src/cont/stability.c */
+PETSC_INTERN PetscErrorCode JRContStability(JRCont, PetscInt, Vec);
+PETSC_INTERN PetscErrorCode JRContBranchStabilityFree(JRContBranch *);
 /* src/cont/output.c */
 PETSC_INTERN PetscErrorCode JRContPrintSummary(JRCont);
 

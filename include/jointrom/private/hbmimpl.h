@@ -116,6 +116,7 @@ struct _p_JRHBM {
   PetscInt          emode;
   PetscReal         eomega;
   PetscReal        *epsi, *ep, *ework; /* ework: n + n^2 + n */
+  struct _JRHill   *hill;         /* JRHBMFloquet(): the work of Hill's method (src/hbm/hill.c) */
 };
 
 /* C = alpha op(A) op(B) + beta C, column-major (BLAS gemm; k = 0 only scales C) */
@@ -134,6 +135,9 @@ PETSC_INTERN PetscErrorCode JRHBMNonlinear(JRHBM, const PetscReal *, PetscReal *
 PETSC_INTERN PetscErrorCode JRHBMSetUpSolver(JRHBM);
 PETSC_INTERN PetscErrorCode JRHBMLinear(JRHBM, PetscReal, const PetscReal *, PetscReal *, PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode JRHBMStuckMode(JRHBM, PetscInt, PetscReal *, PetscReal[]);
+
+/* src/hbm/hill.c: Floquet exponents */
+PETSC_INTERN PetscErrorCode JRHBMHillDestroy(JRHBM);
 
 /* src/hbm/condense.c: the condensation onto the joints */
 PETSC_INTERN PetscErrorCode JRHBMCondenseSetUp(JRHBM, const JRElements *);

@@ -53,6 +53,10 @@ PetscErrorCode JRContCreate(MPI_Comm comm, JRCont *cont)
   c->nlev    = 1;
   c->itol    = 0.008;
   c->ptol    = 1e-10;
+  c->stab      = PETSC_FALSE;
+  c->stabsel   = JR_HILL_SELECT_VECTOR;
+  c->stabtol   = 1e-6;
+  c->stabdense = 400;
   PetscCall(PetscMalloc1(1, &c->levels));
   c->levels[0] = 1.0;
   PetscCall(PetscStrncpy(c->out, "out/frf", sizeof(c->out)));
@@ -144,6 +148,7 @@ static PetscErrorCode BranchesDestroy(JRCont c)
     PetscCall(PetscFree2(c->br[l].x, c->br[l].res));
     PetscCall(PetscFree2(c->br[l].wpk, c->br[l].apk));
     PetscCall(PetscFree(c->br[l].estate));
+    PetscCall(JRContBranchStabilityFree(&c->br[l]));
   }
   PetscCall(PetscFree(c->br));
   PetscFunctionReturn(0);
@@ -170,7 +175,8 @@ PetscErrorCode JRContSetLevels(JRCont c, PetscInt n, const PetscReal F[])
   -cont_step, -cont_step_min, -cont_step_max, -cont_max_points, -cont_points (natural), -cont_newton_target,
   -cont_predictor secant|previous (natural), -cont_monitor 0|1|2; -frf_force F1,F2,.. [N],
   -frf_omega_min/-frf_omega_max [rad/s] or -frf_fmin/-frf_fmax [Hz], -frf_output_file BASE (BASE.h5, BASE.csv,
-  BASE.png), -frf_plot, -frf_normalize (plot amplitude / force).
+  BASE.png), -frf_plot, -frf_normalize (plot amplitude / force); -frf_stability 0|1 (Hill's method at every point,
+  folds and branch points), -frf_stability_select vector|imag, -frf_stability_tol, -frf_stability_dense_max.
 */
 PetscErrorCode JRContSetFromOptions(JRCont c)
 {
@@ -207,6 +213,10 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
   PetscCall(PetscOptionsString("-frf_output_file", "Output base name: BASE.h5 (all points), BASE.csv, BASE.png ('' for none)", "JRContWrite", c->out, c->out, sizeof(c->out), NULL));
   PetscCall(PetscOptionsBool("-frf_plot", "Draw BASE.png", "JRContWrite", c->plot, &c->plot, NULL));
   PetscCall(PetscOptionsBool("-frf_normalize", "Plot the normalised displacement amplitude / force [m/N]", "JRContWrite", c->normalize, &c->normalize, NULL));
+  PetscCall(PetscOptionsBool("-frf_stability", "Stability of every point by Hill's method (Floquet exponents), folds and branch points", "JRContStability", c->stab, &c->stab, NULL));
+  PetscCall(PetscOptionsEnum("-frf_stability_select", "Which exponents are the physical ones: vector (eigenvectors centred on the mean harmonic) or imag (|Im| <= w/2)", "JRHBMFloquet", JRHillSelects, (PetscEnum)c->stabsel, (PetscEnum *)&c->stabsel, NULL));
+  PetscCall(PetscOptionsReal("-frf_stability_tol", "A point is stable if every kept exponent has Re < tol w", "JRContStability", c->stabtol, &c->stabtol, NULL));
+  PetscCall(PetscOptionsInt("-frf_stability_dense_max", "Largest nm (2H+1) solved by LAPACK's QZ; above it SLEPc's PEP (prefix hbm_hill_, strip selection)", "JRHBMFloquet", c->stabdense, &c->stabdense, NULL));
   PetscOptionsEnd();
   c->secant = pred == 0 ? PETSC_TRUE : PETSC_FALSE;
   c->write  = c->out[0] ? PETSC_TRUE : PETSC_FALSE;
@@ -225,6 +235,8 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
   PetscCheck(c->target >= 1, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_newton_target %" PetscInt_FMT ": at least 1", c->target);
   PetscCheck(c->itol >= 0 && c->itol < 1, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_interp_tol %g: between 0 (no control) and 1", (double)c->itol);
   PetscCheck(c->ptol > 0 && c->ptol < 0.1, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_peak_tol %g: between 0 and 0.1", (double)c->ptol);
+  PetscCheck(c->stabtol >= 0 && c->stabtol < 1, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_stability_tol %g: between 0 and 1 (relative to the frequency)", (double)c->stabtol);
+  PetscCheck(c->stabdense >= 0, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_stability_dense_max %" PetscInt_FMT ": not negative", c->stabdense);
   PetscCheck(c->step0 >= 0 && c->stepmin >= 0 && c->stepmax >= 0, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_step, -cont_step_min, -cont_step_max must be positive");
   PetscFunctionReturn(0);
 }
@@ -419,6 +431,7 @@ static PetscErrorCode SolveLevel(JRCont c, PetscInt lev, Vec a)
   PetscCall(PetscTime(&t1));
   b->seconds = t1 - t0;
   PetscCall(Peak(c, lev, c->amod));
+  PetscCall(JRContStability(c, lev, a));
   if (c->quiet) PetscFunctionReturn(0);
   if (c->monitor) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT "/%" PetscInt_FMT " F %g N done: %" PetscInt_FMT " points, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " retries, largest relative residual %.2e, %.3g s%s\n", lev + 1, c->nlev, (double)b->F, b->np, b->newton, b->retries, (double)b->resmax, (double)b->seconds, b->complete ? "" : " (incomplete: see above)"));
   PetscCall(PetscPrintf(c->comm, "peak level %g freq_hz %.8g amp %.8e amp_over_force %.8e\n", (double)b->F, (double)(b->wpeak / (2 * PETSC_PI)), (double)b->apeak, (double)(b->apeak / b->F)));

@@ -1,0 +1,318 @@
+/*
+   Stability by Hill's method (JRHBMFloquet, JRContStability) against independent truths:
+   - a linear 3-DOF system with viscous damping (no elements): the kept Floquet exponents are the eigenvalues of
+     K + lambda C + lambda^2 M (LAPACK on the physical matrices, here) modulo i k w, to 1e-8; the eigenvector
+     criterion gives them unshifted even for a mode above (H + 1/2) w; SLEPc's PEP path agrees;
+   - a Duffing oscillator with two folds: the middle branch unstable, the outer branches stable; a direct time
+     integration (RK4, here) from a middle-branch point's state leaves it, from stable points' states stays; the folds
+     reported at the extremes of the single-harmonic relation's frequency (H = 1), to 1e-3;
+   - a friction oscillator with a gap (jenkins_nv closing on impact: hardening, two folds): flags against the same
+     time integration, the element marched as a play operator.
+   Every rank checks the same numbers (also run on 2 ranks).
+*/
+#include "jrtest_problem.h"
+#include <slepcsys.h>
+#include <slepcblaslapack.h>
+
+/* the exponents of K + l C + l^2 M (n x n, row-major, n <= 4) by QZ on [0 I; -K -C] z = l [I 0; 0 M] z */
+static PetscErrorCode QEPEigenvalues(PetscInt n, const double *K, const double *C, const double *M, double *lr, double *li)
+{
+  PetscBLASInt N = (PetscBLASInt)(2 * n), one = 1, lw = 256, info;
+  double       A[64] = {0}, B[64] = {0}, be[8], vl[1], vr[1], work[256];
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < n; i++) {
+    A[i + (n + i) * N] = 1.0;
+    B[i + i * N]       = 1.0;
+    for (PetscInt j = 0; j < n; j++) {
+      A[(n + i) + j * N]       = -K[i * n + j];
+      A[(n + i) + (n + j) * N] = -C[i * n + j];
+      B[(n + i) + (n + j) * N] = M[i * n + j];
+    }
+  }
+  PetscCallBLAS("LAPACKggev", LAPACKggev_("N", "N", &N, A, &N, B, &N, lr, li, be, vl, &one, vr, &one, work, &lw, &info));
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "ggev %d", (int)info);
+  for (PetscInt i = 0; i < 2 * n; i++) {
+    lr[i] /= be[i];
+    li[i] /= be[i];
+  }
+  PetscFunctionReturn(0);
+}
+
+/* the worst, over the exponents kept (nk), of the distance to the nearest eigenvalue mu + i k w (|k| <= kmax), relative
+   to |mu|; and the same the other way (every eigenvalue found) */
+static double MatchError(PetscInt nk, const PetscReal *re, const PetscReal *im, PetscInt ne, const double *lr, const double *li, double w, PetscInt kmax)
+{
+  double worst = 0.0;
+  for (int pass = 0; pass < 2; pass++) {
+    const PetscInt na = pass ? ne : nk, nb = pass ? nk : ne;
+    for (PetscInt i = 0; i < na; i++) {
+      double best = PETSC_MAX_REAL;
+      for (PetscInt j = 0; j < nb; j++)
+        for (PetscInt k = -kmax; k <= kmax; k++) {
+          const double xr = pass ? lr[i] : re[i], xi = pass ? li[i] : im[i], yr = pass ? re[j] : lr[j], yi = pass ? im[j] : li[j];
+          const double d  = hypot(xr - yr, xi - yi - (pass ? -1 : 1) * k * w) / hypot(pass ? xr : yr, pass ? xi : yi);
+          best            = fmin(best, d);
+        }
+      worst = fmax(worst, best);
+    }
+  }
+  return worst;
+}
+
+/* one-DOF oscillator x'' + c x' + k x + g(x, state) = F sin(w t): a cubic spring k3 x^3, or a jenkins_nv element on the
+   same motion (u = v = x) with gap: n = max(0, n0 + kn x), friction kt (x - s) with |.| <= mu n, its slip s committed
+   after every step (the play operator) */
+typedef struct {
+  double m, c, k, F, k3, kt, kn, mu, n0;
+  int    friction;
+} Osc;
+
+static double Force(const Osc *o, double x, double s)
+{
+  if (!o->friction) return o->k3 * x * x * x;
+  {
+    const double n = fmax(0.0, o->n0 + o->kn * x), r = o->mu * n / o->kt;
+    const double sc = fmin(fmax(s, x - r), x + r);
+    return n + o->kt * (x - sc);
+  }
+}
+
+static double Slip(const Osc *o, double x, double s)
+{
+  const double n = fmax(0.0, o->n0 + o->kn * x), r = o->mu * n / o->kt;
+  return fmin(fmax(s, x - r), x + r);
+}
+
+/* RK4 from the harmonic-balance point's state at t = 0 (a: [a0 | as_1 ac_1 | ...], H harmonics; the slip from one
+   period of the point's motion marched as the play operator) over P periods at ns steps each: the first-harmonic
+   amplitude of the last period, relative to the point's, minus 1 */
+static double Integrate(const Osc *o, double w, PetscInt H, const PetscReal *a, PetscInt P, PetscInt ns)
+{
+  const double T = 2 * PETSC_PI / w, dt = T / ns;
+  double       x = a[0], v = 0.0, s = 0.0, A0 = hypot(a[1], a[2]), fs = 0.0, fc = 0.0;
+
+  for (PetscInt h = 1; h <= H; h++) {
+    x += a[2 * h];
+    v += h * w * a[2 * h - 1];
+  }
+  if (o->friction) { /* the slip at t = 0: two periods of the point's motion */
+    for (PetscInt j = 0; j <= 2 * ns; j++) {
+      double xj = a[0];
+      for (PetscInt h = 1; h <= H; h++) xj += a[2 * h - 1] * sin(h * w * j * dt) + a[2 * h] * cos(h * w * j * dt);
+      s = Slip(o, xj, s);
+    }
+  }
+  for (PetscInt p = 0; p < P; p++) {
+    fs = fc = 0.0;
+    for (PetscInt j = 0; j < ns; j++) {
+      const double t = j * dt;
+      double       k1x, k1v, k2x, k2v, k3x, k3v, k4x, k4v;
+#define ACC(tt, xx, vv) ((o->F * sin(w * (tt)) - o->c * (vv) - o->k * (xx) - Force(o, (xx), s)) / o->m)
+      k1x = v;
+      k1v = ACC(t, x, v);
+      k2x = v + 0.5 * dt * k1v;
+      k2v = ACC(t + 0.5 * dt, x + 0.5 * dt * k1x, v + 0.5 * dt * k1v);
+      k3x = v + 0.5 * dt * k2v;
+      k3v = ACC(t + 0.5 * dt, x + 0.5 * dt * k2x, v + 0.5 * dt * k2v);
+      k4x = v + dt * k3v;
+      k4v = ACC(t + dt, x + dt * k3x, v + dt * k3v);
+#undef ACC
+      fs += x * sin(w * t);
+      fc += x * cos(w * t);
+      x += dt / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
+      v += dt / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
+      if (o->friction) s = Slip(o, x, s);
+      if (!isfinite(x) || fabs(x) > 1e3 * A0) return PETSC_INFINITY;
+    }
+  }
+  return hypot(2 * fs / ns, 2 * fc / ns) / A0 - 1.0;
+}
+
+/* The single-harmonic Duffing relation ((k - m w^2 + 3/4 k3 A^2)^2 + (c w)^2) A^2 = F^2: its higher frequency at
+   amplitude A (0 where none) */
+static double DuffingUpper(const Osc *o, double A)
+{
+  const double g = o->k + 0.75 * o->k3 * A * A, c2 = o->c * o->c / o->m, disc = (2 * g / o->m - c2) * (2 * g / o->m - c2) - 4 * (g * g / (o->m * o->m) - o->F * o->F / (o->m * o->m * A * A));
+  if (disc < 0) return 0.0;
+  return sqrt(0.5 * ((2 * g / o->m - c2) + sqrt(disc)));
+}
+
+/* Its folds: along the curve the upper frequency falls with the amplitude (lower branch) to the left fold, rises
+   (middle branch) to the right fold, then falls to the peak, where the two frequencies meet; the left fold by a scan and
+   golden section, the right one by golden section between it and the peak (found by bisection) */
+static double Golden(const Osc *o, double a, double b, int maximum)
+{
+  const double gr = 0.5 * (sqrt(5.0) - 1);
+  for (int it = 0; it < 200; it++) {
+    const double x1 = b - gr * (b - a), x2 = a + gr * (b - a), f1 = DuffingUpper(o, x1), f2 = DuffingUpper(o, x2);
+    if (maximum ? f1 > f2 : f1 < f2) b = x2;
+    else a = x1;
+  }
+  return 0.5 * (a + b);
+}
+
+static void DuffingFolds(const Osc *o, double *wright, double *wleft)
+{
+  double         lo = 1e-5, hi = 1.0, Al, Amin = 0, wmin = PETSC_MAX_REAL;
+  const PetscInt n = 20000;
+  for (int it = 0; it < 200; it++) { /* the peak: the largest amplitude with a solution */
+    const double mid = 0.5 * (lo + hi);
+    if (DuffingUpper(o, mid) > 0) lo = mid;
+    else hi = mid;
+  }
+  for (PetscInt i = 1; i < n; i++) {
+    const double A = lo * i / n, wv = DuffingUpper(o, A);
+    if (wv > 0 && wv < wmin) {
+      wmin = wv;
+      Amin = A;
+    }
+  }
+  Al      = Golden(o, Amin - lo / n, Amin + lo / n, 0);
+  *wleft  = DuffingUpper(o, Al);
+  *wright = DuffingUpper(o, Golden(o, Al, lo, 1));
+}
+
+/* The folded oscillator's checks: the middle branch's most unstable point leaves under time integration, a stable
+   point on each outer branch stays; every rank has the same flags */
+static PetscErrorCode FoldedCase(const char *name, const Osc *o, const char *opts, PetscInt H, double stay, PetscInt P, PetscInt ns, Problem *p)
+{
+  PetscInt         np, nf, nb, ku = -1, kup = -1, klo = -1, nun = 0, n;
+  const PetscReal *om, *a, *amp, *mr, *wf;
+  const PetscInt  *st;
+  double           wmax = 0, dmid, dup, dlo;
+  PetscMPIInt      size;
+
+  PetscFunctionBeginUser;
+  PetscCall(Options(opts));
+  PetscCall(ProblemCreate(1, (double[]){o->k}, (double[]){o->m}, (double[]){o->c}, 1, (El[]){{o->friction ? "jenkins_nv" : "cubic", 0, -1, o->friction ? 0 : -1, -1, o->friction ? o->kt : o->k3, o->kn, o->mu, o->n0}}, p));
+  PetscCall(JRContSolve(p->cont));
+  PetscCall(JRContGetBranch(p->cont, 0, &np, &om, &a, &amp));
+  PetscCall(JRContGetStability(p->cont, 0, &st, &mr, &nf, &wf, &nb, NULL));
+  PetscCall(JRHBMGetSolveSize(p->hbm, &n, NULL));
+  PetscCheck(st && mr, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "%s: no stability computed", name);
+  /* the folds along the curve: the largest frequency, then back; the middle branch between them */
+  {
+    PetscInt kf = 0, kmin = 0;
+    for (PetscInt k = 1; k < np - 1 && !kf; k++)
+      if (om[k] > om[k - 1] && om[k] >= om[k + 1]) kf = k;
+    wmax = om[kf];
+    kmin = kf;
+    for (PetscInt k = kf; k < np - 1 && om[k + 1] < om[k]; k++) kmin = k + 1;
+    for (PetscInt k = kf + 2; k < kmin - 1; k++) {
+      if (!st[k]) nun++;
+      if (ku < 0 || mr[k] > mr[ku]) ku = k;
+    }
+    /* stable references: on the upper branch at 97% of the right fold's frequency, on the lower branch there too */
+    for (PetscInt k = 0; k < kf; k++)
+      if (kup < 0 || fabs(om[k] - 0.97 * wmax) < fabs(om[kup] - 0.97 * wmax)) kup = k;
+    for (PetscInt k = kmin; k < np; k++)
+      if (klo < 0 || fabs(om[k] - 0.97 * wmax) < fabs(om[klo] - 0.97 * wmax)) klo = k;
+    {
+      PetscInt outer_unstable = 0;
+      for (PetscInt k = 0; k < kf - 1; k++) outer_unstable += !st[k];
+      for (PetscInt k = kmin + 2; k < np; k++) outer_unstable += !st[k];
+      CHECK(nf == 2 && nun == kmin - kf - 3 && outer_unstable == 0, "%s: Hill's method finds the %" PetscInt_FMT " middle-branch points between the %" PetscInt_FMT " folds unstable (%" PetscInt_FMT " of them flagged) and the outer branches stable (%" PetscInt_FMT " flagged unstable of %" PetscInt_FMT ")", name, kmin - kf - 3, nf, nun, outer_unstable, np - (kmin - kf) - 1);
+    }
+  }
+  PetscCheck(ku >= 0 && kup >= 0 && klo >= 0, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "%s: no middle branch", name);
+  dmid = Integrate(o, om[ku], H, a + ku * n, P, ns);
+  dup  = Integrate(o, om[kup], H, a + kup * n, P, ns);
+  dlo  = Integrate(o, om[klo], H, a + klo * n, P, ns);
+  CHECK(!st[ku] && fabs(dmid) > 0.1, "%s: middle branch at %.4f Hz (largest Re %.3g 1/s, flagged unstable): RK4 from its state, %" PetscInt_FMT " periods: the amplitude changes by %.3g (> 10%%)", name, om[ku] / (2 * PETSC_PI), mr[ku], P, dmid);
+  CHECK(st[kup] && st[klo] && fabs(dup) < stay && fabs(dlo) < stay, "%s: upper and lower branch at %.4f and %.4f Hz (flagged stable, largest Re %.3g, %.3g 1/s): RK4 from their states stays (amplitude change %.1e, %.1e < %.0e)", name, om[kup] / (2 * PETSC_PI), om[klo] / (2 * PETSC_PI), mr[kup], mr[klo], dup, dlo, stay);
+  {
+    PetscInt sum = 0, smin, smax;
+    for (PetscInt k = 0; k < np; k++) sum = sum * 3 + st[k];
+    PetscCallMPI(MPI_Allreduce(&sum, &smin, 1, MPIU_INT, MPI_MIN, PETSC_COMM_WORLD));
+    PetscCallMPI(MPI_Allreduce(&sum, &smax, 1, MPIU_INT, MPI_MAX, PETSC_COMM_WORLD));
+    PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+    CHECK(smin == smax, "%s: the same %" PetscInt_FMT " flags on all %d ranks", name, np, (int)size);
+  }
+  PetscFunctionReturn(0);
+}
+
+int main(int argc, char **argv)
+{
+  PetscCall(SlepcInitialize(&argc, &argv, NULL, NULL));
+
+  /* ---- linear 3-DOF: exponents = eigenvalues of K + l C + l^2 M (mod i k w) ---- */
+  {
+    const double K[9] = {3e5, -1e5, 0, -1e5, 2e5, -1e5, 0, -1e5, 1e5}, M[9] = {1.0, 0, 0, 0, 2.0, 0, 0, 0, 1.5};
+    const double C[9] = {4.0, -1.0, 0, -1.0, 3.0, -1.0, 0, -1.0, 2.0};
+    double       lr[6], li[6], wn = 0;
+    PetscCall(QEPEigenvalues(3, K, C, M, lr, li));
+    for (int i = 0; i < 6; i++) wn = fmax(wn, fabs(li[i]));
+    for (int cs = 0; cs < 3; cs++) {
+      /* w: every mode below (H + 1/2) w (strip), or the highest above it (vector) */
+      const double       w   = cs == 1 ? wn / 5.0 : wn / 2.5;
+      const JRHillSelect sel = cs == 1 ? JR_HILL_SELECT_VECTOR : JR_HILL_SELECT_IMAG;
+      const PetscInt     H = 3, dmax = cs == 2 ? 0 : 400;
+      Problem            p;
+      Vec                a;
+      PetscReal          re[6], im[6], mr;
+      char               opts[256];
+      PetscCall(PetscSNPrintf(opts, sizeof(opts), "-hbm_modes 3 -hbm_harmonics %d -frf_dof 1 -frf_force 2.5 -frf_fmin 10 -frf_fmax 80", (int)H));
+      PetscCall(Options(opts));
+      PetscCall(ProblemCreate(3, K, M, C, 0, NULL, &p));
+      PetscCall(JRHBMCreateVecs(p.hbm, &a, NULL));
+      PetscCall(JRHBMLinearSolution(p.hbm, w, a));
+      PetscCall(JRHBMFloquet(p.hbm, w, a, sel, dmax, NULL, re, im, &mr, NULL));
+      if (cs == 0) CHECK(MatchError(6, re, im, 6, lr, li, w, H) < 1e-8, "linear 3-DOF, viscous C, H = 3, all modes below (H + 1/2) w: Floquet exponents (strip |Im| <= w/2) = eigenvalues of K + l C + l^2 M mod i k w, relative error %.1e", MatchError(6, re, im, 6, lr, li, w, H));
+      if (cs == 1) {
+        CHECK(MatchError(6, re, im, 6, lr, li, w, 0) < 1e-8, "linear 3-DOF, highest mode at %.2f w: eigenvector criterion gives the eigenvalues themselves (k = 0), relative error %.1e", wn / w, MatchError(6, re, im, 6, lr, li, w, 0));
+        PetscCall(JRHBMFloquet(p.hbm, w, a, JR_HILL_SELECT_IMAG, dmax, NULL, re, im, &mr, NULL));
+        CHECK(MatchError(6, re, im, 6, lr, li, w, H) > 1e-3, "linear 3-DOF, highest mode at %.2f w > (H + 1/2) w: the strip criterion misses it (error %.1e), as documented", wn / w, MatchError(6, re, im, 6, lr, li, w, H));
+      }
+      if (cs == 2) CHECK(MatchError(6, re, im, 6, lr, li, w, H) < 1e-8, "linear 3-DOF: SLEPc PEP path (-frf_stability_dense_max 0), exponents nearest the origin = eigenvalues mod i k w, relative error %.1e", MatchError(6, re, im, 6, lr, li, w, H));
+      PetscCall(VecDestroy(&a));
+      PetscCall(ProblemDestroy(&p));
+    }
+  }
+
+  /* ---- Duffing oscillator: middle branch unstable, time integration, folds ---- */
+  {
+    const Osc o = {1.0, 0.4, pow(2 * PETSC_PI * 10, 2), 2.0, 6e6, 0, 0, 0, 0, 0};
+    Problem   p;
+    PetscCall(FoldedCase("Duffing H = 5", &o, "-frf_stability -hbm_physical -hbm_harmonics 5 -frf_force 2.0 -frf_fmin 5 -frf_fmax 25 -cont_max_points 3000", 5, 1e-3, 100, 400, &p));
+    PetscCall(ProblemDestroy(&p));
+    /* the folds at H = 1 against the single-harmonic relation */
+    {
+      PetscInt         nf;
+      const PetscReal *wf;
+      const PetscInt  *st;
+      double           w1, w2, e = PETSC_MAX_REAL;
+      PetscCall(Options("-frf_stability -hbm_physical -hbm_harmonics 1 -frf_force 2.0 -frf_fmin 5 -frf_fmax 25 -cont_max_points 3000"));
+      PetscCall(ProblemCreate(1, (double[]){o.k}, (double[]){o.m}, (double[]){o.c}, 1, (El[]){{"cubic", 0, -1, -1, -1, o.k3, 0, 0, 0}}, &p));
+      PetscCall(JRContSolve(p.cont));
+      PetscCall(JRContGetStability(p.cont, 0, &st, NULL, &nf, &wf, NULL, NULL));
+      { /* the default (eigenvector) criterion at H = 1, where the mean block's exponents tie with the middle branch's */
+        PetscInt         np, kf = 0, kmin, bad = 0;
+        const PetscReal *om;
+        PetscCall(JRContGetBranch(p.cont, 0, &np, &om, NULL, NULL));
+        for (PetscInt k = 1; k < np - 1 && !kf; k++)
+          if (om[k] > om[k - 1] && om[k] >= om[k + 1]) kf = k;
+        for (kmin = kf; kmin < np - 1 && om[kmin + 1] < om[kmin]; kmin++) { }
+        for (PetscInt k = 0; st && k < np; k++)
+          if ((k > kf + 1 && k < kmin - 1 && st[k]) || ((k < kf - 1 || k > kmin + 1) && !st[k])) bad++;
+        CHECK(st && kmin > kf + 3 && bad == 0, "Duffing H = 1, eigenvector criterion: the %" PetscInt_FMT " middle-branch points unstable, the rest stable (%" PetscInt_FMT " wrong)", kmin - kf - 3, bad);
+      }
+      DuffingFolds(&o, &w1, &w2);
+      if (nf == 2) e = fmax(fabs(wf[0] - w1) / w1, fabs(wf[1] - w2) / w2);
+      CHECK(nf == 2 && e < 1e-3, "Duffing H = 1: %" PetscInt_FMT " folds reported at %.6g and %.6g Hz; the single-harmonic relation's at %.6g and %.6g Hz (relative error %.1e)", nf, nf > 0 ? wf[0] / (2 * PETSC_PI) : 0, nf > 1 ? wf[1] / (2 * PETSC_PI) : 0, w1 / (2 * PETSC_PI), w2 / (2 * PETSC_PI), e);
+      PetscCall(ProblemDestroy(&p));
+    }
+  }
+
+  /* ---- friction oscillator with a gap: jenkins_nv closes on impact, a hardening fold ---- */
+  {
+    const double k = pow(2 * PETSC_PI * 10, 2);
+    const Osc    o = {1.0, 0.4, k, 1.5, 0, 0.5 * k, k, 0.3, -k * 2e-3, 1};
+    Problem      p;
+    PetscCall(FoldedCase("friction with a gap (jenkins_nv) H = 7", &o, "-frf_stability -hbm_physical -hbm_harmonics 7 -hbm_samples 256 -frf_force 1.5 -frf_fmin 5 -frf_fmax 25 -cont_max_points 3000", 7, 0.02, 100, 2000, &p));
+    PetscCall(ProblemDestroy(&p));
+  }
+
+  PetscCall(SlepcFinalize());
+  return TestSummary("test_stability");
+}
