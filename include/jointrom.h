@@ -296,6 +296,9 @@ PETSC_EXTERN PetscErrorCode JRModesView(JRModes, PetscViewer);
 PETSC_EXTERN PetscErrorCode JRModesSetSaveDefault(JRModes, const char[]);
 PETSC_EXTERN PetscErrorCode JRModesSetMixed(JRModes);
 PETSC_EXTERN PetscErrorCode JRModesMix(JRModes, Mat, PetscInt, PetscInt, Vec[]);
+PETSC_EXTERN PetscErrorCode JRModesSetInterface(JRModes, PetscInt, PetscInt, const PetscInt[], const PetscReal[], const PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRModesCheckBasis(JRModes);
+PETSC_EXTERN PetscErrorCode JRModesGetBasisCheck(JRModes, PetscReal *, PetscReal *, PetscReal *, PetscInt *, PetscLogDouble *);
 PETSC_EXTERN PetscErrorCode JRModesReference(JRModes);
 PETSC_EXTERN PetscErrorCode JRModesDestroy(JRModes *);
 
@@ -360,6 +363,7 @@ PETSC_EXTERN PetscErrorCode JRHBMSetOptionsPrefix(JRHBM, const char[]);
 PETSC_EXTERN PetscErrorCode JRHBMGetOptionsPrefix(JRHBM, const char **);
 PETSC_EXTERN PetscErrorCode JRHBMSetModesFile(JRHBM, const char[]);
 PETSC_EXTERN PetscErrorCode JRHBMGetBasis(JRHBM, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRHBMGetBasisCheck(JRHBM, PetscReal *, PetscReal *, PetscReal *, PetscInt *, PetscLogDouble *);
 PETSC_EXTERN PetscErrorCode JRHBMStickFrequencies(JRHBM, PetscInt *, PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMGetDampingDescription(JRHBM, const char **);
 PETSC_EXTERN PetscErrorCode JRHBMView(JRHBM, PetscViewer);

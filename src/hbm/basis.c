@@ -48,6 +48,37 @@ static PetscErrorCode SetUpPhysical(JRHBM h, Mat K, Mat M, Mat C, PetscInt ndof)
   PetscFunctionReturn(0);
 }
 
+/* The interface rows of the node-to-node friction elements (4.3), tangential and, for jenkins_nv, normal, with their
+   springs kt, kn as weights: the static correction and the check of the basis (JRModesSetInterface) */
+static PetscErrorCode SetInterfaceRows(JRModes md, const JRElements *el)
+{
+  PetscInt  *dof, n = 0;
+  PetscReal *coef, *k;
+
+  PetscFunctionBeginUser;
+  if (el->members) el = el->members; /* a reduced model: the basis is that of the node-to-node elements */
+  if (!el->vdof_a) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc3(12 * el->n, &dof, 12 * el->n, &coef, 2 * el->n, &k));
+  for (PetscInt e = 0; e < el->n; e++) {
+    const char     *ty = el->typename[el->type[e]];
+    const PetscBool nv = (PetscBool)!strcmp(ty, JRCONTACTJENKINSNV);
+    if (!nv && strcmp(ty, JRCONTACTJENKINS)) continue;
+    for (PetscInt dir = 0; dir < (nv ? 2 : 1); dir++, n++) {
+      const PetscReal *d = (dir ? el->ndir : el->tdir) + 3 * e;
+      for (PetscInt c = 0; c < 3; c++) {
+        dof[6 * n + c]      = el->vdof_a[3 * e + c];
+        coef[6 * n + c]     = d[c];
+        dof[6 * n + 3 + c]  = el->vdof_b[3 * e + c];
+        coef[6 * n + 3 + c] = -d[c];
+      }
+      k[n] = dir ? el->kn[e] : el->kt[e];
+    }
+  }
+  PetscCall(JRModesSetInterface(md, n, 6, dof, coef, k));
+  PetscCall(PetscFree3(dof, coef, k));
+  PetscFunctionReturn(0);
+}
+
 /* The modes of the basis: of K (free), of K plus the stuck springs of the elements el (stuck), or the mixed basis made
    from those and the free-interface modes; -modes_* options, saved and loaded (-modes_save, -modes_load) */
 static PetscErrorCode SolveModes(JRHBM h, Mat K, Mat M, const JRElements *el)
@@ -83,8 +114,10 @@ static PetscErrorCode SolveModes(JRHBM h, Mat K, Mat M, const JRElements *el)
       PetscCall(VecDestroy(&X));
     }
   }
+  if (el) PetscCall(SetInterfaceRows(h->modes, el));
   if (h->basis == JR_HBM_BASIS_MIXED) PetscCall(JRModesSetMixed(h->modes));
   PetscCall(JRModesSolve(h->modes));
+  if (h->basis != JR_HBM_BASIS_MIXED) PetscCall(JRModesCheckBasis(h->modes));
   if (h->basis == JR_HBM_BASIS_MIXED) { /* the stuck modes and the free-interface ones, mixed (Ritz) */
     PetscInt nrb;
     Vec      rb[6];
