@@ -343,7 +343,7 @@ static PetscErrorCode ViewBasisCheck(FRFRun *r)
   PetscFunctionBeginUser;
   PetscCall(JRHBMGetBasisCheck(r->hbmc, &rho, &rho0, &tol, &ns, &t));
   if (rho < 0) PetscFunctionReturn(0);
-  PetscCall(PetscPrintf(comm, "basis check: interface residual flexibility x contact stiffness %.3g outside the basis (%.3g without the %" PetscInt_FMT " static correction vectors; %.3g s)\n", (double)rho, (double)rho0, ns, (double)t));
+  PetscCall(PetscPrintf(comm, "basis check: rho %.3g rho_modes %.3g static_vectors %" PetscInt_FMT " seconds %.3g (rho: the largest interface residual flexibility x contact stiffness outside the basis; rho_modes: the same without the static correction vectors)\n", (double)rho, (double)rho0, ns, (double)t));
   if (rho > tol) PetscCall(PetscPrintf(comm, "WARNING basis check %.3g > -modes_check_tol %g: the basis misses the interface's local compliance and the peaks may move with a larger basis; raise -modes_static_max or lower -modes_static_tol\n", (double)rho, (double)tol));
   PetscFunctionReturn(0);
 }
