@@ -6,6 +6,10 @@
    Options: -modes_nev n, -modes_target t [rad^2/s^2], -modes_view, and every -modes_eps_*, -modes_st_*;
    -modes_save FILE.h5 writes the modes for reuse, -modes_load FILE.h5 reads them instead of solving (the
    node coordinates saved with them must match the model's: same mesh, same number of ranks).
+   The mixed basis (JRModesMix) of a model with interface rows (JRModesSetInterface) also holds static correction
+   vectors of the interface (-modes_static n, -modes_static_tol t, -modes_static_max n; their solver
+   -modes_static_ksp_*, -modes_static_pc_*) and gives the basis check (-modes_check, -modes_check_tol;
+   JRModesCheckBasis for the other bases).
 */
 #include <jointrom/private/modelimpl.h>
 #include <petscviewerhdf5.h>
