@@ -49,10 +49,11 @@ static PetscErrorCode SetUpPhysical(JRHBM h, Mat K, Mat M, Mat C, PetscInt ndof)
 }
 
 /* The interface rows of the node-to-node friction elements (4.3), tangential and, for jenkins_nv, normal, with their
-   springs kt, kn as weights: the static correction and the check of the basis (JRModesSetInterface) */
+   springs kt, kn as weights: the static correction and the check of the basis (JRModesSetInterface). Elements on the
+   same pair and direction (-interface_split) make one row, their springs summed (in parallel). */
 static PetscErrorCode SetInterfaceRows(JRModes md, const JRElements *el)
 {
-  PetscInt  *dof, n = 0;
+  PetscInt  *dof, n = 0, *key, *perm, nu = 0;
   PetscReal *coef, *k;
 
   PetscFunctionBeginUser;
@@ -74,7 +75,37 @@ static PetscErrorCode SetInterfaceRows(JRModes md, const JRElements *el)
       k[n] = dir ? el->kn[e] : el->kt[e];
     }
   }
-  PetscCall(JRModesSetInterface(md, n, 6, dof, coef, k));
+  PetscCall(PetscMalloc2(n, &key, n, &perm));
+  for (PetscInt r = 0; r < n; r++) {
+    key[r]  = dof[6 * r];
+    perm[r] = r;
+  }
+  PetscCall(PetscSortIntWithPermutation(n, key, perm));
+  for (PetscInt i = 0, run = 0; i < n; i++) { /* rows in the order of their first DOF; equal rows merged into the first */
+    const PetscInt r = perm[i];
+    PetscInt       j;
+    if (i && dof[6 * r] != dof[6 * perm[run]]) run = i;
+    for (j = run; j < i; j++) {
+      const PetscInt q = perm[j];
+      PetscBool      same = (PetscBool)(k[q] > 0);
+      for (PetscInt c = 0; c < 6 && same; c++) same = (PetscBool)(dof[6 * q + c] == dof[6 * r + c] && coef[6 * q + c] == coef[6 * r + c]);
+      if (same) {
+        k[q] += k[r];
+        k[r] = 0.0;
+        break;
+      }
+    }
+  }
+  for (PetscInt r = 0; r < n; r++) { /* compress, keeping the order */
+    if (k[r] == 0.0) continue;
+    for (PetscInt c = 0; c < 6; c++) {
+      dof[6 * nu + c]  = dof[6 * r + c];
+      coef[6 * nu + c] = coef[6 * r + c];
+    }
+    k[nu++] = k[r];
+  }
+  PetscCall(JRModesSetInterface(md, nu, 6, dof, coef, k));
+  PetscCall(PetscFree2(key, perm));
   PetscCall(PetscFree3(dof, coef, k));
   PetscFunctionReturn(0);
 }
