@@ -760,6 +760,7 @@ static PetscErrorCode StaticCorrection(JRModes md, PetscInt nq, Vec Q[], Vec MQ[
 
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
+  PetscCall(PetscLogEventBegin(JR_ModesStatic, 0, 0, 0, 0));
   *ns = 0;
   *G  = NULL;
   PetscCall(InterfaceCreate(md, Q[0], &c));
@@ -794,6 +795,7 @@ static PetscErrorCode StaticCorrection(JRModes md, PetscInt nq, Vec Q[], Vec MQ[
   PetscCall(PetscFree3(BQ, S, lam));
   PetscCall(PetscFree3(work, w, d));
   PetscCall(InterfaceDestroy(&c));
+  PetscCall(PetscLogEventEnd(JR_ModesStatic, 0, 0, 0, 0));
   PetscCall(PetscTime(&t1));
   md->tstatic += t1 - t0;
   PetscFunctionReturn(0);
