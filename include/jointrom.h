@@ -34,7 +34,7 @@ PETSC_EXTERN PetscLogStage  JR_StageModel, JR_StagePreload, JR_StageInterface, J
 PETSC_EXTERN PetscLogEvent  JR_InterfaceSetUp, JR_ReduceJoints, JR_ReduceSelect, JR_ReduceFit, JR_ReduceHBM, JR_Verify, JR_NLModesSolve;
 PETSC_EXTERN PetscErrorCode JRLogRegister(void);
 PETSC_EXTERN PetscClassId  JR_CONTACT_CLASSID, JR_MODEL_CLASSID, JR_HBM_CLASSID;
-PETSC_EXTERN PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep;
+PETSC_EXTERN PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_ModesStatic, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep;
 PETSC_EXTERN PetscLogEvent JR_HBMHill; /* Floquet exponents by Hill's method (src/hbm/hill.c) */
 
 /* ------------------------------------------------------------------------------------------ */
@@ -297,6 +297,9 @@ PETSC_EXTERN PetscErrorCode JRModesView(JRModes, PetscViewer);
 PETSC_EXTERN PetscErrorCode JRModesSetSaveDefault(JRModes, const char[]);
 PETSC_EXTERN PetscErrorCode JRModesSetMixed(JRModes);
 PETSC_EXTERN PetscErrorCode JRModesMix(JRModes, Mat, PetscInt, PetscInt, Vec[]);
+PETSC_EXTERN PetscErrorCode JRModesSetInterface(JRModes, PetscInt, PetscInt, const PetscInt[], const PetscReal[], const PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRModesCheckBasis(JRModes);
+PETSC_EXTERN PetscErrorCode JRModesGetBasisCheck(JRModes, PetscReal *, PetscReal *, PetscReal *, PetscInt *, PetscLogDouble *);
 PETSC_EXTERN PetscErrorCode JRModesReference(JRModes);
 PETSC_EXTERN PetscErrorCode JRModesDestroy(JRModes *);
 
@@ -364,6 +367,7 @@ PETSC_EXTERN PetscErrorCode JRHBMSetOptionsPrefix(JRHBM, const char[]);
 PETSC_EXTERN PetscErrorCode JRHBMGetOptionsPrefix(JRHBM, const char **);
 PETSC_EXTERN PetscErrorCode JRHBMSetModesFile(JRHBM, const char[]);
 PETSC_EXTERN PetscErrorCode JRHBMGetBasis(JRHBM, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRHBMGetBasisCheck(JRHBM, PetscReal *, PetscReal *, PetscReal *, PetscInt *, PetscLogDouble *);
 PETSC_EXTERN PetscErrorCode JRHBMStickFrequencies(JRHBM, PetscInt *, PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMGetDampingDescription(JRHBM, const char **);
 PETSC_EXTERN PetscErrorCode JRHBMView(JRHBM, PetscViewer);

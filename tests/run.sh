@@ -4,7 +4,7 @@
 # non-zero without reporting a failure counts as one failure. Ends with "N passed, M failed".
 #   bash tests/run.sh        the suite (make test; minutes)
 #   bash tests/run.sh long   the slow end-to-end checks (make test-long, which CI runs after make test):
-#                            test_fe on 2 ranks, tests/cli_long.sh
+#                            test_fe and test_basis on 2 ranks, tests/cli_long.sh
 # JR_TEST_TIMES=FILE (an absolute path): each program's and each check's wall and CPU seconds appended to FILE.
 cd "$(dirname "$0")/.."
 part=${1:-quick}
@@ -34,6 +34,7 @@ run() { # name, command...
 }
 if [ "$part" = long ]; then
   [ -x build/tests/test_fe ] && run "test_fe np2" mpiexec -n 2 build/tests/test_fe
+  [ -x build/tests/test_basis ] && run "test_basis np2" mpiexec -n 2 build/tests/test_basis
   run cli_long bash tests/cli_long.sh
 else
   for t in build/tests/test_*; do

@@ -48,6 +48,68 @@ static PetscErrorCode SetUpPhysical(JRHBM h, Mat K, Mat M, Mat C, PetscInt ndof)
   PetscFunctionReturn(0);
 }
 
+/* The interface rows of the node-to-node friction elements (4.3), tangential and, for jenkins_nv, normal, with their
+   springs kt, kn as weights: the static correction and the check of the basis (JRModesSetInterface). Elements on the
+   same pair and direction (-interface_split) make one row, their springs summed (in parallel). */
+static PetscErrorCode SetInterfaceRows(JRModes md, const JRElements *el)
+{
+  PetscInt  *dof, n = 0, *key, *perm, nu = 0;
+  PetscReal *coef, *k;
+
+  PetscFunctionBeginUser;
+  if (el->members) el = el->members; /* a reduced model: the basis is that of the node-to-node elements */
+  if (!el->vdof_a) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc3(12 * el->n, &dof, 12 * el->n, &coef, 2 * el->n, &k));
+  for (PetscInt e = 0; e < el->n; e++) {
+    const char     *ty = el->typename[el->type[e]];
+    const PetscBool nv = (PetscBool)!strcmp(ty, JRCONTACTJENKINSNV);
+    if (!nv && strcmp(ty, JRCONTACTJENKINS)) continue;
+    for (PetscInt dir = 0; dir < (nv ? 2 : 1); dir++, n++) {
+      const PetscReal *d = (dir ? el->ndir : el->tdir) + 3 * e;
+      for (PetscInt c = 0; c < 3; c++) {
+        dof[6 * n + c]      = el->vdof_a[3 * e + c];
+        coef[6 * n + c]     = d[c];
+        dof[6 * n + 3 + c]  = el->vdof_b[3 * e + c];
+        coef[6 * n + 3 + c] = -d[c];
+      }
+      k[n] = dir ? el->kn[e] : el->kt[e];
+    }
+  }
+  PetscCall(PetscMalloc2(n, &key, n, &perm));
+  for (PetscInt r = 0; r < n; r++) {
+    key[r]  = dof[6 * r];
+    perm[r] = r;
+  }
+  PetscCall(PetscSortIntWithPermutation(n, key, perm));
+  for (PetscInt i = 0, run = 0; i < n; i++) { /* rows in the order of their first DOF; equal rows merged into the first */
+    const PetscInt r = perm[i];
+    PetscInt       j;
+    if (i && dof[6 * r] != dof[6 * perm[run]]) run = i;
+    for (j = run; j < i; j++) {
+      const PetscInt q = perm[j];
+      PetscBool      same = (PetscBool)(k[q] > 0);
+      for (PetscInt c = 0; c < 6 && same; c++) same = (PetscBool)(dof[6 * q + c] == dof[6 * r + c] && coef[6 * q + c] == coef[6 * r + c]);
+      if (same) {
+        k[q] += k[r];
+        k[r] = 0.0;
+        break;
+      }
+    }
+  }
+  for (PetscInt r = 0; r < n; r++) { /* compress, keeping the order */
+    if (k[r] == 0.0) continue;
+    for (PetscInt c = 0; c < 6; c++) {
+      dof[6 * nu + c]  = dof[6 * r + c];
+      coef[6 * nu + c] = coef[6 * r + c];
+    }
+    k[nu++] = k[r];
+  }
+  PetscCall(JRModesSetInterface(md, nu, 6, dof, coef, k));
+  PetscCall(PetscFree2(key, perm));
+  PetscCall(PetscFree3(dof, coef, k));
+  PetscFunctionReturn(0);
+}
+
 /* The modes of the basis: of K (free), of K plus the stuck springs of the elements el (stuck), or the mixed basis made
    from those and the free-interface modes; -modes_* options, saved and loaded (-modes_save, -modes_load) */
 static PetscErrorCode SolveModes(JRHBM h, Mat K, Mat M, const JRElements *el)
@@ -83,8 +145,10 @@ static PetscErrorCode SolveModes(JRHBM h, Mat K, Mat M, const JRElements *el)
       PetscCall(VecDestroy(&X));
     }
   }
+  if (el) PetscCall(SetInterfaceRows(h->modes, el));
   if (h->basis == JR_HBM_BASIS_MIXED) PetscCall(JRModesSetMixed(h->modes));
   PetscCall(JRModesSolve(h->modes));
+  if (h->basis != JR_HBM_BASIS_MIXED) PetscCall(JRModesCheckBasis(h->modes));
   if (h->basis == JR_HBM_BASIS_MIXED) { /* the stuck modes and the free-interface ones, mixed (Ritz) */
     PetscInt nrb;
     Vec      rb[6];

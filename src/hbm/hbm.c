@@ -340,6 +340,22 @@ PetscErrorCode JRHBMSetBasis(JRHBM h, JRHBMBasis basis)
   PetscFunctionReturn(0);
 }
 
+/* The basis check of the modes (JRModesGetBasisCheck; rho = -1: not computed, e.g. physical coordinates) */
+PetscErrorCode JRHBMGetBasisCheck(JRHBM h, PetscReal *rho, PetscReal *rho0, PetscReal *tol, PetscInt *ns, PetscLogDouble *t)
+{
+  PetscFunctionBeginUser;
+  if (!h->modes) {
+    if (rho) *rho = -1.0;
+    if (rho0) *rho0 = -1.0;
+    if (tol) *tol = 0.0;
+    if (ns) *ns = 0;
+    if (t) *t = 0.0;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(JRModesGetBasisCheck(h->modes, rho, rho0, tol, ns, t));
+  PetscFunctionReturn(0);
+}
+
 /* The modal basis, a JRHBMBasis value */
 PetscErrorCode JRHBMGetBasis(JRHBM h, PetscInt *basis)
 {

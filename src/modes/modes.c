@@ -6,6 +6,10 @@
    Options: -modes_nev n, -modes_target t [rad^2/s^2], -modes_view, and every -modes_eps_*, -modes_st_*;
    -modes_save FILE.h5 writes the modes for reuse, -modes_load FILE.h5 reads them instead of solving (the
    node coordinates saved with them must match the model's: same mesh, same number of ranks).
+   The mixed basis (JRModesMix) of a model with interface rows (JRModesSetInterface) also holds static correction
+   vectors of the interface (-modes_static n, -modes_static_tol t, -modes_static_max n; their solver
+   -modes_static_ksp_*, -modes_static_pc_*) and gives the basis check (-modes_check, -modes_check_tol;
+   JRModesCheckBasis for the other bases).
 */
 #include <jointrom/private/modelimpl.h>
 #include <petscviewerhdf5.h>
@@ -20,9 +24,16 @@ PetscErrorCode JRModesCreate(MPI_Comm comm, JRModes *modes)
   PetscCall(PetscNew(&md));
   md->comm   = comm;
   md->refct  = 1;
-  md->nev    = 10;
-  md->use_rb = PETSC_TRUE;
-  *modes     = md;
+  md->nev         = 10;
+  md->use_rb      = PETSC_TRUE;
+  md->nstatic     = -1;
+  md->nstatic_max = 60;
+  md->static_tol  = 0.02;
+  md->check       = PETSC_TRUE;
+  md->check_tol   = 0.05;
+  md->rho0        = -1.0;
+  md->rho         = -1.0;
+  *modes          = md;
   PetscFunctionReturn(0);
 }
 
@@ -104,7 +115,16 @@ PetscErrorCode JRModesSetFromOptions(JRModes md)
   PetscCall(PetscOptionsBool("-rigid_basis", "Free-free FE models: deflate the exact rigid-body modes and solve for the elastic ones", "JRModesSetRigidBasis", md->use_rb, &md->use_rb, NULL));
   PetscCall(PetscOptionsString("-load", "Read the modes from this HDF5 file (written by -modes_save) instead of solving", "JRModesSolve", md->load, md->load, sizeof(md->load), NULL));
   PetscCall(PetscOptionsString("-save", "Write the modes to this HDF5 file for -modes_load", "JRModesSolve", md->save, md->save, sizeof(md->save), NULL));
+  PetscCall(PetscOptionsInt("-static", "Mixed basis of an FE model with contact pairs: static correction vectors of the interface added (-1: every pattern above -modes_static_tol, at most -modes_static_max; 0: none)", "JRModesMix", md->nstatic, &md->nstatic, NULL));
+  PetscCall(PetscOptionsInt("-static_max", "At most this many static correction vectors with -modes_static -1", "JRModesMix", md->nstatic_max, &md->nstatic_max, NULL));
+  PetscCall(PetscOptionsReal("-static_tol", "-modes_static -1: keep the interface patterns whose residual flexibility times contact stiffness is at least this [-]", "JRModesMix", md->static_tol, &md->static_tol, NULL));
+  PetscCall(PetscOptionsBool("-check", "Basis check of an FE model with contact pairs: the largest residual flexibility times contact stiffness of an interface pattern outside the basis", "JRModesCheckBasis", md->check, &md->check, NULL));
+  PetscCall(PetscOptionsReal("-check_tol", "Warn when the basis check exceeds this [-]", "JRModesCheckBasis", md->check_tol, &md->check_tol, NULL));
   PetscOptionsEnd();
+  PetscCheck(md->nstatic >= -1, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_static %" PetscInt_FMT ": a number of vectors, or -1 for those above -modes_static_tol", md->nstatic);
+  PetscCheck(md->nstatic_max >= 0, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_static_max %" PetscInt_FMT ": must be non-negative", md->nstatic_max);
+  PetscCheck(md->static_tol > 0 && !PetscIsInfOrNanReal(md->static_tol), md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_static_tol %g: must be positive", (double)md->static_tol);
+  PetscCheck(md->check_tol > 0 && !PetscIsInfOrNanReal(md->check_tol), md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_check_tol %g: must be positive", (double)md->check_tol);
   PetscCheck(md->nev >= 1, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_nev %" PetscInt_FMT ": at least one mode", md->nev);
   if (md->load[0]) PetscCall(JRFileCheckHDF5(md->comm, "-modes_load", md->load, "/jointrom_modes", "write one with -modes_save"));
   PetscFunctionReturn(0);
@@ -274,6 +294,23 @@ static PetscErrorCode ModesLoad(JRModes md, const char file[])
   PetscFunctionReturn(0);
 }
 
+/* The default shift, a little below zero (free-free structures have a singular K): -1e-6 |diag K|_1 / |diag M|_1 */
+static PetscErrorCode DefaultShift(JRModes md, PetscReal *sigma)
+{
+  PetscReal kd, md_;
+  Vec       d;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateVecs(md->K, &d, NULL));
+  PetscCall(MatGetDiagonal(md->K, d));
+  PetscCall(VecNorm(d, NORM_1, &kd));
+  PetscCall(MatGetDiagonal(md->M, d));
+  PetscCall(VecNorm(d, NORM_1, &md_));
+  PetscCall(VecDestroy(&d));
+  *sigma = md_ > 0 ? -1e-6 * kd / md_ : -1.0;
+  PetscFunctionReturn(0);
+}
+
 /* The eigensolver: dense LAPACK for small systems (or most of their modes), else shift-and-invert a little below
    zero (free-free structures have a singular K) with a Cholesky factorisation (MUMPS unless
    -modes_st_pc_factor_mat_solver_type says otherwise); -modes_eps_*, -modes_st_* */
@@ -296,17 +333,7 @@ static PetscErrorCode SetUpEPS(JRModes md, PetscInt n, PetscInt nrb, PetscBool d
     PetscCall(EPSSetWhichEigenpairs(md->eps, EPS_SMALLEST_REAL));
     PetscCall(EPSSetDimensions(md->eps, n, PETSC_DEFAULT, PETSC_DEFAULT));
   } else {
-    if (!md->target_set) { /* a little below zero: free-free structures have a singular K */
-      PetscReal kd, md_;
-      Vec       d;
-      PetscCall(MatCreateVecs(md->K, &d, NULL));
-      PetscCall(MatGetDiagonal(md->K, d));
-      PetscCall(VecNorm(d, NORM_1, &kd));
-      PetscCall(MatGetDiagonal(md->M, d));
-      PetscCall(VecNorm(d, NORM_1, &md_));
-      PetscCall(VecDestroy(&d));
-      md->target = md_ > 0 ? -1e-6 * kd / md_ : -1.0;
-    }
+    if (!md->target_set) PetscCall(DefaultShift(md, &md->target));
     PetscCall(EPSSetDimensions(md->eps, nel, PetscMax(2 * nel + 10, nel + 32), PETSC_DEFAULT));
     PetscCall(EPSSetTarget(md->eps, md->target));
     PetscCall(EPSSetWhichEigenpairs(md->eps, EPS_TARGET_MAGNITUDE));
@@ -526,25 +553,367 @@ PetscErrorCode JRModesSetMixed(JRModes md)
 }
 
 /*
-  JRModesMix - the mixed basis (after JRModesSetMixed and JRModesSolve): md's stuck modes (operators K + Ks, M) and
-  the nf lowest elastic free-interface modes of (K, M) (the free structure, rigid basis rb[nrb]), M-orthonormalised
-  (dependent vectors dropped), then the Ritz vectors of (K + Ks, M) in their span, which replace md's modes: exact
-  for the stuck structure and for the structure with the interface free. Saved (-modes_save or the default file)
-  once mixed; nothing to do when the modes were read (-modes_load: the file holds the mixed basis).
+  JRModesSetInterface - the interface's relative-displacement rows, for the static correction of a mixed basis
+  (JRModesMix) and the basis check (JRModesCheckBasis): row i is b_i^T x = sum_k coef[i nper + k] x[dof[i nper + k]]
+  (dof -1: no entry), e.g. (x_A - x_B) . t of a node-to-node pair (4.3), and k[i] > 0 its contact stiffness [N/m],
+  which scales it. The same lists on every rank; copied.
+*/
+PetscErrorCode JRModesSetInterface(JRModes md, PetscInt n, PetscInt nper, const PetscInt dof[], const PetscReal coef[], const PetscReal k[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree3(md->irdof, md->ircoef, md->irk));
+  md->nir  = n;
+  md->nper = nper;
+  PetscCall(PetscMalloc3(n * nper, &md->irdof, n * nper, &md->ircoef, n, &md->irk));
+  PetscCall(PetscArraycpy(md->irdof, dof, n * nper));
+  PetscCall(PetscArraycpy(md->ircoef, coef, n * nper));
+  PetscCall(PetscArraycpy(md->irk, k, n));
+  for (PetscInt i = 0; i < n; i++) PetscCheck(k[i] > 0, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "Interface row %" PetscInt_FMT ": contact stiffness %g, must be positive", i, (double)k[i]);
+  PetscFunctionReturn(0);
+}
+
+/* The interface DOFs' values gathered on every rank, and the rows' entries' places among them */
+typedef struct {
+  VecScatter sc;
+  Vec        loc;
+  PetscInt  *pos; /* nir nper: the entry's place in loc, -1 for none */
+  PetscInt   lo, hi;
+} Interface;
+
+static PetscErrorCode InterfaceCreate(JRModes md, Vec x, Interface *c)
+{
+  const PetscInt ne = md->nir * md->nper;
+  PetscInt      *all, nall = 0;
+  IS             is;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(ne, &all));
+  PetscCall(PetscMalloc1(ne, &c->pos));
+  for (PetscInt k = 0; k < ne; k++)
+    if (md->irdof[k] >= 0) all[nall++] = md->irdof[k];
+  PetscCall(PetscSortRemoveDupsInt(&nall, all));
+  for (PetscInt k = 0; k < ne; k++) {
+    c->pos[k] = -1;
+    if (md->irdof[k] >= 0) PetscCall(PetscFindInt(md->irdof[k], nall, all, &c->pos[k]));
+  }
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, nall, all, PETSC_COPY_VALUES, &is));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, nall, &c->loc));
+  PetscCall(VecScatterCreate(x, is, c->loc, NULL, &c->sc));
+  PetscCall(VecGetOwnershipRange(x, &c->lo, &c->hi));
+  PetscCall(ISDestroy(&is));
+  PetscCall(PetscFree(all));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode InterfaceDestroy(Interface *c)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterDestroy(&c->sc));
+  PetscCall(VecDestroy(&c->loc));
+  PetscCall(PetscFree(c->pos));
+  PetscFunctionReturn(0);
+}
+
+/* r = W^1/2 B^T x, on every rank (collective) */
+static PetscErrorCode InterfaceRows(JRModes md, Interface *c, Vec x, PetscReal r[])
+{
+  const PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterBegin(c->sc, x, c->loc, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(c->sc, x, c->loc, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(c->loc, &a));
+  for (PetscInt i = 0; i < md->nir; i++) {
+    PetscReal s = 0.0;
+    for (PetscInt k = i * md->nper; k < (i + 1) * md->nper; k++)
+      if (c->pos[k] >= 0) s += md->ircoef[k] * PetscRealPart(a[c->pos[k]]);
+    r[i] = PetscSqrtReal(md->irk[i]) * s;
+  }
+  PetscCall(VecRestoreArrayRead(c->loc, &a));
+  PetscFunctionReturn(0);
+}
+
+/* b = P^T B W^1/2 w = (I - M Q Q^T) B W^1/2 w (the load w on the interface, balanced by the inertia of the modes Q,
+   M-orthonormal, MQ = M Q, BQ = W^1/2 B^T Q nir x nq col-major); d has room for nq */
+static PetscErrorCode InterfaceLoad(JRModes md, Interface *c, const PetscReal w[], PetscInt nq, Vec MQ[], const PetscReal BQ[], PetscScalar d[], Vec b)
+{
+  PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(b));
+  PetscCall(VecGetArray(b, &a));
+  for (PetscInt i = 0; i < md->nir; i++) {
+    if (w[i] == 0.0) continue;
+    for (PetscInt k = i * md->nper; k < (i + 1) * md->nper; k++) {
+      const PetscInt dof = md->irdof[k];
+      if (dof >= c->lo && dof < c->hi) a[dof - c->lo] += PetscSqrtReal(md->irk[i]) * w[i] * md->ircoef[k];
+    }
+  }
+  PetscCall(VecRestoreArray(b, &a));
+  for (PetscInt q = 0; q < nq; q++) {
+    PetscReal s = 0.0;
+    for (PetscInt i = 0; i < md->nir; i++) s += BQ[i + q * md->nir] * w[i];
+    d[q] = -s;
+  }
+  if (nq) PetscCall(VecMAXPY(b, nq, d, MQ));
+  PetscFunctionReturn(0);
+}
+
+/* g = P g = (I - Q Q^T M) g: M-orthogonal to the modes Q */
+static PetscErrorCode ProjectOut(PetscInt nq, Vec Q[], Vec MQ[], PetscScalar d[], Vec g)
+{
+  PetscFunctionBeginUser;
+  if (!nq) PetscFunctionReturn(0);
+  PetscCall(VecMDot(g, nq, MQ, d));
+  for (PetscInt q = 0; q < nq; q++) d[q] = -d[q];
+  PetscCall(VecMAXPY(g, nq, d, Q));
+  PetscFunctionReturn(0);
+}
+
+/* The static solver: A = K - sigma M by a sparse LDL^T factorisation, MUMPS unless
+   -modes_static_pc_factor_mat_solver_type says otherwise (-modes_static_ksp_*, -modes_static_pc_*). The shift sigma is
+   -1e-6 times the lowest non-zero omega^2 of the modes (a free-free K is singular): on the loads, balanced by the
+   modes' inertia, A^-1 is K^-1 to 1e-6 of that omega^2 over the response's own. */
+static PetscErrorCode StaticSolver(JRModes md, KSP *ksp, Mat *A)
+{
+  PetscReal sigma = 0.0;
+  PC        pc;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < md->nm && sigma == 0.0; i++)
+    if (md->lambda[i] > 0) sigma = -1e-6 * md->lambda[i];
+  if (sigma == 0.0) PetscCall(DefaultShift(md, &sigma));
+  PetscCall(MatDuplicate(md->K, MAT_COPY_VALUES, A));
+  PetscCall(MatAXPY(*A, -sigma, md->M, DIFFERENT_NONZERO_PATTERN));
+  PetscCall(MatSetOption(*A, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(KSPCreate(md->comm, ksp));
+  PetscCall(KSPSetOptionsPrefix(*ksp, "modes_static_"));
+  PetscCall(KSPSetOperators(*ksp, *A, *A));
+  PetscCall(KSPSetType(*ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(*ksp, &pc));
+  PetscCall(PCSetType(pc, PCCHOLESKY));
+#if defined(PETSC_HAVE_MUMPS)
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+#endif
+  PetscCall(KSPSetFromOptions(*ksp));
+  PetscCall(KSPSetUp(*ksp));
+  PetscFunctionReturn(0);
+}
+
+/*
+  The interface's residual flexibility outside the span of the modes Q (M-orthonormal, MQ = M Q), in units of the
+  contact stiffness: S = W^1/2 B^T P A^-1 P^T B W^1/2 (nir x nir, col-major, on every rank), with B the interface rows,
+  W = diag(k), P = I - Q Q^T M and A = K - sigma M. S is symmetric and its eigenvalues are dimensionless: a pattern of
+  contact forces f = W^1/2 v deforms the interface, beyond what the modes carry, by v^T S v / |v|^2 times the contact
+  springs' own stretch. The nir solves go in blocks of columns.
+*/
+static PetscErrorCode ResidualFlexibility(JRModes md, KSP ksp, Interface *c, PetscInt nq, Vec Q[], Vec MQ[], const PetscReal BQ[], PetscReal S[])
+{
+  const PetscInt nr = md->nir, bs = PetscMin(64, nr);
+  PetscInt       nloc, N;
+  Mat            B, X;
+  Vec            g;
+  PetscScalar   *d;
+  PetscReal     *w, *r;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(Q[0], &nloc));
+  PetscCall(VecGetSize(Q[0], &N));
+  PetscCall(MatCreateDense(md->comm, nloc, PETSC_DECIDE, N, bs, NULL, &B));
+  PetscCall(MatDuplicate(B, MAT_DO_NOT_COPY_VALUES, &X));
+  PetscCall(VecDuplicate(Q[0], &g));
+  PetscCall(PetscMalloc1(PetscMax(nq, 1), &d));
+  PetscCall(PetscCalloc2(nr, &w, nr, &r));
+  for (PetscInt c0 = 0; c0 < nr; c0 += bs) {
+    const PetscInt nb = PetscMin(bs, nr - c0);
+    for (PetscInt j = 0; j < bs; j++) {
+      Vec b;
+      PetscCall(MatDenseGetColumnVecWrite(B, j, &b));
+      if (j < nb) {
+        w[c0 + j] = 1.0;
+        PetscCall(InterfaceLoad(md, c, w, nq, MQ, BQ, d, b));
+        w[c0 + j] = 0.0;
+      } else PetscCall(VecZeroEntries(b));
+      PetscCall(MatDenseRestoreColumnVecWrite(B, j, &b));
+    }
+    PetscCall(KSPMatSolve(ksp, B, X));
+    for (PetscInt j = 0; j < nb; j++) {
+      Vec x;
+      PetscCall(MatDenseGetColumnVecRead(X, j, &x));
+      PetscCall(VecCopy(x, g));
+      PetscCall(MatDenseRestoreColumnVecRead(X, j, &x));
+      PetscCall(ProjectOut(nq, Q, MQ, d, g));
+      PetscCall(InterfaceRows(md, c, g, r));
+      for (PetscInt i = 0; i < nr; i++) S[i + (c0 + j) * nr] = r[i];
+    }
+  }
+  for (PetscInt j = 0; j < nr; j++)
+    for (PetscInt i = 0; i < j; i++) S[i + j * nr] = S[j + i * nr] = 0.5 * (S[i + j * nr] + S[j + i * nr]);
+  PetscCall(PetscFree2(w, r));
+  PetscCall(PetscFree(d));
+  PetscCall(VecDestroy(&g));
+  PetscCall(MatDestroy(&B));
+  PetscCall(MatDestroy(&X));
+  PetscFunctionReturn(0);
+}
+
+/*
+  The static correction of the modes Q (M-orthonormal, MQ = M Q) and the basis check: the interface's residual
+  flexibility S (ResidualFlexibility), its eigenvalues lam_1 >= lam_2 >= ..., and, for the ns largest (nwant >= 0:
+  that many; -1: those above -modes_static_tol, at most -modes_static_max), the static responses
+  g_k = P A^-1 P^T B W^1/2 v_k to their patterns v_k (residual flexibility modes: M-orthogonal to Q), returned in G
+  (unnormalised; *G NULL if ns = 0). md->rho0 = lam_1 (the check before the correction), md->rho = lam_{ns+1} (after).
+*/
+static PetscErrorCode StaticCorrection(JRModes md, PetscInt nq, Vec Q[], Vec MQ[], PetscInt nwant, PetscInt *ns, Vec **G)
+{
+  const PetscInt nr = md->nir;
+  PetscLogDouble t0, t1;
+  Interface      c;
+  KSP            ksp;
+  Mat            A;
+  Vec            b;
+  PetscReal     *BQ, *S, *lam, *work, *w;
+  PetscScalar   *d;
+  PetscBLASInt   bn, lwork, info;
+  PetscInt       n = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  PetscCall(PetscLogEventBegin(JR_ModesStatic, 0, 0, 0, 0));
+  *ns = 0;
+  *G  = NULL;
+  PetscCall(InterfaceCreate(md, Q[0], &c));
+  PetscCall(PetscMalloc3(nr * PetscMax(nq, 1), &BQ, nr * nr, &S, nr, &lam));
+  PetscCall(PetscMalloc3(8 * nr, &work, nr, &w, PetscMax(nq, 1), &d));
+  for (PetscInt q = 0; q < nq; q++) PetscCall(InterfaceRows(md, &c, Q[q], BQ + q * nr));
+  PetscCall(StaticSolver(md, &ksp, &A));
+  PetscCall(ResidualFlexibility(md, ksp, &c, nq, Q, MQ, BQ, S));
+  PetscCall(PetscBLASIntCast(nr, &bn));
+  PetscCall(PetscBLASIntCast(8 * nr, &lwork));
+  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &bn, S, &bn, lam, work, &lwork, &info));
+  PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed: info %d", (int)info);
+  if (nwant >= 0) n = PetscMin(nwant, nr);
+  else
+    while (n < nr && n < md->nstatic_max && lam[nr - 1 - n] >= md->static_tol) n++;
+  md->rho0 = PetscMax(lam[nr - 1], 0.0);
+  md->rho  = n < nr ? PetscMax(lam[nr - 1 - n], 0.0) : 0.0;
+  if (n) PetscCall(VecDuplicateVecs(Q[0], n, G));
+  PetscCall(VecDuplicate(Q[0], &b));
+  for (PetscInt k = 0; k < n; k++) { /* the k-th largest pattern's static response, residual to Q */
+    for (PetscInt i = 0; i < nr; i++) w[i] = S[i + (nr - 1 - k) * nr];
+    PetscCall(InterfaceLoad(md, &c, w, nq, MQ, BQ, d, b));
+    PetscCall(KSPSolve(ksp, b, (*G)[k]));
+    PetscCall(ProjectOut(nq, Q, MQ, d, (*G)[k]));
+  }
+  PetscCall(VecDestroy(&b));
+  for (PetscInt k = 1; k <= nr; k *= 2) PetscCall(PetscInfo(NULL, "Interface residual flexibility x stiffness: pattern %" PetscInt_FMT " of %" PetscInt_FMT ": %g\n", k, nr, (double)lam[nr - k]));
+  *ns = n;
+  PetscCall(PetscInfo(NULL, "Interface residual flexibility x stiffness: %" PetscInt_FMT " patterns, largest %g, %" PetscInt_FMT " kept, next %g\n", nr, (double)md->rho0, n, (double)md->rho));
+  PetscCall(KSPDestroy(&ksp));
+  PetscCall(MatDestroy(&A));
+  PetscCall(PetscFree3(BQ, S, lam));
+  PetscCall(PetscFree3(work, w, d));
+  PetscCall(InterfaceDestroy(&c));
+  PetscCall(PetscLogEventEnd(JR_ModesStatic, 0, 0, 0, 0));
+  PetscCall(PetscTime(&t1));
+  md->tstatic += t1 - t0;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRModesCheckBasis - the basis check of the modes as they are (a free or stuck basis, or a mixed one read with
+  -modes_load): the largest residual flexibility times contact stiffness of an interface pattern outside their span
+  (StaticCorrection; JRModesGetBasisCheck). Nothing without interface rows (JRModesSetInterface) or with -modes_check 0.
+*/
+PetscErrorCode JRModesCheckBasis(JRModes md)
+{
+  Vec     *MQ, *G;
+  PetscInt ns;
+
+  PetscFunctionBeginUser;
+  if (!md->nir || !md->check || !md->nm) PetscFunctionReturn(0);
+  PetscCall(VecDuplicateVecs(md->phi[0], md->nm, &MQ));
+  for (PetscInt i = 0; i < md->nm; i++) PetscCall(MatMult(md->M, md->phi[i], MQ[i]));
+  PetscCall(StaticCorrection(md, md->nm, md->phi, MQ, 0, &ns, &G));
+  md->nsadded = 0;
+  PetscCall(VecDestroyVecs(md->nm, &MQ));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRModesGetBasisCheck - the basis check (-1 if not computed): rho, the largest residual flexibility times contact
+  stiffness of an interface pattern outside the basis, rho0 the same before the static correction; tol its threshold
+  (-modes_check_tol); ns the static correction vectors in the basis; t the seconds they and the check took
+*/
+PetscErrorCode JRModesGetBasisCheck(JRModes md, PetscReal *rho, PetscReal *rho0, PetscReal *tol, PetscInt *ns, PetscLogDouble *t)
+{
+  PetscFunctionBeginUser;
+  if (rho) *rho = md->rho;
+  if (rho0) *rho0 = md->rho0;
+  if (tol) *tol = md->check_tol;
+  if (ns) *ns = md->nsadded;
+  if (t) *t = md->tstatic;
+  PetscFunctionReturn(0);
+}
+
+/* Append v to the M-orthonormal Q (MQ = M Q) by Gram-Schmidt in the M inner product, twice; dropped when dependent
+   (its remainder below 1e-6 of it). v is copied. */
+static PetscErrorCode AppendOrthonormal(Mat M, Vec v, Vec Q[], Vec MQ[], PetscInt *nq, Vec Mv, PetscScalar d[])
+{
+  PetscScalar nn;
+  PetscReal   n0;
+  Vec         q;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(v, &q));
+  PetscCall(VecCopy(v, q));
+  PetscCall(MatMult(M, q, Mv));
+  PetscCall(VecDot(q, Mv, &nn));
+  n0 = PetscSqrtReal(PetscRealPart(nn));
+  for (PetscInt pass = 0; pass < 2 && *nq; pass++) {
+    PetscCall(VecMDot(q, *nq, MQ, d));
+    for (PetscInt j = 0; j < *nq; j++) d[j] = -d[j];
+    PetscCall(VecMAXPY(q, *nq, d, Q));
+  }
+  PetscCall(MatMult(M, q, Mv));
+  PetscCall(VecDot(q, Mv, &nn));
+  if (!(PetscSqrtReal(PetscRealPart(nn)) >= 1e-6 * n0) || n0 == 0.0) {
+    PetscCall(VecDestroy(&q));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecScale(q, 1.0 / PetscSqrtReal(PetscRealPart(nn))));
+  PetscCall(VecDuplicate(q, &MQ[*nq]));
+  PetscCall(VecAXPBY(MQ[*nq], 1.0 / PetscSqrtReal(PetscRealPart(nn)), 0.0, Mv));
+  Q[(*nq)++] = q;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRModesMix - the mixed basis (after JRModesSetMixed and JRModesSolve): md's stuck modes (operators K + Ks, M), the nf
+  lowest elastic free-interface modes of (K, M) (the free structure, rigid basis rb[nrb]) and, with interface rows
+  (JRModesSetInterface), the static correction vectors of the interface (StaticCorrection: the residual flexibility
+  modes of the stuck structure for the interface patterns that the modes miss most, -modes_static*), M-orthonormalised
+  (dependent vectors dropped), then the Ritz vectors of (K + Ks, M) in their span, which replace md's modes: exact for
+  the stuck structure and for the structure with the interface free, and static-complete for the patterns kept. Saved
+  (-modes_save or the default file) once mixed; when the modes were read (-modes_load: the file holds the mixed basis)
+  only the basis check is made.
 */
 PetscErrorCode JRModesMix(JRModes md, Mat K, PetscInt nf, PetscInt nrb, Vec rb[])
 {
   JRModes       fm;
   Mat           M = md->M;
-  PetscInt      nq = 0, ncand;
-  Vec           *Q, *MQ, *cand, Mv;
+  PetscInt      nq = 0, ncand, ns = 0;
+  Vec           *Q, *MQ, *cand, *G = NULL, Mv;
   PetscScalar  *d;
   PetscReal    *A, *lam, *work;
   PetscBLASInt  bn, lwork, info;
 
   PetscFunctionBeginUser;
   PetscCheck(md->mixed, md->comm, PETSC_ERR_ARG_WRONGSTATE, "JRModesSetMixed() first");
-  if (md->load[0]) PetscFunctionReturn(0);
+  if (md->load[0]) {
+    PetscCall(JRModesCheckBasis(md));
+    PetscFunctionReturn(0);
+  }
   PetscCall(JRModesCreate(md->comm, &fm));
   PetscCall(JRModesSetOperators(fm, K, M));
   PetscCall(JRModesSetFromOptions(fm));
@@ -554,35 +923,18 @@ PetscErrorCode JRModesMix(JRModes md, Mat K, PetscInt nf, PetscInt nrb, Vec rb[]
   PetscCall(JRModesSetRigidBasis(fm, nrb, rb));
   PetscCall(JRModesSolve(fm));
   ncand = md->nm + nf;
-  PetscCall(PetscMalloc2(ncand, &cand, ncand, &Q));
+  PetscCall(PetscMalloc1(ncand, &cand));
+  PetscCall(PetscMalloc2(ncand + md->nir, &Q, ncand + md->nir, &MQ));
+  PetscCall(PetscMalloc1(ncand + md->nir, &d));
   for (PetscInt i = 0; i < md->nm; i++) cand[i] = md->phi[i];
   for (PetscInt i = 0; i < nf; i++) cand[md->nm + i] = fm->phi[nrb + i];
   PetscCall(VecDuplicate(md->phi[0], &Mv));
-  PetscCall(PetscMalloc1(ncand, &d));
-  PetscCall(PetscMalloc1(ncand, &MQ));
-  for (PetscInt c = 0; c < ncand; c++) { /* Gram-Schmidt in the M inner product, twice, against M Q kept */
-    PetscScalar nn;
-    PetscReal   n0;
-    PetscCall(VecDuplicate(cand[c], &Q[nq]));
-    PetscCall(VecCopy(cand[c], Q[nq]));
-    PetscCall(MatMult(M, Q[nq], Mv));
-    PetscCall(VecDot(Q[nq], Mv, &nn));
-    n0 = PetscSqrtReal(PetscRealPart(nn));
-    for (PetscInt pass = 0; pass < 2 && nq; pass++) {
-      PetscCall(VecMDot(Q[nq], nq, MQ, d));
-      for (PetscInt j = 0; j < nq; j++) d[j] = -d[j];
-      PetscCall(VecMAXPY(Q[nq], nq, d, Q));
-    }
-    PetscCall(MatMult(M, Q[nq], Mv));
-    PetscCall(VecDot(Q[nq], Mv, &nn));
-    if (PetscSqrtReal(PetscRealPart(nn)) < 1e-6 * n0) {
-      PetscCall(VecDestroy(&Q[nq]));
-      continue;
-    }
-    PetscCall(VecScale(Q[nq], 1.0 / PetscSqrtReal(PetscRealPart(nn))));
-    PetscCall(VecDuplicate(Q[nq], &MQ[nq]));
-    PetscCall(VecAXPBY(MQ[nq], 1.0 / PetscSqrtReal(PetscRealPart(nn)), 0.0, Mv));
-    nq++;
+  for (PetscInt c = 0; c < ncand; c++) PetscCall(AppendOrthonormal(M, cand[c], Q, MQ, &nq, Mv, d));
+  if (md->nir && (md->nstatic || md->check)) { /* the static correction of the interface, and the check */
+    PetscCall(StaticCorrection(md, nq, Q, MQ, md->nstatic, &ns, &G));
+    for (PetscInt k = 0; k < ns; k++) PetscCall(AppendOrthonormal(M, G[k], Q, MQ, &nq, Mv, d));
+    md->nsadded = ns;
+    if (ns) PetscCall(VecDestroyVecs(ns, &G));
   }
   /* Ritz: A = Q^T (K + Ks) Q, eigenvectors ascending */
   PetscCall(PetscMalloc3(nq * nq, &A, nq, &lam, 8 * nq, &work));
@@ -608,7 +960,7 @@ PetscErrorCode JRModesMix(JRModes md, Mat K, PetscInt nf, PetscInt nrb, Vec rb[]
     md->lambda[i] = PetscAbsReal(lam[i]) <= 1e-10 * PetscAbsReal(lam[nq - 1]) ? 0.0 : lam[i];
   }
   md->nm = nq;
-  PetscCall(PetscInfo(NULL, "Mixed basis: %" PetscInt_FMT " stuck + %" PetscInt_FMT " free modes -> %" PetscInt_FMT " Ritz vectors\n", md->nev, nf, nq));
+  PetscCall(PetscInfo(NULL, "Mixed basis: %" PetscInt_FMT " stuck + %" PetscInt_FMT " free modes + %" PetscInt_FMT " static correction vectors -> %" PetscInt_FMT " Ritz vectors\n", md->nev, nf, ns, nq));
   PetscCall(PetscFree3(A, lam, work));
   PetscCall(PetscFree(d));
   PetscCall(VecDestroy(&Mv));
@@ -616,8 +968,8 @@ PetscErrorCode JRModesMix(JRModes md, Mat K, PetscInt nf, PetscInt nrb, Vec rb[]
     PetscCall(VecDestroy(&Q[i]));
     PetscCall(VecDestroy(&MQ[i]));
   }
-  PetscCall(PetscFree(MQ));
-  PetscCall(PetscFree2(cand, Q));
+  PetscCall(PetscFree2(Q, MQ));
+  PetscCall(PetscFree(cand));
   PetscCall(JRModesDestroy(&fm));
   if (md->save_mixed[0]) PetscCall(JRModesSave(md, md->save_mixed));
   PetscFunctionReturn(0);
@@ -642,6 +994,7 @@ PetscErrorCode JRModesDestroy(JRModes *modes)
   if (--md->refct > 0) PetscFunctionReturn(0);
   PetscCall(ClearModes(md));
   if (md->rb) PetscCall(VecDestroyVecs(md->nrb, &md->rb));
+  PetscCall(PetscFree3(md->irdof, md->ircoef, md->irk));
   PetscCall(EPSDestroy(&md->eps));
   PetscCall(VecDestroy(&md->X));
   PetscCall(MatDestroy(&md->K));

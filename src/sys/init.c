@@ -3,7 +3,7 @@
 #include <jointrom/private/modelimpl.h>
 
 PetscClassId  JR_CONTACT_CLASSID, JR_MODEL_CLASSID, JR_HBM_CLASSID;
-PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep;
+PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_ModesStatic, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep;
 PetscLogEvent JR_HBMHill;
 
 static PetscBool JRPackageInitialized = PETSC_FALSE;
@@ -22,6 +22,7 @@ PetscErrorCode JRInitializePackage(void)
   PetscCall(PetscClassIdRegister("JRHBM", &JR_HBM_CLASSID));
   PetscCall(PetscLogEventRegister("JR_ModelLoad", JR_MODEL_CLASSID, &JR_ModelLoad));
   PetscCall(PetscLogEventRegister("JR_ModesSolve", JR_MODEL_CLASSID, &JR_ModesSolve));
+  PetscCall(PetscLogEventRegister("JR_ModesStatic", JR_MODEL_CLASSID, &JR_ModesStatic));
   PetscCall(PetscLogEventRegister("JR_PreloadSetUp", JR_MODEL_CLASSID, &JR_PreloadSetUp));
   PetscCall(PetscLogEventRegister("JR_PreloadSolve", JR_MODEL_CLASSID, &JR_PreloadSolve));
   PetscCall(PetscLogEventRegister("JR_HBMResidual", JR_HBM_CLASSID, &JR_HBMResidual));

@@ -347,6 +347,23 @@ static PetscErrorCode SetUpModels(FRFRun *r)
   PetscFunctionReturn(0);
 }
 
+/* The basis check (JRModesCheckBasis): the largest residual flexibility times contact stiffness of an interface
+   pattern outside the basis, and a warning above -modes_check_tol */
+static PetscErrorCode ViewBasisCheck(FRFRun *r)
+{
+  MPI_Comm       comm = r->comm;
+  PetscReal      rho, rho0, tol;
+  PetscInt       ns;
+  PetscLogDouble t;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMGetBasisCheck(r->hbmc, &rho, &rho0, &tol, &ns, &t));
+  if (rho < 0) PetscFunctionReturn(0);
+  PetscCall(PetscPrintf(comm, "basis check: rho %.3g rho_modes %.3g static_vectors %" PetscInt_FMT " seconds %.3g (rho: the largest interface residual flexibility x contact stiffness outside the basis; rho_modes: the same without the static correction vectors)\n", (double)rho, (double)rho0, ns, (double)t));
+  if (rho > tol) PetscCall(PetscPrintf(comm, "WARNING basis check %.3g > -modes_check_tol %g: the basis misses the interface's local compliance and the peaks may move with a larger basis; raise -modes_static_max or lower -modes_static_tol\n", (double)rho, (double)tol));
+  PetscFunctionReturn(0);
+}
+
 /* The harmonic balance's size, damping and modal basis */
 static PetscErrorCode ViewBasis(FRFRun *r)
 {
@@ -369,6 +386,7 @@ static PetscErrorCode ViewBasis(FRFRun *r)
     PetscCall(PetscPrintf(comm, "frf: modes and projections %.3g s; modes of the %s [Hz]:", (double)(r->setn + r->setr), b == JR_HBM_BASIS_MIXED ? "mixed basis (Ritz, stuck + free)" : b == JR_HBM_BASIS_STUCK ? "stuck structure" : "free interface"));
     for (PetscInt i = 0; i < nmod; i++) PetscCall(PetscPrintf(comm, " %.5g", (double)(om[i] / (2 * PETSC_PI))));
     PetscCall(PetscPrintf(comm, "\n"));
+    PetscCall(ViewBasisCheck(r));
   }
   PetscFunctionReturn(0);
 }

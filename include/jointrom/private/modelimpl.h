@@ -65,6 +65,18 @@ struct _p_JRModes {
   PetscBool  load_all;   /* -modes_load reads every vector of the file (a mixed basis) */
   PetscBool  mixed;      /* JRModesSetMixed(): a mixed basis, made by JRModesMix */
   char       save_mixed[PETSC_MAX_PATH_LEN]; /* where JRModesMix saves it */
+  /* static correction of the interface (JRModesSetInterface; JRModesMix) and the basis check */
+  PetscInt   nir, nper;  /* interface rows: nir rows of nper (DOF, coefficient) entries, on every rank */
+  PetscInt  *irdof;      /* DOFs (-1: none) */
+  PetscReal *ircoef, *irk; /* coefficients; each row's contact stiffness [N/m] (the weights) */
+  PetscInt   nstatic;    /* -modes_static: static correction vectors (-1: those above -modes_static_tol) */
+  PetscInt   nstatic_max; /* -modes_static_max */
+  PetscReal  static_tol; /* -modes_static_tol */
+  PetscBool  check;      /* -modes_check: compute the basis check */
+  PetscReal  check_tol;  /* -modes_check_tol: the check's threshold */
+  PetscInt   nsadded;    /* static correction vectors added */
+  PetscReal  rho0, rho;  /* the check: largest residual flexibility x stiffness outside the basis, before and after the static correction (-1: not computed) */
+  PetscLogDouble tstatic; /* seconds spent on the static correction and the check */
 };
 
 #endif
