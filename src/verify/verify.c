@@ -27,7 +27,8 @@
    user's choice. The slip is committed after every step at the new state; the stages in between see the slip of the
    step's start pushed by their own motion (a return mapping from the last committed state), exact while the motion
    within one step is monotone. The step must also be stable: dt w_max <= 2 (RK4's limit on the imaginary axis is
-   2.83), w_max^2 an upper bound of the stiffest mode with every friction element stuck (power iterations); the
+   2.83), w_max^2 an upper bound of the stiffest mode with every friction element stuck (LAPACK on mass-normalised
+   modes, else power iterations); the
    steps per period are raised to that if needed. -frf_verify_ts_type / -frf_verify_ts_rk_type choose another
    explicit scheme (rk, ssp, euler); the step stays fixed.
 
@@ -346,6 +347,20 @@ static PetscErrorCode StiffestMode(JRVerify v)
   }
   PetscCall(SumRanks(v, K, nm * nm));
   for (PetscInt i = 0; i < nm * nm; i++) K[i] += h->Km[i]; /* symmetric: row- or column-major alike */
+  if (v->identity) { /* mass-normalised modes: the largest eigenvalue of K itself, by LAPACK (a static-correction
+                        basis clusters the stiffest ones, where power iterations stop short of the top) */
+    PetscBLASInt bn, lwork, info;
+    PetscReal   *ev, *work;
+    PetscCall(PetscBLASIntCast(nm, &bn));
+    PetscCall(PetscBLASIntCast(PetscMax(1, 3 * nm), &lwork));
+    PetscCall(PetscMalloc2(nm, &ev, 3 * nm + 1, &work));
+    PetscCallBLAS("LAPACKsyev", LAPACKsyev_("N", "U", &bn, K, &bn, ev, work, &lwork, &info));
+    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev: info %d", (int)info);
+    v->wmax2 = 1.05 * ev[nm - 1];
+    PetscCall(PetscFree2(ev, work));
+    PetscCall(PetscFree3(K, x, z));
+    PetscFunctionReturn(0);
+  }
   for (PetscInt i = 0; i < nm; i++) x[i] = 1.0 + 0.1 * i / nm;
   for (PetscInt it = 0; it < 200; it++) {
     PetscReal nx = 0, l;
