@@ -534,6 +534,7 @@ PETSC_EXTERN PetscErrorCode JRFileTempDone(const char[]);
 PETSC_EXTERN PetscErrorCode JRFileRename(MPI_Comm, const char[], const char[]);
 PETSC_EXTERN PetscErrorCode JRFileOpenTemp(MPI_Comm, const char[], FILE **, char[], size_t);
 PETSC_EXTERN PetscErrorCode JRFileCommit(MPI_Comm, FILE **, const char[], const char[]);
+PETSC_EXTERN PetscErrorCode JRViewerHDF5WriteRank0(MPI_Comm, PetscViewer, const char[], PetscInt, PetscInt, const PetscReal[], const PetscInt[]);
 
 /* Newton's method for small dense systems on one rank: LAPACK LU, backtracking (src/hbm/newtondense.c); the
    default of the harmonic-balance and continuation solvers (-hbm_snes_type) */

@@ -13,27 +13,6 @@ typedef struct {
   const char      *damping;
 } Outputs;
 
-/* One dataset written from rank 0: len values (reals r, or integers iv), block size bs (collective) */
-static PetscErrorCode WriteRank0(MPI_Comm comm, PetscViewer v, const char name[], PetscInt len, PetscInt bs, const PetscReal r[], const PetscInt iv[])
-{
-  Vec          x;
-  PetscScalar *xa;
-  PetscMPIInt  rank;
-
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rank) len = 0;
-  PetscCall(VecCreateMPI(comm, len, PETSC_DETERMINE, &x));
-  if (bs > 1) PetscCall(VecSetBlockSize(x, bs));
-  PetscCall(PetscObjectSetName((PetscObject)x, name));
-  PetscCall(VecGetArray(x, &xa));
-  for (PetscInt i = 0; i < len; i++) xa[i] = r ? r[i] : (PetscReal)iv[i];
-  PetscCall(VecRestoreArray(x, &xa));
-  PetscCall(VecView(x, v));
-  PetscCall(VecDestroy(&x));
-  PetscFunctionReturn(0);
-}
-
 /* Response o (0-based) in words: "response 1 along z at (x, y, z) m" at a point (JRHBMSetOutputPoints), else "response 1 at DOF d" */
 static PetscErrorCode ResponseName(PetscInt o, const PetscReal xyz[], PetscInt dir, const PetscInt dofs[], char s[], size_t len)
 {
@@ -158,31 +137,31 @@ static PetscErrorCode WriteHDF5Level(JRCont c, PetscViewer v, PetscInt l)
   PetscCallMPI(MPI_Comm_rank(c->comm, &rank));
   PetscCall(PetscSNPrintf(grp, sizeof(grp), "/level_%" PetscInt_FMT, l));
   PetscCall(PetscViewerHDF5PushGroup(v, grp));
-  for (size_t s = 0; s < sizeof(sets) / sizeof(sets[0]); s++) PetscCall(WriteRank0(c->comm, v, sets[s].name, np * sets[s].bs, sets[s].bs, sets[s].data, NULL));
-  PetscCall(WriteRank0(c->comm, v, "newton_its", np, 1, NULL, b->its));
+  for (size_t s = 0; s < sizeof(sets) / sizeof(sets[0]); s++) PetscCall(JRViewerHDF5WriteRank0(c->comm, v, sets[s].name, np * sets[s].bs, sets[s].bs, sets[s].data, NULL));
+  PetscCall(JRViewerHDF5WriteRank0(c->comm, v, "newton_its", np, 1, NULL, b->its));
   {
     PetscReal *f;
     PetscCall(PetscMalloc1(c->nout, &f));
     for (PetscInt o = 0; o < c->nout; o++) f[o] = b->wpk[o] / (2 * PETSC_PI);
-    PetscCall(WriteRank0(c->comm, v, "peaks_freq_hz", c->nout, 1, f, NULL));
-    PetscCall(WriteRank0(c->comm, v, "peaks_amp_m", c->nout, 1, b->apk, NULL));
+    PetscCall(JRViewerHDF5WriteRank0(c->comm, v, "peaks_freq_hz", c->nout, 1, f, NULL));
+    PetscCall(JRViewerHDF5WriteRank0(c->comm, v, "peaks_amp_m", c->nout, 1, b->apk, NULL));
     PetscCall(PetscFree(f));
   }
   if (b->stable) {
     PetscReal *f;
-    PetscCall(WriteRank0(c->comm, v, "stable", np, 1, NULL, b->stable));
-    PetscCall(WriteRank0(c->comm, v, "floquet_max_re", np, 1, b->maxre, NULL));
+    PetscCall(JRViewerHDF5WriteRank0(c->comm, v, "stable", np, 1, NULL, b->stable));
+    PetscCall(JRViewerHDF5WriteRank0(c->comm, v, "floquet_max_re", np, 1, b->maxre, NULL));
     PetscCall(PetscMalloc1(b->nfold + b->nbranch, &f));
     for (PetscInt i = 0; i < b->nfold; i++) f[i] = b->wfold[i] / (2 * PETSC_PI);
     for (PetscInt i = 0; i < b->nbranch; i++) f[b->nfold + i] = b->wbranch[i] / (2 * PETSC_PI);
-    if (b->nfold) PetscCall(WriteRank0(c->comm, v, "folds_freq_hz", b->nfold, 1, f, NULL));
-    if (b->nbranch) PetscCall(WriteRank0(c->comm, v, "branch_points_freq_hz", b->nbranch, 1, f + b->nfold, NULL));
+    if (b->nfold) PetscCall(JRViewerHDF5WriteRank0(c->comm, v, "folds_freq_hz", b->nfold, 1, f, NULL));
+    if (b->nbranch) PetscCall(JRViewerHDF5WriteRank0(c->comm, v, "branch_points_freq_hz", b->nbranch, 1, f + b->nfold, NULL));
     PetscCall(PetscFree(f));
   }
   PetscCall(WriteHDF5LevelAttributes(v, grp, b));
   PetscCall(PetscMalloc1(rank ? 0 : nel, &st));
   for (PetscInt i = 0; !rank && i < nel; i++) st[i] = (PetscInt)b->estate[i];
-  PetscCall(WriteRank0(c->comm, v, "peak_states", nel, 1, NULL, st));
+  PetscCall(JRViewerHDF5WriteRank0(c->comm, v, "peak_states", nel, 1, NULL, st));
   PetscCall(PetscFree(st));
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscFunctionReturn(0);

@@ -589,27 +589,6 @@ PetscErrorCode JRNLModesGetStats(JRNLModes m, PetscReal *seconds, PetscInt *newt
   PetscFunctionReturn(0);
 }
 
-/* One dataset from rank 0 (collective) */
-static PetscErrorCode WriteRank0(MPI_Comm comm, PetscViewer v, const char name[], PetscInt len, PetscInt bs, const PetscReal r[], const PetscInt iv[])
-{
-  Vec          x;
-  PetscScalar *xa;
-  PetscMPIInt  rank;
-
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rank) len = 0;
-  PetscCall(VecCreateMPI(comm, len, PETSC_DETERMINE, &x));
-  if (bs > 1) PetscCall(VecSetBlockSize(x, bs));
-  PetscCall(PetscObjectSetName((PetscObject)x, name));
-  PetscCall(VecGetArray(x, &xa));
-  for (PetscInt i = 0; i < len; i++) xa[i] = r ? r[i] : (PetscReal)iv[i];
-  PetscCall(VecRestoreArray(x, &xa));
-  PetscCall(VecView(x, v));
-  PetscCall(VecDestroy(&x));
-  PetscFunctionReturn(0);
-}
-
 /* BASE.csv: point,q,omega_rad_s,freq_hz,damping_ratio,xi,amp_1..amp_n,newton,balance */
 static PetscErrorCode WriteCSV(JRNLModes m, const char csv[])
 {
@@ -666,15 +645,15 @@ static PetscErrorCode WriteHDF5(JRNLModes m, const char h5[])
     f[k] = m->omega[k] / (2 * PETSC_PI);
     d[k] = m->xi[k] / (2 * m->omega[k]);
   }
-  PetscCall(WriteRank0(m->comm, v, "q", m->np, 1, m->qs, NULL));
-  PetscCall(WriteRank0(m->comm, v, "omega", m->np, 1, m->omega, NULL));
-  PetscCall(WriteRank0(m->comm, v, "freq_hz", m->np, 1, f, NULL));
-  PetscCall(WriteRank0(m->comm, v, "damping_ratio", m->np, 1, d, NULL));
-  PetscCall(WriteRank0(m->comm, v, "xi", m->np, 1, m->xi, NULL));
-  PetscCall(WriteRank0(m->comm, v, "amp", m->np * m->nout, m->nout, m->amp, NULL));
-  PetscCall(WriteRank0(m->comm, v, "a", m->np * m->n, m->n, m->as, NULL));
-  PetscCall(WriteRank0(m->comm, v, "balance", m->np, 1, m->bal, NULL));
-  PetscCall(WriteRank0(m->comm, v, "newton_its", m->np, 1, NULL, m->its));
+  PetscCall(JRViewerHDF5WriteRank0(m->comm, v, "q", m->np, 1, m->qs, NULL));
+  PetscCall(JRViewerHDF5WriteRank0(m->comm, v, "omega", m->np, 1, m->omega, NULL));
+  PetscCall(JRViewerHDF5WriteRank0(m->comm, v, "freq_hz", m->np, 1, f, NULL));
+  PetscCall(JRViewerHDF5WriteRank0(m->comm, v, "damping_ratio", m->np, 1, d, NULL));
+  PetscCall(JRViewerHDF5WriteRank0(m->comm, v, "xi", m->np, 1, m->xi, NULL));
+  PetscCall(JRViewerHDF5WriteRank0(m->comm, v, "amp", m->np * m->nout, m->nout, m->amp, NULL));
+  PetscCall(JRViewerHDF5WriteRank0(m->comm, v, "a", m->np * m->n, m->n, m->as, NULL));
+  PetscCall(JRViewerHDF5WriteRank0(m->comm, v, "balance", m->np, 1, m->bal, NULL));
+  PetscCall(JRViewerHDF5WriteRank0(m->comm, v, "newton_its", m->np, 1, NULL, m->its));
   PetscCall(PetscFree2(f, d));
   PetscCall(PetscViewerDestroy(&v));
   PetscCall(JRFileRename(m->comm, tmp, h5));

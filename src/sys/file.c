@@ -247,3 +247,25 @@ PetscErrorCode JRFreeAligned(void *ptr)
   *(void **)ptr = NULL;
   PetscFunctionReturn(0);
 }
+
+/* JRViewerHDF5WriteRank0 - one dataset written from rank 0's array: len values (reals r, or integers iv as reals),
+   block size bs; the other ranks' arrays are not read (collective) */
+PetscErrorCode JRViewerHDF5WriteRank0(MPI_Comm comm, PetscViewer v, const char name[], PetscInt len, PetscInt bs, const PetscReal r[], const PetscInt iv[])
+{
+  Vec          x;
+  PetscScalar *xa;
+  PetscMPIInt  rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank) len = 0;
+  PetscCall(VecCreateMPI(comm, len, PETSC_DETERMINE, &x));
+  if (bs > 1) PetscCall(VecSetBlockSize(x, bs));
+  PetscCall(PetscObjectSetName((PetscObject)x, name));
+  PetscCall(VecGetArray(x, &xa));
+  for (PetscInt i = 0; i < len; i++) xa[i] = r ? r[i] : (PetscReal)iv[i];
+  PetscCall(VecRestoreArray(x, &xa));
+  PetscCall(VecView(x, v));
+  PetscCall(VecDestroy(&x));
+  PetscFunctionReturn(0);
+}
