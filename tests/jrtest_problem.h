@@ -144,4 +144,26 @@ static PetscErrorCode Options(const char *s)
   PetscFunctionReturn(0);
 }
 
+
+/* One RK4 step dt of the oscillator m x'' + c x' + k x + kt (x - s) = F sin(w t) from time t, then the slip s of its
+   jenkins element (stiffness kt, slip force fs) projected at the new state: an independent reference march */
+static inline void JenkinsOscillatorStep(double m, double c, double k, double kt, double fs, double F, double w, double t, double dt, double *x, double *v, double *s)
+{
+  double k1x, k1v, k2x, k2v, k3x, k3v, k4x, k4v, f;
+#define ACC(xx, vv, tt) ((F * sin(w * (tt)) - c * (vv) - k * (xx) - kt * ((xx) - *s)) / m)
+  k1x = *v;
+  k1v = ACC(*x, *v, t);
+  k2x = *v + 0.5 * dt * k1v;
+  k2v = ACC(*x + 0.5 * dt * k1x, *v + 0.5 * dt * k1v, t + 0.5 * dt);
+  k3x = *v + 0.5 * dt * k2v;
+  k3v = ACC(*x + 0.5 * dt * k2x, *v + 0.5 * dt * k2v, t + 0.5 * dt);
+  k4x = *v + dt * k3v;
+  k4v = ACC(*x + dt * k3x, *v + dt * k3v, t + dt);
+#undef ACC
+  *x += dt / 6.0 * (k1x + 2 * k2x + 2 * k3x + k4x);
+  *v += dt / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
+  f = kt * (*x - *s);
+  if (f > fs) *s = *x - fs / kt;
+  else if (f < -fs) *s = *x + fs / kt;
+}
 #endif

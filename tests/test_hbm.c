@@ -148,22 +148,7 @@ static void TimeIntegrate(double m, double c, double k, double kt, double r, dou
   for (int cyc = 0; cyc < ncyc; cyc++) {
     for (int i = 0; i < nstep; i++) {
       const double t = (cyc * nstep + i) * dt;
-      double       k1x, k1v, k2x, k2v, k3x, k3v, k4x, k4v, f;
-#define ACC(xx, vv, tt) ((F * sin(w * (tt)) - c * (vv) - k * (xx) - kt * ((xx) - s)) / m)
-      k1x = v;
-      k1v = ACC(x, v, t);
-      k2x = v + 0.5 * dt * k1v;
-      k2v = ACC(x + 0.5 * dt * k1x, v + 0.5 * dt * k1v, t + 0.5 * dt);
-      k3x = v + 0.5 * dt * k2v;
-      k3v = ACC(x + 0.5 * dt * k2x, v + 0.5 * dt * k2v, t + 0.5 * dt);
-      k4x = v + dt * k3v;
-      k4v = ACC(x + dt * k3x, v + dt * k3v, t + dt);
-#undef ACC
-      x += dt / 6.0 * (k1x + 2 * k2x + 2 * k3x + k4x);
-      v += dt / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
-      f = kt * (x - s); /* friction: slip when |f| > r */
-      if (f > r) s = x - r / kt;
-      else if (f < -r) s = x + r / kt;
+      JenkinsOscillatorStep(m, c, k, kt, r, F, w, t, dt, &x, &v, &s);
       if (cyc == ncyc - 1) {
         const double th = w * (t + dt);
         X[0] += x / nstep;
