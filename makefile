@@ -107,7 +107,7 @@ deps:
 
 # The pkg-config file: the include and link flags of the PETSc/SLEPc that built the library (it calls
 # HDF5 and LAPACK directly, so SLEPc.pc/PETSc.pc's Libs alone would not link it); compile with ccompiler.
-JR_VERSION := $(shell sed -n 's/^.define JR_VERSION_MAJOR //p' include/jointrom.h).$(shell sed -n 's/^.define JR_VERSION_MINOR //p' include/jointrom.h)
+JR_VERSION := $(shell sed -n 's/^.define JR_VERSION_MAJOR //p' include/jointrom/sys.h).$(shell sed -n 's/^.define JR_VERSION_MINOR //p' include/jointrom/sys.h)
 JR_DEST := $(DESTDIR)$(PREFIX)
 JR_PUBLIC_H := $(wildcard include/jointrom/*.h)
 

@@ -36,7 +36,7 @@ static PetscErrorCode ModelCreate(const char *opts, JRModel *m)
 #define GM_NZ 2
 static const PetscReal GM_LX = 0.06, GM_LY = 0.04, GM_C = 0.01;
 
-static PetscErrorCode WriteGmsh(const char *file, PetscBool bolt, PetscReal dx, const char *skip)
+PETSC_UNUSED static PetscErrorCode WriteGmsh(const char *file, PetscBool bolt, PetscReal dx, const char *skip)
 {
   FILE          *fp;
   const PetscInt nv = (GM_NX + 1) * (GM_NY + 1) * (GM_NZ + 1), nc = GM_NX * GM_NY * GM_NZ, nq = GM_NX * GM_NY;

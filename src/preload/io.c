@@ -235,16 +235,6 @@ PetscErrorCode JRPreloadWrite(JRPreload p, const char base[], PetscBool plot)
   PetscFunctionReturn(0);
 }
 
-typedef struct {
-  PetscReal x;
-  PetscInt  i;
-} XKey;
-static int CompareXKey(const void *a, const void *b)
-{
-  const XKey *p = (const XKey *)a, *q = (const XKey *)b;
-  return (p->x > q->x) - (p->x < q->x);
-}
-
 /* The rows of this program's HDF5 (/preload/x_m, N_static_N, v_gap_m), on every rank: n rows, x (3 n), N, g */
 static PetscErrorCode ReadHDF5(JRPreload p, PetscInt *nrows, PetscReal **xo, PetscReal **No, PetscReal **go)
 {
@@ -339,39 +329,21 @@ static PetscErrorCode ReadTable(JRPreload p, PetscInt *nrows, PetscReal **xo, Pe
 static PetscErrorCode MatchPairs(JRPreload p, const JRPairs *P, PetscInt n, const PetscReal x[], const PetscReal N[], const PetscReal g[])
 {
   PetscInt *used;
-  XKey     *key;
+  JRNearest key;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(n, &key));
+  PetscCall(JRNearestCreate(n, x, &key));
   PetscCall(PetscCalloc1(n, &used));
-  for (PetscInt r = 0; r < n; r++) {
-    key[r].x = x[3 * r];
-    key[r].i = r;
-  }
-  qsort(key, (size_t)n, sizeof(XKey), CompareXKey);
   for (PetscInt i = 0; i < P->n; i++) { /* for each pair, the file row at its position */
-    PetscInt  lo = 0, hi = n, best = -1;
-    PetscReal bd = p->load_tol;
-    while (lo < hi) {
-      const PetscInt mid = (lo + hi) / 2;
-      if (key[mid].x < P->x[3 * i] - p->load_tol) lo = mid + 1;
-      else hi = mid;
-    }
-    for (PetscInt j = lo; j < n && key[j].x <= P->x[3 * i] + p->load_tol; j++) {
-      const PetscInt  r = key[j].i;
-      const PetscReal d = PetscSqrtReal(PetscSqr(x[3 * r] - P->x[3 * i]) + PetscSqr(x[3 * r + 1] - P->x[3 * i + 1]) + PetscSqr(x[3 * r + 2] - P->x[3 * i + 2]));
-      if (d <= bd) {
-        bd   = d;
-        best = r;
-      }
-    }
+    PetscInt best;
+    PetscCall(JRNearestFind(key, P->x + 3 * i, p->load_tol, &best, NULL));
     PetscCheck(best >= 0, p->comm, PETSC_ERR_ARG_WRONG, "-preload_load %s: no row within %g m (-preload_load_tol) of the pair at (%g, %g, %g) m; the file does not match the model's interface", p->load, (double)p->load_tol, (double)P->x[3 * i], (double)P->x[3 * i + 1], (double)P->x[3 * i + 2]);
     PetscCheck(!used[best], p->comm, PETSC_ERR_ARG_WRONG, "-preload_load %s: row %" PetscInt_FMT " matches two pairs (-preload_load_tol %g m is too large)", p->load, best + 1, (double)p->load_tol);
     used[best] = 1;
     p->N[i]    = N[best];
     p->gap[i]  = g[best];
   }
-  PetscCall(PetscFree(key));
+  PetscCall(JRNearestDestroy(&key));
   PetscCall(PetscFree(used));
   PetscFunctionReturn(0);
 }

@@ -84,14 +84,15 @@ typedef struct {
   PetscBool          compare, help, fe, n2n, isrom, loaded, joints, stickfe, plot, set, oset;
   JRModel            model;
   JRPreload          pre;
-  JRInterfaceOptions iopt;
+  JRInterface        itf;
   JRReduce           red;
   JRPost             post;
   JRHBM              hbm, hbmr, hbmc; /* node-to-node (or matrices), reduced, the one whose curves a frf run reports */
   JRCont             cont, contr, contc;
   JRElements         el, elr, elj;   /* node-to-node elements, reduced elements, the joints' members */
   JRVerify           ver;             /* -frf_verify_points: the curves' points checked by time integration */
-  PetscInt          *pair, romm, fdof, nout, odof[21], dir, nd, no;
+  const PetscInt    *pair;           /* each node-to-node element's pair (the interface's) */
+  PetscInt           romm, fdof, nout, odof[21], dir, nd, no;
   PetscReal          at[3], oat[63], fdist;
   char               base[PETSC_MAX_PATH_LEN];
   const char        *romsave, *romload;
@@ -156,7 +157,8 @@ static PetscErrorCode SetFromOptions(FRFRun *r)
     PetscCall(JRPreloadCreate(comm, &r->pre));
     PetscCall(JRPreloadSetModel(r->pre, r->model));
     PetscCall(JRPreloadSetFromOptions(r->pre));
-    PetscCall(JRInterfaceSetFromOptions(comm, &r->iopt));
+    PetscCall(JRInterfaceCreate(comm, &r->itf));
+    PetscCall(JRInterfaceSetFromOptions(r->itf));
     PetscCall(JRReduceCreate(comm, &r->red));
     PetscCall(JRReduceSetFromOptions(r->red));
     PetscCall(JRReduceGetRequest(r->red, &r->joints, &r->romm, NULL, &r->romsave, &r->romload));
@@ -274,18 +276,15 @@ static PetscErrorCode SetUpInterface(FRFRun *r)
     PetscCall(JRPreloadWrite(r->pre, pbase, r->plot));
   }
   PetscCall(PetscLogStagePush(JR_StageInterface));
-  PetscCall(JRInterfaceCreateElements(r->model, r->pre, &r->iopt, &r->el, &r->pair));
+  {
+    const JRElements *el;
+    PetscCall(JRInterfaceSetUp(r->itf, r->model, r->pre));
+    PetscCall(JRInterfaceGetElements(r->itf, &el, &r->pair));
+    PetscCall(JRElementsDuplicate(el, &r->el));
+  }
   PetscCall(JRReduceAssignJoints(r->red, r->model, &r->el, r->pair));
   PetscCall(PetscLogStagePop());
-  {
-    PetscReal nsum = 0, nmin = PETSC_MAX_REAL, nmax = -PETSC_MAX_REAL;
-    for (PetscInt e = 0; e < r->el.n; e++) {
-      nsum += r->el.n0[e];
-      nmin = PetscMin(nmin, r->el.n0[e]);
-      nmax = PetscMax(nmax, r->el.n0[e]);
-    }
-    PetscCall(PetscPrintf(comm, "interface: %" PetscInt_FMT " %s elements (kt %g N/m, kn %g N/m, mu %g), n0 %.4g .. %.4g N, sum %.6g N\n", r->el.n, r->el.typename[0], (double)r->el.kt[0], (double)r->el.kn[0], (double)r->el.mu[0], (double)nmin, (double)nmax, (double)nsum));
-  }
+  PetscCall(JRInterfaceView(r->itf, NULL));
   if (r->el.joint) {
     r->isrom = PETSC_TRUE;
     PetscCall(JRElementsDuplicate(&r->el, &r->elj)); /* the joints, reduced below */
@@ -488,7 +487,7 @@ static PetscErrorCode Destroy(FRFRun *r)
   PetscCall(JRElementsDestroy(&r->el));
   PetscCall(JRElementsDestroy(&r->elr));
   PetscCall(JRElementsDestroy(&r->elj));
-  PetscCall(PetscFree(r->pair));
+  PetscCall(JRInterfaceDestroy(&r->itf));
   PetscCall(JRModelDestroy(&r->model));
   PetscFunctionReturn(0);
 }

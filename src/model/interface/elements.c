@@ -161,3 +161,68 @@ PetscErrorCode JRElementsDuplicate(const JRElements *a, JRElements *b)
   }
   PetscFunctionReturn(0);
 }
+
+/*
+  JRElementsCreateStuckStiffness - Ks: the springs of every friction element in contact at rest (n0 > 0) stuck,
+  kt along its tangential direction and kn along its normal one (jenkins_nv), between its DOFs, as a
+  matrix of K's layout (add it with MatAXPY(..., DIFFERENT_NONZERO_PATTERN)); sig: a signature of the set
+  (sum of the springs' stiffness over the elements and their DOFs) that identifies it in saved modes.
+*/
+PetscErrorCode JRElementsCreateStuckStiffness(Mat K, const JRElements *el, Mat *Ks, PetscReal *sig)
+{
+  PetscInt  *bn, **bd, nb = 0;
+  PetscReal **bv, sg = 0.0;
+
+  PetscFunctionBeginUser;
+  if (el->members) el = el->members; /* a reduced model: its basis is that of the node-to-node elements */
+  PetscCall(PetscMalloc3(el->n, &bn, el->n, &bd, el->n, &bv));
+  for (PetscInt e = 0; e < el->n; e++) {
+    const char     *ty  = el->typename[el->type[e]];
+    const PetscBool nv  = (PetscBool)!strcmp(ty, JRCONTACTJENKINSNV);
+    const PetscReal kn  = nv ? el->kn[e] : 0.0;
+    PetscInt        d[6], m = 0;
+    PetscReal       v[6][2]; /* per DOF: its weight in u and in v */
+    if (!(el->n0[e] > 0) || !(nv || !strcmp(ty, JRCONTACTJENKINS))) continue;
+    if (el->vdof_a) {
+      for (PetscInt c = 0; c < 3; c++) {
+        d[m]      = el->vdof_a[3 * e + c];
+        v[m][0]   = el->tdir[3 * e + c];
+        v[m++][1] = el->ndir[3 * e + c];
+      }
+      for (PetscInt c = 0; c < 3; c++) {
+        d[m]      = el->vdof_b[3 * e + c];
+        v[m][0]   = -el->tdir[3 * e + c];
+        v[m++][1] = -el->ndir[3 * e + c];
+      }
+    } else {
+      const PetscInt dd[4] = {el->dof_a[e], el->dof_b[e], nv ? el->ndof_a[e] : -1, nv ? el->ndof_b[e] : -1};
+      const PetscReal wt[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+      for (PetscInt k = 0; k < 4; k++) {
+        PetscInt j;
+        if (dd[k] < 0) continue;
+        for (j = 0; j < m; j++)
+          if (d[j] == dd[k]) break;
+        if (j == m) {
+          d[m]    = dd[k];
+          v[m][0] = v[m][1] = 0.0;
+          m++;
+        }
+        v[j][0] += wt[k][0];
+        v[j][1] += wt[k][1];
+      }
+    }
+    bn[nb] = m;
+    PetscCall(PetscMalloc2(m, &bd[nb], m * m, &bv[nb]));
+    for (PetscInt i = 0; i < m; i++) {
+      bd[nb][i] = d[i];
+      for (PetscInt j = 0; j < m; j++) bv[nb][i * m + j] = el->kt[e] * v[i][0] * v[j][0] + kn * v[i][1] * v[j][1];
+      sg += (el->kt[e] + kn) * (1.0 + 1e-7 * (PetscReal)d[i]);
+    }
+    nb++;
+  }
+  PetscCall(JRMatCreateFromBlocks(K, nb, bn, (const PetscInt *const *)bd, (const PetscReal *const *)bv, Ks));
+  for (PetscInt b = 0; b < nb; b++) PetscCall(PetscFree2(bd[b], bv[b]));
+  PetscCall(PetscFree3(bn, bd, bv));
+  if (sig) *sig = sg;
+  PetscFunctionReturn(0);
+}

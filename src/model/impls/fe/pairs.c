@@ -58,17 +58,6 @@ static PetscErrorCode SurfaceNormal(DM dm, const char *label, PetscInt val, Pets
   PetscFunctionReturn(0);
 }
 
-typedef struct {
-  PetscReal x;
-  PetscInt  i;
-} XKey;
-
-static int CompareXKey(const void *a, const void *b)
-{
-  const XKey *p = (const XKey *)a, *q = (const XKey *)b;
-  return (p->x > q->x) - (p->x < q->x);
-}
-
 /* The pairs' tangent: the beam axis x (or y, -model_tangent) projected on the interface plane */
 static PetscErrorCode PairTangent(JRModel m, const Model_FE *fe, const PetscReal nrm[3], PetscReal t[3])
 {
@@ -85,37 +74,13 @@ static PetscErrorCode PairTangent(JRModel m, const Model_FE *fe, const PetscReal
   PetscFunctionReturn(0);
 }
 
-/* The B node nearest to xa within tol (the last of equals in x order), or -1; its distance in *dist
-   (tol if none). kb: B's nodes sorted by x, a window search. */
-static PetscInt NearestNode(PetscInt nb, const XKey *kb, const PetscReal *xb, const PetscReal xa[3], PetscReal tol, PetscReal *dist)
-{
-  PetscInt  lo = 0, hi = nb, best = -1;
-  PetscReal bd = tol;
-
-  while (lo < hi) { /* first B node with x >= xa - tol */
-    const PetscInt mid = (lo + hi) / 2;
-    if (kb[mid].x < xa[0] - tol) lo = mid + 1;
-    else hi = mid;
-  }
-  for (PetscInt j = lo; j < nb && kb[j].x <= xa[0] + tol; j++) {
-    const PetscInt  b = kb[j].i;
-    const PetscReal r = PetscSqrtReal(PetscSqr(xa[0] - xb[3 * b]) + PetscSqr(xa[1] - xb[3 * b + 1]) + PetscSqr(xa[2] - xb[3 * b + 2]));
-    if (r <= bd) {
-      bd   = r;
-      best = b;
-    }
-  }
-  *dist = bd;
-  return best;
-}
-
 /* Pair every node of contact surface A with the nearest node of B within -model_pair_tol; the normal is
    surface A's outward normal (from A into B), the tangent from PairTangent(). */
 PetscErrorCode JRFEFindPairs(JRModel m, Model_FE *fe)
 {
   PetscInt   na, nb, *da, *db, np = 0, *usedB;
   PetscReal *xa, *xb, *wa, tol = fe->pairtol, nrm[3], dev = 0.0, t[3], dmax = 0.0;
-  XKey      *kb;
+  JRNearest  kb;
   JRPairs   *P = &m->pairs;
 
   PetscFunctionBeginUser;
@@ -128,18 +93,14 @@ PetscErrorCode JRFEFindPairs(JRModel m, Model_FE *fe)
   PetscCall(SurfaceNormal(fe->dm, JR_LABEL_CONTACT, 1, nrm, &dev, &fe->contact_area));
   PetscCheck(dev < 1e-6, m->comm, PETSC_ERR_SUP, "The contact surface is not plane (its face normals differ by up to %g degrees): node-to-node pairs need a plane interface", (double)(dev * 180 / PETSC_PI));
   PetscCall(PairTangent(m, fe, nrm, t));
-  PetscCall(PetscMalloc1(PetscMax(nb, 1), &kb));
+  PetscCall(JRNearestCreate(nb, xb, &kb));
   PetscCall(PetscCalloc1(PetscMax(nb, 1), &usedB));
-  for (PetscInt i = 0; i < nb; i++) {
-    kb[i].x = xb[3 * i];
-    kb[i].i = i;
-  }
-  qsort(kb, (size_t)nb, sizeof(XKey), CompareXKey);
   PetscCall(PetscMalloc5(3 * PetscMax(na, 1), &P->x, 3 * PetscMax(na, 1), &P->t, 3 * PetscMax(na, 1), &P->nrm, 3 * PetscMax(na, 1), &P->dofA, 3 * PetscMax(na, 1), &P->dofB));
   PetscCall(PetscMalloc2(PetscMax(na, 1), &P->area, PetscMax(na, 1), &P->gap0));
   for (PetscInt a = 0; a < na; a++) {
-    PetscReal      bd;
-    const PetscInt best = NearestNode(nb, kb, xb, xa + 3 * a, tol, &bd);
+    PetscReal bd;
+    PetscInt  best;
+    PetscCall(JRNearestFind(kb, xa + 3 * a, tol, &best, &bd));
     if (best < 0 || usedB[best]) continue;
     usedB[best] = 1;
     dmax        = PetscMax(dmax, bd);
@@ -157,7 +118,7 @@ PetscErrorCode JRFEFindPairs(JRModel m, Model_FE *fe)
   P->n        = np;
   fe->pairgap = dmax;
   PetscCheck(np == na && np == nb, m->comm, PETSC_ERR_ARG_WRONG, "Contact surfaces do not face each other node to node: %" PetscInt_FMT " nodes on surface A, %" PetscInt_FMT " on B, %" PetscInt_FMT " pairs within %g m (-model_pair_tol)", na, nb, np, (double)tol);
-  PetscCall(PetscFree(kb));
+  PetscCall(JRNearestDestroy(&kb));
   PetscCall(PetscFree(usedB));
   PetscCall(PetscFree2(xa, da));
   PetscCall(PetscFree(wa));
