@@ -199,7 +199,8 @@ static PetscErrorCode Plot(JRCont c, const Outputs *o, const char csv[], const c
   JRPostWriteCurves - the curves of c: BASE.h5 (every point), BASE.csv (level,F_N,omega_rad_s,freq_hz,amp_1..amp_n[,pp_1..pp_n],stable: the
   responses by their index, 1-based) and BASE.png (response 1). The HDF5 group /response_<i> names response i:
   its point x_m, y_m, z_m and direction (JRHBMSetOutputPoints: an FE model) or its dof (a matrices model).
-  BASE is -frf_output_file or JRContSetOutputBase ('' for none); -frf_plot 0 leaves out the PNG.
+  BASE is the curves' own (-frf_output_file or JRContSetOutputBase, '' for none: in -task compare each model's), not
+  post's; -frf_plot 0 leaves out the PNG.
 */
 PetscErrorCode JRPostWriteCurves(JRPost post, JRCont c)
 {
