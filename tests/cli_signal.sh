@@ -32,6 +32,7 @@ signal() {
 catch() {
   local d=$1 sig=$2 pat=$3 seen=finished pid rc
   shift 3
+  set -m # job control again in this subshell ($(catch ...)): else the background run starts with SIGINT ignored
   "$@" > "$d/log" 2>&1 &
   pid=$!
   while kill -0 $pid 2> /dev/null; do
