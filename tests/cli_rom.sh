@@ -40,6 +40,15 @@ jl=$(echo "$o" | grep '^rom: joint [0-9]*:' | sed -E 's/.*normal load ([^ ]+) N 
 read jls jsh jout <<< "$jl"
 pm=$(echo "$o" | grep '^rom partition '); pj=$(field "$pm" joints)
 check "[ -n '$pt' ] && close $jls $pt 1e-5 && close $jsh 100 0.01 && [ '$jout' = 0 ] && [ '$pj' = 6 ]" "joints' report (sides): loads add up to $jls N = the preload's $pt N, shares to $jsh%, centroids on the lap, partition line: $pm"
+# -rom_joints auto: 2 rings of equal load around each of the 3 bolts, each cut at the bolt's axis: 12 joints, all
+# 133 members; by construction each bolt's inner ring carries at most half its load and the next member would take it
+# past half (so the inner rings together carry 40-50% here); the same report on 1 and 2 ranks
+ba="-task frf $brb -frf_force 0.1 -rom_joints auto -cont_max_points 3 -cont_allow_partial -frf_output_file ''"
+oa1=$(eval $J $ba 2>&1); oa2=$(eval mpiexec -n 2 $J $ba 2>&1)
+ra() { echo "$1" | grep -E '^rom(: joint [0-9]|: partition| partition)'; }
+pa=$(echo "$oa2" | grep '^rom partition '); ls=$(field "$pa" load_share)
+na=$(echo "$oa2" | grep -c '^rom: joint [0-9]*:.*ring'); ma=$(echo "$oa2" | awk '/^rom: joint [0-9]+:/{s += $4} END{print s}')
+check "[ '$na' = 12 ] && [ '$ma' = 133 ] && [ \"\$(field \"\$pa\" high_load_joints)\" = 6 ] && lt '$ls' 0.5000001 && lt 0.4 '$ls' && [ \"\$(ra \"\$oa1\")\" = \"\$(ra \"\$oa2\")\" ]" "-rom_joints auto: 12 ring joints of 133 members, the inner rings carry $ls of the preload (at most half), the same report on 1 and 2 ranks"
 c=$(echo "$o" | grep '^rom stiffness_correction')
 check "[ -f '$tmp/s0_compare.csv' ] && [ \$(grep -c . '$tmp/s0_compare.csv') = 6 ] && [ \$(echo \"\$o\" | grep -c '^compare level') = 5 ]" "compare: BASE_compare.csv with 5 levels and 5 'compare level' lines"
 # where the solve time goes: the elements' part of each model's solve lies within that solve (no timing is compared)
@@ -119,6 +128,8 @@ expect_error "missing ROM file" "no such file" $J -task frf $brb -frf_force 1 -r
 expect_error "ROM of another mesh" "another mesh" $J -task frf ${brb/-model_mesh_h 0.01/-model_mesh_h 0.012} -frf_force 1 -rom_load "$tmp/rom.h5" -frf_output_file ''
 expect_error "overlapping regions" "the regions overlap" $J -task frf $brb -frf_force 1 -rom_joints boxes -rom_boxes 0,0.37,-1,1,0.33,1,-1,1 -frf_output_file ''
 expect_error "element in no region" "lies in no box" $J -task frf $brb -frf_force 1 -rom_joints boxes -rom_boxes 0,0.33,-1,1,0.37,1,-1,1 -frf_output_file ''
+expect_error "rings without auto" "-rom_auto_rings needs -rom_joints auto" $J -task frf $brb -frf_force 1 -rom_joints zones -rom_auto_rings 3 -frf_output_file ''
+expect_error "no rings" "-rom_auto_rings 0: 1 to 8 rings per bolt" $J -task frf $brb -frf_force 1 -rom_joints auto -rom_auto_rings 0 -frf_output_file ''
 expect_error "empty joint" "holds no element: an empty joint" $J -task frf $brb -frf_force 1 -rom_joints boxes -rom_boxes 0,0.36,-1,1,0.36001,1,-1,1,5,6,-1,1 -frf_output_file ''
 expect_error "compare without joints" "-task compare needs a reduced model" $J -task compare $brb -frf_force 1 -frf_output_file ''
 # jenkins_nv with open pairs (lap3, zones, first reduction): a joint moves with the average of its members in

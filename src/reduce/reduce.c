@@ -25,12 +25,17 @@
              and a low-load zone (the rest, gaps included)
     boxes    boxes -rom_boxes x0,x1,y0,y1, x0,x1,y0,y1, ... [m], one joint each: every element must lie in exactly
              one box
+    auto     from the normal load at rest: every element belongs to its nearest bolt (in the interface's plane) and
+             to a ring around it by load level, -rom_auto_rings k rings per bolt (default 2) whose radii split the
+             bolt's load into k equal parts (the innermost ring carries the first 1/k of it; the outermost also holds
+             every member beyond, gaps included); each ring is cut at the bolt's axis into its two sides: 2k joints
+             per bolt. The inner half of the rings are the high-load joints.
   and -rom_split_width splits every strip-type region at mid-width. Each region must hold elements (else an error
   naming it); its members move with the average of their relative motions (4.4).
 */
-static const char *const JointKinds[] = {"none", "each", "strips", "bolts", "between", "sides", "zones", "boxes"};
+static const char *const JointKinds[] = {"none", "each", "strips", "bolts", "between", "sides", "zones", "boxes", "auto"};
 /* what a region of each kind is, in the joints' report: the regions between the cuts along the beam axis */
-static const char *const RegionWords[] = {"", "element", "strip", "bolt region", "span", "bolt side", "bolt side", "box"};
+static const char *const RegionWords[] = {"", "element", "strip", "bolt region", "span", "bolt side", "bolt side", "box", "ring"};
 
 /* -rom_joints boxes: element e in the one box that holds its pair's point; *nreg boxes, cnt[] their members */
 static PetscErrorCode AssignBoxes(JRReduce o, const JRPairs *P, JRElements *el, const PetscInt pair[], PetscInt *nreg, PetscInt **cnt)
@@ -62,6 +67,76 @@ static PetscErrorCode AssignBoxes(JRReduce o, const JRPairs *P, JRElements *el, 
     o->ji[b].zone = -1;
     PetscCall(PetscSNPrintf(o->ji[b].kind, sizeof(o->ji[b].kind), "box %g..%g, %g..%g m", (double)box[4 * b], (double)box[4 * b + 1], (double)box[4 * b + 2], (double)box[4 * b + 3]));
   }
+  PetscFunctionReturn(0);
+}
+
+/* -rom_joints auto: rings of equal load around each bolt, each cut at the bolt's axis (the members sorted by their
+   distance from their nearest bolt, ties by index, so every rank assigns the same) */
+static PetscErrorCode AssignAuto(JRReduce o, JRModel model, const JRPairs *P, JRElements *el, const PetscInt pair[], PetscInt *nreg, PetscInt **cnt)
+{
+  MPI_Comm       comm = o->comm;
+  const PetscInt k    = o->rings;
+  const JRBolts *B;
+  PetscInt      *bolt, *ord, *bx, nb;
+  PetscReal     *rad, *ltot, lsum = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetBolts(model, &B));
+  PetscCheck(B && B->n > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints auto needs a model with bolts");
+  nb = B->n;
+  PetscCall(PetscMalloc5(el->n, &bolt, el->n, &ord, el->n, &rad, nb, &ltot, nb, &bx));
+  for (PetscInt b = 0; b < nb; b++) bx[b] = b; /* the bolts in order of x */
+  for (PetscInt b = 1; b < nb; b++)
+    for (PetscInt c = b; c > 0 && B->x[3 * bx[c]] < B->x[3 * bx[c - 1]]; c--) {
+      const PetscInt t = bx[c];
+      bx[c]            = bx[c - 1];
+      bx[c - 1]        = t;
+    }
+  for (PetscInt b = 0; b < nb; b++) ltot[b] = 0;
+  for (PetscInt e = 0; e < el->n; e++) {
+    const PetscReal *x = P->x + 3 * pair[e];
+    bolt[e]            = -1;
+    for (PetscInt b = 0; b < nb; b++) {
+      const PetscReal *xb = B->x + 3 * bx[b], d = PetscSqrtReal(PetscSqr(x[0] - xb[0]) + PetscSqr(x[1] - xb[1]));
+      if (bolt[e] < 0 || d < rad[e]) {
+        bolt[e] = b;
+        rad[e]  = d;
+      }
+    }
+    ord[e] = e;
+    if (el->n0[e] > 0) ltot[bolt[e]] += el->n0[e];
+  }
+  for (PetscInt a = 1; a < el->n; a++) /* by bolt, then distance, then index (insertion sort: stable) */
+    for (PetscInt c = a; c > 0; c--) {
+      const PetscInt i = ord[c], j = ord[c - 1];
+      if (!(bolt[i] < bolt[j] || (bolt[i] == bolt[j] && rad[i] < rad[j]))) break;
+      ord[c]     = j;
+      ord[c - 1] = i;
+    }
+  for (PetscInt a = 0, b = -1, ring = 0; a < el->n; a++) {
+    const PetscInt   e = ord[a];
+    const PetscReal *x = P->x + 3 * pair[e];
+    if (bolt[e] != b) {
+      b    = bolt[e];
+      ring = 0;
+      lsum = 0;
+    }
+    /* the ring: the first whose share of the bolt's load is not yet filled when this member's load is counted */
+    if (el->n0[e] > 0) lsum += el->n0[e];
+    while (ring < k - 1 && lsum > (ring + 1) * ltot[b] / k * (1 + 1e-12)) ring++;
+    el->joint[e] = (2 * b + (x[0] < B->x[3 * bx[b]] ? 0 : 1)) * k + ring;
+  }
+  *nreg = 2 * nb * k;
+  PetscCall(PetscCalloc1(*nreg, cnt));
+  for (PetscInt e = 0; e < el->n; e++) (*cnt)[el->joint[e]]++;
+  PetscCall(PetscCalloc1(*nreg, &o->ji));
+  for (PetscInt r = 0; r < *nreg; r++) {
+    const PetscInt b = r / (2 * k), side = (r / k) % 2, ring = r % k;
+    o->ji[r].zone    = k > 1 ? (2 * ring < k ? 1 : 0) : -1;
+    PetscCall(PetscSNPrintf(o->ji[r].kind, sizeof(o->ji[r].kind), "ring %" PetscInt_FMT " of %" PetscInt_FMT " of bolt %" PetscInt_FMT ", %s side%s", ring + 1, k, b + 1, side ? "+x" : "-x", k > 1 ? (2 * ring < k ? ", high-load" : ", low-load") : ""));
+    PetscCheck((*cnt)[r] > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints auto: %s holds no element: an empty joint (fewer -rom_auto_rings)", o->ji[r].kind);
+  }
+  PetscCall(PetscFree5(bolt, ord, rad, ltot, bx));
   PetscFunctionReturn(0);
 }
 
@@ -212,7 +287,7 @@ static PetscErrorCode JointReport(JRReduce o, const JRElements *el)
     if (len < sizeof(list) - 24) PetscCall(PetscSNPrintf(list + len, sizeof(list) - len, "%s%" PetscInt_FMT, len ? "," : "", j));
   }
   if (o->joints == 1) PetscFunctionReturn(0);
-  PetscCall(PetscPrintf(comm, "rom: partition %s: %" PetscInt_FMT " high-load joints (%s, %s) hold %" PetscInt_FMT " of %" PetscInt_FMT " members (%.1f%%), %" PetscInt_FMT " of %" PetscInt_FMT " in contact (%.1f%%) and %.1f%% of the preload; %" PetscInt_FMT " low-load joints the rest\n", JointKinds[o->joints], nh, nh ? list : "none", o->joints == 6 ? "the zones' high-load joints" : "more load per member than the interface's mean", mh, el->n, (double)(100.0 * mh / el->n), ch, ctot, (double)(ctot ? 100.0 * ch / ctot : 0), (double)(ltot > 0 ? 100 * lh / ltot : 0), o->nji - nh));
+  PetscCall(PetscPrintf(comm, "rom: partition %s: %" PetscInt_FMT " high-load joints (%s, %s) hold %" PetscInt_FMT " of %" PetscInt_FMT " members (%.1f%%), %" PetscInt_FMT " of %" PetscInt_FMT " in contact (%.1f%%) and %.1f%% of the preload; %" PetscInt_FMT " low-load joints the rest\n", JointKinds[o->joints], nh, nh ? list : "none", o->joints == 6 ? "the zones' high-load joints" : o->joints == 8 ? "the inner rings" : "more load per member than the interface's mean", mh, el->n, (double)(100.0 * mh / el->n), ch, ctot, (double)(ctot ? 100.0 * ch / ctot : 0), (double)(ltot > 0 ? 100 * lh / ltot : 0), o->nji - nh));
   PetscCall(PetscPrintf(comm, "rom partition joints %" PetscInt_FMT " high_load_joints %" PetscInt_FMT " member_share %.4f contact_share %.4f load_share %.4f\n", o->nji, nh, (double)((PetscReal)mh / el->n), (double)(ctot ? (PetscReal)ch / ctot : 0), (double)(ltot > 0 ? lh / ltot : 0)));
   PetscFunctionReturn(0);
 }
@@ -235,6 +310,7 @@ static PetscErrorCode AssignJoints(JRReduce o, JRModel model, const JRPairs *P, 
       PetscCall(PetscStrncpy(o->ji[e].kind, RegionWords[1], sizeof(o->ji[e].kind)));
     }
   } else if (o->joints == 7) PetscCall(AssignBoxes(o, P, el, pair, &nreg, &cnt));
+  else if (o->joints == 8) PetscCall(AssignAuto(o, model, P, el, pair, &nreg, &cnt));
   else PetscCall(AssignCuts(o, model, P, el, pair, &nreg, &cnt));
   el->njoints = nreg;
   PetscCall(PetscMalloc1(3 * el->n + 1, &x));
@@ -506,6 +582,7 @@ PetscErrorCode JRReduceCreate(MPI_Comm comm, JRReduce *red)
   PetscCall(PetscNew(&r));
   r->comm          = comm;
   r->zone_fraction = 0.5;
+  r->rings         = 2;
   r->mode_weights  = PETSC_TRUE;
   r->corr_on       = PETSC_TRUE;
   r->nst           = 3;
@@ -533,7 +610,7 @@ PetscErrorCode JRReduceDestroy(JRReduce *red)
 
 /*
   JRReduceSetFromOptions - every option of the reduction, read and checked once: the joints (-rom_joints, -rom_strips,
-  -rom_boxes, -rom_zone_fraction, -rom_split_width), -rom_elements, -rom_mode_weights, -rom_fit_select (with
+  -rom_boxes, -rom_zone_fraction, -rom_auto_rings, -rom_split_width), -rom_elements, -rom_mode_weights, -rom_fit_select (with
   -rom_fit_select_total, -rom_fit_select_case), -rom_stiffness_correction, -rom_save, -rom_load, and the fit's
   (JRROMFitSetFromOptions: -rom_fit_*, -rom_joint_motion)
 */
@@ -541,17 +618,18 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
 {
   const char *sel[] = {"none", "first"};
   MPI_Comm    comm    = r->comm;
-  PetscBool   set, bset, st, sc;
+  PetscBool   set, bset, st, sc, rset;
   PetscInt    nst = 8, nsc = 8;
 
   PetscFunctionBeginUser;
   r->ncut = 64;
   r->nbox = 256;
   PetscOptionsBegin(comm, "rom_", "Reduced-order joints (prefix rom_)", "JRReduce");
-  PetscCall(PetscOptionsEList("-joints", "First reduction, the joints: none (node-to-node), each, strips (-rom_strips cuts), bolts, between, sides, zones (per bolt side and load), boxes (-rom_boxes)", "JRReduceAssignJoints", JointKinds, 8, JointKinds[r->joints], &r->joints, NULL));
+  PetscCall(PetscOptionsEList("-joints", "First reduction, the joints: none (node-to-node), each, strips (-rom_strips cuts), bolts, between, sides, zones (per bolt side and load), boxes (-rom_boxes), auto (rings of equal load around each bolt, -rom_auto_rings)", "JRReduceAssignJoints", JointKinds, 9, JointKinds[r->joints], &r->joints, NULL));
   PetscCall(PetscOptionsRealArray("-strips", "Cut positions along the beam axis x1,x2,... [m], increasing", "JRReduceAssignJoints", r->cut, &r->ncut, &set));
   PetscCall(PetscOptionsRealArray("-boxes", "Boxes x0,x1,y0,y1 per joint [m]", "JRReduceAssignJoints", r->box, &r->nbox, &bset));
   PetscCall(PetscOptionsReal("-zone_fraction", "-rom_joints zones: the high-load zone of a bolt side holds the members with n0 at least this fraction of the side's largest", "JRReduceAssignJoints", r->zone_fraction, &r->zone_fraction, NULL));
+  PetscCall(PetscOptionsInt("-auto_rings", "-rom_joints auto: rings of equal load per bolt (each cut into the bolt's two sides)", "JRReduceAssignJoints", r->rings, &r->rings, &rset));
   PetscCall(PetscOptionsBool("-split_width", "Split every strip at mid-width into two joints", "JRReduceAssignJoints", r->split_width, &r->split_width, NULL));
   PetscCall(PetscOptionsInt("-elements", "Second reduction: fit this many elements per joint to its hysteresis loops (0: the first reduction only)", "JRReduceSetUp", r->m, &r->m, NULL));
   PetscCall(PetscOptionsBool("-mode_weights", "Weight every member of a joint by its motion relative to the joint's in the stuck mode of interest (w^2 kt, |w| f; jenkins)", "JRReduceSetUp", r->mode_weights, &r->mode_weights, NULL));
@@ -568,6 +646,8 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
   if (sc) r->nsc = nsc;
   PetscCheck(!set || r->joints == 2, comm, PETSC_ERR_ARG_INCOMP, "-rom_strips needs -rom_joints strips");
   PetscCheck(!bset || r->joints == 7, comm, PETSC_ERR_ARG_INCOMP, "-rom_boxes needs -rom_joints boxes");
+  PetscCheck(!rset || r->joints == 8, comm, PETSC_ERR_ARG_INCOMP, "-rom_auto_rings needs -rom_joints auto");
+  PetscCheck(r->rings >= 1 && r->rings <= 8, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_auto_rings %" PetscInt_FMT ": 1 to 8 rings per bolt", r->rings);
   PetscCheck(!r->split_width || (r->joints >= 2 && r->joints <= 6), comm, PETSC_ERR_ARG_INCOMP, "-rom_split_width needs -rom_joints strips, bolts, between, sides or zones");
   PetscCheck(r->zone_fraction > 0 && r->zone_fraction < 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_zone_fraction %g: between 0 and 1", (double)r->zone_fraction);
   PetscCheck(r->joints != 2 || r->ncut > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints strips needs the cuts -rom_strips x1,x2,... [m]");

@@ -16,7 +16,8 @@ struct _p_JRReduce {
   MPI_Comm  comm;
   PetscBool setfromoptions;
   /* first reduction: the joints (-rom_joints ...) */
-  PetscInt  joints; /* 0 none, 1 each, 2 strips, 3 bolts, 4 between, 5 sides, 6 zones, 7 boxes */
+  PetscInt  joints; /* 0 none, 1 each, 2 strips, 3 bolts, 4 between, 5 sides, 6 zones, 7 boxes, 8 auto */
+  PetscInt  rings;  /* -rom_auto_rings */
   PetscInt  ncut, nbox;
   PetscReal cut[64], box[256], zone_fraction;
   PetscBool split_width;
