@@ -190,6 +190,11 @@ for jm in mean linear; do
 done
 check "[ -n '$f_linear' ] && awk -v m='$f_mean' -v l='$f_linear' -v n='$fn' 'BEGIN{exit !(m < 0.6 * n && l <= n * (1 + 1e-9) && l > 0.99 * n)}' && [ '$ne' -le 36 ]" "jenkins_nv lap1, 4 zone joints x 3 elements ($ne spread elements): stuck mode with the mean $f_mean Hz (a hinge), with the linear field $f_linear Hz, node-to-node $fn Hz (within 1%)"
 
+# -rom_joints auto with one ring per bolt is the single bolt's two sides, the partition -rom_joints between cuts at
+# the bolt's axis (Fig 5.25) by another path: the same members and loads per joint, the same factor
+jb() { $J -options_file runs/lap1_rom.opts -model_mesh_h 0.008 -preload_load $tmp/l1_preload.h5 -modes_load $tmp/l1_modes.h5 -task frf -frf_force 0.01 -cont_max_points 3 -cont_allow_partial -frf_plot 0 -cont_monitor 0 -frf_output_file '' "$@" 2>&1 | grep -E '^rom(: joint [0-9]| stiffness_correction)' | sed 's/ m, .*/ m/'; }
+ob=$(jb -rom_joints between); oa=$(jb -rom_joints auto -rom_auto_rings 1)
+check "[ \$(echo \"\$ob\" | grep -c '^rom: joint') = 2 ] && [ \"\$ob\" = \"\$oa\" ]" "jenkins_nv lap1, -rom_joints auto with 1 ring = between: $(echo "$oa" | grep -c '^rom: joint') joints, the same members, loads, centroids and factor ($(field "$(echo "$oa" | grep stiffness_correction)" stiffness_correction))"
 # -rom_fit_stiffness_weight (1e4): each joint's stuck loop weighed enough holds its members' stuck stiffness (sum k_i
 # = sum w^2 kt), so the reduced model's stuck stiffness matrix is the first reduction's and so is its stuck resonance
 # (same basis, LAPACK); with a weight of 10 the fit gives a little of it away for the loops

@@ -252,8 +252,9 @@ static PetscErrorCode JointName(JRReduce o, PetscInt j, char buf[], size_t len)
 /*
   The joints' report: per joint its members (those in contact at rest), the normal load they carry at rest and its
   share of the interface's (the preload), their centroid and the region; then how the partition splits the members
-  between high-load and low-load joints: -rom_joints zones by its zones, any other partition by load per member (a
-  joint is high-load when its members carry more than the interface's mean per member). Rank 0 prints; every rank has
+  between high-load and low-load joints: -rom_joints zones by its zones, auto by its rings (the inner half), any other
+  partition by load per member (a joint is high-load when its members carry more than the interface's mean per
+  member). Rank 0 prints; every rank has
   every element, so the lines do not depend on the ranks.
 */
 static PetscErrorCode JointReport(JRReduce o, const JRElements *el)
