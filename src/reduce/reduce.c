@@ -364,7 +364,7 @@ static PetscErrorCode TargetMode(JRReduce red, JRHBM hbm, PetscInt *k, PetscReal
 static PetscErrorCode StiffnessJoints(JRReduce red, JRHBM hbm, JRHBM hr, const JRElements *elx, PetscInt k, PetscReal c, PetscReal fr, PetscReal ft)
 {
   MPI_Comm          comm = red->comm;
-  const JRElements *mem  = elx->members ? elx->members : elx;
+  const JRElements *mem  = elx->members ? elx->members : elx, *eln;
   const PetscInt    nj   = elx->njoints;
   const PetscBool   bad  = (PetscBool)(c == 0 || c < 0.9 || c > 1.1);
   const PetscReal   sgn  = (c == 0 || c > 1) ? 1.0 : -1.0;
@@ -376,7 +376,8 @@ static PetscErrorCode StiffnessJoints(JRReduce red, JRHBM hbm, JRHBM hr, const J
   PetscFunctionBeginUser;
   PetscCall(JRHBMGetSizes(hbm, &nm, NULL, NULL));
   PetscCall(JRHBMGetSizes(hr, &nmr, NULL, NULL));
-  if (nm != nmr || !elx->joint || nj < 1 || !mem->joint || mem->njoints != nj) {
+  PetscCall(JRHBMGetElements(hbm, &eln));
+  if (nm != nmr || !elx->joint || nj < 1 || !mem->joint || mem->njoints != nj || !eln || eln->n != mem->n) { /* not the node-to-node model's members: the factor alone */
     if (bad) PetscCall(PetscPrintf(comm, "rom: WARNING stiffness correction %.4g outside [0.9, 1.1] (stuck mode %" PetscInt_FMT ": %.6g Hz reduced, %.6g Hz node-to-node)\n", (double)c, k, (double)fr, (double)ft));
     PetscFunctionReturn(0);
   }
