@@ -22,12 +22,33 @@ lt() { awk -v a="$1" -v b="$2" 'BEGIN{exit !(a != "" && a < b)}'; }
 o=$(mpiexec -n 2 $J -task compare $brb -frf_force $lev -rom_joints each -frf_output_file '' 2>&1)
 read f a <<< "$(worst "$o")"
 check "lt '$f' 1e-9 && lt '$a' 1e-8" "-rom_joints each: reduced = node-to-node at 5 levels, worst peak frequency error $f, amplitude error $a"
+# its stiffness correction: every joint's springs hold the mode's strain energy its member's do, so the factor is 1
+# to round-off and there is no warning
+c=$(field "$(echo "$o" | grep '^rom stiffness_correction')" stiffness_correction); se=$(echo "$o" | grep '^rom stiffness_energy')
+sm=$(field "$se" members_share); sj=$(field "$se" joints_share)
+check "[ -n '$c' ] && close $c 1 1e-9 && close $sj $sm 1e-12 && ! echo \"\$o\" | grep -q 'WARNING stiffness'" "-rom_joints each: stiffness correction $c (1 to 1e-9), the joints' share of the stuck mode's strain energy $sj = the members' $sm, no warning"
 
 # 2. first reduction, 6 joints (each side of each bolt), members weighted by their motion in the stuck mode
 o=$(mpiexec -n 2 $J -task compare $brb -frf_force $lev -rom_joints sides -frf_output_file "$tmp/s0" 2>&1)
 read f a <<< "$(worst "$o")"
 nj=$(echo "$o" | grep -c '^rom: joint'); ne=$(echo "$o" | awk '/^rom: joint/{s += $4} END{print s}')
 check "[ $nj = 6 ] && [ '$ne' = 133 ] && lt '$f' 1e-4 && lt '$a' 1e-2" "first reduction, 6 joints (133 members), mode-shape weights: worst peak error $f (< 1e-4), amplitude $a (< 1%)"
+# the joints' report: their loads add up to the preload's total normal force (the preload's own line), their shares
+# to 100%, their centroids lie on the lap (0.3 .. 0.42 m), and the partition's summary counts the members
+pt=$(field "$(echo "$o" | grep '^preload total_normal_force')" total_normal_force)
+jl=$(echo "$o" | grep '^rom: joint [0-9]*:' | sed -E 's/.*normal load ([^ ]+) N \(([0-9.]+)% of the preload\), centroid \(([^,]+),.*/\1 \2 \3/' | awk '{l += $1; p += $2; if ($3 < 0.3 || $3 > 0.42) out++} END{printf "%.8g %.3f %d", l, p, out}')
+read jls jsh jout <<< "$jl"
+pm=$(echo "$o" | grep '^rom partition '); pj=$(field "$pm" joints)
+check "[ -n '$pt' ] && close $jls $pt 1e-5 && close $jsh 100 0.01 && [ '$jout' = 0 ] && [ '$pj' = 6 ]" "joints' report (sides): loads add up to $jls N = the preload's $pt N, shares to $jsh%, centroids on the lap, partition line: $pm"
+# -rom_joints auto: 2 rings of equal load around each of the 3 bolts, each cut at the bolt's axis: 12 joints, all
+# 133 members; by construction each bolt's inner ring carries at most half its load and the next member would take it
+# past half (so the inner rings together carry 40-50% here); the same report on 1 and 2 ranks
+ba="-task frf $brb -frf_force 0.1 -rom_joints auto -cont_max_points 3 -cont_allow_partial -frf_output_file ''"
+oa1=$(eval $J $ba 2>&1); oa2=$(eval mpiexec -n 2 $J $ba 2>&1)
+ra() { echo "$1" | grep -E '^rom(: joint [0-9]|: partition| partition)'; }
+pa=$(echo "$oa2" | grep '^rom partition '); ls=$(field "$pa" load_share)
+na=$(echo "$oa2" | grep -c '^rom: joint [0-9]*:.*ring'); ma=$(echo "$oa2" | awk '/^rom: joint [0-9]+:/{s += $4} END{print s}')
+check "[ '$na' = 12 ] && [ '$ma' = 133 ] && [ \"\$(field \"\$pa\" high_load_joints)\" = 6 ] && lt '$ls' 0.5000001 && lt 0.4 '$ls' && [ \"\$(ra \"\$oa1\")\" = \"\$(ra \"\$oa2\")\" ]" "-rom_joints auto: 12 ring joints of 133 members, the inner rings carry $ls of the preload (at most half), the same report on 1 and 2 ranks"
 c=$(echo "$o" | grep '^rom stiffness_correction')
 check "[ -f '$tmp/s0_compare.csv' ] && [ \$(grep -c . '$tmp/s0_compare.csv') = 6 ] && [ \$(echo \"\$o\" | grep -c '^compare level') = 5 ]" "compare: BASE_compare.csv with 5 levels and 5 'compare level' lines"
 # where the solve time goes: the elements' part of each model's solve lies within that solve (no timing is compared)
@@ -66,7 +87,8 @@ cl=$(echo "$os" | grep '^rom: fit weights chosen')
 bt=$(field "$cl" -rom_fit_total_weight); bk=$(field "$cl" -rom_fit_case_weight)
 emin=$(echo "$os" | awk '/^rom select /{if (m == "" || $8 < m) {m = $8; t = $4; k = $6}} END{print m, t, k}')
 read em et ek <<< "$emin"
-check "[ '$ns' = 6 ] && [ -n '$bt' ] && awk 'BEGIN{exit !($bt == $et && $bk == $ek)}'" "-rom_fit_select first: 6 pairs fitted and solved, the one of the smallest error vs the first reduction chosen (total $bt, case $bk; error $em)"
+nsc=$(echo "$os" | grep '^rom select ' | grep -c 'stiffness_correction [0-9]')
+check "[ '$nsc' = 6 ] && [ '$ns' = 6 ] && [ -n '$bt' ] && awk 'BEGIN{exit !($bt == $et && $bk == $ek)}'" "-rom_fit_select first: 6 pairs fitted and solved (each with its stiffness correction printed), the one of the smallest error vs the first reduction chosen (total $bt, case $bk; error $em)"
 od=$($J -task compare $brb $b1 -frf_force $lev -rom_joints sides -rom_elements 3 -rom_fit_total_weight $bt -rom_fit_case_weight $bk -frf_output_file '' 2>&1)
 o0=$($J -task compare $brb $b1 -frf_force $lev -rom_joints sides -rom_elements 0 -frf_output_file '' 2>&1)
 amps() { echo "$1" | awk '/^compare level/{printf "%s ", $11}'; }
@@ -84,10 +106,12 @@ check "[ -n '$fr' ] && close $fr $fn 1e-9" "stiffness correction ($(field "$cr" 
 # other joint motions and 1 vs 2 ranks: tests/cli_long.sh
 fix="-cont_type natural -cont_points 120"
 same() { awk -F, 'NR == FNR {if (FNR > 1) a[$1 " " $4] = $5; next} FNR > 1 && ($1 " " $4) in a {d = $5 / a[$1 " " $4] - 1; if (d < 0) d = -d; n++; if (d > m) m = d} END{printf "%d %.2e\n", n, m}' "$1" "$2"; }
-mpiexec -n 2 $J -task frf $brb $fix -frf_force 0.1,50 -rom_joints sides -rom_elements 3 -rom_save "$tmp/rom.h5" -frf_output_file "$tmp/sv" > /dev/null 2>&1
+osv=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 0.1,50 -rom_joints sides -rom_elements 3 -rom_save "$tmp/rom.h5" -frf_output_file "$tmp/sv" 2>&1)
 o=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 0.1,50 -rom_load "$tmp/rom.h5" -frf_output_file "$tmp/ld" 2>&1)
 read nm dm <<< "$(same "$tmp/sv.csv" "$tmp/ld.csv" 2>/dev/null)"
 check "[ '$nm' -ge 100 ] && lt '$dm' 1e-7 && ! echo \"\$o\" | grep -q '^preload total'" "-rom_load reproduces the saving run (no preload solved): amplitudes at $nm common frequencies within $dm (< 1e-7)"
+cs=$(field "$(echo "$osv" | grep '^rom stiffness_correction')" stiffness_correction); cl=$(echo "$o" | grep '^rom stiffness_correction')
+check "[ -n '$cs' ] && close \$(field \"\$cl\" stiffness_correction) $cs 1e-7 && echo \"\$cl\" | grep -q 'file $tmp/rom.h5'" "-rom_load prints the factor in its file: '$cl' (the saving run's $cs)"
 
 # 4b. condensation onto the joints (-hbm_condense, on by default for reduced models): the modal equations with the
 # modes eliminated exactly, so on the frequencies both solve the amplitudes agree to round-off and solver tolerance.
@@ -104,6 +128,8 @@ expect_error "missing ROM file" "no such file" $J -task frf $brb -frf_force 1 -r
 expect_error "ROM of another mesh" "another mesh" $J -task frf ${brb/-model_mesh_h 0.01/-model_mesh_h 0.012} -frf_force 1 -rom_load "$tmp/rom.h5" -frf_output_file ''
 expect_error "overlapping regions" "the regions overlap" $J -task frf $brb -frf_force 1 -rom_joints boxes -rom_boxes 0,0.37,-1,1,0.33,1,-1,1 -frf_output_file ''
 expect_error "element in no region" "lies in no box" $J -task frf $brb -frf_force 1 -rom_joints boxes -rom_boxes 0,0.33,-1,1,0.37,1,-1,1 -frf_output_file ''
+expect_error "rings without auto" "-rom_auto_rings needs -rom_joints auto" $J -task frf $brb -frf_force 1 -rom_joints zones -rom_auto_rings 3 -frf_output_file ''
+expect_error "no rings" "-rom_auto_rings 0: 1 to 8 rings per bolt" $J -task frf $brb -frf_force 1 -rom_joints auto -rom_auto_rings 0 -frf_output_file ''
 expect_error "empty joint" "holds no element: an empty joint" $J -task frf $brb -frf_force 1 -rom_joints boxes -rom_boxes 0,0.36,-1,1,0.36001,1,-1,1,5,6,-1,1 -frf_output_file ''
 expect_error "compare without joints" "-task compare needs a reduced model" $J -task compare $brb -frf_force 1 -frf_output_file ''
 # jenkins_nv with open pairs (lap3, zones, first reduction): a joint moves with the average of its members in
@@ -113,6 +139,30 @@ o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 
 l3="-preload_load $tmp/l3_preload.h5 -modes_load $tmp/l3_modes.h5" # the runs of lap3 below: this run's preload and modes
 c=$(echo "$o" | grep '^rom stiffness_correction'); fb=$(field "$c" rom_before_hz); fn=$(field "$c" n2n_hz)
 check "[ -n '$fb' ] && awk -v b='$fb' -v n='$fn' 'BEGIN{exit !(b <= n * (1 + 1e-9))}'" "jenkins_nv lap3, 12 zone joints over the pairs in contact at rest: reduced stuck mode $fb Hz <= node-to-node $fn Hz"
+# the stiffness correction's warning names the joints responsible (lap3, coarse, mean motion). Every element its own
+# joint: each holds its member's spring on its member's motion, so the factor is 1 to round-off and nothing is
+# named. The interface cut into its 41 columns of pairs (2.5 mm apart) except at the lap's end x = 0.35 m, where the 5
+# columns x < 0.3615 m are lumped into one joint (joint 0) on purpose: the end, which bends most in this mode, then
+# moves with its mean, the factor leaves [0.9, 1.1] and the warning names joint 0 alone; one warning, the same
+# lines on 1 and 2 ranks
+l3w="-options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 $l3 -task frf -rom_elements 0 -rom_joint_motion mean -frf_force 0.001 -cont_max_points 5 -cont_allow_partial -frf_plot 0 -cont_monitor 0 -frf_output_file ''"
+o=$(eval $J $l3w -rom_joints each 2>&1)
+c=$(field "$(echo "$o" | grep '^rom stiffness_correction')" stiffness_correction); se=$(echo "$o" | grep '^rom stiffness_energy')
+check "[ -n '$c' ] && close $c 1 1e-9 && close \$(field \"\$se\" joints_share) \$(field \"\$se\" members_share) 1e-12 && ! echo \"\$o\" | grep -q 'WARNING stiffness'" "jenkins_nv lap3, every element its own joint: stiffness correction $c (1 to 1e-9), no warning"
+cuts=$(awk 'BEGIN{for (i = 0; i < 40; i++) {x = 0.35125 + 0.0025 * i; if (x > 0.3615) printf "%s%.5f", (n++ ? "," : ""), x}}')
+o=$(eval $J $l3w -rom_joints strips -rom_strips $cuts 2>&1)
+sj=$(echo "$o" | grep '^rom stiffness_joints'); c=$(field "$sj" factor); nw=$(echo "$o" | grep -c 'WARNING stiffness')
+check "[ -n '$c' ] && lt 1.1 '$c' && [ \"\$(field \"\$sj\" joints)\" = 0 ] && [ '$nw' = 1 ]" "jenkins_nv lap3, 36 strips with the lap's end lumped into joint 0: factor $c, one warning naming joint 0 alone: $(echo "$o" | grep -o 'joints too soft.*')"
+# the same on the coarse Brake-Reuss beam with stiff contact (kt 1e8 N/m: the interface then holds enough of the
+# mode's strain energy for the factor to leave [0.9, 1.1]), members not weighted: 17 column strips with the 3 columns
+# at the lap's end x < 0.3325 m lumped into joint 0, on 1 and 2 ranks: the same report, factor and warning
+bw="${brb/-interface_kt 1e6/-interface_kt 1e8} -frf_fmax 160 -frf_force 0.1 -rom_mode_weights 0 -cont_max_points 3 -cont_allow_partial -frf_output_file ''"
+cuts=$(awk 'BEGIN{for (i = 0; i < 18; i++) {x = 0.3175 + 0.005 * i; if (x > 0.3325) printf "%s%.4f", (n++ ? "," : ""), x}}')
+o1=$(eval $J -task frf $bw -rom_joints strips -rom_strips $cuts 2>&1)
+o2=$(eval mpiexec -n 2 $J -task frf $bw -rom_joints strips -rom_strips $cuts 2>&1)
+rl() { echo "$1" | grep -E '^rom(: joint [0-9]|: partition|: WARNING stiff| partition| stiffness_)'; }
+sj=$(echo "$o2" | grep '^rom stiffness_joints'); c=$(field "$sj" factor); nw=$(echo "$o2" | grep -c 'WARNING stiffness')
+check "[ -n '$c' ] && lt 1.1 '$c' && [ \"\$(field \"\$sj\" joints)\" = 0 ] && [ '$nw' = 1 ] && [ \"\$(rl \"\$o1\")\" = \"\$(rl \"\$o2\")\" ] && [ \$(rl \"\$o1\" | wc -l) -ge 19 ]" "jenkins BRB (kt 1e8), 15 strips with the lap's end lumped into joint 0: factor $c, one warning naming joint 0 alone; the joints' report, factor and warning the same on 1 and 2 ranks"
 # the joints' linear motion field (-rom_joint_motion linear: the mean plus the joint's rotation, fitted by least
 # squares over the members' positions) is a projection onto a larger space that holds the mean's: the stuck mode lies
 # between the mean's and node-to-node's (with equal kt per member)
@@ -140,11 +190,18 @@ for jm in mean linear; do
 done
 check "[ -n '$f_linear' ] && awk -v m='$f_mean' -v l='$f_linear' -v n='$fn' 'BEGIN{exit !(m < 0.6 * n && l <= n * (1 + 1e-9) && l > 0.99 * n)}' && [ '$ne' -le 36 ]" "jenkins_nv lap1, 4 zone joints x 3 elements ($ne spread elements): stuck mode with the mean $f_mean Hz (a hinge), with the linear field $f_linear Hz, node-to-node $fn Hz (within 1%)"
 
+# -rom_joints auto with one ring per bolt is the single bolt's two sides, the partition -rom_joints between cuts at
+# the bolt's axis (Fig 5.25) by another path: the same members and loads per joint, the same factor
+jb() { $J -options_file runs/lap1_rom.opts -model_mesh_h 0.008 -preload_load $tmp/l1_preload.h5 -modes_load $tmp/l1_modes.h5 -task frf -frf_force 0.01 -cont_max_points 3 -cont_allow_partial -frf_plot 0 -cont_monitor 0 -frf_output_file '' "$@" 2>&1 | grep -E '^rom(: joint [0-9]| stiffness_correction)' | sed 's/ m, .*/ m/'; }
+ob=$(jb -rom_joints between); oa=$(jb -rom_joints auto -rom_auto_rings 1)
+check "[ \$(echo \"\$ob\" | grep -c '^rom: joint') = 2 ] && [ \"\$ob\" = \"\$oa\" ]" "jenkins_nv lap1, -rom_joints auto with 1 ring = between: $(echo "$oa" | grep -c '^rom: joint') joints, the same members, loads, centroids and factor ($(field "$(echo "$oa" | grep stiffness_correction)" stiffness_correction))"
 # -rom_fit_stiffness_weight (1e4): each joint's stuck loop weighed enough holds its members' stuck stiffness (sum k_i
 # = sum w^2 kt), so the reduced model's stuck stiffness matrix is the first reduction's and so is its stuck resonance
 # (same basis, LAPACK); with a weight of 10 the fit gives a little of it away for the loops
 sf() { $J -task frf $brb $b1 -frf_force 0.01 -rom_joints sides "$@" -frf_output_file '' 2>&1 | grep '^rom stiffness_correction'; }
 f0=$(field "$(sf -rom_elements 0)" rom_before_hz); fd=$(field "$(sf -rom_elements 3 -rom_fit_stiffness_weight 10)" rom_before_hz); fs=$(field "$(sf -rom_elements 3)" rom_before_hz)
+c0=$(field "$(sf -rom_elements 0)" stiffness_correction); cn=$(sf -rom_elements 0 -rom_stiffness_correction 0)
+check "[ -n '$c0' ] && close \$(field \"\$cn\" needed) $c0 1e-9 && close \$(field \"\$cn\" stiffness_correction) 1 0" "-rom_stiffness_correction 0: '$cn' (the factor the correction applies: $c0)"
 check "[ -n '$f0' ] && close $fs $f0 1e-8 && ! close $fd $f0 1e-7" "-rom_fit_stiffness_weight 1e4 (default): 6 x 3 stuck resonance $fs Hz = first reduction's $f0 Hz (weight 10: $fd Hz)"
 # jenkins_nv, -rom_joint_motion mode: the fit's error with the normal loads varying in the mode (AFT, one harmonic),
 # printed per level, is zero when every member is its own element (the same elements, placed at their own stuck-mode

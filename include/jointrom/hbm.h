@@ -60,6 +60,8 @@ PETSC_EXTERN PetscErrorCode JRHBMSetOutputPoints(JRHBM, PetscInt, const PetscRea
 PETSC_EXTERN PetscErrorCode JRHBMGetOutputPoints(JRHBM, const PetscReal **, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMMatchStickFrequency(JRHBM, PetscInt, PetscReal, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMStuckModeMotion(JRHBM, PetscInt, PetscReal[], PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRHBMStuckMode(JRHBM, PetscInt, PetscReal *, PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRHBMStuckSpringEnergy(JRHBM, const PetscReal[], PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMStuckModeBalance(JRHBM, PetscInt, PetscReal *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMSetModes(JRHBM, JRHBM);
 PETSC_EXTERN PetscErrorCode JRHBMSetBasis(JRHBM, JRHBMBasis);

@@ -673,8 +673,8 @@ PetscErrorCode JRHBMStuckModeMotion(JRHBM h, PetscInt k, PetscReal u[], PetscRea
   PetscFunctionReturn(0);
 }
 
-/* The k-th stuck mode in the basis (M-normalised, nm coefficients) and its circular frequency omega [rad/s]
-   (collective) */
+/* JRHBMStuckMode - the k-th stuck mode in the basis (M-normalised, nm coefficients q) and its circular frequency
+   omega [rad/s] (collective) */
 PetscErrorCode JRHBMStuckMode(JRHBM h, PetscInt k, PetscReal *omega, PetscReal q[])
 {
   PetscReal *f;
@@ -687,6 +687,39 @@ PetscErrorCode JRHBMStuckMode(JRHBM h, PetscInt k, PetscReal *omega, PetscReal q
   PetscCall(StickEig(h, 1.0, &nf, f, k, q));
   *omega = 2 * PETSC_PI * f[k];
   PetscCall(PetscFree(f));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMStuckSpringEnergy - the stuck springs' share of q^T K q for the modal coordinates q (nm, in this JRHBM's basis),
+  per joint of its elements: E[j] = sum over the elements e of joint j in contact at rest (n0 > 0) of
+  kt_e (r_e . q)^2 + kn_e (s_e . q)^2, with each element's rows as it moves (a reduced model's: its joint's field).
+  For an M-normalised mode, E[j] / omega^2 is joint j's share of the mode's strain energy and 2x the relative
+  sensitivity of omega to a factor on joint j's springs (d omega / omega = E[j] / (2 omega^2) dc / c). E has room for
+  the elements' njoints (1 if none: the sum over all elements); on every rank. Collective.
+*/
+PetscErrorCode JRHBMStuckSpringEnergy(JRHBM h, const PetscReal q[], PetscReal E[])
+{
+  const JRElements *el;
+  PetscInt          nj;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(JRHBMGetElements(h, &el));
+  nj = el->joint ? el->njoints : 1;
+  PetscCall(PetscArrayzero(E, nj));
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    JRHBMGroup *g = &h->g[t];
+    PetscCheck(g->split || !g->nloc, PETSC_COMM_SELF, PETSC_ERR_SUP, "Stuck springs need friction elements (jenkins, jenkins_nv)");
+    for (PetscInt e = 0; e < g->nloc; e++) {
+      PetscReal s = 0, sn = 0;
+      if (!(g->nstatic[e] > 0)) continue;
+      for (PetscInt i = 0; i < h->nm; i++) s += g->R[e + i * g->nloc] * q[i];
+      for (PetscInt i = 0; g->normal && i < h->nm; i++) sn += g->S[e + i * g->nloc] * q[i];
+      E[el->joint ? el->joint[g->eidx[e]] : 0] += g->kt[e] * s * s + (g->normal ? g->kn[e] * sn * sn : 0.0);
+    }
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, E, (PetscMPIInt)nj, MPIU_REAL, MPIU_SUM, h->ecomm));
   PetscFunctionReturn(0);
 }
 

@@ -25,10 +25,17 @@
              and a low-load zone (the rest, gaps included)
     boxes    boxes -rom_boxes x0,x1,y0,y1, x0,x1,y0,y1, ... [m], one joint each: every element must lie in exactly
              one box
+    auto     from the normal load at rest: every element belongs to its nearest bolt (in the interface's plane) and
+             to a ring around it by load level, -rom_auto_rings k rings per bolt (default 2) whose radii split the
+             bolt's load into k equal parts (the innermost ring carries the first 1/k of it; the outermost also holds
+             every member beyond, gaps included); each ring is cut at the bolt's axis into its two sides: 2k joints
+             per bolt. The inner half of the rings are the high-load joints.
   and -rom_split_width splits every strip-type region at mid-width. Each region must hold elements (else an error
   naming it); its members move with the average of their relative motions (4.4).
 */
-static const char *const JointKinds[] = {"none", "each", "strips", "bolts", "between", "sides", "zones", "boxes"};
+static const char *const JointKinds[] = {"none", "each", "strips", "bolts", "between", "sides", "zones", "boxes", "auto"};
+/* what a region of each kind is, in the joints' report: the regions between the cuts along the beam axis */
+static const char *const RegionWords[] = {"", "element", "strip", "bolt region", "span", "bolt side", "bolt side", "box", "ring"};
 
 /* -rom_joints boxes: element e in the one box that holds its pair's point; *nreg boxes, cnt[] their members */
 static PetscErrorCode AssignBoxes(JRReduce o, const JRPairs *P, JRElements *el, const PetscInt pair[], PetscInt *nreg, PetscInt **cnt)
@@ -55,6 +62,81 @@ static PetscErrorCode AssignBoxes(JRReduce o, const JRPairs *P, JRElements *el, 
   }
   for (PetscInt b = 0; b < nb; b++) PetscCheck((*cnt)[b] > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: box %" PetscInt_FMT " (%g..%g, %g..%g m) holds no element: an empty joint", b, (double)box[4 * b], (double)box[4 * b + 1], (double)box[4 * b + 2], (double)box[4 * b + 3]);
   *nreg = nb;
+  PetscCall(PetscCalloc1(nb, &o->ji));
+  for (PetscInt b = 0; b < nb; b++) {
+    o->ji[b].zone = -1;
+    PetscCall(PetscSNPrintf(o->ji[b].kind, sizeof(o->ji[b].kind), "box %g..%g, %g..%g m", (double)box[4 * b], (double)box[4 * b + 1], (double)box[4 * b + 2], (double)box[4 * b + 3]));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* -rom_joints auto: rings of equal load around each bolt, each cut at the bolt's axis (the members sorted by their
+   distance from their nearest bolt, ties by index, so every rank assigns the same) */
+static PetscErrorCode AssignAuto(JRReduce o, JRModel model, const JRPairs *P, JRElements *el, const PetscInt pair[], PetscInt *nreg, PetscInt **cnt)
+{
+  MPI_Comm       comm = o->comm;
+  const PetscInt k    = o->rings;
+  const JRBolts *B;
+  PetscInt      *bolt, *ord, *bx, nb;
+  PetscReal     *rad, *ltot, lsum = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetBolts(model, &B));
+  PetscCheck(B && B->n > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints auto needs a model with bolts");
+  nb = B->n;
+  PetscCall(PetscMalloc5(el->n, &bolt, el->n, &ord, el->n, &rad, nb, &ltot, nb, &bx));
+  for (PetscInt b = 0; b < nb; b++) bx[b] = b; /* the bolts in order of x */
+  for (PetscInt b = 1; b < nb; b++)
+    for (PetscInt c = b; c > 0 && B->x[3 * bx[c]] < B->x[3 * bx[c - 1]]; c--) {
+      const PetscInt t = bx[c];
+      bx[c]            = bx[c - 1];
+      bx[c - 1]        = t;
+    }
+  for (PetscInt b = 0; b < nb; b++) ltot[b] = 0;
+  for (PetscInt e = 0; e < el->n; e++) {
+    const PetscReal *x = P->x + 3 * pair[e];
+    bolt[e]            = -1;
+    for (PetscInt b = 0; b < nb; b++) {
+      const PetscReal *xb = B->x + 3 * bx[b], d = PetscSqrtReal(PetscSqr(x[0] - xb[0]) + PetscSqr(x[1] - xb[1]));
+      if (bolt[e] < 0 || d < rad[e]) {
+        bolt[e] = b;
+        rad[e]  = d;
+      }
+    }
+    ord[e] = e;
+    if (el->n0[e] > 0) ltot[bolt[e]] += el->n0[e];
+  }
+  for (PetscInt a = 1; a < el->n; a++) /* by bolt, then distance, then index (insertion sort: stable) */
+    for (PetscInt c = a; c > 0; c--) {
+      const PetscInt i = ord[c], j = ord[c - 1];
+      if (!(bolt[i] < bolt[j] || (bolt[i] == bolt[j] && rad[i] < rad[j]))) break;
+      ord[c]     = j;
+      ord[c - 1] = i;
+    }
+  for (PetscInt a = 0, b = -1, ring = 0; a < el->n; a++) {
+    const PetscInt   e = ord[a];
+    const PetscReal *x = P->x + 3 * pair[e];
+    if (bolt[e] != b) {
+      b    = bolt[e];
+      ring = 0;
+      lsum = 0;
+    }
+    /* the ring: the first whose share of the bolt's load is not yet filled when this member's load is counted */
+    if (el->n0[e] > 0) lsum += el->n0[e];
+    while (ring < k - 1 && lsum > (ring + 1) * ltot[b] / k * (1 + 1e-12)) ring++;
+    el->joint[e] = (2 * b + (x[0] < B->x[3 * bx[b]] ? 0 : 1)) * k + ring;
+  }
+  *nreg = 2 * nb * k;
+  PetscCall(PetscCalloc1(*nreg, cnt));
+  for (PetscInt e = 0; e < el->n; e++) (*cnt)[el->joint[e]]++;
+  PetscCall(PetscCalloc1(*nreg, &o->ji));
+  for (PetscInt r = 0; r < *nreg; r++) {
+    const PetscInt b = r / (2 * k), side = (r / k) % 2, ring = r % k;
+    o->ji[r].zone    = k > 1 ? (2 * ring < k ? 1 : 0) : -1;
+    PetscCall(PetscSNPrintf(o->ji[r].kind, sizeof(o->ji[r].kind), "ring %" PetscInt_FMT " of %" PetscInt_FMT " of bolt %" PetscInt_FMT ", %s side%s", ring + 1, k, b + 1, side ? "+x" : "-x", k > 1 ? (2 * ring < k ? ", high-load" : ", low-load") : ""));
+    PetscCheck((*cnt)[r] > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints auto: %s holds no element: an empty joint (fewer -rom_auto_rings)", o->ji[r].kind);
+  }
+  PetscCall(PetscFree5(bolt, ord, rad, ltot, bx));
   PetscFunctionReturn(0);
 }
 
@@ -124,34 +206,120 @@ static PetscErrorCode AssignCuts(JRReduce o, JRModel model, const JRPairs *P, JR
     PetscCall(PetscFree(nmax));
   }
   for (PetscInt e = 0; e < el->n; e++) (*cnt)[el->joint[e]]++;
+  PetscCall(PetscCalloc1(*nreg, &o->ji));
   for (PetscInt r = 0; r < *nreg; r++) {
     const PetscInt k = (split ? r / (2 * nz) : r / nz);
+    o->ji[r].zone    = nz > 1 ? r % 2 : -1;
+    PetscCall(PetscSNPrintf(o->ji[r].kind, sizeof(o->ji[r].kind), "%s %" PetscInt_FMT " of %" PetscInt_FMT "%s%s", RegionWords[kind], k + 1, ncut + 1, split ? ((r / nz) % 2 ? ", upper half" : ", lower half") : "", nz > 1 ? (r % 2 ? ", high-load zone" : ", low-load zone") : ""));
     PetscCheck((*cnt)[r] > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints %s: the region x %s%g .. %g%s m%s%s holds no element: an empty joint (%s)", JointKinds[kind], k ? "" : "< ", (double)(k ? cut[k - 1] : cut[0]), (double)(k < ncut ? cut[k] : cut[ncut - 1]), k < ncut ? "" : " and beyond", split ? ((r / nz) % 2 ? ", upper half of the width" : ", lower half of the width") : "", nz > 1 ? (r % 2 ? ", high-load zone" : ", low-load zone") : "", kind == 2 ? "move the cuts" : kind == 6 ? "change -rom_zone_fraction" : "fewer regions");
   }
+  PetscFunctionReturn(0);
+}
+
+/* The joints' report (JRJointInfo, o->ji) from the elements el with their joints and positions x (3 per element) */
+static PetscErrorCode JointInfoSet(JRReduce o, const JRElements *el, const PetscReal x[])
+{
+  PetscFunctionBeginUser;
+  if (!o->ji) {
+    PetscCall(PetscCalloc1(el->njoints, &o->ji));
+    for (PetscInt j = 0; j < el->njoints; j++) o->ji[j].zone = -1;
+  }
+  o->nji = el->njoints;
+  for (PetscInt e = 0; e < el->n; e++) {
+    JRJointInfo *J = &o->ji[el->joint[e]];
+    J->members++;
+    if (el->n0[e] > 0) {
+      J->contact++;
+      J->load += el->n0[e];
+    }
+    for (PetscInt c = 0; x && c < 3; c++) J->x[c] += x[3 * e + c];
+  }
+  for (PetscInt j = 0; j < o->nji; j++)
+    for (PetscInt c = 0; c < 3; c++) o->ji[j].x[c] /= o->ji[j].members;
+  PetscFunctionReturn(0);
+}
+
+/* A joint for a line: index, members, centroid and region */
+static PetscErrorCode JointName(JRReduce o, PetscInt j, char buf[], size_t len)
+{
+  const JRJointInfo *J = &o->ji[j];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(buf, len, "%" PetscInt_FMT " (%" PetscInt_FMT " members, centroid (%.4g, %.4g) m, %s)", j, J->members, (double)J->x[0], (double)J->x[1], J->kind));
+  PetscFunctionReturn(0);
+}
+
+/*
+  The joints' report: per joint its members (those in contact at rest), the normal load they carry at rest and its
+  share of the interface's (the preload), their centroid and the region; then how the partition splits the members
+  between high-load and low-load joints: -rom_joints zones by its zones, auto by its rings (the inner half), any other
+  partition by load per member (a joint is high-load when its members carry more than the interface's mean per
+  member). Rank 0 prints; every rank has
+  every element, so the lines do not depend on the ranks.
+*/
+static PetscErrorCode JointReport(JRReduce o, const JRElements *el)
+{
+  MPI_Comm  comm = o->comm;
+  PetscReal ltot = 0, lh = 0, mean;
+  PetscInt  nh = 0, mh = 0, ch = 0, ctot = 0;
+  char      list[256] = "";
+
+  PetscFunctionBeginUser;
+  for (PetscInt j = 0; j < o->nji; j++) {
+    ltot += o->ji[j].load;
+    ctot += o->ji[j].contact;
+  }
+  mean = ltot / el->n;
+  if (o->joints == 1) PetscCall(PetscPrintf(comm, "rom: every element its own joint: %" PetscInt_FMT " joints (%" PetscInt_FMT " in contact at rest, normal load %.6g N)\n", o->nji, ctot, (double)ltot));
+  for (PetscInt j = 0; j < o->nji && o->joints != 1; j++) {
+    const JRJointInfo *J = &o->ji[j];
+    PetscCall(PetscPrintf(comm, "rom: joint %" PetscInt_FMT ": %" PetscInt_FMT " members (%" PetscInt_FMT " in contact), normal load %.6g N (%.1f%% of the preload), centroid (%.4g, %.4g, %.4g) m, %s\n", j, J->members, J->contact, (double)J->load, (double)(ltot > 0 ? 100 * J->load / ltot : 0), (double)J->x[0], (double)J->x[1], (double)J->x[2], J->kind));
+  }
+  for (PetscInt j = 0; j < o->nji; j++) {
+    const JRJointInfo *J  = &o->ji[j];
+    const PetscBool    hi = J->zone >= 0 ? (PetscBool)(J->zone == 1) : (PetscBool)(J->load > mean * J->members);
+    size_t             len;
+    if (!hi) continue;
+    nh++;
+    mh += J->members;
+    ch += J->contact;
+    lh += J->load;
+    PetscCall(PetscStrlen(list, &len));
+    if (len < sizeof(list) - 24) PetscCall(PetscSNPrintf(list + len, sizeof(list) - len, "%s%" PetscInt_FMT, len ? "," : "", j));
+  }
+  if (o->joints == 1) PetscFunctionReturn(0);
+  PetscCall(PetscPrintf(comm, "rom: partition %s: %" PetscInt_FMT " high-load joints (%s, %s) hold %" PetscInt_FMT " of %" PetscInt_FMT " members (%.1f%%), %" PetscInt_FMT " of %" PetscInt_FMT " in contact (%.1f%%) and %.1f%% of the preload; %" PetscInt_FMT " low-load joints the rest\n", JointKinds[o->joints], nh, nh ? list : "none", o->joints == 6 ? "the zones' high-load joints" : o->joints == 8 ? "the inner rings" : "more load per member than the interface's mean", mh, el->n, (double)(100.0 * mh / el->n), ch, ctot, (double)(ctot ? 100.0 * ch / ctot : 0), (double)(ltot > 0 ? 100 * lh / ltot : 0), o->nji - nh));
+  PetscCall(PetscPrintf(comm, "rom partition joints %" PetscInt_FMT " high_load_joints %" PetscInt_FMT " member_share %.4f contact_share %.4f load_share %.4f\n", o->nji, nh, (double)((PetscReal)mh / el->n), (double)(ctot ? (PetscReal)ch / ctot : 0), (double)(ltot > 0 ? lh / ltot : 0)));
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode AssignJoints(JRReduce o, JRModel model, const JRPairs *P, JRElements *el, const PetscInt pair[])
 {
   PetscInt   nreg = 0, *cnt = NULL;
-  PetscReal *n0s;
+  PetscReal *x;
 
   PetscFunctionBeginUser;
   if (o->joints == 0) PetscFunctionReturn(0);
-  if (o->joints == 1) { /* each */
-    el->njoints = el->n;
-    PetscCall(PetscMalloc1(el->n, &el->joint));
-    for (PetscInt e = 0; e < el->n; e++) el->joint[e] = e;
-    PetscFunctionReturn(0);
-  }
+  PetscCall(PetscFree(o->ji));
   PetscCall(PetscMalloc1(el->n, &el->joint));
-  if (o->joints == 7) PetscCall(AssignBoxes(o, P, el, pair, &nreg, &cnt));
+  if (o->joints == 1) { /* each */
+    nreg = el->n;
+    for (PetscInt e = 0; e < el->n; e++) el->joint[e] = e;
+    PetscCall(PetscCalloc1(nreg, &o->ji));
+    for (PetscInt e = 0; e < el->n; e++) {
+      o->ji[e].zone = -1;
+      PetscCall(PetscStrncpy(o->ji[e].kind, RegionWords[1], sizeof(o->ji[e].kind)));
+    }
+  } else if (o->joints == 7) PetscCall(AssignBoxes(o, P, el, pair, &nreg, &cnt));
+  else if (o->joints == 8) PetscCall(AssignAuto(o, model, P, el, pair, &nreg, &cnt));
   else PetscCall(AssignCuts(o, model, P, el, pair, &nreg, &cnt));
   el->njoints = nreg;
-  PetscCall(PetscCalloc1(nreg, &n0s));
-  for (PetscInt e = 0; e < el->n; e++) n0s[el->joint[e]] += el->n0[e];
-  for (PetscInt r = 0; r < nreg; r++) PetscCall(PetscPrintf(o->comm, "rom: joint %" PetscInt_FMT ": %" PetscInt_FMT " elements, normal load %.6g N\n", r, cnt[r], (double)n0s[r]));
-  PetscCall(PetscFree(n0s));
+  PetscCall(PetscMalloc1(3 * el->n + 1, &x));
+  for (PetscInt e = 0; e < el->n; e++)
+    for (PetscInt c = 0; c < 3; c++) x[3 * e + c] = P->x[3 * pair[e] + c];
+  PetscCall(JointInfoSet(o, el, x));
+  PetscCall(PetscFree(x));
+  PetscCall(JointReport(o, el));
   PetscCall(PetscFree(cnt));
   PetscFunctionReturn(0);
 }
@@ -181,10 +349,95 @@ static PetscErrorCode TargetMode(JRReduce red, JRHBM hbm, PetscInt *k, PetscReal
   PetscFunctionReturn(0);
 }
 
+/*
+  Which joints a stiffness correction far from 1 comes from. In the node-to-node model's stuck mode of interest q
+  (M-normalised, omega^2 = q^T K q), joint j's members' stuck springs hold the share s_j = E_j / omega^2 of the mode's
+  strain energy (JRHBMStuckSpringEnergy), and the reduced joint's springs, moving with the joint's field in the same
+  q, the share r_j. By Rayleigh's quotient the reduced model's stuck frequency falls short of (or exceeds) the
+  node-to-node one by the sum of the differences d_j = s_j - r_j, to first order; for an exact reduction (every
+  element its own joint, or the mode-shape weights of a jenkins joint) every d_j is 0. The joints named are the
+  fewest, in order of d_j (of the sign of the correction: too soft for c > 1, too stiff for c < 1), whose d_j make up
+  80% of the differences of that sign. Prints one line per joint with its shares when the correction is outside
+  [0.9, 1.1] (or none is found: c = 0), then one WARNING line and the machine-readable `rom stiffness_joints` line.
+  Collective; rank 0 prints.
+*/
+static PetscErrorCode StiffnessJoints(JRReduce red, JRHBM hbm, JRHBM hr, const JRElements *elx, PetscInt k, PetscReal c, PetscReal fr, PetscReal ft)
+{
+  MPI_Comm          comm = red->comm;
+  const JRElements *mem  = elx->members ? elx->members : elx, *eln;
+  const PetscInt    nj   = elx->njoints;
+  const PetscBool   bad  = (PetscBool)(c == 0 || c < 0.9 || c > 1.1);
+  const PetscReal   sgn  = (c == 0 || c > 1) ? 1.0 : -1.0;
+  PetscInt          nm, nmr, *ord, nn = 0;
+  PetscReal        *q, *u, *v, *En, *Er, om, lam, sn = 0, sr = 0, dtot = 0, dsum = 0;
+  char              names[1024] = "", ids[256] = "", buf[256];
+  size_t            len;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMGetSizes(hbm, &nm, NULL, NULL));
+  PetscCall(JRHBMGetSizes(hr, &nmr, NULL, NULL));
+  PetscCall(JRHBMGetElements(hbm, &eln));
+  if (nm != nmr || !elx->joint || nj < 1 || !mem->joint || mem->njoints != nj || !eln || eln->n != mem->n) { /* not the node-to-node model's members: the factor alone */
+    if (bad) PetscCall(PetscPrintf(comm, "rom: WARNING stiffness correction %.4g outside [0.9, 1.1] (stuck mode %" PetscInt_FMT ": %.6g Hz reduced, %.6g Hz node-to-node)\n", (double)c, k, (double)fr, (double)ft));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscMalloc3(nm, &q, mem->n, &u, mem->n, &v));
+  PetscCall(PetscCalloc3(nj, &En, nj, &Er, nj, &ord));
+  PetscCall(JRHBMStuckMode(hbm, k, &om, q));
+  lam = om * om;
+  PetscCall(JRHBMStuckModeMotion(hbm, k, u, v)); /* the members are the node-to-node model's elements, in its order */
+  for (PetscInt e = 0; e < mem->n; e++)
+    if (mem->n0[e] > 0) En[mem->joint[e]] += mem->kt[e] * u[e] * u[e] + mem->kn[e] * v[e] * v[e];
+  PetscCall(JRHBMStuckSpringEnergy(hr, q, Er));
+  for (PetscInt j = 0; j < nj; j++) {
+    En[j] /= lam;
+    Er[j] /= lam;
+    sn += En[j];
+    sr += Er[j];
+    if (sgn * (En[j] - Er[j]) > 0) dtot += sgn * (En[j] - Er[j]);
+  }
+  PetscCall(PetscPrintf(comm, "rom stiffness_energy stuck_mode %" PetscInt_FMT " members_share %.6e joints_share %.6e\n", k, (double)sn, (double)sr));
+  if (!bad) {
+    PetscCall(PetscFree3(q, u, v));
+    PetscCall(PetscFree3(En, Er, ord));
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt j = 0; j < nj; j++) ord[j] = j;
+  for (PetscInt a = 1; a < nj; a++) /* by sgn d_j, largest first (ties: the lower index) */
+    for (PetscInt b = a; b > 0 && sgn * (En[ord[b]] - Er[ord[b]]) > sgn * (En[ord[b - 1]] - Er[ord[b - 1]]); b--) {
+      const PetscInt t = ord[b];
+      ord[b]           = ord[b - 1];
+      ord[b - 1]       = t;
+    }
+  for (PetscInt a = 0; a < nj && dtot > 0 && dsum < 0.8 * dtot && nn < 8; a++) {
+    const PetscInt  j = ord[a];
+    const PetscReal d = sgn * (En[j] - Er[j]);
+    if (!(d > 0)) break;
+    dsum += d;
+    nn++;
+    if (red->ji && red->nji == nj) PetscCall(JointName(red, j, buf, sizeof(buf)));
+    else PetscCall(PetscSNPrintf(buf, sizeof(buf), "%" PetscInt_FMT, j));
+    PetscCall(PetscStrlen(names, &len));
+    PetscCall(PetscSNPrintf(names + len, sizeof(names) - len, "%s%s: %.2f%% -> %.2f%%", len ? "; " : "", buf, (double)(100 * En[j]), (double)(100 * Er[j])));
+    PetscCall(PetscStrlen(ids, &len));
+    PetscCall(PetscSNPrintf(ids + len, sizeof(ids) - len, "%s%" PetscInt_FMT, len ? "," : "", j));
+  }
+  for (PetscInt j = 0; j < nj && nj <= 64; j++) PetscCall(PetscPrintf(comm, "rom joint_energy %" PetscInt_FMT " members_share %.6e joint_share %.6e\n", j, (double)En[j], (double)Er[j]));
+  if (c == 0) PetscCall(PetscPrintf(comm, "rom: WARNING no stiffness correction: no factor in [1e-3, 1e3] on the joints' springs brings stuck mode %" PetscInt_FMT " from %.6g Hz to the node-to-node %.6g Hz (the joints' motion cannot carry the interface's stiffness in this mode); ", k, (double)fr, (double)ft));
+  else PetscCall(PetscPrintf(comm, "rom: WARNING stiffness correction %.4g outside [0.9, 1.1] (stuck mode %" PetscInt_FMT ": %.6g Hz reduced, %.6g Hz node-to-node); ", (double)c, k, (double)fr, (double)ft));
+  PetscCall(PetscPrintf(comm, "the joints' springs hold %.2f%% of the mode's strain energy where their members' hold %.2f%%; %s: %s\n", (double)(100 * sr), (double)(100 * sn), nn ? (sgn > 0 ? "joints too soft, members' share -> joint's" : "joints too stiff, members' share -> joint's") : "no joint's share explains it", nn ? names : "the joints' motion changes the mode's shape (more joints, or -rom_joint_motion linear or mode)"));
+  PetscCall(PetscPrintf(comm, "rom stiffness_joints factor %.6g joints %s deficit_named %.4e deficit_total %.4e\n", (double)c, nn ? ids : "none", (double)(sgn * dsum), (double)(sgn * dtot)));
+  PetscCall(PetscFree3(q, u, v));
+  PetscCall(PetscFree3(En, Er, ord));
+  PetscFunctionReturn(0);
+}
+
 /* The reduced model elx as a JRHBM (*hbmx) on the modes of hbm (the node-to-node model's, shared; NULL: its own),
    excited and observed where red says; with corr, every element's kt and kn are scaled so that the stuck mode of
-   interest is at hbm's frequency (the factor in *factor, 1 if none in [1e-3, 1e3] reaches it: a warning). quiet: no
-   lines printed. *setup: the set-up's wall time [s] */
+   interest is at hbm's frequency (the factor in *factor; 1 if none in [1e-3, 1e3] reaches it). Unless quiet, the
+   factor is printed (`rom stiffness_correction`), with -rom_stiffness_correction 0 the factor that would be needed,
+   and a factor outside [0.9, 1.1] is a warning naming the joints responsible (StiffnessJoints). *setup: the
+   set-up's wall time [s] */
 static PetscErrorCode ReducedHBM(JRReduce red, JRModel model, JRHBM hbm, PetscBool corr, PetscBool quiet, JRElements *elx, JRHBM *hbmx, PetscReal *factor, PetscReal *setup)
 {
   MPI_Comm       comm = red->comm;
@@ -206,30 +459,34 @@ static PetscErrorCode ReducedHBM(JRReduce red, JRModel model, JRHBM hbm, PetscBo
   PetscCall(JRHBMSetUp(hr));
   PetscCall(PetscTime(&t1));
   *setup = t1 - t0;
-  if (corr && hbm) { /* the stiffness correction: the reduced model's stuck resonance on the node-to-node one */
-    PetscInt   k = 0, nm, nf;
-    PetscReal  ft = 0, *fr, c;
+  if (hbm && (corr || !quiet)) { /* the stiffness correction: the reduced model's stuck resonance on the node-to-node one */
+    PetscInt  k = 0, nm, nf;
+    PetscReal ft = 0, *fr, c, f0;
     PetscCall(TargetMode(red, hbm, &k, &ft));
     PetscCall(JRHBMGetSizes(hr, &nm, NULL, NULL));
     PetscCall(PetscMalloc1(nm, &fr));
     PetscCall(JRHBMStickFrequencies(hr, &nf, fr));
-    PetscCall(JRHBMMatchStickFrequency(hr, k, ft, &c));
-    if (c == 0) {
-      PetscCall(PetscPrintf(comm, "rom: WARNING no stiffness correction: no factor in [1e-3, 1e3] on the joints' springs brings stuck mode %" PetscInt_FMT " from %.6g Hz to the node-to-node %.6g Hz (the joints' averaged motion cannot carry the interface's stiffness in this mode: use more joints)\n", k, (double)fr[k], (double)ft));
-      c = 1.0;
-    }
-    if (!quiet) PetscCall(PetscPrintf(comm, "rom stiffness_correction %.8f stuck_mode %" PetscInt_FMT " n2n_hz %.8g rom_before_hz %.8g\n", (double)c, k, (double)ft, (double)fr[k]));
+    f0 = fr[k];
     PetscCall(PetscFree(fr));
-    for (PetscInt e = 0; e < elx->n; e++) {
-      elx->kt[e] *= c;
-      elx->kn[e] *= c;
+    PetscCall(JRHBMMatchStickFrequency(hr, k, ft, &c));
+    if (!quiet) {
+      if (corr) PetscCall(PetscPrintf(comm, "rom stiffness_correction %.8f stuck_mode %" PetscInt_FMT " n2n_hz %.8g rom_before_hz %.8g\n", (double)(c == 0 ? 1.0 : c), k, (double)ft, (double)f0));
+      else PetscCall(PetscPrintf(comm, "rom stiffness_correction 1 stuck_mode %" PetscInt_FMT " n2n_hz %.8g rom_before_hz %.8g off needed %.8f\n", k, (double)ft, (double)f0, (double)c));
+      PetscCall(StiffnessJoints(red, hbm, hr, elx, k, c, f0, ft));
     }
-    PetscCall(JRHBMSetElements(hr, elx));
-    PetscCall(PetscTime(&t0));
-    PetscCall(JRHBMSetUp(hr));
-    PetscCall(PetscTime(&t1));
-    *setup += t1 - t0;
-    *factor = c;
+    if (c == 0) c = 1.0;
+    if (corr) {
+      for (PetscInt e = 0; e < elx->n; e++) {
+        elx->kt[e] *= c;
+        elx->kn[e] *= c;
+      }
+      PetscCall(JRHBMSetElements(hr, elx));
+      PetscCall(PetscTime(&t0));
+      PetscCall(JRHBMSetUp(hr));
+      PetscCall(PetscTime(&t1));
+      *setup += t1 - t0;
+      *factor = c;
+    }
   }
   *hbmx = hr;
   PetscFunctionReturn(0);
@@ -300,7 +557,7 @@ static PetscErrorCode SelectWeights(JRReduce red, JRModel model, JRHBM hbm, cons
         ea = PetscMax(ea, PetscAbsReal(ac[l] / af[l] - 1));
         ef = PetscMax(ef, PetscAbsReal(wc[l] / wf[l] - 1));
       }
-      PetscCall(PetscPrintf(comm, "rom select total_weight %g case_weight %g worst_amp_vs_first %.3e worst_freq_vs_first %.3e\n", (double)wtot[i], (double)wcas[j], (double)ea, (double)ef));
+      PetscCall(PetscPrintf(comm, "rom select total_weight %g case_weight %g worst_amp_vs_first %.3e worst_freq_vs_first %.3e stiffness_correction %.6f\n", (double)wtot[i], (double)wcas[j], (double)ea, (double)ef, (double)c));
       if (ea < best) { /* the first pair of the smallest error */
         best = ea;
         bt   = wtot[i];
@@ -327,6 +584,7 @@ PetscErrorCode JRReduceCreate(MPI_Comm comm, JRReduce *red)
   PetscCall(PetscNew(&r));
   r->comm          = comm;
   r->zone_fraction = 0.5;
+  r->rings         = 2;
   r->mode_weights  = PETSC_TRUE;
   r->corr_on       = PETSC_TRUE;
   r->nst           = 3;
@@ -347,13 +605,14 @@ PetscErrorCode JRReduceDestroy(JRReduce *red)
   PetscFunctionBeginUser;
   if (!*red) PetscFunctionReturn(0);
   PetscCall(PetscFree((*red)->lev));
+  PetscCall(PetscFree((*red)->ji));
   PetscCall(PetscFree(*red));
   PetscFunctionReturn(0);
 }
 
 /*
   JRReduceSetFromOptions - every option of the reduction, read and checked once: the joints (-rom_joints, -rom_strips,
-  -rom_boxes, -rom_zone_fraction, -rom_split_width), -rom_elements, -rom_mode_weights, -rom_fit_select (with
+  -rom_boxes, -rom_zone_fraction, -rom_auto_rings, -rom_split_width), -rom_elements, -rom_mode_weights, -rom_fit_select (with
   -rom_fit_select_total, -rom_fit_select_case), -rom_stiffness_correction, -rom_save, -rom_load, and the fit's
   (JRROMFitSetFromOptions: -rom_fit_*, -rom_joint_motion)
 */
@@ -361,17 +620,18 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
 {
   const char *sel[] = {"none", "first"};
   MPI_Comm    comm    = r->comm;
-  PetscBool   set, bset, st, sc;
+  PetscBool   set, bset, st, sc, rset;
   PetscInt    nst = 8, nsc = 8;
 
   PetscFunctionBeginUser;
   r->ncut = 64;
   r->nbox = 256;
   PetscOptionsBegin(comm, "rom_", "Reduced-order joints (prefix rom_)", "JRReduce");
-  PetscCall(PetscOptionsEList("-joints", "First reduction, the joints: none (node-to-node), each, strips (-rom_strips cuts), bolts, between, sides, zones (per bolt side and load), boxes (-rom_boxes)", "JRReduceAssignJoints", JointKinds, 8, JointKinds[r->joints], &r->joints, NULL));
+  PetscCall(PetscOptionsEList("-joints", "First reduction, the joints: none (node-to-node), each, strips (-rom_strips cuts), bolts, between, sides, zones (per bolt side and load), boxes (-rom_boxes), auto (rings of equal load around each bolt, -rom_auto_rings)", "JRReduceAssignJoints", JointKinds, 9, JointKinds[r->joints], &r->joints, NULL));
   PetscCall(PetscOptionsRealArray("-strips", "Cut positions along the beam axis x1,x2,... [m], increasing", "JRReduceAssignJoints", r->cut, &r->ncut, &set));
   PetscCall(PetscOptionsRealArray("-boxes", "Boxes x0,x1,y0,y1 per joint [m]", "JRReduceAssignJoints", r->box, &r->nbox, &bset));
   PetscCall(PetscOptionsReal("-zone_fraction", "-rom_joints zones: the high-load zone of a bolt side holds the members with n0 at least this fraction of the side's largest", "JRReduceAssignJoints", r->zone_fraction, &r->zone_fraction, NULL));
+  PetscCall(PetscOptionsInt("-auto_rings", "-rom_joints auto: rings of equal load per bolt (each cut into the bolt's two sides)", "JRReduceAssignJoints", r->rings, &r->rings, &rset));
   PetscCall(PetscOptionsBool("-split_width", "Split every strip at mid-width into two joints", "JRReduceAssignJoints", r->split_width, &r->split_width, NULL));
   PetscCall(PetscOptionsInt("-elements", "Second reduction: fit this many elements per joint to its hysteresis loops (0: the first reduction only)", "JRReduceSetUp", r->m, &r->m, NULL));
   PetscCall(PetscOptionsBool("-mode_weights", "Weight every member of a joint by its motion relative to the joint's in the stuck mode of interest (w^2 kt, |w| f; jenkins)", "JRReduceSetUp", r->mode_weights, &r->mode_weights, NULL));
@@ -388,6 +648,8 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
   if (sc) r->nsc = nsc;
   PetscCheck(!set || r->joints == 2, comm, PETSC_ERR_ARG_INCOMP, "-rom_strips needs -rom_joints strips");
   PetscCheck(!bset || r->joints == 7, comm, PETSC_ERR_ARG_INCOMP, "-rom_boxes needs -rom_joints boxes");
+  PetscCheck(!rset || r->joints == 8, comm, PETSC_ERR_ARG_INCOMP, "-rom_auto_rings needs -rom_joints auto");
+  PetscCheck(r->rings >= 1 && r->rings <= 8, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_auto_rings %" PetscInt_FMT ": 1 to 8 rings per bolt", r->rings);
   PetscCheck(!r->split_width || (r->joints >= 2 && r->joints <= 6), comm, PETSC_ERR_ARG_INCOMP, "-rom_split_width needs -rom_joints strips, bolts, between, sides or zones");
   PetscCheck(r->zone_fraction > 0 && r->zone_fraction < 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_zone_fraction %g: between 0 and 1", (double)r->zone_fraction);
   PetscCheck(r->joints != 2 || r->ncut > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints strips needs the cuts -rom_strips x1,x2,... [m]");
@@ -551,7 +813,8 @@ PetscErrorCode JRReduceSetUp(JRReduce r, JRModel model, JRHBM hbm, JRElements *e
 /*
   JRReduceCreateHBM - the reduced model elr's harmonic balance on the modes of hbm (NULL: its own), with the stiffness
   correction (-rom_stiffness_correction, not for a loaded model: its factor is in its file) that puts its stuck mode
-  of interest on hbm's. *setup: the set-up's wall time [s]
+  of interest on hbm's. Prints the factor (`rom stiffness_correction`, also for a loaded model and with the correction
+  off) and, outside [0.9, 1.1], a warning naming the joints responsible. *setup: the set-up's wall time [s]
 */
 PetscErrorCode JRReduceCreateHBM(JRReduce r, JRModel model, JRHBM hbm, PetscBool loaded, JRElements *elr, JRHBM *hbmr, PetscReal *setup)
 {
@@ -559,9 +822,13 @@ PetscErrorCode JRReduceCreateHBM(JRReduce r, JRModel model, JRHBM hbm, PetscBool
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(JR_ReduceHBM, 0, 0, 0, 0));
-  PetscCall(ReducedHBM(r, model, hbm, (PetscBool)(!loaded && r->corr_on), PETSC_FALSE, elr, hbmr, &c, setup));
+  PetscCall(ReducedHBM(r, model, hbm, (PetscBool)(!loaded && r->corr_on), loaded, elr, hbmr, &c, setup));
   PetscCall(PetscLogEventEnd(JR_ReduceHBM, 0, 0, 0, 0));
   if (!loaded) r->corr = c;
+  else { /* the factor applied when the file was written, in its elements' springs */
+    PetscCall(PetscPrintf(r->comm, "rom stiffness_correction %.8f file %s\n", (double)r->corr, r->load));
+    if (r->corr < 0.9 || r->corr > 1.1) PetscCall(PetscPrintf(r->comm, "rom: WARNING stiffness correction %.4g outside [0.9, 1.1] in %s (applied when it was written; the run that wrote it named the joints responsible)\n", (double)r->corr, r->load));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -134,7 +134,6 @@ PETSC_INTERN PetscErrorCode JRHBMProjectionRowsDir(JRHBM, PetscInt, const PetscI
 PETSC_INTERN PetscErrorCode JRHBMNonlinear(JRHBM, const PetscReal *, PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode JRHBMSetUpSolver(JRHBM);
 PETSC_INTERN PetscErrorCode JRHBMLinear(JRHBM, PetscReal, const PetscReal *, PetscReal *, PetscReal *, PetscReal *);
-PETSC_INTERN PetscErrorCode JRHBMStuckMode(JRHBM, PetscInt, PetscReal *, PetscReal[]);
 
 /* src/hbm/hill.c: Floquet exponents */
 PETSC_INTERN PetscErrorCode JRHBMHillDestroy(JRHBM);

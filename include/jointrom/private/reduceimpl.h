@@ -3,11 +3,21 @@
 #define JOINTROM_REDUCEIMPL_H
 #include <jointrom.h>
 
+/* A first-reduction joint as reported: its members, those in contact at rest (n0 > 0), the normal load they carry at
+   rest [N], the members' centroid [m] (x, y, z), its zone (1 high-load, 0 low-load: -rom_joints zones; -1 none) and
+   a description of its region */
+typedef struct {
+  PetscInt  members, contact, zone;
+  PetscReal load, x[3];
+  char      kind[64];
+} JRJointInfo;
+
 struct _p_JRReduce {
   MPI_Comm  comm;
   PetscBool setfromoptions;
   /* first reduction: the joints (-rom_joints ...) */
-  PetscInt  joints; /* 0 none, 1 each, 2 strips, 3 bolts, 4 between, 5 sides, 6 zones, 7 boxes */
+  PetscInt  joints; /* 0 none, 1 each, 2 strips, 3 bolts, 4 between, 5 sides, 6 zones, 7 boxes, 8 auto */
+  PetscInt  rings;  /* -rom_auto_rings */
   PetscInt  ncut, nbox;
   PetscReal cut[64], box[256], zone_fraction;
   PetscBool split_width;
@@ -27,6 +37,9 @@ struct _p_JRReduce {
   PetscInt  fdof, nout, odof[64];
   char      base[PETSC_MAX_PATH_LEN]; /* BASE_rom_loops.csv/.png ("" none) */
   PetscBool plot;
+  /* the joints as reported (JRReduceAssignJoints) */
+  PetscInt     nji;
+  JRJointInfo *ji;
   /* results */
   PetscReal corr; /* the stiffness correction applied (1: none) */
 };
