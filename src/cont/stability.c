@@ -114,35 +114,62 @@ static PetscErrorCode Detect(JRCont c, JRContBranch *b)
 }
 
 /* JRContStability - level lev's points' stability (b->stable, b->maxre, b->detsign), its folds and branch points, and
-   (unless quiet) their lines; a: work vector of the solve space. Does nothing without -frf_stability; a condensed model
-   is not analysed (a note says so once). Collective. */
+   (unless quiet) their lines; a: work vector of the solve space. Each point is decided by incremental dissipativity
+   where it holds (JRHBMStabilityVerdict: stable, maxre NaN, no eigenproblem; -frf_stability_dissipative 0 skips it),
+   else by Hill's method (JRHBMFloquet), whose flags at points where hysteretic elements change state indicate rather
+   than decide (counted and said). Does nothing without -frf_stability; a condensed model that needs Hill's method is
+   not analysed (a note says so once). Collective. */
 PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
 {
-  JRContBranch  *b = &c->br[lev];
-  PetscBool      ok;
-  PetscInt       nun = 0;
-  PetscLogDouble t0, t1;
+  JRContBranch      *b = &c->br[lev];
+  PetscBool          ok;
+  PetscInt           nun = 0, ncount[3] = {0, 0, 0};
+  PetscLogDouble     t0, t1;
+  JRStabilityVerdict v = JR_STABILITY_HILL;
 
   PetscFunctionBeginUser;
   PetscCall(JRContBranchStabilityFree(b));
   if (!c->stab) PetscFunctionReturn(0);
   PetscCall(JRHBMHillSupported(c->hbm, &ok));
-  if (!ok) {
-    if (lev == 0 && !c->quiet) PetscCall(PetscPrintf(c->comm, "stability: not computed, the model is condensed onto its joints (-hbm_condense no keeps the modal unknowns); the CSV's stable column is -1\n"));
-    PetscFunctionReturn(0);
-  }
   PetscCall(PetscTime(&t0));
+  if (!ok) { /* condensed: only the certificate, which must then hold at every point */
+    for (PetscInt k = 0; k < b->np && c->stabdiss; k++) {
+      PetscCall(LoadPoint(c, b, k, a));
+      PetscCall(JRHBMStabilityVerdict(c->hbm, a, &v));
+      if (v != JR_STABILITY_DISSIPATIVE) break;
+    }
+    if (!c->stabdiss || v != JR_STABILITY_DISSIPATIVE) {
+      if (lev == 0 && !c->quiet) PetscCall(PetscPrintf(c->comm, "stability: not computed, the model is condensed onto its joints and not incrementally dissipative (-hbm_condense no keeps the modal unknowns for Hill's method); the CSV's stable column is -1\n"));
+      PetscFunctionReturn(0);
+    }
+  }
   PetscCall(PetscMalloc3(b->np, &b->stable, b->np, &b->maxre, b->np, &b->detsign));
   for (PetscInt k = 0; k < b->np; k++) {
     PetscCall(LoadPoint(c, b, k, a));
-    PetscCall(JRHBMFloquet(c->hbm, b->omega[k], a, c->stabsel, c->stabdense, NULL, NULL, NULL, &b->maxre[k], &b->detsign[k]));
-    b->stable[k] = b->maxre[k] < c->stabtol * b->omega[k] ? 1 : 0;
+    if (c->stabdiss) PetscCall(JRHBMStabilityVerdict(c->hbm, a, &v));
+    else v = JR_STABILITY_HILL;
+    if (c->stabdiss && v == JR_STABILITY_DISSIPATIVE) {
+      b->maxre[k]   = NAN;
+      b->detsign[k] = 0;
+      if (ok) PetscCall(JRHBMJacobianSign(c->hbm, b->omega[k], a, &b->detsign[k]));
+      b->stable[k] = 1;
+    } else {
+      if (!c->stabdiss) { /* the label of the Hill point: hysteretic elements present? */
+        PetscCall(JRHBMStabilityVerdict(c->hbm, a, &v));
+        if (v == JR_STABILITY_DISSIPATIVE) v = JR_STABILITY_HILL_HYSTERETIC;
+      }
+      PetscCall(JRHBMFloquet(c->hbm, b->omega[k], a, c->stabsel, c->stabdense, NULL, NULL, NULL, &b->maxre[k], &b->detsign[k]));
+      b->stable[k] = b->maxre[k] < c->stabtol * b->omega[k] ? 1 : 0;
+    }
+    ncount[v]++;
     if (!b->stable[k]) nun++;
   }
   PetscCall(Detect(c, b));
   PetscCall(PetscTime(&t1));
   b->stab_seconds = t1 - t0;
-  if (!c->quiet) PetscCall(PetscPrintf(c->comm, "stability level %g unstable_points %" PetscInt_FMT " of %" PetscInt_FMT " folds %" PetscInt_FMT " branch_points %" PetscInt_FMT " seconds %.3g (curve %.3g)\n", (double)b->F, nun, b->np, b->nfold, b->nbranch, (double)b->stab_seconds, (double)b->seconds));
+  b->nhyst        = ncount[JR_STABILITY_HILL_HYSTERETIC];
+  if (!c->quiet) PetscCall(PetscPrintf(c->comm, "stability level %g unstable_points %" PetscInt_FMT " of %" PetscInt_FMT " folds %" PetscInt_FMT " branch_points %" PetscInt_FMT " seconds %.3g (curve %.3g) dissipative %" PetscInt_FMT " hill %" PetscInt_FMT " hill_hysteretic %" PetscInt_FMT "\n", (double)b->F, nun, b->np, b->nfold, b->nbranch, (double)b->stab_seconds, (double)b->seconds, ncount[0], ncount[1], ncount[2]));
+  if (!c->quiet && b->nhyst) PetscCall(PetscPrintf(c->comm, "stability level %g: %" PetscInt_FMT " points by Hill's method with friction elements changing state: its periodic Jacobian misses the slip's memory, so these flags indicate and do not decide (docs/theory.md section 16); -frf_verify_points checks them by time integration\n", (double)b->F, b->nhyst));
   PetscFunctionReturn(0);
 }
 

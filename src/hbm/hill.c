@@ -357,6 +357,26 @@ PetscErrorCode JRHBMFloquet(JRHBM h, PetscReal w, Vec a, JRHillSelect sel, Petsc
   PetscFunctionReturn(0);
 }
 
+/* JRHBMJacobianSign - the sign of det(dR/da) at the solution a at frequency w (0 if singular), as JRHBMFloquet()
+   gives it, without the eigenproblem. Collective; rank 0 factors and broadcasts. */
+PetscErrorCode JRHBMJacobianSign(JRHBM h, PetscReal w, Vec a, PetscInt *detsign)
+{
+  PetscInt s = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(HillWork(h));
+  PetscCall(JRHBMComputeJacobian(h, w, a, h->hill->J, NULL));
+  if (!h->rank) {
+    const PetscReal *J;
+    PetscCall(MatDenseGetArrayRead(h->hill->J, &J));
+    PetscCall(DetSign(h, J, &s));
+    PetscCall(MatDenseRestoreArrayRead(h->hill->J, &J));
+  }
+  if (h->size > 1) PetscCallMPI(MPI_Bcast(&s, 1, MPIU_INT, 0, h->comm));
+  *detsign = s;
+  PetscFunctionReturn(0);
+}
+
 /* JRHBMHillSupported - whether JRHBMFloquet() can run: the solve space is the modal one (not condensed onto joints) */
 PetscErrorCode JRHBMHillSupported(JRHBM h, PetscBool *ok)
 {

@@ -117,6 +117,9 @@ struct _p_JRHBM {
   PetscReal         eomega;
   PetscReal        *epsi, *ep, *ework; /* ework: n + n^2 + n */
   struct _JRHill   *hill;         /* JRHBMFloquet(): the work of Hill's method (src/hbm/hill.c) */
+  PetscInt          dissip;       /* JRHBMStabilityVerdict(): 0 not yet known, 1 no certificate (smooth or other elements, or
+                                     a linear part that is not dissipative), 2 every element jenkins, 3 jenkins and
+                                     jenkins_nv (decided per point) */
 };
 
 /* C = alpha op(A) op(B) + beta C, column-major (BLAS gemm; k = 0 only scales C) */
