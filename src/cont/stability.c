@@ -123,7 +123,7 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
 {
   JRContBranch      *b = &c->br[lev];
   PetscBool          ok;
-  PetscInt           nun = 0, ncount[3] = {0, 0, 0};
+  PetscInt           nun = 0, ncount[4] = {0, 0, 0, 0};
   PetscLogDouble     t0, t1;
   JRStabilityVerdict v = JR_STABILITY_HILL;
 
@@ -158,7 +158,11 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
         PetscCall(JRHBMStabilityVerdict(c->hbm, a, &v));
         if (v == JR_STABILITY_DISSIPATIVE) v = JR_STABILITY_HILL_HYSTERETIC;
       }
-      PetscCall(JRHBMFloquet(c->hbm, b->omega[k], a, c->stabsel, c->stabdense, NULL, NULL, NULL, &b->maxre[k], &b->detsign[k]));
+      if (v == JR_STABILITY_HILL_HYSTERETIC && c->stabtime) {
+        PetscCall(JRHBMFloquetTime(c->hbm, b->omega[k], a, NULL, NULL, NULL, &b->maxre[k], NULL));
+        PetscCall(JRHBMJacobianSign(c->hbm, b->omega[k], a, &b->detsign[k]));
+        v = JR_STABILITY_TIME;
+      } else PetscCall(JRHBMFloquet(c->hbm, b->omega[k], a, c->stabsel, c->stabdense, NULL, NULL, NULL, &b->maxre[k], &b->detsign[k]));
       b->stable[k] = b->maxre[k] < c->stabtol * b->omega[k] ? 1 : 0;
     }
     ncount[v]++;
@@ -168,7 +172,7 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   PetscCall(PetscTime(&t1));
   b->stab_seconds = t1 - t0;
   b->nhyst        = ncount[JR_STABILITY_HILL_HYSTERETIC];
-  if (!c->quiet) PetscCall(PetscPrintf(c->comm, "stability level %g unstable_points %" PetscInt_FMT " of %" PetscInt_FMT " folds %" PetscInt_FMT " branch_points %" PetscInt_FMT " seconds %.3g (curve %.3g) dissipative %" PetscInt_FMT " hill %" PetscInt_FMT " hill_hysteretic %" PetscInt_FMT "\n", (double)b->F, nun, b->np, b->nfold, b->nbranch, (double)b->stab_seconds, (double)b->seconds, ncount[0], ncount[1], ncount[2]));
+  if (!c->quiet) PetscCall(PetscPrintf(c->comm, "stability level %g unstable_points %" PetscInt_FMT " of %" PetscInt_FMT " folds %" PetscInt_FMT " branch_points %" PetscInt_FMT " seconds %.3g (curve %.3g) dissipative %" PetscInt_FMT " time %" PetscInt_FMT " hill %" PetscInt_FMT " hill_hysteretic %" PetscInt_FMT "\n", (double)b->F, nun, b->np, b->nfold, b->nbranch, (double)b->stab_seconds, (double)b->seconds, ncount[JR_STABILITY_DISSIPATIVE], ncount[JR_STABILITY_TIME], ncount[JR_STABILITY_HILL], ncount[JR_STABILITY_HILL_HYSTERETIC]));
   if (!c->quiet && b->nhyst) PetscCall(PetscPrintf(c->comm, "stability level %g: %" PetscInt_FMT " points by Hill's method with friction elements changing state: its periodic Jacobian misses the slip's memory, so these flags indicate and do not decide (docs/theory.md section 16); -frf_verify_points checks them by time integration\n", (double)b->F, b->nhyst));
   PetscFunctionReturn(0);
 }

@@ -58,6 +58,7 @@ PetscErrorCode JRContCreate(MPI_Comm comm, JRCont *cont)
   c->stabtol   = 1e-6;
   c->stabdense = 400;
   c->stabdiss  = PETSC_TRUE;
+  c->stabtime  = PETSC_TRUE;
   PetscCall(PetscMalloc1(1, &c->levels));
   c->levels[0] = 1.0;
   PetscCall(PetscStrncpy(c->out, "out/frf", sizeof(c->out)));
@@ -177,7 +178,8 @@ PetscErrorCode JRContSetLevels(JRCont c, PetscInt n, const PetscReal F[])
   -cont_predictor secant|previous (natural), -cont_monitor 0|1|2; -frf_force F1,F2,.. [N],
   -frf_omega_min/-frf_omega_max [rad/s] or -frf_fmin/-frf_fmax [Hz], -frf_output_file BASE (BASE.h5, BASE.csv,
   BASE.png), -frf_plot, -frf_normalize (plot amplitude / force); -frf_stability 0|1 (Hill's method at every point,
-  folds and branch points), -frf_stability_select vector|imag, -frf_stability_tol, -frf_stability_dense_max, -frf_stability_dissipative.
+  folds and branch points), -frf_stability_select vector|imag, -frf_stability_tol, -frf_stability_dense_max, -frf_stability_dissipative,
+  -frf_stability_time.
 */
 PetscErrorCode JRContSetFromOptions(JRCont c)
 {
@@ -218,6 +220,7 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
   PetscCall(PetscOptionsEnum("-frf_stability_select", "Which exponents are the physical ones: vector (eigenvectors centred on the mean harmonic) or imag (|Im| <= w/2)", "JRHBMFloquet", JRHillSelects, (PetscEnum)c->stabsel, (PetscEnum *)&c->stabsel, NULL));
   PetscCall(PetscOptionsReal("-frf_stability_tol", "A point is stable if every kept exponent has Re < tol w", "JRContStability", c->stabtol, &c->stabtol, NULL));
   PetscCall(PetscOptionsBool("-frf_stability_dissipative", "Points whose elements make the response incrementally dissipative (jenkins; jenkins_nv stuck or separated over the cycle) are stable without an eigenproblem; 0: Hill's method everywhere", "JRContStability", c->stabdiss, &c->stabdiss, NULL));
+  PetscCall(PetscOptionsBool("-frf_stability_time", "Points with friction elements changing state: Floquet exponents of the monodromy matrix marched over one period; 0: Hill's method, whose flags there indicate", "JRHBMFloquetTime", c->stabtime, &c->stabtime, NULL));
   PetscCall(PetscOptionsInt("-frf_stability_dense_max", "Largest nm (2H+1) solved by LAPACK's QZ; above it SLEPc's PEP (prefix hbm_hill_, strip selection)", "JRHBMFloquet", c->stabdense, &c->stabdense, NULL));
   PetscOptionsEnd();
   c->secant = pred == 0 ? PETSC_TRUE : PETSC_FALSE;
