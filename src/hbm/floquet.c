@@ -27,11 +27,12 @@ struct _JRMonodromy {
   PetscInt  *type;                    /* 0 jenkins, 1 jenkins_nv, 2 cubic */
   PetscReal *kt, *kn, *mu, *n0;       /* ne each */
   PetscReal *Ra, *Sa;                 /* ne x nm column-major: the rows over every mode (the point's motion) */
-  PetscReal *R, *S;                   /* ne x nk column-major: over the kept modes (the perturbation) */
-  PetscReal *K, *C, *Kg, *Mi;         /* nk x nk column-major: Km - Kc, Cm, Kg, Mm^-1 */
+  PetscReal *RS;                      /* 2 ne x nk column-major: [r_e; s_e] over the kept modes (the perturbation) */
+  PetscReal *MRS;                     /* nk x 2 ne: -Mm^-1 [R^T S^T] */
+  PetscReal *K, *C, *Kg, *Mi, *G;     /* nk x nk column-major: Km - Kc, Cm, Kg, Mm^-1; G = -Mm^-1 [K, Cv] (nk x 2 nk) */
   PetscReal  wmax;                    /* the stiffest mode with every element stuck [rad/s] */
   PetscReal *u, *v, *wn;              /* the point's motion at the half steps (ne x (2 ns + 1)), committed slip (ne x (ns + 1)) */
-  PetscReal *Y, *Y0, *Ys, *Kq, *DU, *DV, *DF, *DN, *A, *Wc; /* the march's work */
+  PetscReal *Y, *Y0, *Ys, *DUV, *DFN, *Wc; /* the march's work: DUV = [du; dv], DFN = [df; dn] (2 ne x m) */
   PetscReal *ev, *wr, *wi, *work;
   PetscBLASInt lwork;
 };
@@ -44,11 +45,11 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscFunctionBeginUser;
   if (!f) PetscFunctionReturn(0);
   PetscCall(PetscFree5(f->type, f->kt, f->kn, f->mu, f->n0));
-  PetscCall(PetscFree4(f->Ra, f->Sa, f->R, f->S));
-  PetscCall(PetscFree4(f->K, f->C, f->Kg, f->Mi));
+  PetscCall(PetscFree4(f->Ra, f->Sa, f->RS, f->MRS));
+  PetscCall(PetscFree5(f->K, f->C, f->Kg, f->Mi, f->G));
   PetscCall(PetscFree3(f->u, f->v, f->wn));
-  PetscCall(PetscFree5(f->Y, f->Y0, f->Ys, f->Kq, f->A));
-  PetscCall(PetscFree5(f->DU, f->DV, f->DF, f->DN, f->Wc));
+  PetscCall(PetscFree3(f->Y, f->Y0, f->Ys));
+  PetscCall(PetscFree3(f->DUV, f->DFN, f->Wc));
   PetscCall(PetscFree4(f->ev, f->wr, f->wi, f->work));
   PetscCall(PetscFree(h->mono));
   PetscFunctionReturn(0);
@@ -120,8 +121,8 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
   f->nk = nk;
   f->m  = 2 * nk + ne;
   PetscCall(PetscMalloc5(ne, &f->type, ne, &f->kt, ne, &f->kn, ne, &f->mu, ne, &f->n0));
-  PetscCall(PetscMalloc4(ne * nm, &f->Ra, ne * nm, &f->Sa, ne * nk, &f->R, ne * nk, &f->S));
-  PetscCall(PetscMalloc4(nk * nk, &f->K, nk * nk, &f->C, nk * nk, &f->Kg, nk * nk, &f->Mi));
+  PetscCall(PetscMalloc4(ne * nm + 1, &f->Ra, ne * nm + 1, &f->Sa, 2 * ne * nk + 1, &f->RS, 2 * ne * nk + 1, &f->MRS));
+  PetscCall(PetscMalloc5(nk * nk, &f->K, nk * nk, &f->C, nk * nk, &f->Kg, nk * nk, &f->Mi, 2 * nk * nk, &f->G));
   for (PetscInt e = 0; e < ne; e++) {
     const PetscReal *r = all + rec * e;
     f->type[e]         = (PetscInt)r[0];
@@ -134,8 +135,8 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
       f->Sa[e + i * ne] = r[5 + nm + i];
     }
     for (PetscInt i = 0; i < nk; i++) {
-      f->R[e + i * ne] = r[5 + keep[i]];
-      f->S[e + i * ne] = r[5 + nm + keep[i]];
+      f->RS[e + i * 2 * ne]      = r[5 + keep[i]];
+      f->RS[ne + e + i * 2 * ne] = r[5 + nm + keep[i]];
     }
   }
   for (PetscInt j = 0; j < nk; j++)
@@ -156,7 +157,7 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
     PetscCall(PetscArraycpy(Mc, f->Mi, nk * nk));
     for (PetscInt e = 0; e < ne; e++)
       for (PetscInt j = 0; j < nk; j++)
-        for (PetscInt i = 0; i < nk; i++) Ks[i + j * nk] += PetscAbsReal(f->kt[e]) * f->R[e + i * ne] * f->R[e + j * ne] + (f->type[e] == 1 ? f->kn[e] * f->S[e + i * ne] * f->S[e + j * ne] : 0.0);
+        for (PetscInt i = 0; i < nk; i++) Ks[i + j * nk] += PetscAbsReal(f->kt[e]) * f->RS[e + i * 2 * ne] * f->RS[e + j * 2 * ne] + (f->type[e] == 1 ? f->kn[e] * f->RS[ne + e + i * 2 * ne] * f->RS[ne + e + j * 2 * ne] : 0.0);
     if (nk) {
       PetscCallBLAS("LAPACKsygv", LAPACKsygv_(&itype, "N", "U", &bn, Ks, &bn, Mc, &bn, ev, wk, &lw, &info));
       PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK sygv failed (info %d): the modal mass is not positive definite", (int)info);
@@ -174,11 +175,12 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
       PetscCall(PetscFree(piv));
     }
     PetscCall(PetscFree4(Ks, Mc, ev, wk));
+    if (ne) PetscCall(JRGemm("N", "T", nk, 2 * ne, nk, -1.0, f->Mi, nk, f->RS, 2 * ne, 0.0, f->MRS, nk));
   }
   {
     const PetscInt m = f->m;
-    PetscCall(PetscMalloc5(m * m, &f->Y, m * m, &f->Y0, m * m, &f->Ys, nk * m, &f->Kq, nk * m, &f->A));
-    PetscCall(PetscMalloc5(ne * m + 1, &f->DU, ne * m + 1, &f->DV, ne * m + 1, &f->DF, ne * m + 1, &f->DN, ne * m + 1, &f->Wc));
+    PetscCall(PetscMalloc3(m * m, &f->Y, m * m, &f->Y0, m * m, &f->Ys));
+    PetscCall(PetscMalloc3(2 * ne * m + 1, &f->DUV, 2 * ne * m + 1, &f->DFN, ne * m + 1, &f->Wc));
     f->lwork = (PetscBLASInt)(4 * m + 4);
     PetscCall(PetscMalloc4(m * m, &f->ev, m, &f->wr, m, &f->wi, f->lwork, &f->work));
   }
@@ -196,18 +198,18 @@ static inline PetscReal Bound(const struct _JRMonodromy *f, PetscInt e, PetscRea
   return f->kt[e] > 0 ? f->mu[e] * *n / f->kt[e] : 0.0;
 }
 
-/* The linearised element forces at half step s from the committed slip of step j: DF, DN (ne x m) from DU, DV, Wc */
+/* The linearised element forces at half step s from the committed slip of step j: DFN from DUV and Wc */
 static void ElementForces(const struct _JRMonodromy *f, PetscInt s, PetscInt j)
 {
-  const PetscInt ne = f->ne, m = f->m, N2 = 2 * f->ns + 1;
+  const PetscInt ne = f->ne, m = f->m, N2 = 2 * f->ns + 1, l = 2 * ne;
 
   for (PetscInt e = 0; e < ne; e++) {
     const PetscReal u = f->u[e * N2 + s], w = f->wn[e * (f->ns + 1) + j], kt = f->kt[e], kn = f->kn[e];
     PetscReal       n, r;
     if (f->type[e] == 2) { /* cubic: f = kt u^3 */
       for (PetscInt c = 0; c < m; c++) {
-        f->DF[e + c * ne] = 3 * kt * u * u * f->DU[e + c * ne];
-        f->DN[e + c * ne] = 0.0;
+        f->DFN[e + c * l]      = 3 * kt * u * u * f->DUV[e + c * l];
+        f->DFN[ne + e + c * l] = 0.0;
       }
       continue;
     }
@@ -217,42 +219,31 @@ static void ElementForces(const struct _JRMonodromy *f, PetscInt s, PetscInt j)
       const PetscReal drdv    = contact && kt > 0 ? f->mu[e] * kn / kt : 0.0;
       const PetscInt  side    = w < u - r ? -1 : w > u + r ? 1 : 0; /* slipping at the lower / upper bound, or stuck */
       for (PetscInt c = 0; c < m; c++) {
-        const PetscReal du = f->DU[e + c * ne], dv = f->DV[e + c * ne];
+        const PetscReal du = f->DUV[e + c * l], dv = f->DUV[ne + e + c * l];
         const PetscReal dw = side == 0 ? f->Wc[e + c * ne] : side < 0 ? du - drdv * dv : du + drdv * dv;
-        f->DF[e + c * ne]  = kt * (du - dw);
-        f->DN[e + c * ne]  = contact ? kn * dv : 0.0;
+        f->DFN[e + c * l]      = kt * (du - dw);
+        f->DFN[ne + e + c * l] = contact ? kn * dv : 0.0;
       }
     }
   }
 }
 
 /* The right-hand side of the variational equations at half step s (committed slip of step j) for the state Z = [Q; P;
-   W] (m x m, column-major): Q' = P and the acceleration into D (rows nk..2nk-1 of an m x m array; rows 0..nk-1 get P) */
-static PetscErrorCode Rhs(JRHBM h, PetscReal w, PetscInt s, PetscInt j, const PetscReal *Z, PetscReal *D)
+   W] (m x m, column-major) into D: Q' = P (rows 0..nk-1), P' = G [Q; P] - Mm^-1 (R^T df + S^T dn) (rows nk..2nk-1) */
+static PetscErrorCode Rhs(JRHBM h, PetscInt s, PetscInt j, const PetscReal *Z, PetscReal *D)
 {
   struct _JRMonodromy *f  = h->mono;
   const PetscInt       nk = f->nk, ne = f->ne, m = f->m;
-  const PetscReal      gw = h->gamma / w;
 
   PetscFunctionBeginUser;
   for (PetscInt c = 0; c < m; c++)
     for (PetscInt i = 0; i < nk; i++) D[i + c * m] = Z[nk + i + c * m];
+  PetscCall(JRGemm("N", "N", nk, m, 2 * nk, 1.0, f->G, nk, Z, m, 0.0, D + nk, m));
   if (ne) {
-    PetscCall(JRGemm("N", "N", ne, m, nk, 1.0, f->R, ne, Z, m, 0.0, f->DU, ne));
-    PetscCall(JRGemm("N", "N", ne, m, nk, 1.0, f->S, ne, Z, m, 0.0, f->DV, ne));
+    PetscCall(JRGemm("N", "N", 2 * ne, m, nk, 1.0, f->RS, 2 * ne, Z, m, 0.0, f->DUV, 2 * ne));
     ElementForces(f, s, j);
+    PetscCall(JRGemm("N", "N", nk, m, 2 * ne, 1.0, f->MRS, nk, f->DFN, 2 * ne, 1.0, D + nk, m));
   }
-  /* Kq = K Q + C P + (gamma / w) Kg P + R^T DF + S^T DN; A = -Mm^-1 Kq */
-  PetscCall(JRGemm("N", "N", nk, m, nk, 1.0, f->K, nk, Z, m, 0.0, f->Kq, nk));
-  PetscCall(JRGemm("N", "N", nk, m, nk, 1.0, f->C, nk, Z + nk, m, 1.0, f->Kq, nk));
-  if (gw != 0.0) PetscCall(JRGemm("N", "N", nk, m, nk, gw, f->Kg, nk, Z + nk, m, 1.0, f->Kq, nk));
-  if (ne) {
-    PetscCall(JRGemm("T", "N", nk, m, ne, 1.0, f->R, ne, f->DF, ne, 1.0, f->Kq, nk));
-    PetscCall(JRGemm("T", "N", nk, m, ne, 1.0, f->S, ne, f->DN, ne, 1.0, f->Kq, nk));
-  }
-  PetscCall(JRGemm("N", "N", nk, m, nk, -1.0, f->Mi, nk, f->Kq, nk, 0.0, f->A, nk));
-  for (PetscInt c = 0; c < m; c++)
-    for (PetscInt i = 0; i < nk; i++) D[nk + i + c * m] = f->A[i + c * nk];
   PetscFunctionReturn(0);
 }
 
@@ -339,6 +330,12 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt *nexp, Pet
     PetscReal         *Y = f->Y, *Y0 = f->Y0, *Ys = f->Ys, *K1 = f->ev;
     PetscReal         *acc;
     PetscBLASInt       bm, info, one = 1;
+    { /* G = -Mm^-1 [K, Cm + (gamma / w) Kg] at this frequency */
+      PetscReal *Cv = f->Y0;
+      for (PetscInt i = 0; i < nk * nk; i++) Cv[i] = f->C[i] + h->gamma / w * f->Kg[i];
+      PetscCall(JRGemm("N", "N", nk, nk, nk, -1.0, f->Mi, nk, f->K, nk, 0.0, f->G, nk));
+      PetscCall(JRGemm("N", "N", nk, nk, nk, -1.0, f->Mi, nk, Cv, nk, 0.0, f->G + nk * nk, nk));
+    }
     PetscCall(VecGetArrayRead(a, &x));
     PointMotion(h, w, x);
     PetscCall(VecRestoreArrayRead(a, &x));
@@ -354,7 +351,7 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt *nexp, Pet
       for (PetscInt st = 0; st < 4; st++) { /* RK4 on (Q, P); the slip rows held */
         const PetscInt  s  = 2 * j + (st == 0 ? 0 : st == 3 ? 2 : 1);
         const PetscReal cw = st == 0 || st == 3 ? 1.0 : 2.0, cn = st == 2 ? 1.0 : 0.5;
-        PetscCall(Rhs(h, w, s, j, st == 0 ? Y0 : Ys, K1));
+        PetscCall(Rhs(h, s, j, st == 0 ? Y0 : Ys, K1));
         for (PetscInt c = 0; c < m; c++)
           for (PetscInt i = 0; i < 2 * nk; i++) {
             acc[i + c * m] += cw * K1[i + c * m];
@@ -366,8 +363,7 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt *nexp, Pet
       /* commit the slips at step j + 1: the return map's derivative from step j's committed slip */
       if (ne) {
         const PetscInt N2 = 2 * ns + 1;
-        PetscCall(JRGemm("N", "N", ne, m, nk, 1.0, f->R, ne, Y, m, 0.0, f->DU, ne));
-        PetscCall(JRGemm("N", "N", ne, m, nk, 1.0, f->S, ne, Y, m, 0.0, f->DV, ne));
+        PetscCall(JRGemm("N", "N", 2 * ne, m, nk, 1.0, f->RS, 2 * ne, Y, m, 0.0, f->DUV, 2 * ne));
         for (PetscInt e = 0; e < ne; e++) {
           const PetscReal u = f->u[e * N2 + 2 * j + 2], wj = f->wn[e * (ns + 1) + j];
           PetscReal       n, r;
@@ -378,7 +374,7 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt *nexp, Pet
           if (!side) continue;
           {
             const PetscReal drdv = f->type[e] == 1 && n > 0 && f->kt[e] > 0 ? f->mu[e] * f->kn[e] / f->kt[e] : 0.0;
-            for (PetscInt c = 0; c < m; c++) Y[2 * nk + e + c * m] = f->DU[e + c * ne] + (side < 0 ? -drdv : drdv) * f->DV[e + c * ne];
+            for (PetscInt c = 0; c < m; c++) Y[2 * nk + e + c * m] = f->DUV[e + c * 2 * ne] + (side < 0 ? -drdv : drdv) * f->DUV[ne + e + c * 2 * ne];
           }
         }
       }
