@@ -13,7 +13,7 @@
    w <- clamp(w, u - mu n / kt, u + mu n / kt) committed after every step, and at every stage a return map from the
    committed slip, whose derivative is dw (the committed one, stuck), du -+ mu kn dv / kt (slipping at the upper or
    lower bound, kn for jenkins_nv in contact, else 0); df = kt (du - dw), dn = kn dv in contact (jenkins_nv), and
-   df = 3 kt u^2 du for a cubic spring. The state (dq, dq', dw) has 2 nk + ne entries; its fundamental matrix after one
+   df = 3 kt u^2 du for a cubic spring. The state (dq, dq', dw) has 2 nk + ne entries (ne friction elements); its fundamental matrix after one
    period T (RK4, the step at most 0.5 / w_max, w_max the stiffest mode with every element stuck, and at least the
    harmonic balance's samples per period) is the monodromy matrix, whose eigenvalues rho are the Floquet multipliers:
    exponents log(rho) / T. A stuck element's slip is a neutral state (rho = 1): a perturbed slip stays.
@@ -25,6 +25,7 @@
 struct _JRMonodromy {
   PetscInt   ne, nk, m, ns;           /* elements (all ranks), kept modes, state size 2 nk + ne, steps per period */
   PetscInt  *type;                    /* 0 jenkins, 1 jenkins_nv, 2 cubic */
+  PetscInt  *mem;                     /* each element's slip in the state (2 nk + mem[e]), -1 for a cubic spring */
   PetscReal *kt, *kn, *mu, *n0;       /* ne each */
   PetscReal *Ra, *Sa;                 /* ne x nm column-major: the rows over every mode (the point's motion) */
   PetscReal *RS;                      /* 2 ne x nk column-major: [r_e; s_e] over the kept modes (the perturbation) */
@@ -45,6 +46,7 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscFunctionBeginUser;
   if (!f) PetscFunctionReturn(0);
   PetscCall(PetscFree5(f->type, f->kt, f->kn, f->mu, f->n0));
+  PetscCall(PetscFree(f->mem));
   PetscCall(PetscFree4(f->Ra, f->Sa, f->RS, f->MRS));
   PetscCall(PetscFree5(f->K, f->C, f->Kg, f->Mi, f->G));
   PetscCall(PetscFree3(f->u, f->v, f->wn));
@@ -119,8 +121,9 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
     if (!h->pin || h->pin[i] == 0.0) keep[nk++] = i;
   f->ne = ne;
   f->nk = nk;
-  f->m  = 2 * nk + ne;
+  f->m  = 2 * nk;
   PetscCall(PetscMalloc5(ne, &f->type, ne, &f->kt, ne, &f->kn, ne, &f->mu, ne, &f->n0));
+  PetscCall(PetscMalloc1(ne, &f->mem));
   PetscCall(PetscMalloc4(ne * nm + 1, &f->Ra, ne * nm + 1, &f->Sa, 2 * ne * nk + 1, &f->RS, 2 * ne * nk + 1, &f->MRS));
   PetscCall(PetscMalloc5(nk * nk, &f->K, nk * nk, &f->C, nk * nk, &f->Kg, nk * nk, &f->Mi, 2 * nk * nk, &f->G));
   for (PetscInt e = 0; e < ne; e++) {
@@ -130,6 +133,7 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
     f->kn[e]           = r[2];
     f->mu[e]           = r[3];
     f->n0[e]           = r[4];
+    f->mem[e]          = f->type[e] == 2 ? -1 : f->m++ - 2 * nk;
     for (PetscInt i = 0; i < nm; i++) {
       f->Ra[e + i * ne] = r[5 + i];
       f->Sa[e + i * ne] = r[5 + nm + i];
@@ -289,7 +293,7 @@ static void PointMotion(JRHBM h, PetscReal w, const PetscReal *a)
   JRHBMFloquetTime - the Floquet exponents of the solution a (solve space, modal) at frequency w from the monodromy
   matrix of the variational equations marched over one period (collective; rank 0 marches and broadcasts).
 
-  Output: nexp = 2 nk + ne (nk the modes other than rigid-body ones, ne the elements: their slips); re, im (room for
+  Output: nexp = 2 nk + ne (nk the modes other than rigid-body ones, ne the friction elements: their slips); re, im (room for
   nexp each, may be NULL): the exponents, largest real part first [1/s] (a zero multiplier, a slip that a slipping
   element forgets, gives -inf); maxre: the largest real part; steps: the RK4 steps per period (may be NULL).
   An error for a condensed model (JRHBMHillSupported()).
@@ -345,7 +349,7 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt *nexp, Pet
     for (PetscInt j = 0; j < ns; j++) {
       /* the committed slips of step j: rows 2 nk .. */
       for (PetscInt c = 0; c < m; c++)
-        for (PetscInt e = 0; e < ne; e++) f->Wc[e + c * ne] = Y[2 * nk + e + c * m];
+        for (PetscInt e = 0; e < ne; e++) f->Wc[e + c * ne] = f->mem[e] < 0 ? 0.0 : Y[2 * nk + f->mem[e] + c * m];
       PetscCall(PetscArraycpy(Y0, Y, m * m));
       PetscCall(PetscArrayzero(acc, m * m));
       for (PetscInt st = 0; st < 4; st++) { /* RK4 on (Q, P); the slip rows held */
@@ -374,7 +378,7 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt *nexp, Pet
           if (!side) continue;
           {
             const PetscReal drdv = f->type[e] == 1 && n > 0 && f->kt[e] > 0 ? f->mu[e] * f->kn[e] / f->kt[e] : 0.0;
-            for (PetscInt c = 0; c < m; c++) Y[2 * nk + e + c * m] = f->DUV[e + c * 2 * ne] + (side < 0 ? -drdv : drdv) * f->DUV[ne + e + c * 2 * ne];
+            for (PetscInt c = 0; c < m; c++) Y[2 * nk + f->mem[e] + c * m] = f->DUV[e + c * 2 * ne] + (side < 0 ? -drdv : drdv) * f->DUV[ne + e + c * 2 * ne];
           }
         }
       }
