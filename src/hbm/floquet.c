@@ -28,8 +28,9 @@ struct _JRMonodromy {
   PetscInt  *mem;                     /* each element's slip in the state (2 nk + mem[e]), -1 for a cubic spring */
   PetscReal *kt, *kn, *mu, *n0;       /* ne each */
   PetscReal *Ra, *Sa;                 /* ne x nm column-major: the rows over every mode (the point's motion) */
-  PetscReal *RS;                      /* 2 ne x nk column-major: [r_e; s_e] over the kept modes (the perturbation) */
-  PetscReal *MRS;                     /* nk x 2 ne: -Mm^-1 [R^T S^T] */
+  PetscInt   l, *srow;                /* l = ne + the jenkins_nv elements; each element's normal row in RS (-1: none) */
+  PetscReal *RS;                      /* l x nk column-major: [r_e; s_e of jenkins_nv] over the kept modes (the perturbation) */
+  PetscReal *MRS;                     /* nk x l: -Mm^-1 [R^T S^T] */
   PetscReal *K, *C, *Kg, *Mi, *G;     /* nk x nk column-major: Km - Kc, Cm, Kg, Mm^-1; G = -Mm^-1 [K, Cv] (nk x 2 nk) */
   PetscReal  wmax;                    /* the stiffest mode with every element stuck [rad/s] */
   PetscReal *u, *v, *wn;              /* the point's motion at the half steps (ne x (2 ns + 1)), committed slip (ne x (ns + 1)) */
@@ -46,7 +47,7 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscFunctionBeginUser;
   if (!f) PetscFunctionReturn(0);
   PetscCall(PetscFree5(f->type, f->kt, f->kn, f->mu, f->n0));
-  PetscCall(PetscFree(f->mem));
+  PetscCall(PetscFree2(f->mem, f->srow));
   PetscCall(PetscFree4(f->Ra, f->Sa, f->RS, f->MRS));
   PetscCall(PetscFree5(f->K, f->C, f->Kg, f->Mi, f->G));
   PetscCall(PetscFree3(f->u, f->v, f->wn));
@@ -123,8 +124,10 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
   f->nk = nk;
   f->m  = 2 * nk;
   PetscCall(PetscMalloc5(ne, &f->type, ne, &f->kt, ne, &f->kn, ne, &f->mu, ne, &f->n0));
-  PetscCall(PetscMalloc1(ne, &f->mem));
-  PetscCall(PetscMalloc4(ne * nm + 1, &f->Ra, ne * nm + 1, &f->Sa, 2 * ne * nk + 1, &f->RS, 2 * ne * nk + 1, &f->MRS));
+  PetscCall(PetscMalloc2(ne, &f->mem, ne, &f->srow));
+  f->l = ne;
+  for (PetscInt e = 0; e < ne; e++) f->srow[e] = (PetscInt)all[rec * e] == 1 ? f->l++ : -1;
+  PetscCall(PetscMalloc4(ne * nm + 1, &f->Ra, ne * nm + 1, &f->Sa, f->l * nk + 1, &f->RS, f->l * nk + 1, &f->MRS));
   PetscCall(PetscMalloc5(nk * nk, &f->K, nk * nk, &f->C, nk * nk, &f->Kg, nk * nk, &f->Mi, 2 * nk * nk, &f->G));
   for (PetscInt e = 0; e < ne; e++) {
     const PetscReal *r = all + rec * e;
@@ -139,8 +142,8 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
       f->Sa[e + i * ne] = r[5 + nm + i];
     }
     for (PetscInt i = 0; i < nk; i++) {
-      f->RS[e + i * 2 * ne]      = r[5 + keep[i]];
-      f->RS[ne + e + i * 2 * ne] = r[5 + nm + keep[i]];
+      f->RS[e + i * f->l] = r[5 + keep[i]];
+      if (f->srow[e] >= 0) f->RS[f->srow[e] + i * f->l] = r[5 + nm + keep[i]];
     }
   }
   for (PetscInt j = 0; j < nk; j++)
@@ -161,7 +164,7 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
     PetscCall(PetscArraycpy(Mc, f->Mi, nk * nk));
     for (PetscInt e = 0; e < ne; e++)
       for (PetscInt j = 0; j < nk; j++)
-        for (PetscInt i = 0; i < nk; i++) Ks[i + j * nk] += PetscAbsReal(f->kt[e]) * f->RS[e + i * 2 * ne] * f->RS[e + j * 2 * ne] + (f->type[e] == 1 ? f->kn[e] * f->RS[ne + e + i * 2 * ne] * f->RS[ne + e + j * 2 * ne] : 0.0);
+        for (PetscInt i = 0; i < nk; i++) Ks[i + j * nk] += PetscAbsReal(f->kt[e]) * f->RS[e + i * f->l] * f->RS[e + j * f->l] + (f->srow[e] >= 0 ? f->kn[e] * f->RS[f->srow[e] + i * f->l] * f->RS[f->srow[e] + j * f->l] : 0.0);
     if (nk) {
       PetscCallBLAS("LAPACKsygv", LAPACKsygv_(&itype, "N", "U", &bn, Ks, &bn, Mc, &bn, ev, wk, &lw, &info));
       PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK sygv failed (info %d): the modal mass is not positive definite", (int)info);
@@ -179,12 +182,12 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
       PetscCall(PetscFree(piv));
     }
     PetscCall(PetscFree4(Ks, Mc, ev, wk));
-    if (ne) PetscCall(JRGemm("N", "T", nk, 2 * ne, nk, -1.0, f->Mi, nk, f->RS, 2 * ne, 0.0, f->MRS, nk));
+    if (ne) PetscCall(JRGemm("N", "T", nk, f->l, nk, -1.0, f->Mi, nk, f->RS, f->l, 0.0, f->MRS, nk));
   }
   {
     const PetscInt m = f->m;
     PetscCall(PetscMalloc3(m * m, &f->Y, m * m, &f->Y0, m * m, &f->Ys));
-    PetscCall(PetscMalloc3(2 * ne * m + 1, &f->DUV, 2 * ne * m + 1, &f->DFN, ne * m + 1, &f->Wc));
+    PetscCall(PetscMalloc3(f->l * m + 1, &f->DUV, f->l * m + 1, &f->DFN, ne * m + 1, &f->Wc));
     f->lwork = (PetscBLASInt)(4 * m + 4);
     PetscCall(PetscMalloc4(m * m, &f->ev, m, &f->wr, m, &f->wi, f->lwork, &f->work));
   }
@@ -205,16 +208,13 @@ static inline PetscReal Bound(const struct _JRMonodromy *f, PetscInt e, PetscRea
 /* The linearised element forces at half step s from the committed slip of step j: DFN from DUV and Wc */
 static void ElementForces(const struct _JRMonodromy *f, PetscInt s, PetscInt j)
 {
-  const PetscInt ne = f->ne, m = f->m, N2 = 2 * f->ns + 1, l = 2 * ne;
+  const PetscInt ne = f->ne, m = f->m, N2 = 2 * f->ns + 1, l = f->l;
 
   for (PetscInt e = 0; e < ne; e++) {
     const PetscReal u = f->u[e * N2 + s], w = f->wn[e * (f->ns + 1) + j], kt = f->kt[e], kn = f->kn[e];
     PetscReal       n, r;
     if (f->type[e] == 2) { /* cubic: f = kt u^3 */
-      for (PetscInt c = 0; c < m; c++) {
-        f->DFN[e + c * l]      = 3 * kt * u * u * f->DUV[e + c * l];
-        f->DFN[ne + e + c * l] = 0.0;
-      }
+      for (PetscInt c = 0; c < m; c++) f->DFN[e + c * l] = 3 * kt * u * u * f->DUV[e + c * l];
       continue;
     }
     r = Bound(f, e, f->v[e * N2 + s], &n);
@@ -222,11 +222,12 @@ static void ElementForces(const struct _JRMonodromy *f, PetscInt s, PetscInt j)
       const PetscBool contact = (PetscBool)(f->type[e] == 1 && n > 0);
       const PetscReal drdv    = contact && kt > 0 ? f->mu[e] * kn / kt : 0.0;
       const PetscInt  side    = w < u - r ? -1 : w > u + r ? 1 : 0; /* slipping at the lower / upper bound, or stuck */
+      const PetscInt  sr      = f->srow[e];
       for (PetscInt c = 0; c < m; c++) {
-        const PetscReal du = f->DUV[e + c * l], dv = f->DUV[ne + e + c * l];
+        const PetscReal du = f->DUV[e + c * l], dv = sr >= 0 ? f->DUV[sr + c * l] : 0.0;
         const PetscReal dw = side == 0 ? f->Wc[e + c * ne] : side < 0 ? du - drdv * dv : du + drdv * dv;
-        f->DFN[e + c * l]      = kt * (du - dw);
-        f->DFN[ne + e + c * l] = contact ? kn * dv : 0.0;
+        f->DFN[e + c * l] = kt * (du - dw);
+        if (sr >= 0) f->DFN[sr + c * l] = contact ? kn * dv : 0.0;
       }
     }
   }
@@ -244,9 +245,9 @@ static PetscErrorCode Rhs(JRHBM h, PetscInt s, PetscInt j, const PetscReal *Z, P
     for (PetscInt i = 0; i < nk; i++) D[i + c * m] = Z[nk + i + c * m];
   PetscCall(JRGemm("N", "N", nk, m, 2 * nk, 1.0, f->G, nk, Z, m, 0.0, D + nk, m));
   if (ne) {
-    PetscCall(JRGemm("N", "N", 2 * ne, m, nk, 1.0, f->RS, 2 * ne, Z, m, 0.0, f->DUV, 2 * ne));
+    PetscCall(JRGemm("N", "N", f->l, m, nk, 1.0, f->RS, f->l, Z, m, 0.0, f->DUV, f->l));
     ElementForces(f, s, j);
-    PetscCall(JRGemm("N", "N", nk, m, 2 * ne, 1.0, f->MRS, nk, f->DFN, 2 * ne, 1.0, D + nk, m));
+    PetscCall(JRGemm("N", "N", nk, m, f->l, 1.0, f->MRS, nk, f->DFN, f->l, 1.0, D + nk, m));
   }
   PetscFunctionReturn(0);
 }
@@ -367,7 +368,7 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt *nexp, Pet
       /* commit the slips at step j + 1: the return map's derivative from step j's committed slip */
       if (ne) {
         const PetscInt N2 = 2 * ns + 1;
-        PetscCall(JRGemm("N", "N", 2 * ne, m, nk, 1.0, f->RS, 2 * ne, Y, m, 0.0, f->DUV, 2 * ne));
+        PetscCall(JRGemm("N", "N", f->l, m, nk, 1.0, f->RS, f->l, Y, m, 0.0, f->DUV, f->l));
         for (PetscInt e = 0; e < ne; e++) {
           const PetscReal u = f->u[e * N2 + 2 * j + 2], wj = f->wn[e * (ns + 1) + j];
           PetscReal       n, r;
@@ -378,7 +379,7 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt *nexp, Pet
           if (!side) continue;
           {
             const PetscReal drdv = f->type[e] == 1 && n > 0 && f->kt[e] > 0 ? f->mu[e] * f->kn[e] / f->kt[e] : 0.0;
-            for (PetscInt c = 0; c < m; c++) Y[2 * nk + f->mem[e] + c * m] = f->DUV[e + c * 2 * ne] + (side < 0 ? -drdv : drdv) * f->DUV[ne + e + c * 2 * ne];
+            for (PetscInt c = 0; c < m; c++) Y[2 * nk + f->mem[e] + c * m] = f->DUV[e + c * f->l] + (drdv != 0.0 ? (side < 0 ? -drdv : drdv) * f->DUV[f->srow[e] + c * f->l] : 0.0);
           }
         }
       }
