@@ -92,9 +92,9 @@ PETSC_EXTERN PetscErrorCode JRHBMJacobianSign(JRHBM, PetscReal, Vec, PetscInt *)
 typedef enum {
   JR_STABILITY_DISSIPATIVE, /* incrementally dissipative at the point: stable, no eigenproblem */
   JR_STABILITY_HILL,        /* smooth elements only: Hill's method, exact up to truncation */
-  JR_STABILITY_HILL_HYSTERETIC, /* hysteretic elements changing state: Hill's method indicates, it does not decide */
-  JR_STABILITY_TIME             /* the same points decided by the monodromy matrix in time (JRHBMFloquetTime) */
+  JR_STABILITY_HILL_HYSTERETIC, /* friction elements changing state: Hill's method indicates, it does not decide */
+  JR_STABILITY_TIME         /* the same points decided by the monodromy matrix in time (JRHBMFloquetTime) */
 } JRStabilityVerdict;
-PETSC_EXTERN PetscErrorCode JRHBMStabilityVerdict(JRHBM, Vec, JRStabilityVerdict *);
+PETSC_EXTERN PetscErrorCode JRHBMStabilityVerdict(JRHBM, Vec, PetscBool, JRStabilityVerdict *);
 
 #endif

@@ -114,11 +114,12 @@ static PetscErrorCode Detect(JRCont c, JRContBranch *b)
 }
 
 /* JRContStability - level lev's points' stability (b->stable, b->maxre, b->detsign), its folds and branch points, and
-   (unless quiet) their lines; a: work vector of the solve space. Each point is decided by incremental dissipativity
-   where it holds (JRHBMStabilityVerdict: stable, maxre NaN, no eigenproblem; -frf_stability_dissipative 0 skips it),
-   else by Hill's method (JRHBMFloquet), whose flags at points where hysteretic elements change state indicate rather
-   than decide (counted and said). Does nothing without -frf_stability; a condensed model that needs Hill's method is
-   not analysed (a note says so once). Collective. */
+   (unless quiet) their lines; a: work vector of the solve space. Each point is decided (JRHBMStabilityVerdict) by
+   incremental dissipativity where it holds (stable, maxre NaN; -frf_stability_dissipative 0: never), by the
+   monodromy matrix in time where friction elements change state (JRHBMFloquetTime; -frf_stability_time 0: Hill's
+   method, whose flags there indicate rather than decide, counted and said), and by Hill's method (JRHBMFloquet) for
+   smooth elements. Does nothing without -frf_stability; a condensed model is analysed only when incrementally
+   dissipative at every point (else a note says so once). Collective. */
 PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
 {
   JRContBranch      *b = &c->br[lev];
@@ -132,39 +133,33 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   if (!c->stab) PetscFunctionReturn(0);
   PetscCall(JRHBMHillSupported(c->hbm, &ok));
   PetscCall(PetscTime(&t0));
-  if (!ok) { /* condensed: only the certificate, which must then hold at every point */
-    for (PetscInt k = 0; k < b->np && c->stabdiss; k++) {
-      PetscCall(LoadPoint(c, b, k, a));
-      PetscCall(JRHBMStabilityVerdict(c->hbm, a, &v));
-      if (v != JR_STABILITY_DISSIPATIVE) break;
-    }
-    if (!c->stabdiss || v != JR_STABILITY_DISSIPATIVE) {
-      if (lev == 0 && !c->quiet) PetscCall(PetscPrintf(c->comm, "stability: not computed, the model is condensed onto its joints and not incrementally dissipative (-hbm_condense no keeps the modal unknowns for Hill's method); the CSV's stable column is -1\n"));
+  for (PetscInt k = 0; k < b->np && !ok; k++) { /* condensed: only the certificate, which must then hold at every point */
+    PetscCall(LoadPoint(c, b, k, a));
+    PetscCall(JRHBMStabilityVerdict(c->hbm, a, c->stabdiss, &v));
+    if (v != JR_STABILITY_DISSIPATIVE) {
+      if (lev == 0 && !c->quiet) PetscCall(PetscPrintf(c->comm, "stability: not computed, the model is condensed onto its joints and not incrementally dissipative at every point (-hbm_condense no keeps the modal unknowns); the CSV's stable column is -1\n"));
       PetscFunctionReturn(0);
     }
   }
   PetscCall(PetscMalloc3(b->np, &b->stable, b->np, &b->maxre, b->np, &b->detsign));
   for (PetscInt k = 0; k < b->np; k++) {
     PetscCall(LoadPoint(c, b, k, a));
-    if (c->stabdiss) PetscCall(JRHBMStabilityVerdict(c->hbm, a, &v));
-    else v = JR_STABILITY_HILL;
-    if (c->stabdiss && v == JR_STABILITY_DISSIPATIVE) {
+    PetscCall(JRHBMStabilityVerdict(c->hbm, a, c->stabdiss, &v));
+    if (v == JR_STABILITY_HILL_HYSTERETIC && c->stabtime) v = JR_STABILITY_TIME;
+    switch (v) {
+    case JR_STABILITY_DISSIPATIVE:
       b->maxre[k]   = NAN;
       b->detsign[k] = 0;
       if (ok) PetscCall(JRHBMJacobianSign(c->hbm, b->omega[k], a, &b->detsign[k]));
-      b->stable[k] = 1;
-    } else {
-      if (!c->stabdiss) { /* the label of the Hill point: hysteretic elements present? */
-        PetscCall(JRHBMStabilityVerdict(c->hbm, a, &v));
-        if (v == JR_STABILITY_DISSIPATIVE) v = JR_STABILITY_HILL_HYSTERETIC;
-      }
-      if (v == JR_STABILITY_HILL_HYSTERETIC && c->stabtime) {
-        PetscCall(JRHBMFloquetTime(c->hbm, b->omega[k], a, NULL, NULL, NULL, &b->maxre[k], NULL));
-        PetscCall(JRHBMJacobianSign(c->hbm, b->omega[k], a, &b->detsign[k]));
-        v = JR_STABILITY_TIME;
-      } else PetscCall(JRHBMFloquet(c->hbm, b->omega[k], a, c->stabsel, c->stabdense, NULL, NULL, NULL, &b->maxre[k], &b->detsign[k]));
-      b->stable[k] = b->maxre[k] < c->stabtol * b->omega[k] ? 1 : 0;
+      break;
+    case JR_STABILITY_TIME:
+      PetscCall(JRHBMFloquetTime(c->hbm, b->omega[k], a, NULL, NULL, NULL, &b->maxre[k], NULL));
+      PetscCall(JRHBMJacobianSign(c->hbm, b->omega[k], a, &b->detsign[k]));
+      break;
+    default:
+      PetscCall(JRHBMFloquet(c->hbm, b->omega[k], a, c->stabsel, c->stabdense, NULL, NULL, NULL, &b->maxre[k], &b->detsign[k]));
     }
+    b->stable[k] = v == JR_STABILITY_DISSIPATIVE || b->maxre[k] < c->stabtol * b->omega[k] ? 1 : 0;
     ncount[v]++;
     if (!b->stable[k]) nun++;
   }
@@ -173,7 +168,7 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   b->stab_seconds = t1 - t0;
   b->nhyst        = ncount[JR_STABILITY_HILL_HYSTERETIC];
   if (!c->quiet) PetscCall(PetscPrintf(c->comm, "stability level %g unstable_points %" PetscInt_FMT " of %" PetscInt_FMT " folds %" PetscInt_FMT " branch_points %" PetscInt_FMT " seconds %.3g (curve %.3g) dissipative %" PetscInt_FMT " time %" PetscInt_FMT " hill %" PetscInt_FMT " hill_hysteretic %" PetscInt_FMT "\n", (double)b->F, nun, b->np, b->nfold, b->nbranch, (double)b->stab_seconds, (double)b->seconds, ncount[JR_STABILITY_DISSIPATIVE], ncount[JR_STABILITY_TIME], ncount[JR_STABILITY_HILL], ncount[JR_STABILITY_HILL_HYSTERETIC]));
-  if (!c->quiet && b->nhyst) PetscCall(PetscPrintf(c->comm, "stability level %g: %" PetscInt_FMT " points by Hill's method with friction elements changing state: its periodic Jacobian misses the slip's memory, so these flags indicate and do not decide (docs/theory.md section 16); -frf_verify_points checks them by time integration\n", (double)b->F, b->nhyst));
+  if (!c->quiet && b->nhyst) PetscCall(PetscPrintf(c->comm, "stability level %g: %" PetscInt_FMT " points by Hill's method with friction elements changing state: its periodic Jacobian misses the slip's memory, so these flags indicate and do not decide (docs/theory.md section 16); -frf_verify_unstable checks the unstable ones by time integration\n", (double)b->F, b->nhyst));
   PetscFunctionReturn(0);
 }
 

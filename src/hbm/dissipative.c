@@ -52,25 +52,26 @@ static PetscErrorCode SymmetricPart(PetscInt n, const PetscReal *A, PetscReal *a
   PetscFunctionReturn(0);
 }
 
-/* The model's part of the certificate, once: h->dissip (see hbmimpl.h). Collective. */
+/* The model's part of the certificate, once: h->dissip (see hbmimpl.h) and h->fric. Collective. */
 static PetscErrorCode ModelDissipative(JRHBM h)
 {
   const PetscReal tol = 1e-8;
-  PetscInt        kinds[2] = {0, 0}, all[2]; /* elements other than jenkins (or with negative kt, mu); jenkins_nv ones */
+  PetscInt        kinds[3] = {0, 0, 0}, all[3]; /* elements other than jenkins (or with negative kt, mu); jenkins_nv ones; friction ones */
   PetscInt        lin = 0;
 
   PetscFunctionBeginUser;
   if (h->dissip) PetscFunctionReturn(0);
   for (PetscInt t = 0; t < h->ngroups; t++) {
-    const JRHBMGroup *g = &h->g[t];
+    const JRHBMGroup *g  = &h->g[t];
     const PetscBool   nv = (PetscBool)!strcmp(g->c->type_name, JRCONTACTJENKINSNV);
     if (!g->nloc) continue;
     if (nv) kinds[1] = 1;
     else if (strcmp(g->c->type_name, JRCONTACTJENKINS)) kinds[0] = 1;
+    if (strcmp(g->c->type_name, JRCONTACTCUBIC)) kinds[2] = 1;
     for (PetscInt e = 0; e < g->nloc; e++)
       if (g->c->kt[e] < 0 || g->c->mu[e] < 0 || (nv && g->c->kn[e] < 0)) kinds[0] = 1;
   }
-  PetscCall(MPIU_Allreduce(kinds, all, 2, MPIU_INT, MPI_MAX, h->comm));
+  PetscCall(MPIU_Allreduce(kinds, all, 3, MPIU_INT, MPI_MAX, h->comm));
   if (!h->rank) { /* the linear part: Mm > 0, Kg >= 0 symmetric, Cm + (gamma / w) Kg >= 0 (symmetric part) */
     PetscReal as, lo, hi;
     lin = 1;
@@ -86,33 +87,29 @@ static PetscErrorCode ModelDissipative(JRHBM h)
   }
   PetscCallMPI(MPI_Bcast(&lin, 1, MPIU_INT, 0, h->comm));
   h->dissip = (!lin || all[0]) ? 1 : all[1] ? 3 : 2;
+  h->fric   = (PetscBool)(all[2] != 0);
   PetscFunctionReturn(0);
 }
 
 /*
-  JRHBMStabilityVerdict - what decides the stability of the response a (solve space) of the JRHBM: the incremental
-  dissipativity above (JR_STABILITY_DISSIPATIVE: the point is stable, nothing to solve), Hill's method exact up to
-  truncation (JR_STABILITY_HILL: smooth elements only, cubic), or Hill's method with hysteretic elements whose state
-  may change over the cycle (JR_STABILITY_HILL_HYSTERETIC: its flags indicate, they do not decide). Collective; the
-  same answer on every rank.
+  JRHBMStabilityVerdict - what decides the stability of the response a (solve space) of the JRHBM: with certify, the
+  incremental dissipativity above where it holds (JR_STABILITY_DISSIPATIVE: the point is stable, nothing to solve);
+  otherwise JR_STABILITY_HILL_HYSTERETIC when the model has friction elements (at a point where the certificate was
+  asked for, some element changes state over the cycle: Hill's method there indicates, it does not decide; the
+  monodromy matrix in time decides) and JR_STABILITY_HILL for smooth elements only (cubic; Hill's method is exact up
+  to truncation). Collective; the same answer on every rank.
 */
-PetscErrorCode JRHBMStabilityVerdict(JRHBM h, Vec a, JRStabilityVerdict *v)
+PetscErrorCode JRHBMStabilityVerdict(JRHBM h, Vec a, PetscBool certify, JRStabilityVerdict *v)
 {
   PetscInt changing = 0, any;
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMSetUp(h));
   PetscCall(ModelDissipative(h));
+  *v = h->fric ? JR_STABILITY_HILL_HYSTERETIC : JR_STABILITY_HILL;
+  if (!certify || h->dissip == 1) PetscFunctionReturn(0);
   if (h->dissip == 2) {
     *v = JR_STABILITY_DISSIPATIVE;
-    PetscFunctionReturn(0);
-  }
-  if (h->dissip == 1) { /* a hysteretic element among others, or a linear part that is not dissipative */
-    PetscInt hyst = 0, ah;
-    for (PetscInt t = 0; t < h->ngroups; t++)
-      if (h->g[t].nloc && strcmp(h->g[t].c->type_name, JRCONTACTCUBIC)) hyst = 1;
-    PetscCall(MPIU_Allreduce(&hyst, &ah, 1, MPIU_INT, MPI_MAX, h->comm));
-    *v = ah ? JR_STABILITY_HILL_HYSTERETIC : JR_STABILITY_HILL;
     PetscFunctionReturn(0);
   }
   if (h->cond) changing = 1; /* jenkins_nv on the condensed unknowns: the states are not checked here */
@@ -132,6 +129,6 @@ PetscErrorCode JRHBMStabilityVerdict(JRHBM h, Vec a, JRStabilityVerdict *v)
     PetscCall(VecRestoreArrayRead(a, &x));
   }
   PetscCall(MPIU_Allreduce(&changing, &any, 1, MPIU_INT, MPI_MAX, h->comm));
-  *v = any ? JR_STABILITY_HILL_HYSTERETIC : JR_STABILITY_DISSIPATIVE;
+  if (!any) *v = JR_STABILITY_DISSIPATIVE;
   PetscFunctionReturn(0);
 }

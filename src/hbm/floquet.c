@@ -309,7 +309,7 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt *nexp, Pet
   PetscFunctionBeginUser;
   PetscCall(JRHBMHillSupported(h, &ok));
   PetscCheck(ok, h->comm, PETSC_ERR_SUP, "Floquet exponents in time need the modal unknowns: this model is condensed onto its joints (-hbm_condense no keeps the modes)");
-  PetscCall(PetscLogEventBegin(JR_HBMHill, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(JR_HBMFloquetTime, 0, 0, 0, 0));
   PetscCall(MonodromySetUp(h));
   f = h->mono;
   if (!h->rank) {
@@ -415,6 +415,6 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt *nexp, Pet
   if (re) PetscCall(PetscArraycpy(re, out + 1, m));
   if (im) PetscCall(PetscArraycpy(im, out + 1 + m, m));
   PetscCall(PetscFree(out));
-  PetscCall(PetscLogEventEnd(JR_HBMHill, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(JR_HBMFloquetTime, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -121,6 +121,7 @@ struct _p_JRHBM {
   PetscInt          dissip;       /* JRHBMStabilityVerdict(): 0 not yet known, 1 no certificate (smooth or other elements, or
                                      a linear part that is not dissipative), 2 every element jenkins, 3 jenkins and
                                      jenkins_nv (decided per point) */
+  PetscBool         fric;         /* JRHBMStabilityVerdict(): the model has friction elements (jenkins, jenkins_nv) */
 };
 
 /* C = alpha op(A) op(B) + beta C, column-major (BLAS gemm; k = 0 only scales C) */
