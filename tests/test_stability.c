@@ -11,9 +11,10 @@
    - the Floquet exponents in time (JRHBMFloquetTime, the path of points with friction elements changing state)
      against the eigenvalues of the linear system and against Hill's method with every exponent computed (QZ) on the
      Duffing oscillator, where Hill's method is exact: the same largest real part and the same flag at every point;
-   - a Jenkins oscillator (constant normal load): every point stable by incremental dissipativity, and at a
-     stick-slip point near resonance a perturbed RK4 march returns to the unperturbed one at the rate of the largest
-     exponent in time.
+   - a Jenkins oscillator (constant normal load): every point stable by incremental dissipativity; at its peak and
+     where Hill's method differs most, the exponents in time against the monodromy matrix of an RK4 march of the
+     element's play operator (by differences, on the orbit the march settles on); and through full stick and
+     grazing slip the exponents in time flag no point unstable, as incremental dissipativity proves.
    Every rank checks the same numbers (also run on 2 ranks).
 */
 #include "jrtest_problem.h"
@@ -295,7 +296,7 @@ int main(int argc, char **argv)
       if (cs == 2) CHECK(MatchError(6, re, im, 6, lr, li, w, H) < 1e-8, "linear 3-DOF: SLEPc PEP path (-frf_stability_dense_max 0), exponents nearest the origin = eigenvalues mod i k w, relative error %.1e", MatchError(6, re, im, 6, lr, li, w, H));
       if (cs == 0) {
         PetscInt ne, ns;
-        PetscCall(JRHBMFloquetTime(p.hbm, w, a, &ne, re, im, &mr, &ns));
+        PetscCall(JRHBMFloquetTime(p.hbm, w, a, 0, &ne, re, im, &mr, &ns));
         CHECK(ne == 6 && MatchError(6, re, im, 6, lr, li, w, 40) < 1e-4, "linear 3-DOF: Floquet exponents in time (monodromy, RK4 %" PetscInt_FMT " steps per period) = eigenvalues of K + l C + l^2 M mod i k w, relative error %.1e", ns, MatchError(6, re, im, 6, lr, li, w, 40));
       }
       PetscCall(VecDestroy(&a));
@@ -323,7 +324,7 @@ int main(int argc, char **argv)
         for (PetscInt i = 0; i < n; i++) xa[i] = aa[k * n + i];
         PetscCall(VecRestoreArray(x, &xa));
         PetscCall(JRHBMFloquet(p.hbm, om[k], x, JR_HILL_SELECT_VECTOR, 1000, NULL, NULL, NULL, &mh, NULL));
-        PetscCall(JRHBMFloquetTime(p.hbm, om[k], x, NULL, NULL, NULL, &mt, NULL));
+        PetscCall(JRHBMFloquetTime(p.hbm, om[k], x, 0, NULL, NULL, NULL, &mt, NULL));
         worst = fmax(worst, fabs(mh - mt) / om[k]);
         if ((mh > scale && mt <= 0) || (mh < -scale && mt >= 0)) bad++;
         if (mt > 0) nun++;
@@ -404,7 +405,7 @@ int main(int argc, char **argv)
         PetscCall(VecGetArray(xv, &xa));
         for (PetscInt i = 0; i < n; i++) xa[i] = aa[q * n + i];
         PetscCall(VecRestoreArray(xv, &xa));
-        PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, NULL, NULL, NULL, &mt, NULL));
+        PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, NULL, NULL, NULL, &mt, NULL));
         PetscCall(JRHBMFloquet(p.hbm, om[q], xv, JR_HILL_SELECT_VECTOR, 1000, NULL, NULL, NULL, &mh, NULL));
         if (fabs(mt - mh) > dmax) {
           dmax = fabs(mt - mh);
@@ -420,7 +421,7 @@ int main(int argc, char **argv)
         PetscCall(VecGetArray(xv, &xa));
         for (PetscInt i = 0; i < n; i++) xa[i] = a[i];
         PetscCall(VecRestoreArray(xv, &xa));
-        PetscCall(JRHBMFloquetTime(p.hbm, w, xv, NULL, NULL, NULL, &mt, NULL));
+        PetscCall(JRHBMFloquetTime(p.hbm, w, xv, 0, NULL, NULL, NULL, &mt, NULL));
         PetscCall(JRHBMFloquet(p.hbm, w, xv, JR_HILL_SELECT_VECTOR, 1000, NULL, NULL, NULL, &mh, NULL));
         P = 30 + (PetscInt)(10.0 / (PetscMax(-mt, 1e-3) * T)); /* to the periodic orbit: a decay by about e^-10 */
         for (PetscInt h = 1; h <= Hj; h++) {
@@ -456,6 +457,23 @@ int main(int argc, char **argv)
       PetscCall(VecDestroy(&xv));
     }
     (void)mr;
+    PetscCall(ProblemDestroy(&p));
+  }
+
+  /* ---- the exponents in time on a Jenkins oscillator through full stick and grazing slip: all stable (the theorem) ---- */
+  {
+    const double     k = pow(2 * PETSC_PI * 100, 2);
+    Problem          p;
+    PetscInt         np, nun = 0;
+    const PetscReal *om;
+    const PetscInt  *st;
+    PetscCall(Options("-frf_stability -frf_stability_dissipative 0 -hbm_physical -hbm_gamma 0.01 -hbm_harmonics 1 -frf_force 0.2 -frf_fmin 80 -frf_fmax 170"));
+    PetscCall(ProblemCreate(1, (double[]){k}, (double[]){1.0}, NULL, 1, (El[]){{"jenkins", 0, -1, -1, -1, k, 0, 0.1, 100}}, &p));
+    PetscCall(JRContSolve(p.cont));
+    PetscCall(JRContGetBranch(p.cont, 0, &np, &om, NULL, NULL));
+    PetscCall(JRContGetStability(p.cont, 0, &st, NULL, NULL, NULL, NULL, NULL));
+    for (PetscInt q = 0; q < np; q++) nun += !st[q];
+    CHECK(np > 50 && nun == 0, "Jenkins oscillator (runs/oscillator_frf.opts at 0.2 N: full stick, then slip near the 141 Hz resonance), every point by the exponents in time (-frf_stability_dissipative 0): %" PetscInt_FMT " of %" PetscInt_FMT " unstable (incremental dissipativity: none)", nun, np);
     PetscCall(ProblemDestroy(&p));
   }
 

@@ -86,7 +86,7 @@ typedef enum {
 PETSC_EXTERN const char *const JRHillSelects[];
 PETSC_EXTERN PetscErrorCode JRHBMFloquet(JRHBM, PetscReal, Vec, JRHillSelect, PetscInt, PetscInt *, PetscReal[], PetscReal[], PetscReal *, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMHillSupported(JRHBM, PetscBool *);
-PETSC_EXTERN PetscErrorCode JRHBMFloquetTime(JRHBM, PetscReal, Vec, PetscInt *, PetscReal[], PetscReal[], PetscReal *, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRHBMFloquetTime(JRHBM, PetscReal, Vec, PetscInt, PetscInt *, PetscReal[], PetscReal[], PetscReal *, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMJacobianSign(JRHBM, PetscReal, Vec, PetscInt *);
 /* What decides a point's stability (src/hbm/dissipative.c) */
 typedef enum {

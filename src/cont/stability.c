@@ -153,7 +153,7 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
       if (ok) PetscCall(JRHBMJacobianSign(c->hbm, b->omega[k], a, &b->detsign[k]));
       break;
     case JR_STABILITY_TIME:
-      PetscCall(JRHBMFloquetTime(c->hbm, b->omega[k], a, NULL, NULL, NULL, &b->maxre[k], NULL));
+      PetscCall(JRHBMFloquetTime(c->hbm, b->omega[k], a, c->stabsteps, NULL, NULL, NULL, &b->maxre[k], NULL));
       PetscCall(JRHBMJacobianSign(c->hbm, b->omega[k], a, &b->detsign[k]));
       break;
     default:

@@ -294,12 +294,13 @@ static void PointMotion(JRHBM h, PetscReal w, const PetscReal *a)
   JRHBMFloquetTime - the Floquet exponents of the solution a (solve space, modal) at frequency w from the monodromy
   matrix of the variational equations marched over one period (collective; rank 0 marches and broadcasts).
 
+  Input: steps, the least RK4 steps per period (more if the stiffest mode or the harmonic balance's samples ask).
   Output: nexp = 2 nk + ne (nk the modes other than rigid-body ones, ne the friction elements: their slips); re, im (room for
   nexp each, may be NULL): the exponents, largest real part first [1/s] (a zero multiplier, a slip that a slipping
-  element forgets, gives -inf); maxre: the largest real part; steps: the RK4 steps per period (may be NULL).
+  element forgets, gives -inf); maxre: the largest real part; nsteps: the RK4 steps per period taken (may be NULL).
   An error for a condensed model (JRHBMHillSupported()).
 */
-PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt *nexp, PetscReal re[], PetscReal im[], PetscReal *maxre, PetscInt *steps)
+PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt steps, PetscInt *nexp, PetscReal re[], PetscReal im[], PetscReal *maxre, PetscInt *nsteps)
 {
   struct _JRMonodromy *f;
   PetscInt             m = 0, hdr[2];
@@ -313,7 +314,7 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt *nexp, Pet
   PetscCall(MonodromySetUp(h));
   f = h->mono;
   if (!h->rank) {
-    const PetscInt ns = PetscMax(h->Ns, (PetscInt)PetscCeilReal(2 * PETSC_PI * f->wmax / (0.5 * w)));
+    const PetscInt ns = PetscMax(steps, PetscMax(h->Ns, (PetscInt)PetscCeilReal(2 * PETSC_PI * f->wmax / (0.5 * w))));
     m                 = f->m;
     if (ns != f->ns) {
       PetscCall(PetscFree3(f->u, f->v, f->wn));
@@ -326,7 +327,7 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt *nexp, Pet
   if (h->size > 1) PetscCallMPI(MPI_Bcast(hdr, 2, MPIU_INT, 0, h->comm));
   m = hdr[0];
   if (nexp) *nexp = m;
-  if (steps) *steps = hdr[1];
+  if (nsteps) *nsteps = hdr[1];
   PetscCall(PetscMalloc1(1 + 2 * m, &out));
   if (!h->rank) {
     const PetscInt     nk = f->nk, ne = f->ne, ns = f->ns;
