@@ -32,6 +32,7 @@ signal() {
 catch() {
   local d=$1 sig=$2 pat=$3 seen=finished pid rc
   shift 3
+  set -m # job control again in this subshell ($(catch ...)): else the background run starts with SIGINT ignored
   "$@" > "$d/log" 2>&1 &
   pid=$!
   while kill -0 $pid 2> /dev/null; do
@@ -56,8 +57,13 @@ stopped() {
   mkdir -p "$d"
   local o=-frf_output_file
   case " $* " in *" -task modes "*) o=-modes_output_file ;; esac # each task takes only its own output option
-  if [ "$np" = 1 ]; then r=$(catch "$d" "$sig" "$pat" $J "$@" $o "$d/out")
-  else r=$(catch "$d" "$sig" "$pat" mpiexec -n "$np" $J "$@" $o "$d/out"); fi
+  # a run that ends (exit 0) between the file's appearance and the signal was not stopped: tried again, up to 5 times
+  for try in 1 2 3 4 5; do
+    rm -f "$d"/*
+    if [ "$np" = 1 ]; then r=$(catch "$d" "$sig" "$pat" $J "$@" $o "$d/out")
+    else r=$(catch "$d" "$sig" "$pat" mpiexec -n "$np" $J "$@" $o "$d/out"); fi
+    [ "$r" = "caught 0" ] || break
+  done
   check "[ '${r% *}' = caught ] && [ '${r#* }' != 0 ] && [ -z \"\$(left '$d')\" ]" "SIG$sig on $np rank(s) while writing $pat (run ${r% *}, exit ${r#* }): temporary files left: [$(left "$d")]"
 }
 stopped TERM '*.h5.tmp*' 1 $modes

@@ -276,7 +276,13 @@ int main(int argc, char **argv)
       PetscCall(PetscOptionsSetValue(NULL, "-frf_output_file", file));
       PetscCall(ProblemCreate(1, K, M, NULL, 1, e, &p));
       PetscCall(JRContSolve(p.cont));
-      PetscCall(JRContWrite(p.cont));
+      {
+        JRPost post;
+        PetscCall(JRPostCreate(PETSC_COMM_WORLD, &post));
+        PetscCall(JRPostSetOutput(post, file, PETSC_FALSE));
+        PetscCall(JRPostWriteCurves(post, p.cont));
+        PetscCall(JRPostDestroy(&post));
+      }
       PetscCall(JRContGetBranch(p.cont, 0, &np, &om, NULL, NULL));
       PetscCall(PetscViewerHDF5Open(PETSC_COMM_WORLD, "/tmp/jr_test_hbm_frf.h5", FILE_MODE_READ, &v));
       PetscCall(PetscViewerHDF5PushGroup(v, "/level_0"));

@@ -44,7 +44,6 @@ PETSC_EXTERN PetscErrorCode JRContGetPeakStates(JRCont, PetscInt, const JRContac
 PETSC_EXTERN PetscErrorCode JRContGetDamping(JRCont, PetscInt, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRContGetLevelStats(JRCont, PetscInt, PetscReal *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRContGetStability(JRCont, PetscInt, const PetscInt **, const PetscReal **, PetscInt *, const PetscReal **, PetscInt *, const PetscReal **);
-PETSC_EXTERN PetscErrorCode JRContWrite(JRCont);
 PETSC_EXTERN PetscErrorCode JRContDestroy(JRCont *);
 
 #endif

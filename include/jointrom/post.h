@@ -19,6 +19,22 @@ PETSC_EXTERN PetscErrorCode JRPostWriteContactMaps(JRPost, JRModel, JRCont, cons
 PETSC_EXTERN PetscErrorCode JRPostCompareReport(JRPost, JRCont, JRCont, const JRElements *, const JRElements *, const JRCompareTimes *);
 PETSC_EXTERN PetscErrorCode JRPostModesTable(JRPost, JRModes);
 PETSC_EXTERN PetscErrorCode JRPostWriteModes(JRPost, JRModel, JRModes, PetscInt);
+PETSC_EXTERN PetscErrorCode JRPostWriteCurves(JRPost, JRCont);
+/* XDMF files for ParaView (src/post/xdmf.c): grids of an HDF5 file, a DM's hexahedra or points, with nodal fields */
+typedef struct {
+  const char *name;    /* as ParaView shows it */
+  const char *dataset; /* its HDF5 path */
+  PetscInt    ncomp;   /* 1 (scalar) or 3 (vector) per node */
+} JRXdmfField;
+typedef struct {
+  const char        *name;
+  DM                 dm;       /* the mesh's hexahedra (/viz/topology/cells, /geometry/vertices), or NULL: points */
+  PetscInt           npoints;  /* points: how many, */
+  const char        *geometry; /* and the dataset of their x, y, z */
+  PetscInt           nfields;
+  const JRXdmfField *fields;
+} JRXdmfGrid;
+PETSC_EXTERN PetscErrorCode JRXdmfWrite(MPI_Comm, const char[], const char[], PetscInt, const JRXdmfGrid[]);
 PETSC_EXTERN PetscErrorCode JRPostDestroy(JRPost *);
 
 #endif

@@ -154,46 +154,31 @@ static PetscErrorCode WriteModesH5(JRPost post, DM dm, JRModes modes, const char
 /* BASE.xdmf for ParaView: the hexahedra and every mode as a nodal vector, from BASE.h5 */
 static PetscErrorCode WriteModesXdmf(JRPost post, DM dm, JRModes modes, const char h5[], const char xdmf[])
 {
-  MPI_Comm         comm = post->comm;
-  PetscInt         nm, nv, nc, cs, ce, vs, ve;
+  PetscInt         nm;
   const PetscReal *lam;
+  JRXdmfField     *f;
+  char           (*names)[64], (*sets)[64];
+  JRXdmfGrid       g;
 
   PetscFunctionBeginUser;
   PetscCall(JRModesGetNumber(modes, &nm));
   PetscCall(JRModesGetEigenvalues(modes, &lam));
-  PetscCall(DMPlexGetHeightStratum(dm, 0, &cs, &ce));
-  PetscCall(DMPlexGetDepthStratum(dm, 0, &vs, &ve));
-  nc = ce - cs;
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nc, 1, MPIU_INT, MPI_SUM, comm));
-  {
-    IS vn;
-    PetscCall(DMPlexGetVertexNumbering(dm, &vn));
-    PetscCall(ISGetSize(vn, &nv));
-    {
-      const PetscInt *idx;
-      PetscInt        n, own = 0;
-      PetscCall(ISGetLocalSize(vn, &n));
-      PetscCall(ISGetIndices(vn, &idx));
-      for (PetscInt i = 0; i < n; i++) own += idx[i] >= 0;
-      PetscCall(ISRestoreIndices(vn, &idx));
-      PetscCallMPI(MPI_Allreduce(&own, &nv, 1, MPIU_INT, MPI_SUM, comm));
-    }
+  PetscCall(PetscMalloc3(nm, &f, nm, &names, nm, &sets));
+  for (PetscInt i = 0; i < nm; i++) {
+    PetscCall(PetscSNPrintf(names[i], sizeof(names[i]), "mode %" PetscInt_FMT " (%.6g Hz)", i + 1, (double)(PetscSqrtReal(PetscMax(lam[i], 0.0)) / (2 * PETSC_PI))));
+    PetscCall(PetscSNPrintf(sets[i], sizeof(sets[i]), "/vertex_fields/mode_%" PetscInt_FMT "_displacement", i + 1));
+    f[i].name    = names[i];
+    f[i].dataset = sets[i];
+    f[i].ncomp   = 3;
   }
-  {
-    FILE       *fp;
-    char        tx[PETSC_MAX_PATH_LEN + 32];
-    const char *leaf = strrchr(h5, '/') ? strrchr(h5, '/') + 1 : h5;
-    PetscCall(JRFileOpenTemp(comm, xdmf, &fp, tx, sizeof(tx)));
-    if (fp) {
-      fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"modes\" GridType=\"Uniform\">\n");
-      fprintf(fp, "   <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"%" PetscInt_FMT "\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 8\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n   </Topology>\n", nc, nc, leaf);
-      fprintf(fp, "   <Geometry GeometryType=\"XYZ\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n   </Geometry>\n", nv, leaf);
-      for (PetscInt i = 0; i < nm; i++)
-        fprintf(fp, "   <Attribute Name=\"mode %" PetscInt_FMT " (%.6g Hz)\" AttributeType=\"Vector\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/mode_%" PetscInt_FMT "_displacement</DataItem>\n   </Attribute>\n", i + 1, (double)(PetscSqrtReal(PetscMax(lam[i], 0.0)) / (2 * PETSC_PI)), nv, leaf, i + 1);
-      fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
-    }
-    PetscCall(JRFileCommit(comm, &fp, tx, xdmf));
-  }
+  g.name     = "modes";
+  g.dm       = dm;
+  g.npoints  = 0;
+  g.geometry = NULL;
+  g.nfields  = nm;
+  g.fields   = f;
+  PetscCall(JRXdmfWrite(post->comm, xdmf, h5, 1, &g));
+  PetscCall(PetscFree3(f, names, sets));
   PetscFunctionReturn(0);
 }
 

@@ -1,5 +1,5 @@
 /*
-   JRPost: the outputs of a frequency-response run beside the curves themselves (JRContWrite): the contact state
+   JRPost: the outputs of a frequency-response run (the curves: curves.c, JRPostWriteCurves): the contact state
    of every element at each peak (BASE_contact.csv, .png) and the comparison of two models (BASE_compare.csv,
    .png, 'compare ...' lines). BASE is -frf_output_file ("" for no files); -frf_plot draws the PNGs.
 */

@@ -160,47 +160,17 @@ static PetscErrorCode WriteHDF5(JRPreload p, const PairTable *t, const char h5[]
 /* BASE.xdmf (ParaView): the deformed mesh (when solved) and the interface pairs as points carrying N, pressure, gap */
 static PetscErrorCode WriteXDMF(JRPreload p, const PairTable *t, const char h5[], const char xdmf[])
 {
-  const PetscInt   n    = t->n;
-  const PetscReal *n0   = t->n0;
-  const char      *leaf = strrchr(h5, '/') ? strrchr(h5, '/') + 1 : h5;
-  PetscInt         nc = 0, nv = 0;
-  char             tmp[PETSC_MAX_PATH_LEN + 32];
-  FILE            *fp;
-  DM               dm;
+  const JRXdmfField mesh[1]  = {{"preload displacement", "/vertex_fields/preload_displacement", 3}};
+  const JRXdmfField pairs[6] = {{"N_static_N", "/preload/N_static_N", 1}, {"pressure_Pa", "/preload/pressure_Pa", 1}, {"v_gap_m", "/preload/v_gap_m", 1}, {"closed", "/preload/closed", 1}, {"area_m2", "/preload/area_m2", 1}, {"n0_N", "/preload/n0_N", 1}};
+  JRXdmfGrid        g[2];
+  PetscInt          ng = 0;
+  DM                dm;
 
   PetscFunctionBeginUser;
   PetscCall(JRModelGetDM(p->model, &dm));
-  if (p->solved) {
-    PetscInt cs, ce, nl, own = 0;
-    IS       vn;
-    const PetscInt *idx;
-    PetscCall(DMPlexGetHeightStratum(dm, 0, &cs, &ce));
-    nc = ce - cs;
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nc, 1, MPIU_INT, MPI_SUM, p->comm));
-    PetscCall(DMPlexGetVertexNumbering(dm, &vn));
-    PetscCall(ISGetLocalSize(vn, &nl));
-    PetscCall(ISGetIndices(vn, &idx));
-    for (PetscInt i = 0; i < nl; i++) own += idx[i] >= 0;
-    PetscCall(ISRestoreIndices(vn, &idx));
-    PetscCallMPI(MPI_Allreduce(&own, &nv, 1, MPIU_INT, MPI_SUM, p->comm));
-  }
-  PetscCall(JRFileOpenTemp(p->comm, xdmf, &fp, tmp, sizeof(tmp)));
-  if (fp) {
-    fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n");
-    if (p->solved) {
-      fprintf(fp, "  <Grid Name=\"assembly\" GridType=\"Uniform\">\n   <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"%" PetscInt_FMT "\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 8\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n   </Topology>\n", nc, nc, leaf);
-      fprintf(fp, "   <Geometry GeometryType=\"XYZ\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n   </Geometry>\n", nv, leaf);
-      fprintf(fp, "   <Attribute Name=\"preload displacement\" AttributeType=\"Vector\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/preload_displacement</DataItem>\n   </Attribute>\n  </Grid>\n", nv, leaf);
-    }
-    fprintf(fp, "  <Grid Name=\"interface pairs\" GridType=\"Uniform\">\n   <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%" PetscInt_FMT "\"/>\n", n);
-    fprintf(fp, "   <Geometry GeometryType=\"XYZ\">\n    <DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/preload/x_m</DataItem>\n   </Geometry>\n", n, leaf);
-    {
-      const char *names[6] = {"N_static_N", "pressure_Pa", "v_gap_m", "closed", "area_m2", "n0_N"};
-      for (int k = 0; k < (n0 ? 6 : 5); k++) fprintf(fp, "   <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\">\n    <DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/preload/%s</DataItem>\n   </Attribute>\n", names[k], n, leaf, names[k]);
-    }
-    fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
-  }
-  PetscCall(JRFileCommit(p->comm, &fp, tmp, xdmf));
+  if (p->solved) g[ng++] = (JRXdmfGrid){"assembly", dm, 0, NULL, 1, mesh};
+  g[ng++] = (JRXdmfGrid){"interface pairs", NULL, t->n, "/preload/x_m", t->n0 ? 6 : 5, pairs};
+  PetscCall(JRXdmfWrite(p->comm, xdmf, h5, ng, g));
   PetscFunctionReturn(0);
 }
 

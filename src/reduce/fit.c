@@ -45,396 +45,14 @@
    the fit's error with it (rom case level F dissipation_error_normal_varying) and, with -rom_fit_normal_passes k,
    fits k more times with that change added to the targets (a defect correction; off by default: on lap3 it moved
    the peak amplitudes either way: docs/validation.md).
-   The least-squares solvers (TAO, NNLS) are in src/reduce/lsq.c.
+   This file: the case, the points of the joint fields, the coupled fit, the options and the passes (ReducePass,
+   JRROMReduce); one joint's fit is in fitjoint.c, the least-squares problems in loops.c, their solvers (TAO, NNLS)
+   in lsq.c.
    Saved and loaded with -rom_save / -rom_load (HDF5, /rom/...; src/reduce/io.c): the reduced elements and the members
    that define the joints' motion, with the members' node coordinates to check that the file fits the model.
 */
-#include <jointrom/private/reduceimpl.h>
-#include <jointrom/private/contactimpl.h>
+#include <jointrom/private/fitimpl.h>
 #include <petscblaslapack.h>
-
-/* Steady Jenkins loop (spring k, slip force f) under u = a cos(theta_s), theta_s = 2 pi s / ns: F[s] += force,
-   and, if not NULL, Fk[s] = dF/dk, Ff[s] = dF/df */
-static void JenkinsLoop(PetscReal k, PetscReal f, PetscReal a, PetscInt ns, PetscReal F[], PetscReal Fk[], PetscReal Ff[])
-{
-  for (PetscInt s = 0; s < ns; s++) {
-    const PetscReal th = 2 * PETSC_PI * s / ns, u = a * PetscCosReal(th);
-    PetscReal       F_, dk, df;
-    if (k * a <= f) { /* never slips */
-      F_ = k * u;
-      dk = u;
-      df = 0;
-    } else if (2 * s <= ns) { /* u falls from a, where it slipped at +f */
-      const PetscReal st = f - k * (a - u);
-      if (st > -f) {
-        F_ = st;
-        dk = -(a - u);
-        df = 1;
-      } else {
-        F_ = -f;
-        dk = 0;
-        df = -1;
-      }
-    } else { /* u rises from -a, where it slipped at -f */
-      const PetscReal st = -f + k * (u + a);
-      if (st < f) {
-        F_ = st;
-        dk = u + a;
-        df = -1;
-      } else {
-        F_ = f;
-        dk = 0;
-        df = 1;
-      }
-    }
-    F[s] += F_;
-    if (Fk) Fk[s] = dk;
-    if (Ff) Ff[s] = df;
-  }
-}
-
-/* The tangential fit: x = [k_i / ks, f_i / fs] */
-typedef struct {
-  PetscInt   m, ns;
-  PetscReal  amp[4], w[4], ks, fs; /* amplitudes: microslip, microslip, gross slip, and stuck (the stiffness) */
-  PetscReal *target;               /* 4 ns */
-  PetscReal *Fk, *Ff;
-  PetscInt   ne;                   /* amplitudes where the energy dissipated per cycle is matched */
-  PetscReal *ae, *Et, *En, *we;    /* amplitude, target, scale and weight of each: residual we (E - Et) / En */
-  PetscReal  ftot, wg;             /* the joint's slip force (gross slip), matched with weight wg (relative) */
-  PetscReal *delta;                /* the fitted elements' slip displacements (kept where a force fitted to 0) */
-} TangentFit;
-
-#define FitRows(t) (4 * (t)->ns + (t)->ne + 1)
-
-/* Energy dissipated per cycle by a Jenkins element at amplitude a, and its derivatives in k and f */
-static PetscReal JenkinsEnergy(PetscReal k, PetscReal f, PetscReal a, PetscReal *Ek, PetscReal *Ef)
-{
-  if (k * a <= f) {
-    if (Ek) *Ek = 0;
-    if (Ef) *Ef = 0;
-    return 0;
-  }
-  if (Ek) *Ek = 4 * f * f / (k * k);
-  if (Ef) *Ef = 4 * a - 8 * f / k;
-  return 4 * f * (a - f / k);
-}
-
-static PetscErrorCode TangentResidual(void *ctx, const PetscReal x[], PetscReal r[], PetscReal J[])
-{
-  TangentFit    *t  = (TangentFit *)ctx;
-  const PetscInt ns = t->ns, nr = 4 * ns, ld = FitRows(t);
-  PetscReal      fsum = 0;
-
-  PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < ld * 2 * t->m; i++) J[i] = 0;
-  for (PetscInt i = 0; i < nr; i++) r[i] = 0;
-  for (PetscInt j = 0; j < 4; j++)
-    for (PetscInt i = 0; i < t->m; i++) {
-      JenkinsLoop(t->ks * x[i], t->fs * x[t->m + i], t->amp[j], ns, r + j * ns, t->Fk, t->Ff);
-      for (PetscInt s = 0; s < ns; s++) {
-        J[j * ns + s + i * ld]          = t->w[j] * t->ks * t->Fk[s];
-        J[j * ns + s + (t->m + i) * ld] = t->w[j] * t->fs * t->Ff[s];
-      }
-    }
-  for (PetscInt j = 0; j < 4; j++)
-    for (PetscInt s = 0; s < ns; s++) r[j * ns + s] = t->w[j] * (r[j * ns + s] - t->target[j * ns + s]);
-  for (PetscInt j = 0; j < t->ne; j++) {
-    PetscReal E = 0;
-    for (PetscInt i = 0; i < t->m; i++) {
-      PetscReal Ek, Ef;
-      E += JenkinsEnergy(t->ks * x[i], t->fs * x[t->m + i], t->ae[j], &Ek, &Ef);
-      J[nr + j + i * ld]          = t->we[j] * t->ks * Ek / t->En[j];
-      J[nr + j + (t->m + i) * ld] = t->we[j] * t->fs * Ef / t->En[j];
-    }
-    r[nr + j] = t->we[j] * (E - t->Et[j]) / t->En[j];
-  }
-  for (PetscInt i = 0; i < t->m; i++) { /* gross slip */
-    fsum += t->fs * x[t->m + i];
-    J[ld - 1 + (t->m + i) * ld] = t->wg * t->fs / t->ftot;
-  }
-  r[ld - 1] = t->wg * (fsum / t->ftot - 1);
-
-  PetscFunctionReturn(0);
-}
-
-/* The convex stage: the slip displacements fixed at delta[i], the slip forces y_i = f_i / fs free (k_i = f_i / delta_i):
-   every residual is linear in y, so the bounded least squares has one minimum, continuous in the data */
-typedef struct {
-  TangentFit *t;
-  PetscReal  *delta, *x, *J2;
-} FixedFit;
-
-static PetscErrorCode FixedResidual(void *ctx, const PetscReal y[], PetscReal r[], PetscReal J[])
-{
-  FixedFit      *ff = (FixedFit *)ctx;
-  TangentFit    *t  = ff->t;
-  const PetscInt m = t->m, ld = FitRows(t);
-
-  PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < m; i++) {
-    ff->x[i]     = t->fs * y[i] / (ff->delta[i] * t->ks);
-    ff->x[m + i] = y[i];
-  }
-  PetscCall(TangentResidual(t, ff->x, r, ff->J2));
-  for (PetscInt i = 0; i < m; i++)
-    for (PetscInt q = 0; q < ld; q++) J[q + i * ld] = ff->J2[q + i * ld] * t->fs / (ff->delta[i] * t->ks) + ff->J2[q + (m + i) * ld];
-  PetscFunctionReturn(0);
-}
-
-/* The residual columns of single elements (y = 1) of joint fit t at the slip displacements dc[0..nc), as the Gram
-   system of the residual C y - b: G = C^T C (nc x nc), cg = C^T b, bb = b.b */
-static PetscErrorCode CandidateGram(TangentFit *t, PetscInt nc, const PetscReal dc[], PetscReal G[], PetscReal cg[], PetscReal *bb)
-{
-  const PetscInt ld = FitRows(t), mt = t->m;
-  PetscReal     *C, *b, *J, x[2] = {0, 0};
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscMalloc3(ld * nc, &C, ld, &b, 2 * ld, &J));
-  t->m = 1;
-  PetscCall(TangentResidual(t, x, b, J)); /* r(0) = -b */
-  *bb = 0;
-  for (PetscInt q = 0; q < ld; q++) b[q] = -b[q];
-  for (PetscInt q = 0; q < ld; q++) *bb += b[q] * b[q];
-  for (PetscInt c = 0; c < nc; c++) {
-    x[0] = t->fs / (dc[c] * t->ks);
-    x[1] = 1;
-    PetscCall(TangentResidual(t, x, C + c * ld, J));
-    for (PetscInt q = 0; q < ld; q++) C[q + c * ld] += b[q];
-  }
-  t->m = mt;
-  JRGram(ld, nc, C, b, G, cg);
-  PetscCall(PetscFree3(C, b, J));
-  PetscFunctionReturn(0);
-}
-
-/* The candidate slip displacements of a joint: its m current values, then a log grid of ngrid over [dmin, dmax] */
-#define NGRID 32
-static void CandidateDeltas(PetscInt m, const PetscReal delta[], PetscReal dmin, PetscReal dmax, PetscReal dc[])
-{
-  for (PetscInt i = 0; i < m; i++) dc[i] = delta[i];
-  for (PetscInt i = 0; i < NGRID; i++) dc[m + i] = dmin * PetscPowReal(dmax / dmin, i / (PetscReal)(NGRID - 1));
-}
-
-/* The slip displacements of the convex fit, chosen among candidates: the m start values and a log grid over the
-   members' range. For each candidate element (y = 1) its residual column; the best set by exhaustive search
-   (<= 20000 sets) or else by coordinate descent from the start: each set scored by its NNLS (JRGramNNLS). Every
-   step is deterministic: the same on any ranks. delta[] in: the start; out: the best set; y: its forces. */
-static PetscErrorCode SearchDelta(TangentFit *t, PetscReal dmin, PetscReal dmax, PetscInt m, PetscReal delta[], PetscReal y[], PetscReal *cost)
-{
-  const PetscInt ngrid = NGRID, nc = ngrid + m;
-  PetscReal     *dc, *G, *cg, bb = 0, best, yy[8];
-  PetscInt       sel[8] = {0}, bsel[8] = {0};
-  double         combos = 1;
-
-  PetscFunctionBeginUser;
-  PetscCheck(m <= 8, PETSC_COMM_SELF, PETSC_ERR_SUP, "-rom_elements %" PetscInt_FMT ": at most 8 elements per joint", m);
-  PetscCall(PetscMalloc3(nc, &dc, nc * nc, &G, nc, &cg));
-  CandidateDeltas(m, delta, dmin, dmax, dc);
-  PetscCall(CandidateGram(t, nc, dc, G, cg, &bb));
-  for (PetscInt i = 0; i < m; i++) combos *= (double)(ngrid - i) / (i + 1);
-  for (PetscInt i = 0; i < m; i++) bsel[i] = i;
-  PetscCall(JRGramNNLS(nc, G, cg, bb, m, bsel, y, &best));
-  if (combos <= 20000) { /* every set of m grid values */
-    for (PetscInt i = 0; i < m; i++) sel[i] = m + i;
-    while (1) {
-      PetscReal v;
-      PetscInt  i;
-      PetscCall(JRGramNNLS(nc, G, cg, bb, m, sel, yy, &v));
-      if (v < best) {
-        best = v;
-        for (PetscInt k = 0; k < m; k++) bsel[k] = sel[k];
-      }
-      for (i = m - 1; i >= 0 && sel[i] == nc - m + i; i--) { }
-      if (i < 0) break;
-      sel[i]++;
-      for (PetscInt k = i + 1; k < m; k++) sel[k] = sel[k - 1] + 1;
-    }
-  } else { /* coordinate descent over the grid from the start */
-    PetscBool improved = PETSC_TRUE;
-    for (PetscInt sweep = 0; sweep < 50 && improved; sweep++) {
-      improved = PETSC_FALSE;
-      for (PetscInt i = 0; i < m; i++) {
-        for (PetscInt k = 0; k < m; k++) sel[k] = bsel[k];
-        for (PetscInt c = m; c < nc; c++) {
-          PetscReal v;
-          PetscBool used = PETSC_FALSE;
-          for (PetscInt k = 0; k < m; k++) used = (PetscBool)(used || bsel[k] == c);
-          if (used) continue;
-          sel[i] = c;
-          PetscCall(JRGramNNLS(nc, G, cg, bb, m, sel, yy, &v));
-          if (v < best * (1 - 1e-12)) {
-            best = v;
-            bsel[i] = c;
-            improved = PETSC_TRUE;
-          }
-        }
-      }
-    }
-  }
-  for (PetscInt i = 0; i < m; i++) delta[i] = dc[bsel[i]];
-  PetscCall(JRGramNNLS(nc, G, cg, bb, m, bsel, y, &best));
-  *cost = PetscSqrtReal(PetscMax(best, 0.0));
-  PetscCall(PetscFree3(dc, G, cg));
-  PetscFunctionReturn(0);
-}
-
-/* The fit coupled across joints (-rom_fit_total_weight): to every fitted joint's own rows (FixedFit, slip
-   displacements fixed, forces y free) are added the energy all joints together dissipate per cycle at the case's
-   amplitudes am[l] (joint j moving u[j] am[l]), relative to all the energy put in there (En[l]) - the sum the peak
-   amplitudes answer to. Et: the first reduction's, less that of joints not fitted (their members are their elements). */
-typedef struct {
-  PetscInt    nj, na, n;      /* fitted joints, case amplitudes, elements of them all */
-  PetscInt   *jl;             /* fitted joint k is joint jl[k] */
-  FixedFit   *fx;             /* each fitted joint's rows (fx[k].t) and slip displacements (fx[k].delta) */
-  PetscInt   *off, *roff;     /* joint k: forces y[off[k] .. off[k + 1]), rows from roff[k] */
-  PetscReal  *u, *am, *Et, *En, w;
-  PetscReal  *rj, *Jj;        /* scratch: one joint's rows and their Jacobian */
-} CoupledFit;
-
-#define CoupledRows(c) ((c)->roff[(c)->nj] + (c)->na)
-
-/* The energy column of an element (force fs y, slip displacement delta) of joint k in the rows of all joints: per unit y */
-static PetscReal CoupledColumn(const CoupledFit *cf, PetscInt k, PetscReal delta, PetscInt l)
-{
-  const PetscReal a = cf->u[k] * cf->am[l];
-  return a > delta ? cf->w * 4 * cf->fx[k].t->fs * (a - delta) / cf->En[l] : 0.0;
-}
-
-static PetscErrorCode CoupledResidual(void *ctx, const PetscReal y[], PetscReal r[], PetscReal J[])
-{
-  CoupledFit    *cf = (CoupledFit *)ctx;
-  const PetscInt nr = CoupledRows(cf);
-
-  PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < nr * cf->n; i++) J[i] = 0;
-  for (PetscInt k = 0; k < cf->nj; k++) {
-    const PetscInt ld = FitRows(cf->fx[k].t), mk = cf->off[k + 1] - cf->off[k];
-    PetscCall(FixedResidual(&cf->fx[k], y + cf->off[k], cf->rj, cf->Jj));
-    for (PetscInt q = 0; q < ld; q++) {
-      r[cf->roff[k] + q] = cf->rj[q];
-      for (PetscInt i = 0; i < mk; i++) J[cf->roff[k] + q + (cf->off[k] + i) * nr] = cf->Jj[q + i * ld];
-    }
-  }
-  for (PetscInt l = 0; l < cf->na; l++) {
-    const PetscInt R = cf->roff[cf->nj] + l;
-    r[R]             = -cf->w * cf->Et[l] / cf->En[l];
-    for (PetscInt k = 0; k < cf->nj; k++)
-      for (PetscInt e = cf->off[k]; e < cf->off[k + 1]; e++) {
-        const PetscReal v = CoupledColumn(cf, k, cf->fx[k].delta[e - cf->off[k]], l);
-        r[R] += v * y[e];
-        J[R + e * nr] = v;
-      }
-  }
-  PetscFunctionReturn(0);
-}
-
-/* The slip displacements of all fitted joints together, by coordinate descent: each element's in turn over its
-   joint's candidates (its current value and the log grid over [dlo, dhi] of the joint), the others fixed, every
-   choice scored by the NNLS of all forces (JRActiveSetNNLS); sweeps until none improves. On return fx[k].delta hold the
-   choice, y its forces; cost0 and cost: the residual norm before and after */
-static PetscErrorCode CoupledSearch(CoupledFit *cf, const PetscReal dlo[], const PetscReal dhi[], PetscReal y[], PetscReal *cost0, PetscReal *cost, PetscInt *sweeps)
-{
-  const PetscInt n = cf->n, na = cf->na;
-  PetscInt      *nc, *coff, *sel, ncand = 0;
-  PetscReal    **G, **cgj, *bbj, *dc, *H, *HH, *Hb, *bg, bbs = 0, *A, *c, best, v;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscMalloc7(cf->nj, &nc, cf->nj + 1, &coff, n, &sel, cf->nj, &G, cf->nj, &cgj, cf->nj, &bbj, na, &bg));
-  coff[0] = 0;
-  for (PetscInt k = 0; k < cf->nj; k++) {
-    nc[k]       = cf->off[k + 1] - cf->off[k] + NGRID;
-    coff[k + 1] = coff[k] + nc[k];
-  }
-  ncand = coff[cf->nj];
-  PetscCall(PetscMalloc6(ncand, &dc, na * ncand, &H, ncand * ncand, &HH, ncand, &Hb, n * n, &A, n, &c));
-  for (PetscInt k = 0; k < cf->nj; k++) { /* each joint's own rows: Gram system of its candidates */
-    const PetscInt mk = cf->off[k + 1] - cf->off[k];
-    CandidateDeltas(mk, cf->fx[k].delta, dlo[k], dhi[k], dc + coff[k]);
-    PetscCall(PetscMalloc2(nc[k] * nc[k], &G[k], nc[k], &cgj[k]));
-    PetscCall(CandidateGram(cf->fx[k].t, nc[k], dc + coff[k], G[k], cgj[k], &bbj[k]));
-    bbs += bbj[k];
-    for (PetscInt i = 0; i < mk; i++) sel[cf->off[k] + i] = i;
-    for (PetscInt a = 0; a < nc[k]; a++)
-      for (PetscInt l = 0; l < na; l++) H[l + (coff[k] + a) * na] = CoupledColumn(cf, k, dc[coff[k] + a], l);
-  }
-  for (PetscInt l = 0; l < na; l++) {
-    bg[l] = cf->w * cf->Et[l] / cf->En[l];
-    bbs += bg[l] * bg[l];
-  }
-  JRGram(na, ncand, H, bg, HH, Hb); /* the rows of all joints: every pair of candidates */
-#define SCORE(val) \
-  do { \
-    for (PetscInt k = 0; k < cf->nj; k++) \
-      for (PetscInt e = cf->off[k]; e < cf->off[k + 1]; e++) { \
-        const PetscInt a = coff[k] + sel[e]; \
-        c[e]             = cgj[k][sel[e]] + Hb[a]; \
-        for (PetscInt k2 = 0; k2 < cf->nj; k2++) \
-          for (PetscInt e2 = cf->off[k2]; e2 < cf->off[k2 + 1]; e2++) A[e + e2 * n] = HH[a + (coff[k2] + sel[e2]) * ncand] + (k2 == k ? G[k][sel[e] + sel[e2] * nc[k]] : 0.0); \
-      } \
-    PetscCall(JRActiveSetNNLS(n, A, c, y, &v)); \
-    val = bbs + v; \
-  } while (0)
-  SCORE(best);
-  *cost0 = PetscSqrtReal(PetscMax(best, 0.0));
-  for (*sweeps = 0; *sweeps < 50;) {
-    PetscBool improved = PETSC_FALSE;
-    (*sweeps)++;
-    for (PetscInt k = 0; k < cf->nj; k++)
-      for (PetscInt e = cf->off[k]; e < cf->off[k + 1]; e++) {
-        const PetscInt s0 = sel[e];
-        PetscInt       bs = s0;
-        for (PetscInt a = 0; a < nc[k]; a++) {
-          PetscBool used = PETSC_FALSE;
-          for (PetscInt e2 = cf->off[k]; e2 < cf->off[k + 1]; e2++) used = (PetscBool)(used || sel[e2] == a);
-          if (used) continue;
-          sel[e] = a;
-          SCORE(v);
-          if (v < best - 1e-12 * bbs) { /* round-off of the target does not count */
-            best     = v;
-            bs       = a;
-            improved = PETSC_TRUE;
-          }
-        }
-        sel[e] = bs;
-      }
-    if (!improved) break;
-  }
-  SCORE(best);
-#undef SCORE
-  *cost = PetscSqrtReal(PetscMax(best, 0.0));
-  for (PetscInt k = 0; k < cf->nj; k++) {
-    for (PetscInt e = cf->off[k]; e < cf->off[k + 1]; e++) cf->fx[k].delta[e - cf->off[k]] = dc[coff[k] + sel[e]];
-    PetscCall(PetscFree2(G[k], cgj[k]));
-  }
-  PetscCall(PetscFree6(dc, H, HH, Hb, A, c));
-  PetscCall(PetscFree7(nc, coff, sel, G, cgj, bbj, bg));
-  PetscFunctionReturn(0);
-}
-
-/* The normal fit of jenkins_nv joints: x = kn_i / kns, n0_i given; target N(v_s) */
-typedef struct {
-  PetscInt   m, nv;
-  PetscReal *n0, kns, w;
-  PetscReal *v, *target;
-} NormalFit;
-
-static PetscErrorCode NormalResidual(void *ctx, const PetscReal x[], PetscReal r[], PetscReal J[])
-{
-  NormalFit *t = (NormalFit *)ctx;
-
-  PetscFunctionBeginUser;
-  for (PetscInt s = 0; s < t->nv; s++) {
-    r[s] = -t->target[s];
-    for (PetscInt i = 0; i < t->m; i++) {
-      const PetscReal N = t->n0[i] + t->kns * x[i] * t->v[s];
-      r[s] += PetscMax(N, 0.0);
-      J[s + i * t->nv] = N > 0 ? t->w * t->kns * t->v[s] : 0.0;
-    }
-    r[s] *= t->w;
-  }
-  PetscFunctionReturn(0);
-}
 
 /* An element list of n elements of one type with joints (and the node-to-node arrays if nodes), no DOFs */
 PetscErrorCode JRROMElementsSetUp(JRElements *el, PetscInt n, const char type[], PetscBool nodes)
@@ -455,14 +73,7 @@ PetscErrorCode JRROMElementsSetUp(JRElements *el, PetscInt n, const char type[],
   PetscFunctionReturn(0);
 }
 
-typedef struct {
-  PetscInt  e;
-  PetscReal delta;
-} MemberDelta;
-
-#define JR_EP 15 /* per reduced element before the split: up to 3 points of 5 field coordinates (x, y, z [m], phi_t, phi_n) */
-
-static int CompareDelta(const void *a, const void *b)
+int JRFitCompareDelta(const void *a, const void *b)
 {
   const PetscReal x = ((const MemberDelta *)a)->delta, y = ((const MemberDelta *)b)->delta;
   return x < y ? -1 : x > y ? 1 : (((const MemberDelta *)a)->e < ((const MemberDelta *)b)->e ? -1 : 1);
@@ -483,7 +94,7 @@ static PetscReal EnergyNV(JRAFT *a, PetscReal kt, PetscReal kn, PetscReal mu, Pe
 }
 
 /* PetscPrintf unless quiet (the passes before the last of the fit with the normal-load variation) */
-static PetscErrorCode Say(PetscBool quiet, MPI_Comm comm, const char fmt[], ...)
+PetscErrorCode JRFitSay(PetscBool quiet, MPI_Comm comm, const char fmt[], ...)
 {
   PetscMPIInt rank;
   va_list     ap;
@@ -499,64 +110,21 @@ static PetscErrorCode Say(PetscBool quiet, MPI_Comm comm, const char fmt[], ...)
   PetscFunctionReturn(0);
 }
 
-#define NCASE 24 /* the case's amplitudes: from half the lowest level's to twice the highest's (CaseAmplitude) */
-
-/* One joint's fit (FitJoint): its tangential fit t and x = [k_i / ks, f_i / fs] (3 m long: JointElements drops the
-   elements left without force in place) */
-typedef struct {
-  TangentFit t;
-  PetscReal *x;
-  PetscInt   m, its;          /* elements fitted, TAO iterations */
-  PetscReal  rms, rms0;       /* the residual of the fit and of its start */
-  PetscReal  mu, kn;          /* the members' friction coefficient (n0-weighted mean) and total normal stiffness */
-  PetscReal  dlo, dhi;        /* the range of slip displacements searched */
-  PetscReal  nrms, nrms0;     /* jenkins_nv (FitNormal): the normal fit's residual, after and at its start */
-  PetscInt   nits;            /* and its TAO iterations */
-} JointFit;
-
-/* What the steps of one fit (ReducePass) share: the problem, set by JRROMReduce, and what the steps compute */
-typedef struct {
-  MPI_Comm          comm;
-  const JRElements *nn;          /* the first-reduction model: the members, with their joints */
-  PetscInt          m;           /* -rom_elements: elements per joint */
-  const PetscReal  *wt;          /* the members' mode-shape weights (NULL: none) */
-  const JRROMCase  *cs;          /* the case (NULL: none) */
-  const JRROMFit   *fit;         /* the options */
-  const char       *base;        /* BASE_rom_loops.csv (NULL or "": none) */
-  PetscBool         plot, quiet; /* the loops' PNG too; print nothing */
-  const PetscReal  *nvin;        /* added to the case's energy targets (NULL: none; NormalVariation) */
-  /* the pass's own (FitCtxReset) */
-  PetscInt          nj;                /* joints */
-  PetscBool         nv, spread, modef; /* jenkins_nv; -rom_joint_motion linear; mode */
-  PetscReal        *mk, *mf;           /* every member as an element on its joint's motion (w^2 kt, |w| f) */
-  PetscReal        *amod, amin, amax;  /* the case's modal amplitude at each level, their range (NULL: no case) */
-  MemberDelta      *md;                /* joint j's members in contact at rest: md[joff[j] .. joff[j] + jn[j]), by slip
-                                          displacement */
-  PetscInt         *jn, *joff;
-  JointFit         *jf;                /* per joint */
-  PetscInt         *nel;               /* per joint: its reduced elements (JointElements) */
-  PetscInt          cnt;               /* the reduced elements of the joints before */
-  PetscReal        *ek, *ef, *ekn, *en0, *emu; /* the reduced elements before the split: kt, f, kn, n0, mu */
-  PetscReal        *ep, *er;           /* linear, mode: JR_EP per element (its points); mode: its ratio (ModePoints) */
-  FILE             *fp;                /* the loops' CSV (rank 0) */
-  char              csv[PETSC_MAX_PATH_LEN + 32], tmp[PETSC_MAX_PATH_LEN + 48];
-} FitCtx;
-
 /* The case's modal amplitude l of NCASE, in equal ratios from half the lowest level's to twice the highest's */
-static PetscReal CaseAmplitude(const FitCtx *ctx, PetscInt l)
+PetscReal JRFitCaseAmplitude(const FitCtx *ctx, PetscInt l)
 {
   return 0.5 * ctx->amin * PetscPowReal(4 * ctx->amax / ctx->amin, l / (PetscReal)(NCASE - 1));
 }
 
 /* The joints' dissipation at modal amplitude a of the case's mode: sum over members of the (weighted) Jenkins
    energy per cycle at their joint's motion |u_j| a */
-static PetscReal CaseDissipation(const FitCtx *ctx, PetscReal a)
+PetscReal JRFitCaseDissipation(const FitCtx *ctx, PetscReal a)
 {
   const JRElements *nn = ctx->nn;
   const PetscReal  *mk = ctx->mk, *mf = ctx->mf;
   PetscReal         D  = 0;
   for (PetscInt e = 0; e < nn->n; e++)
-    if (mk[e] > 0 && mf[e] > 0) D += JenkinsEnergy(mk[e], mf[e], PetscAbsReal(ctx->cs->ujoint[nn->joint[e]]) * a, NULL, NULL);
+    if (mk[e] > 0 && mf[e] > 0) D += JRFitJenkinsEnergy(mk[e], mf[e], PetscAbsReal(ctx->cs->ujoint[nn->joint[e]]) * a, NULL, NULL);
   return D;
 }
 
@@ -571,7 +139,7 @@ static PetscErrorCode CaseAmplitudes(FitCtx *ctx)
 
   PetscFunctionBeginUser;
   if (!(cs->force > 0)) {
-    PetscCall(Say(ctx->quiet, ctx->comm, "rom: WARNING the excitation does not drive the mode of interest (stuck mode nearest the middle of the frequency range): the fit does not use the case's amplitudes\n"));
+    PetscCall(JRFitSay(ctx->quiet, ctx->comm, "rom: WARNING the excitation does not drive the mode of interest (stuck mode nearest the middle of the frequency range): the fit does not use the case's amplitudes\n"));
     PetscFunctionReturn(0);
   }
   PetscCall(PetscMalloc1(cs->nlev, &a));
@@ -581,17 +149,17 @@ static PetscErrorCode CaseAmplitudes(FitCtx *ctx)
     for (PetscInt j = 0; j < ctx->nn->njoints; j++) umax = PetscMax(umax, PetscAbsReal(cs->ujoint[j]));
     if (!(cs->damp > 0)) { /* no linear damping: bounded only if the joints' friction can absorb the input */
       PetscInt k = 0;
-      while (win * hi - CaseDissipation(ctx, hi) > 0 && k++ < 200) hi *= 2;
+      while (win * hi - JRFitCaseDissipation(ctx, hi) > 0 && k++ < 200) hi *= 2;
       PetscCheck(k < 200, ctx->comm, PETSC_ERR_ARG_OUTOFRANGE, "Level %g N: without linear damping (-hbm_gamma, -hbm_zeta) the joints' friction cannot bound the resonance: no amplitudes for the fit", (double)cs->level[l]);
     }
     for (PetscInt it = 0; it < 200 && hi - lo > 1e-14 * hi; it++) {
       const PetscReal mid = 0.5 * (lo + hi);
-      if (win * mid - cs->damp * mid * mid - CaseDissipation(ctx, mid) > 0) lo = mid;
+      if (win * mid - cs->damp * mid * mid - JRFitCaseDissipation(ctx, mid) > 0) lo = mid;
       else hi = mid;
     }
     a[l] = 0.5 * (lo + hi);
-    D    = CaseDissipation(ctx, a[l]);
-    PetscCall(Say(ctx->quiet, ctx->comm, "rom case level %g modal_amplitude %.5e joint_amplitude_m %.4e joint_dissipation_share %.4f\n", (double)cs->level[l], (double)a[l], (double)(umax * a[l]), (double)(a[l] > 0 ? D / (win * a[l]) : 0.0)));
+    D    = JRFitCaseDissipation(ctx, a[l]);
+    PetscCall(JRFitSay(ctx->quiet, ctx->comm, "rom case level %g modal_amplitude %.5e joint_amplitude_m %.4e joint_dissipation_share %.4f\n", (double)cs->level[l], (double)a[l], (double)(umax * a[l]), (double)(a[l] > 0 ? D / (win * a[l]) : 0.0)));
   }
   ctx->amod = a;
   ctx->amin = ctx->amax = a[0];
@@ -608,7 +176,7 @@ static PetscErrorCode CaseAmplitudes(FitCtx *ctx)
    and s_a^2, e_a the eigenpairs of its in-plane covariance: the three points have the group's centroid and second
    moment, so the parts carry the joint's rotation with the members' stiffness (parallel axis theorem) and, moved
    uniformly, act as the element itself. Into ep, JR_EP per element (three points; their positions only) */
-static PetscErrorCode SpreadPoints(FitCtx *ctx, PetscInt j, PetscInt mj)
+PetscErrorCode JRFitSpreadPoints(FitCtx *ctx, PetscInt j, PetscInt mj)
 {
   const JRElements  *nn = ctx->nn;
   const MemberDelta *d  = ctx->md + ctx->joff[j];
@@ -660,7 +228,7 @@ static PetscErrorCode SpreadPoints(FitCtx *ctx, PetscInt j, PetscInt mj)
    stiffness (sum kn phi_n^2) and normal load change (sum kn phi_n) in the mode. For the elements from ctx->cnt on
    (their springs k in ek): ep, JR_EP each (two points of 5 coordinates); er: mean / psi_t (k becomes k er^2, f
    becomes f |er|); ekn: the group's total kn */
-static PetscErrorCode ModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
+PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
 {
   const JRElements  *nn = ctx->nn;
   const MemberDelta *d  = ctx->md + ctx->joff[j];
@@ -712,7 +280,7 @@ static PetscErrorCode ModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
    equal count, each an element e0 + g with the group's total kt, kn and n0 (a gap that closes as
    the members' does on average) at the members' mean phi_t and, in two halves, at psi_n = m -/+ s (kn-weighted mean and
    spread of phi_n) */
-static PetscErrorCode OpenPoints(FitCtx *ctx, const MemberDelta *od, PetscInt no, PetscInt ng, PetscInt e0)
+PetscErrorCode JRFitOpenPoints(FitCtx *ctx, const MemberDelta *od, PetscInt no, PetscInt ng, PetscInt e0)
 {
   const JRElements *nn = ctx->nn;
   PetscReal        *k = ctx->ek + e0, *n0 = ctx->en0 + e0, *kn = ctx->ekn + e0, *mu = ctx->emu + e0, *P = ctx->ep + JR_EP * e0;
@@ -796,13 +364,13 @@ static void CoupledTargets(const FitCtx *ctx, CoupledFit *cf)
   const PetscReal  *mk = ctx->mk, *mf = ctx->mf;
 
   for (PetscInt l = 0; l < NCASE; l++) {
-    const PetscReal am = CaseAmplitude(ctx, l), D = CaseDissipation(ctx, am);
+    const PetscReal am = JRFitCaseAmplitude(ctx, l), D = JRFitCaseDissipation(ctx, am);
     cf->am[l] = am;
     cf->En[l] = cs->damp * am * am + D;
     cf->Et[l] = D;
     for (PetscInt e = 0; e < nn->n; e++)
-      if (!(ctx->jn[nn->joint[e]] > ctx->m) && mk[e] > 0 && mf[e] > 0) cf->Et[l] -= JenkinsEnergy(mk[e], mf[e], PetscAbsReal(cs->ujoint[nn->joint[e]]) * am, NULL, NULL);
-    for (PetscInt j = 0; ctx->nvin && j < ctx->nj; j++) /* the normal-load variation (NormalVariation) */
+      if (!(ctx->jn[nn->joint[e]] > ctx->m) && mk[e] > 0 && mf[e] > 0) cf->Et[l] -= JRFitJenkinsEnergy(mk[e], mf[e], PetscAbsReal(cs->ujoint[nn->joint[e]]) * am, NULL, NULL);
+    for (PetscInt j = 0; ctx->nvin && j < ctx->nj; j++) /* the normal-load variation (JRFitNormalVariation) */
       if (ctx->jn[j] > ctx->m) cf->Et[l] += ctx->nvin[j * NCASE + l];
     if (!(cf->En[l] > 0)) cf->En[l] = 1;
   }
@@ -815,7 +383,7 @@ static PetscErrorCode CoupledNorms(CoupledFit *cf, const PetscReal y[], PetscRea
   PetscReal      o = 0, t = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(CoupledResidual(cf, y, r, J));
+  PetscCall(JRFitCoupledResidual(cf, y, r, J));
   for (PetscInt i = 0; i < nr; i++) {
     if (i < cf->roff[cf->nj]) o += r[i] * r[i];
     else t += r[i] * r[i];
@@ -826,7 +394,7 @@ static PetscErrorCode CoupledNorms(CoupledFit *cf, const PetscReal y[], PetscRea
 }
 
 /* The fit coupled across joints (CoupledFit): the joints with more members than elements, from their own fits,
-   their slip displacements chosen together (CoupledSearch) and their forces fitted together by TAO; their x, rms (each
+   their slip displacements chosen together (JRFitCoupledSearch) and their forces fitted together by TAO; their x, rms (each
    joint's own rows) and its updated. Joints whose members are their elements stay as they are (their energy is
    taken off the target). Prints one line. */
 static PetscErrorCode FitCoupled(FitCtx *ctx)
@@ -845,10 +413,10 @@ static PetscErrorCode FitCoupled(FitCtx *ctx)
   nr = CoupledRows(&cf);
   PetscCall(PetscMalloc2(nr, &r, nr * cf.n, &J));
   PetscCall(CoupledNorms(&cf, y, r, J, &own0, &tot0));
-  PetscCall(CoupledSearch(&cf, dl, dh, y, &cost0, &cost, &sweeps));
+  PetscCall(JRFitCoupledSearch(&cf, dl, dh, y, &cost0, &cost, &sweeps));
   q.nx  = cf.n;
   q.nr  = nr;
-  q.fn  = CoupledResidual;
+  q.fn  = JRFitCoupledResidual;
   q.ctx = &cf;
   PetscCall(JRLSQSolve(&q, y, 0.0, &r0, &r1, &its));
   PetscCall(CoupledNorms(&cf, y, r, J, &own1, &tot1));
@@ -865,23 +433,23 @@ static PetscErrorCode FitCoupled(FitCtx *ctx)
     f->its += its;
     PetscCall(PetscFree3(cf.fx[k].delta, cf.fx[k].x, cf.fx[k].J2));
   }
-  PetscCall(Say(ctx->quiet, ctx->comm, "rom coupled joints %" PetscInt_FMT " elements %" PetscInt_FMT " all_joints_energy_residual %.3e each_alone %.3e own_rows_residual %.3e each_alone %.3e sweeps %" PetscInt_FMT " tao_its %" PetscInt_FMT "\n", cf.nj, cf.n, (double)tot1, (double)tot0, (double)own1, (double)own0, sweeps, its));
+  PetscCall(JRFitSay(ctx->quiet, ctx->comm, "rom coupled joints %" PetscInt_FMT " elements %" PetscInt_FMT " all_joints_energy_residual %.3e each_alone %.3e own_rows_residual %.3e each_alone %.3e sweeps %" PetscInt_FMT " tao_its %" PetscInt_FMT "\n", cf.nj, cf.n, (double)tot1, (double)tot0, (double)own1, (double)own0, sweeps, its));
   PetscCall(PetscFree2(r, J));
   PetscCall(PetscFree6(y, cf.am, cf.Et, cf.En, cf.rj, cf.Jj));
   PetscCall(PetscFree7(cf.jl, cf.fx, cf.off, cf.roff, cf.u, dl, dh));
   PetscFunctionReturn(0);
 }
 
-/* -rom_joint_motion mode, jenkins_nv: the fit sees every element's loops under its normal load at rest (JenkinsLoop,
-   JenkinsEnergy); in the model the normal load follows the normal motion, and separates. What that changes in the
-   energy per cycle, at the case's amplitudes am_l (CaseAmplitude), for the members and for the reduced elements rom
+/* -rom_joint_motion mode, jenkins_nv: the fit sees every element's loops under its normal load at rest (JRFitJenkinsLoop,
+   JRFitJenkinsEnergy); in the model the normal load follows the normal motion, and separates. What that changes in the
+   energy per cycle, at the case's amplitudes am_l (JRFitCaseAmplitude), for the members and for the reduced elements rom
    (each moving with its stuck-mode coordinates phi x the case's scale, by AFT, one harmonic, 256 samples):
      nv[j NCASE + l] = (D_members,nv - D_members,fixed) - (D_rom,nv - D_rom,fixed)   joint j
    The next fit adds it to its energy targets: its elements' fixed-load energy then aims at what, with their normal
    load varying, gives the members' energy with theirs varying (a defect correction: repeated, it converges when the
    rom's share changes little from fit to fit). nvmax: the largest |sum_j nv| at any am_l, relative to the input
    there. Unless quiet, prints the error of the rom's energy with the normal variation at the case's levels. */
-static PetscErrorCode NormalVariation(const FitCtx *ctx, const JRElements *rom, PetscReal nv[], PetscReal *nvmax)
+PetscErrorCode JRFitNormalVariation(const FitCtx *ctx, const JRElements *rom, PetscReal nv[], PetscReal *nvmax)
 {
   const JRElements *nn = ctx->nn;
   const JRROMCase  *cs = ctx->cs;
@@ -906,7 +474,7 @@ static PetscErrorCode NormalVariation(const FitCtx *ctx, const JRElements *rom, 
   PetscCall(JRAFTCreate(1, 256, &af));
   *nvmax = 0;
   for (PetscInt l = 0; l < na; l++) {
-    const PetscReal am = CaseAmplitude(ctx, l), a = sc * am;
+    const PetscReal am = JRFitCaseAmplitude(ctx, l), a = sc * am;
     PetscReal       tot = 0, fixed = 0;
     for (PetscInt j = 0; j < nj; j++) nv[j * na + l] = 0;
     for (PetscInt e = 0; e < nn->n; e++) {
@@ -924,7 +492,7 @@ static PetscErrorCode NormalVariation(const FitCtx *ctx, const JRElements *rom, 
     PetscReal       dm = 0, dr = 0;
     for (PetscInt e = 0; e < nn->n; e++) dm += EnergyNV(af, nn->kt[e], nn->kn[e], nn->mu[e], nn->n0[e], nn->phi[2 * e] * a, nn->phi[2 * e + 1] * a);
     for (PetscInt r = 0; r < rom->n; r++) dr += EnergyNV(af, rom->kt[r], rom->kn[r], rom->mu[r], rom->n0[r], rom->phi[2 * r] * a, rom->phi[2 * r + 1] * a);
-    PetscCall(Say(ctx->quiet, ctx->comm, "rom case level %g dissipation_error_normal_varying %+.3e (of the input per cycle; members %.4f)\n", (double)cs->level[l], (double)((dr - dm) / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * ctx->amod[l])), (double)(dm / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * ctx->amod[l]))));
+    PetscCall(JRFitSay(ctx->quiet, ctx->comm, "rom case level %g dissipation_error_normal_varying %+.3e (of the input per cycle; members %.4f)\n", (double)cs->level[l], (double)((dr - dm) / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * ctx->amod[l])), (double)(dm / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * ctx->amod[l]))));
   }
   PetscCall(JRAFTDestroy(&af));
   PetscFunctionReturn(0);
@@ -1074,7 +642,7 @@ static PetscErrorCode SortMembers(FitCtx *ctx)
   }
   for (PetscInt j = 0; j < nj; j++) {
     PetscCheck(jn[j] > 0, ctx->comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no member in contact at rest: nothing to fit (change the regions)", j);
-    qsort(ctx->md + joff[j], (size_t)jn[j], sizeof(MemberDelta), CompareDelta);
+    qsort(ctx->md + joff[j], (size_t)jn[j], sizeof(MemberDelta), JRFitCompareDelta);
   }
   PetscFunctionReturn(0);
 }
@@ -1100,407 +668,6 @@ static PetscErrorCode FitAllocate(FitCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* Joint j's sums over its members, the fit's scales and its loops' amplitudes: from the slip-force distribution, the
-   slip displacements below which the fractions -rom_fit_fractions of the slip force lie, and half the first (stuck) */
-static PetscErrorCode JointSetUp(FitCtx *ctx, PetscInt j)
-{
-  const JRElements  *nn = ctx->nn;
-  const MemberDelta *d  = ctx->md + ctx->joff[j];
-  const PetscInt     nm = ctx->jn[j], mj = PetscMin(ctx->m, nm);
-  JointFit          *f  = &ctx->jf[j];
-  TangentFit        *t  = &f->t;
-  PetscReal          ftot = 0, ktot = 0, mu = 0, n0s = 0, knsum = 0, c = 0;
-  PetscInt           k = 0;
-
-  PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < nm; i++) {
-    const PetscInt e = d[i].e;
-    ftot += ctx->mf[e];
-    ktot += ctx->mk[e];
-    mu += nn->mu[e] * nn->n0[e];
-    n0s += nn->n0[e];
-    knsum += nn->kn[e];
-  }
-  mu /= n0s;
-  PetscCall(PetscMemzero(f, sizeof(*f)));
-  f->m    = mj;
-  f->mu   = mu;
-  f->kn   = knsum;
-  t->m    = mj;
-  t->ns   = ctx->fit->ns;
-  t->ks   = ktot / mj;
-  t->fs   = ftot / mj;
-  t->ftot = ftot;
-  t->wg   = ctx->fit->wgross;
-  for (PetscInt a = 0; a < 3; a++) {
-    while (k < nm - 1 && c + ctx->mf[d[k].e] < ctx->fit->fr[a] * ftot) {
-      c += ctx->mf[d[k].e];
-      k++;
-    }
-    t->amp[a] = d[k].delta;
-  }
-  t->amp[3] = 0.5 * d[0].delta;
-  PetscFunctionReturn(0);
-}
-
-/* Joint j's energy rows: 6 over its own range, from the first slips (-rom_fit_energy_from) to its gross-slip
-   amplitude, each relative to its own; with a case, NCASE over the joint's range of motion over the levels (and a
-   factor 2 either side), each amplitude's error relative to all the energy dissipated there (= put in, at resonance) */
-static PetscErrorCode TangentEnergyRows(FitCtx *ctx, PetscInt j)
-{
-  const MemberDelta *d  = ctx->md + ctx->joff[j];
-  const PetscInt     nm = ctx->jn[j];
-  const JRROMCase   *cs = ctx->cs;
-  TangentFit        *t  = &ctx->jf[j].t;
-  PetscReal          c = 0, a0;
-  PetscInt           k = 0;
-
-  PetscFunctionBeginUser;
-  while (k < nm - 1 && c + ctx->mf[d[k].e] < ctx->fit->efrom * t->ftot) {
-    c += ctx->mf[d[k].e];
-    k++;
-  }
-  a0    = PetscMax(d[k].delta, 1.0001 * d[0].delta);
-  t->ne = 6 + (ctx->amod ? NCASE : 0);
-  PetscCall(PetscMalloc4(t->ne, &t->ae, t->ne, &t->Et, t->ne, &t->En, t->ne, &t->we));
-  for (PetscInt i = 0; i < t->ne; i++) {
-    if (i < 6) { /* relative, over the joint's range */
-      t->ae[i] = a0 * PetscPowReal(t->amp[2] / a0, i / 5.0);
-      t->we[i] = 0.05;
-    } else { /* the case */
-      const PetscReal uj = PetscAbsReal(cs->ujoint[j]), am = CaseAmplitude(ctx, i - 6);
-      t->ae[i] = uj * am;
-      t->we[i] = ctx->fit->wcase / PetscSqrtReal((PetscReal)NCASE);
-      t->En[i] = cs->damp * am * am + CaseDissipation(ctx, am);
-    }
-    t->Et[i] = 0;
-    for (PetscInt q = 0; q < nm; q++) t->Et[i] += JenkinsEnergy(ctx->mk[d[q].e], ctx->mf[d[q].e], t->ae[i], NULL, NULL);
-    if (i < 6) t->En[i] = t->Et[i];
-    else if (ctx->nvin) t->Et[i] += ctx->nvin[j * NCASE + i - 6]; /* the normal-load variation (NormalVariation) */
-    if (!(t->En[i] > 0) || !(t->ae[i] > 0)) { /* nothing dissipated, nothing put in: no row */
-      t->En[i] = 1;
-      t->we[i] = 0;
-    }
-  }
-  PetscFunctionReturn(0);
-}
-
-/* Joint j's target loops, its members', at the four amplitudes, each weighted by its size; the stuck one by
-   -rom_fit_stiffness_weight */
-static PetscErrorCode TangentLoops(FitCtx *ctx, PetscInt j)
-{
-  const MemberDelta *d  = ctx->md + ctx->joff[j];
-  const PetscInt     nm = ctx->jn[j];
-  TangentFit        *t  = &ctx->jf[j].t;
-  const PetscInt     ns = t->ns;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscCalloc1(4 * ns, &t->target));
-  PetscCall(PetscMalloc2(ns, &t->Fk, ns, &t->Ff));
-  for (PetscInt a = 0; a < 4; a++) {
-    PetscReal fmax = 0;
-    for (PetscInt i = 0; i < nm; i++) JenkinsLoop(ctx->mk[d[i].e], ctx->mf[d[i].e], t->amp[a], ns, t->target + a * ns, NULL, NULL);
-    for (PetscInt s = 0; s < ns; s++) fmax = PetscMax(fmax, PetscAbsReal(t->target[a * ns + s]));
-    t->w[a] = (a == 3 ? ctx->fit->wstiff : 1.0) / (fmax * PetscSqrtReal(4.0 * ns)); /* the stiffness weighs most */
-  }
-  PetscFunctionReturn(0);
-}
-
-/* Joint j's start: m groups of members in equal steps of log(delta) (from the first slips to gross slip), each group
-   one element with the group's sums of kt and f: exact at full stick and at gross slip */
-static PetscErrorCode TangentStart(FitCtx *ctx, PetscInt j)
-{
-  const MemberDelta *d  = ctx->md + ctx->joff[j];
-  const PetscInt     nm = ctx->jn[j];
-  JointFit          *f  = &ctx->jf[j];
-  const TangentFit  *t  = &f->t;
-  const PetscInt     mj = f->m;
-  const PetscReal    l0 = PetscLogReal(d[0].delta), l1 = PetscLogReal(d[nm - 1].delta);
-  PetscReal         *x;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscCalloc1(3 * mj, &x));
-  for (PetscInt i = 0; i < nm; i++) {
-    const PetscInt e = d[i].e;
-    PetscInt       g = l1 > l0 ? (PetscInt)(mj * (PetscLogReal(d[i].delta) - l0) / (l1 - l0)) : (mj * i) / nm;
-    g                = PetscMin(PetscMax(g, 0), mj - 1);
-    if (nm <= ctx->m) g = i;
-    x[g] += ctx->mk[e] / t->ks;
-    x[mj + g] += ctx->mf[e] / t->fs;
-  }
-  for (PetscInt g = 0; g < mj; g++) /* an empty group: a small element between its neighbours */
-    if (x[g] == 0) {
-      const PetscReal dl = PetscExpReal(l0 + (g + 0.5) * (l1 - l0) / mj);
-      x[mj + g]          = 1e-3;
-      x[g]               = 1e-3 * t->fs / (dl * t->ks);
-    }
-  f->x = x;
-  PetscFunctionReturn(0);
-}
-
-/* The residual norm of a fixed fit at y */
-static PetscErrorCode FixedNorm(FixedFit *fx, const PetscReal y[], PetscReal *norm)
-{
-  const PetscInt ld = FitRows(fx->t);
-  PetscReal     *r0, *J0, s = 0;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscMalloc2(ld, &r0, ld * fx->t->m, &J0));
-  PetscCall(FixedResidual(fx, y, r0, J0));
-  for (PetscInt i = 0; i < ld; i++) s += r0[i] * r0[i];
-  *norm = PetscSqrtReal(s);
-  PetscCall(PetscFree2(r0, J0));
-  PetscFunctionReturn(0);
-}
-
-/* Joint j's convex fit: the slip displacements of the start's groups (sum f / sum kt of each log-width group of
-   members), or the best of the candidates over [dlo, dhi] (-rom_fit_search), fixed; the forces fitted. rms0: the
-   residual of the groups it started from */
-static PetscErrorCode FitConvex(FitCtx *ctx, PetscInt j)
-{
-  const MemberDelta *d  = ctx->md + ctx->joff[j];
-  const PetscInt     nm = ctx->jn[j];
-  const JRROMCase   *cs = ctx->cs;
-  JointFit          *f  = &ctx->jf[j];
-  TangentFit        *t  = &f->t;
-  const PetscInt     mj = f->m;
-  PetscReal         *x  = f->x, *y, rsearch, rms0, rms;
-  PetscInt           its1 = 0;
-  FixedFit           fx;
-  JRLSQ              q;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscMalloc4(mj, &fx.delta, 2 * mj, &fx.x, FitRows(t) * 2 * mj, &fx.J2, mj, &y));
-  fx.t = t;
-  for (PetscInt i = 0; i < mj; i++) {
-    fx.delta[i] = t->fs * x[mj + i] / (t->ks * x[i]);
-    y[i]        = x[mj + i];
-  }
-  PetscCall(FixedNorm(&fx, y, &f->rms0));
-  f->dlo = ctx->amod ? PetscMin(d[0].delta, 0.1 * PetscAbsReal(cs->ujoint[j]) * ctx->amin) : d[0].delta;
-  f->dhi = PetscMin(d[nm - 1].delta, PetscMax(t->amp[2], ctx->amod ? 4 * PetscAbsReal(cs->ujoint[j]) * ctx->amax : 0.0));
-  if (ctx->fit->search) PetscCall(SearchDelta(t, f->dlo, f->dhi, mj, fx.delta, y, &rsearch));
-  for (PetscInt i = 0; i < mj; i++) y[i] *= 1 + ctx->fit->perturb * (i % 3 == 0 ? 1.0 : i % 3 == 1 ? -1.0 : 0.5);
-  q.nx  = mj;
-  q.nr  = FitRows(t);
-  q.fn  = FixedResidual;
-  q.ctx = &fx;
-  PetscCall(JRLSQSolve(&q, y, 0.0, &rms0, &rms, &its1));
-  for (PetscInt i = 0; i < mj; i++) {
-    x[i]      = t->fs * y[i] / (fx.delta[i] * t->ks);
-    x[mj + i] = y[i];
-  }
-  f->rms = rms;
-  f->its = its1;
-  PetscCall(PetscMalloc1(mj, &t->delta));
-  PetscCall(PetscArraycpy(t->delta, fx.delta, mj));
-  PetscCall(PetscFree4(fx.delta, fx.x, fx.J2, y));
-  PetscFunctionReturn(0);
-}
-
-/* -rom_fit_refine: joint j's slip displacements free too, from its convex fit (not convex) */
-static PetscErrorCode FitRefine(FitCtx *ctx, PetscInt j)
-{
-  JointFit      *f  = &ctx->jf[j];
-  TangentFit    *t  = &f->t;
-  const PetscInt mj = f->m;
-  PetscReal     *x  = f->x, r1, rms;
-  PetscInt       its1 = 0;
-  JRLSQ          q;
-
-  PetscFunctionBeginUser;
-  for (PetscInt g = 0; g < mj; g++) {
-    x[g]      = PetscMax(x[g], 1e-8);
-    x[mj + g] = PetscMax(x[mj + g], 1e-8);
-  }
-  q.nx  = 2 * mj;
-  q.nr  = FitRows(t);
-  q.fn  = TangentResidual;
-  q.ctx = t;
-  PetscCall(JRLSQSolve(&q, x, 1e-10, &r1, &rms, &its1));
-  f->rms = rms;
-  f->its += its1;
-  for (PetscInt g = 0; g < mj; g++) t->delta[g] = t->fs * x[mj + g] / (t->ks * x[g]);
-  PetscFunctionReturn(0);
-}
-
-/* A joint with no more members than elements: the members themselves (the start), exact; rms: its loops' residual */
-static PetscErrorCode FitExact(FitCtx *ctx, PetscInt j)
-{
-  JointFit   *f = &ctx->jf[j];
-  TangentFit *t = &f->t;
-  PetscReal  *r, *J, rms = 0;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscMalloc2(FitRows(t), &r, FitRows(t) * 2 * f->m, &J));
-  PetscCall(TangentResidual(t, f->x, r, J));
-  for (PetscInt i = 0; i < 4 * t->ns; i++) rms += r[i] * r[i];
-  rms     = PetscSqrtReal(rms);
-  f->rms  = rms;
-  f->rms0 = rms;
-  PetscCall(PetscFree2(r, J));
-  PetscFunctionReturn(0);
-}
-
-/* Joint j's own fit (JointFit): kt_i, f_i of its elements */
-static PetscErrorCode FitJoint(FitCtx *ctx, PetscInt j)
-{
-  PetscFunctionBeginUser;
-  PetscCall(JointSetUp(ctx, j));
-  PetscCall(TangentEnergyRows(ctx, j));
-  PetscCall(TangentLoops(ctx, j));
-  PetscCall(TangentStart(ctx, j));
-  if (ctx->jn[j] > ctx->m) {
-    PetscCall(FitConvex(ctx, j));
-    if (ctx->fit->refine) PetscCall(FitRefine(ctx, j));
-  } else PetscCall(FitExact(ctx, j));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode JointFitDestroy(JointFit *f)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscFree(f->x));
-  PetscCall(PetscFree(f->t.target));
-  PetscCall(PetscFree2(f->t.Fk, f->t.Ff));
-  PetscCall(PetscFree4(f->t.ae, f->t.Et, f->t.En, f->t.we));
-  PetscCall(PetscFree(f->t.delta));
-  PetscFunctionReturn(0);
-}
-
-/* -rom_joint_motion mode, jenkins_nv: joint j's open members (a gap: n0 <= 0), which close at large amplitude: up to
-   m elements by gap, after its fitted ones */
-static PetscErrorCode OpenMembers(FitCtx *ctx, PetscInt j)
-{
-  const JRElements *nn = ctx->nn;
-  const PetscInt    e0 = ctx->cnt + ctx->nel[j];
-  PetscInt          no = 0, ng;
-  MemberDelta      *od;
-
-  PetscFunctionBeginUser;
-  for (PetscInt e = 0; e < nn->n; e++) no += (nn->joint[e] == j && !(nn->n0[e] > 0) && nn->kn[e] > 0);
-  ng = PetscMin(ctx->m, no);
-  if (!ng) PetscFunctionReturn(0);
-  PetscCall(PetscMalloc1(no, &od));
-  for (PetscInt e = 0, i = 0; e < nn->n; e++)
-    if (nn->joint[e] == j && !(nn->n0[e] > 0) && nn->kn[e] > 0) {
-      od[i].e       = e;
-      od[i++].delta = -nn->n0[e] / nn->kn[e];
-    }
-  qsort(od, (size_t)no, sizeof(MemberDelta), CompareDelta);
-  PetscCall(OpenPoints(ctx, od, no, ng, e0));
-  for (PetscInt g = 0; g < ng; g++) { /* no slip force; at their own motion */
-    ctx->ef[e0 + g] = 0;
-    ctx->er[e0 + g] = 1;
-  }
-  PetscCall(PetscFree(od));
-  ctx->nel[j] += ng;
-  PetscFunctionReturn(0);
-}
-
-/* Joint j's reduced elements (from ctx->cnt on) from its fit: those the fit left without force carry nothing and are
-   dropped; with -rom_joint_motion linear or mode, their points; mode, jenkins_nv: the open members' elements */
-static PetscErrorCode JointElements(FitCtx *ctx, PetscInt j)
-{
-  JointFit        *f  = &ctx->jf[j];
-  const TangentFit *t = &f->t;
-  const PetscInt   m0 = f->m, e0 = ctx->cnt;
-  PetscReal       *x  = f->x;
-  PetscInt         mj = 0;
-
-  PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < m0; i++)
-    if (x[m0 + i] > 1e-9) {
-      x[mj]          = x[i];
-      x[2 * m0 + mj] = x[m0 + i]; /* forces behind the stiffnesses, shifted below */
-      mj++;
-    }
-  for (PetscInt i = 0; i < mj; i++) x[mj + i] = x[2 * m0 + i];
-  for (PetscInt i = 0; i < mj; i++) {
-    ctx->ek[e0 + i]  = t->ks * x[i];
-    ctx->ef[e0 + i]  = t->fs * x[mj + i];
-    ctx->en0[e0 + i] = ctx->ef[e0 + i] / f->mu;
-    ctx->emu[e0 + i] = f->mu;
-    ctx->ekn[e0 + i] = 0;
-  }
-  ctx->nel[j] = mj;
-  if (ctx->spread) PetscCall(SpreadPoints(ctx, j, mj));
-  if (ctx->modef) PetscCall(ModePoints(ctx, j, mj));
-  if (ctx->modef && ctx->nv) PetscCall(OpenMembers(ctx, j));
-  PetscFunctionReturn(0);
-}
-
-/* jenkins_nv (not mode): joint j's normal stiffnesses kn_i (the thesis's kv) fitted to its normal load-motion curve
-   sum_e max(n0_e + kn_e v, 0) over v from the separation of every member to as much compression */
-static PetscErrorCode FitNormal(FitCtx *ctx, PetscInt j)
-{
-  const JRElements  *nn = ctx->nn;
-  const MemberDelta *d  = ctx->md + ctx->joff[j];
-  const PetscInt     nm = ctx->jn[j], mj = ctx->nel[j], ns = ctx->fit->ns;
-  JointFit          *f  = &ctx->jf[j];
-  const PetscReal    ftot = f->t.ftot;
-  NormalFit          nf;
-  PetscReal          vsep = 0, nmx = 0, c = 0, *xn;
-  JRLSQ              q;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(&nf, sizeof(nf)));
-  for (PetscInt e = 0; e < nn->n; e++)
-    if (nn->joint[e] == j && nn->kn[e] > 0) vsep = PetscMax(vsep, PetscAbsReal(nn->n0[e]) / nn->kn[e]);
-  nf.m   = mj;
-  nf.nv  = 2 * ns + 1;
-  nf.n0  = ctx->en0 + ctx->cnt;
-  nf.kns = f->kn / mj;
-  PetscCall(PetscMalloc3(nf.nv, &nf.v, nf.nv, &nf.target, mj, &xn));
-  for (PetscInt s = 0; s < nf.nv; s++) {
-    nf.v[s]      = vsep * (2.0 * s / (nf.nv - 1) - 1.0);
-    nf.target[s] = 0;
-    for (PetscInt e = 0; e < nn->n; e++)
-      if (nn->joint[e] == j) nf.target[s] += PetscMax(nn->n0[e] + nn->kn[e] * nf.v[s], 0.0);
-    nmx = PetscMax(nmx, nf.target[s]);
-  }
-  nf.w = 1.0 / (nmx * PetscSqrtReal((PetscReal)nf.nv));
-  for (PetscInt i = 0; i < mj; i++) xn[i] = 0;
-  for (PetscInt i = 0; i < nm; i++) { /* start: the groups' normal stiffness, as for kt */
-    const PetscInt e = d[i].e;
-    PetscInt       g = nm <= ctx->m ? i : PetscMin(PetscMax((PetscInt)(mj * (c + 0.5 * ctx->mf[e]) / ftot), 0), mj - 1);
-    xn[g] += nn->kn[e] / nf.kns;
-    c += ctx->mf[e];
-  }
-  for (PetscInt g = 0; g < mj; g++) xn[g] = PetscMax(xn[g], 1e-3);
-  q.nx  = mj;
-  q.nr  = nf.nv;
-  q.fn  = NormalResidual;
-  q.ctx = &nf;
-  PetscCall(JRLSQSolve(&q, xn, 1e-10, &f->nrms0, &f->nrms, &f->nits));
-  for (PetscInt i = 0; i < mj; i++) ctx->ekn[ctx->cnt + i] = nf.kns * xn[i];
-  PetscCall(PetscFree3(nf.v, nf.target, xn));
-  PetscFunctionReturn(0);
-}
-
-/* Joint j's line (rom joint ...), and its loops at the three amplitudes in the CSV: the members' and its elements' */
-static PetscErrorCode JointReport(FitCtx *ctx, PetscInt j)
-{
-  const JointFit   *f  = &ctx->jf[j];
-  const TangentFit *t  = &f->t;
-  const PetscInt    ns = t->ns, mj = ctx->nel[j], e0 = ctx->cnt;
-  PetscReal        *Fr;
-
-  PetscFunctionBeginUser;
-  PetscCall(Say(ctx->quiet, ctx->comm, "rom joint %" PetscInt_FMT " members %" PetscInt_FMT " elements %" PetscInt_FMT " amplitudes_m %.4e %.4e %.4e loop_residual %.3e start %.3e tao_its %" PetscInt_FMT, j, ctx->jn[j], mj, (double)t->amp[0], (double)t->amp[1], (double)t->amp[2], (double)f->rms, (double)f->rms0, f->its));
-  if (ctx->nv) PetscCall(Say(ctx->quiet, ctx->comm, " normal_residual %.3e start %.3e tao_its %" PetscInt_FMT, (double)f->nrms, (double)f->nrms0, f->nits));
-  PetscCall(Say(ctx->quiet, ctx->comm, "\n"));
-  if (!ctx->fp) PetscFunctionReturn(0);
-  PetscCall(PetscMalloc1(ns, &Fr));
-  for (PetscInt a = 0; a < 3; a++) {
-    for (PetscInt s = 0; s < ns; s++) Fr[s] = 0;
-    for (PetscInt i = 0; i < mj; i++) JenkinsLoop(ctx->ek[e0 + i], ctx->ef[e0 + i], t->amp[a], ns, Fr, NULL, NULL);
-    for (PetscInt s = 0; s <= ns; s++) fprintf(ctx->fp, "%" PetscInt_FMT ",%" PetscInt_FMT ",%.9e,%.9e,%.9e\n", j, a, (double)(t->amp[a] * PetscCosReal(2 * PETSC_PI * s / ns)), (double)t->target[a * ns + s % ns], (double)Fr[s % ns]);
-  }
-  PetscCall(PetscFree(Fr));
-  PetscFunctionReturn(0);
-}
-
 /* The fit at the case's estimated amplitudes: the error of all joints' dissipation at each level, relative to the
    input (rom case level F dissipation_error) */
 static PetscErrorCode CaseErrors(const FitCtx *ctx)
@@ -1512,10 +679,10 @@ static PetscErrorCode CaseErrors(const FitCtx *ctx)
     PetscReal err = 0;
     for (PetscInt j = 0, e = 0; j < ctx->nj; j++) {
       const PetscReal x = PetscAbsReal(cs->ujoint[j]) * ctx->amod[l];
-      for (PetscInt i = 0; i < ctx->nel[j]; i++, e++) err += JenkinsEnergy(ctx->ek[e], ctx->ef[e], x, NULL, NULL);
+      for (PetscInt i = 0; i < ctx->nel[j]; i++, e++) err += JRFitJenkinsEnergy(ctx->ek[e], ctx->ef[e], x, NULL, NULL);
     }
-    err -= CaseDissipation(ctx, ctx->amod[l]);
-    PetscCall(Say(ctx->quiet, ctx->comm, "rom case level %g dissipation_error %+.4f (of the input per cycle)\n", (double)cs->level[l], (double)(err / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * ctx->amod[l]))));
+    err -= JRFitCaseDissipation(ctx, ctx->amod[l]);
+    PetscCall(JRFitSay(ctx->quiet, ctx->comm, "rom case level %g dissipation_error %+.4f (of the input per cycle)\n", (double)cs->level[l], (double)(err / (PETSC_PI * PetscAbsReal(cs->level[l]) * cs->force * ctx->amod[l]))));
   }
   PetscFunctionReturn(0);
 }
@@ -1570,7 +737,7 @@ static PetscErrorCode AssembleElements(const FitCtx *ctx, JRElements *rom)
 static PetscErrorCode FitCtxReset(FitCtx *ctx)
 {
   PetscFunctionBeginUser;
-  for (PetscInt j = 0; ctx->jf && j < ctx->nj; j++) PetscCall(JointFitDestroy(&ctx->jf[j]));
+  for (PetscInt j = 0; ctx->jf && j < ctx->nj; j++) PetscCall(JRFitJointFitDestroy(&ctx->jf[j]));
   PetscCall(PetscFree2(ctx->jf, ctx->nel));
   PetscCall(PetscFree5(ctx->ek, ctx->ef, ctx->ekn, ctx->en0, ctx->emu));
   PetscCall(PetscFree2(ctx->ep, ctx->er));
@@ -1584,7 +751,7 @@ static PetscErrorCode FitCtxReset(FitCtx *ctx)
 }
 
 /* One fit (JRROMReduce) of the problem in ctx: quiet, it prints nothing; ctx->nvin (NULL: none) is added to the case's
-   energy targets; nvout (NULL: not wanted; mode, jenkins_nv, with a case) gets NormalVariation's correction of this
+   energy targets; nvout (NULL: not wanted; mode, jenkins_nv, with a case) gets JRFitNormalVariation's correction of this
    fit, nvmax its size */
 static PetscErrorCode ReducePass(FitCtx *ctx, PetscReal nvout[], PetscReal *nvmax, JRElements *rom)
 {
@@ -1599,19 +766,19 @@ static PetscErrorCode ReducePass(FitCtx *ctx, PetscReal nvout[], PetscReal *nvma
   }
   PetscCall(SortMembers(ctx));
   PetscCall(FitAllocate(ctx));
-  for (PetscInt j = 0; j < ctx->nj; j++) PetscCall(FitJoint(ctx, j));
+  for (PetscInt j = 0; j < ctx->nj; j++) PetscCall(JRFitJoint(ctx, j));
   if (ctx->amod && ctx->fit->wtotal > 0 && (!ctx->nv || ctx->modef)) PetscCall(FitCoupled(ctx));
   for (PetscInt j = 0; j < ctx->nj; j++) {
-    PetscCall(JointElements(ctx, j));
-    if (ctx->nv && !ctx->modef) PetscCall(FitNormal(ctx, j));
-    PetscCall(JointReport(ctx, j));
+    PetscCall(JRFitJointElements(ctx, j));
+    if (ctx->nv && !ctx->modef) PetscCall(JRFitNormal(ctx, j));
+    PetscCall(JRFitJointReport(ctx, j));
     ctx->cnt += ctx->nel[j];
-    PetscCall(JointFitDestroy(&ctx->jf[j]));
+    PetscCall(JRFitJointFitDestroy(&ctx->jf[j]));
   }
   if (ctx->amod) PetscCall(CaseErrors(ctx));
   PetscCall(LoopsCommit(ctx));
   PetscCall(AssembleElements(ctx, rom));
-  if (nvout && ctx->amod && ctx->modef && ctx->nv) PetscCall(NormalVariation(ctx, rom, nvout, nvmax));
+  if (nvout && ctx->amod && ctx->modef && ctx->nv) PetscCall(JRFitNormalVariation(ctx, rom, nvout, nvmax));
   PetscCall(FitCtxReset(ctx));
   PetscFunctionReturn(0);
 }
@@ -1623,7 +790,7 @@ static PetscErrorCode ReducePass(FitCtx *ctx, PetscReal nvout[], PetscReal *nvma
   loops of every joint, first reduction and fit, at the three amplitudes. Prints one line per joint (quiet: nothing,
   and no files).
   -rom_joint_motion mode, jenkins_nv, with a case: also prints the fit's error at every level with the normal loads
-  varying (NormalVariation); -rom_fit_normal_passes k fits k more times, each with the previous fit's correction.
+  varying (JRFitNormalVariation); -rom_fit_normal_passes k fits k more times, each with the previous fit's correction.
 */
 PetscErrorCode JRROMReduce(MPI_Comm comm, const JRElements *nn, PetscInt m, const PetscReal wt[], const JRROMCase *cs, const JRROMFit *fitin, const char base[], PetscBool plot, PetscBool quiet, JRElements *rom)
 {

@@ -51,7 +51,7 @@ static PetscErrorCode StickFE(JRModel model, const JRElements *el, PetscInt nf, 
 
 /* Curves of one model: a JRCont on hbm (options -cont_*, -frf_*), written to base (if not empty); seconds: the
    continuation's wall time (every level); elem (may be NULL): its part in the contact elements (JRHBMGetElementTime) */
-static PetscErrorCode Curves(MPI_Comm comm, JRHBM hbm, const char base[], JRCont *cont, PetscReal *seconds, PetscReal *elem)
+static PetscErrorCode Curves(MPI_Comm comm, JRPost post, JRHBM hbm, const char base[], JRCont *cont, PetscReal *seconds, PetscReal *elem)
 {
   PetscLogDouble t0, t1, e0, e1;
 
@@ -70,7 +70,7 @@ static PetscErrorCode Curves(MPI_Comm comm, JRHBM hbm, const char base[], JRCont
   *seconds = t1 - t0;
   if (elem) *elem = e1 - e0;
   PetscCall(PetscLogStagePush(JR_StagePost));
-  PetscCall(JRContWrite(*cont));
+  PetscCall(JRPostWriteCurves(post, *cont));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(0);
 }
@@ -405,10 +405,10 @@ static PetscErrorCode Solve(FRFRun *r)
     PetscCall(PetscSNPrintf(bn, sizeof(bn), "%s%s", r->base, r->base[0] ? "_n2n" : ""));
     PetscCall(PetscSNPrintf(br, sizeof(br), "%s%s", r->base, r->base[0] ? "_rom" : ""));
     PetscCall(PetscPrintf(comm, "compare: node-to-node model\n"));
-    PetscCall(Curves(comm, r->hbm, bn, &r->cont, &r->tn, &r->en));
+    PetscCall(Curves(comm, r->post, r->hbm, bn, &r->cont, &r->tn, &r->en));
     PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) node-to-node %.4g s\n", (double)r->tn));
     PetscCall(PetscPrintf(comm, "compare: reduced model\n"));
-    PetscCall(Curves(comm, r->hbmr, br, &r->contr, &r->tr, &r->er));
+    PetscCall(Curves(comm, r->post, r->hbmr, br, &r->contr, &r->tr, &r->er));
     PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) reduced %.4g s\n", (double)r->tr));
     {
       const JRCompareTimes t = {r->tn, r->tr, r->en, r->er, r->setn, r->setr, r->tred};
@@ -416,7 +416,7 @@ static PetscErrorCode Solve(FRFRun *r)
     }
     r->contc = r->cont;
   } else {
-    PetscCall(Curves(comm, r->hbmc, r->base[0] ? r->base : NULL, r->isrom ? &r->contr : &r->cont, &r->tn, NULL));
+    PetscCall(Curves(comm, r->post, r->hbmc, r->base[0] ? r->base : NULL, r->isrom ? &r->contr : &r->cont, &r->tn, NULL));
     PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) %.4g s\n", (double)r->tn));
     r->contc = r->isrom ? r->contr : r->cont;
   }

@@ -606,50 +606,18 @@ static PetscErrorCode PeriodHarmonics(JRVerify v, PetscInt N, const PetscReal sn
   PetscFunctionReturn(0);
 }
 
-/*
-  JRVerifySolve - one harmonic-balance point checked by time integration: level F [N], frequency omega [rad/s], the
-  point's modal harmonic coefficients a (nm (2H + 1), [a0 | as_1 ac_1 | ...]). Collective; every rank integrates the
-  same small system, the element forces split across the ranks as in the harmonic balance.
-*/
-PetscErrorCode JRVerifySolve(JRVerify v, PetscReal F, PetscReal omega, const PetscReal a[], JRVerifyResult *res)
+/* The samples of one period: N steps per period of the state, output 1 sampled at the angles 2 pi j / N, and with
+   the damping correction the modal samples for the next period's */
+static PetscErrorCode MarchPeriods(JRVerify v, PetscReal T, PetscInt N, JRVerifyResult *res)
 {
   JRHBM          h  = v->hbm;
   const PetscInt nm = v->nm;
-  const PetscReal T = 2 * PETSC_PI / omega;
-  PetscInt       N, k;
-  PetscReal      dt, dprev = -1, d = 0, xs = 0, xc = 0, mean = 0, var = 0, hs, hc, hsum = 0;
-  PetscLogDouble t0, t1;
-  PetscBool      done = PETSC_FALSE;
+  PetscReal      dprev = -1, d = 0;
+  PetscBool      done  = PETSC_FALSE;
+  PetscInt       k;
 
   PetscFunctionBeginUser;
-  PetscCall(JRVerifySetUp(v));
-  PetscCheck(PetscIsNormalReal(omega) && omega > 0, v->comm, PETSC_ERR_ARG_OUTOFRANGE, "JRVerifySolve: frequency %g rad/s", (double)omega);
-  PetscCall(PetscLogEventBegin(JR_Verify, 0, 0, 0, 0));
-  PetscCall(PetscTime(&t0));
-  v->level = F;
-  v->omega = omega;
-  /* steps per period: the option's, or the stability limit dt w_max <= 2 */
-  N = PetscMax(v->steps, (PetscInt)PetscCeilReal(T * PetscSqrtReal(v->wmax2) / 2.0));
-  dt = T / N;
-  if (N > v->nx) {
-    PetscCall(PetscFree(v->x));
-    PetscCall(PetscFree3(v->qs, v->sn, v->cs));
-    PetscCall(PetscMalloc1(N, &v->x));
-    PetscCall(PetscMalloc3(v->corr ? N * nm : 1, &v->qs, N, &v->sn, N, &v->cs)); /* the modal samples only for the damping correction */
-    v->nx = N;
-  }
-  for (PetscInt j = 0; j < N; j++) {
-    v->sn[j] = PetscSinReal(2 * PETSC_PI * j / N);
-    v->cs[j] = PetscCosReal(2 * PETSC_PI * j / N);
-  }
-  for (PetscInt i = 0; i < nm; i++)
-    for (PetscInt j = 0; j < nm; j++) v->Cv[i * nm + j] = h->Cm[i * nm + j] + (h->gamma / omega) * (h->Kg ? h->Kg[i * nm + j] : h->Km[i * nm + j]);
-  PetscCall(InitialState(v, omega, a, N));
-  if (v->corr) {
-    if (v->rest) PetscCall(PetscArrayzero(v->ecs, 2 * (v->H - 1) * nm));
-    else PetscCall(SetCorrection(v, a + 3 * nm));
-  }
-  PetscCall(TSSetTimeStep(v->ts, dt));
+  PetscCall(TSSetTimeStep(v->ts, T / N));
   PetscCall(TSSetMaxTime(v->ts, (v->maxperiods + 1) * T));
   PetscCall(TSSetMaxSteps(v->ts, PETSC_MAX_INT));
   PetscCall(VecCopy(v->y, v->yprev));
@@ -683,23 +651,39 @@ PetscErrorCode JRVerifySolve(JRVerify v, PetscReal F, PetscReal omega, const Pet
   res->steps    = N;
   res->change   = d;
   res->periodic = done;
-  /* the last period at output 1: first harmonic and the rest (Parseval) */
+  PetscFunctionReturn(0);
+}
+
+/* Output 1 over the last period: its first harmonic (xs, xc) and the rest's share of the signal (Parseval) */
+static void TimeHarmonics(JRVerify v, PetscInt N, PetscReal *xs, PetscReal *xc, JRVerifyResult *res)
+{
+  PetscReal mean = 0, var = 0;
+
+  *xs = *xc = 0;
   for (PetscInt j = 0; j < N; j++) mean += v->x[j] / N;
   for (PetscInt j = 0; j < N; j++) {
     const PetscReal th = 2 * PETSC_PI * j / N;
-    xs += 2.0 / N * v->x[j] * PetscSinReal(th);
-    xc += 2.0 / N * v->x[j] * PetscCosReal(th);
+    *xs += 2.0 / N * v->x[j] * PetscSinReal(th);
+    *xc += 2.0 / N * v->x[j] * PetscCosReal(th);
     var += PetscSqr(v->x[j] - mean) / N;
   }
-  res->amp_time    = PetscSqrtReal(xs * xs + xc * xc);
+  res->amp_time    = PetscSqrtReal(*xs * *xs + *xc * *xc);
   res->higher_time = var > 0 ? PetscSqrtReal(PetscMax(0.0, var - 0.5 * res->amp_time * res->amp_time) / var) : 0.0;
-  /* the harmonic balance's output 1 */
-  hs = hc = 0;
+}
+
+/* The harmonic balance's output 1 for the coefficients a: its first harmonic (hs, hc) and the higher harmonics' share */
+static void HBMHarmonics(JRVerify v, const PetscReal a[], PetscReal *hs, PetscReal *hc, JRVerifyResult *res)
+{
+  JRHBM          h  = v->hbm;
+  const PetscInt nm = v->nm;
+  PetscReal      hsum = 0;
+
+  *hs = *hc = 0;
   for (PetscInt i = 0; i < nm; i++) {
-    hs += h->Phiout[i] * a[nm + i];
-    hc += h->Phiout[i] * a[2 * nm + i];
+    *hs += h->Phiout[i] * a[nm + i];
+    *hc += h->Phiout[i] * a[2 * nm + i];
   }
-  res->amp_hbm = PetscSqrtReal(hs * hs + hc * hc);
+  res->amp_hbm = PetscSqrtReal(*hs * *hs + *hc * *hc);
   for (PetscInt kk = 2; kk <= v->H; kk++) {
     PetscReal s = 0, c = 0;
     for (PetscInt i = 0; i < nm; i++) {
@@ -708,14 +692,58 @@ PetscErrorCode JRVerifySolve(JRVerify v, PetscReal F, PetscReal omega, const Pet
     }
     hsum += s * s + c * c;
   }
-  res->higher_hbm = hsum + hs * hs + hc * hc > 0 ? PetscSqrtReal(hsum / (hsum + hs * hs + hc * hc)) : 0.0;
-  res->rel_diff   = res->amp_hbm > 0 ? PetscAbsReal(res->amp_time - res->amp_hbm) / res->amp_hbm : PetscAbsReal(res->amp_time);
-  {
-    PetscReal dp = PetscAtan2Real(xc, xs) - PetscAtan2Real(hc, hs);
-    while (dp > PETSC_PI) dp -= 2 * PETSC_PI;
-    while (dp < -PETSC_PI) dp += 2 * PETSC_PI;
-    res->phase_deg = dp * 180 / PETSC_PI;
+  res->higher_hbm = hsum + res->amp_hbm * res->amp_hbm > 0 ? PetscSqrtReal(hsum / (hsum + res->amp_hbm * res->amp_hbm)) : 0.0;
+}
+
+/*
+  JRVerifySolve - one harmonic-balance point checked by time integration: level F [N], frequency omega [rad/s], the
+  point's modal harmonic coefficients a (nm (2H + 1), [a0 | as_1 ac_1 | ...]). Collective; every rank integrates the
+  same small system, the element forces split across the ranks as in the harmonic balance.
+*/
+PetscErrorCode JRVerifySolve(JRVerify v, PetscReal F, PetscReal omega, const PetscReal a[], JRVerifyResult *res)
+{
+  JRHBM           h  = v->hbm;
+  const PetscInt  nm = v->nm;
+  const PetscReal T  = 2 * PETSC_PI / omega;
+  PetscInt        N;
+  PetscReal       xs, xc, hs, hc, dp;
+  PetscLogDouble  t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRVerifySetUp(v));
+  PetscCheck(PetscIsNormalReal(omega) && omega > 0, v->comm, PETSC_ERR_ARG_OUTOFRANGE, "JRVerifySolve: frequency %g rad/s", (double)omega);
+  PetscCall(PetscLogEventBegin(JR_Verify, 0, 0, 0, 0));
+  PetscCall(PetscTime(&t0));
+  v->level = F;
+  v->omega = omega;
+  /* steps per period: the option's, or the stability limit dt w_max <= 2 */
+  N = PetscMax(v->steps, (PetscInt)PetscCeilReal(T * PetscSqrtReal(v->wmax2) / 2.0));
+  if (N > v->nx) {
+    PetscCall(PetscFree(v->x));
+    PetscCall(PetscFree3(v->qs, v->sn, v->cs));
+    PetscCall(PetscMalloc1(N, &v->x));
+    PetscCall(PetscMalloc3(v->corr ? N * nm : 1, &v->qs, N, &v->sn, N, &v->cs)); /* the modal samples only for the damping correction */
+    v->nx = N;
   }
+  for (PetscInt j = 0; j < N; j++) {
+    v->sn[j] = PetscSinReal(2 * PETSC_PI * j / N);
+    v->cs[j] = PetscCosReal(2 * PETSC_PI * j / N);
+  }
+  for (PetscInt i = 0; i < nm; i++)
+    for (PetscInt j = 0; j < nm; j++) v->Cv[i * nm + j] = h->Cm[i * nm + j] + (h->gamma / omega) * (h->Kg ? h->Kg[i * nm + j] : h->Km[i * nm + j]);
+  PetscCall(InitialState(v, omega, a, N));
+  if (v->corr) {
+    if (v->rest) PetscCall(PetscArrayzero(v->ecs, 2 * (v->H - 1) * nm));
+    else PetscCall(SetCorrection(v, a + 3 * nm));
+  }
+  PetscCall(MarchPeriods(v, T, N, res));
+  TimeHarmonics(v, N, &xs, &xc, res);
+  HBMHarmonics(v, a, &hs, &hc, res);
+  res->rel_diff = res->amp_hbm > 0 ? PetscAbsReal(res->amp_time - res->amp_hbm) / res->amp_hbm : PetscAbsReal(res->amp_time);
+  dp            = PetscAtan2Real(xc, xs) - PetscAtan2Real(hc, hs);
+  while (dp > PETSC_PI) dp -= 2 * PETSC_PI;
+  while (dp < -PETSC_PI) dp += 2 * PETSC_PI;
+  res->phase_deg = dp * 180 / PETSC_PI;
   PetscCall(PetscTime(&t1));
   res->seconds = t1 - t0;
   PetscCall(PetscLogEventEnd(JR_Verify, 0, 0, 0, 0));

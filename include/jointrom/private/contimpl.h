@@ -87,7 +87,7 @@ PETSC_INTERN PetscErrorCode JRContMonitor(JRCont, PetscInt, JRContBranch *);
 /* src/cont/stability.c */
 PETSC_INTERN PetscErrorCode JRContStability(JRCont, PetscInt, Vec);
 PETSC_INTERN PetscErrorCode JRContBranchStabilityFree(JRContBranch *);
-/* src/cont/output.c */
+/* the summary table (src/cont/interface/cont.c) */
 PETSC_INTERN PetscErrorCode JRContPrintSummary(JRCont);
 
 #endif

@@ -78,5 +78,8 @@ struct _p_JRModes {
   PetscReal  rho0, rho;  /* the check: largest residual flexibility x stiffness outside the basis, before and after the static correction (-1: not computed) */
   PetscLogDouble tstatic; /* seconds spent on the static correction and the check */
 };
+/* src/modes/: the saved modes read back (io.c), the default shift of the eigensolver and the static solves (modes.c) */
+PETSC_INTERN PetscErrorCode JRModesLoad_Private(JRModes, const char[]);
+PETSC_INTERN PetscErrorCode JRModesDefaultShift_Private(JRModes, PetscReal *);
 
 #endif

@@ -8,8 +8,8 @@
      corrector on the bordered system with a pseudo-arclength or sphere constraint; passes turning points.
 
    This file: the object's life cycle and options, the level loop of JRContSolve, the steps the types share
-   (the first point of a curve, adding a point, the progress line) and the peak of each level; output.c writes
-   the curves (JRContWrite) and prints the summary table.
+   (the first point of a curve, adding a point, the progress line), the peak of each level and the summary table.
+   JRPost writes the curves (JRPostWriteCurves, src/post/curves.c).
 */
 #include <jointrom/private/contimpl.h>
 
@@ -214,9 +214,9 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
   PetscCall(PetscOptionsReal("-frf_omega_max", "Highest frequency [rad/s]", "JRContSetRange", wmax, &wmax, &f2));
   PetscCall(PetscOptionsReal("-frf_fmin", "Lowest frequency [Hz] (instead of -frf_omega_min)", "JRContSetRange", fmin, &fmin, &f3));
   PetscCall(PetscOptionsReal("-frf_fmax", "Highest frequency [Hz] (instead of -frf_omega_max)", "JRContSetRange", fmax, &fmax, &f4));
-  PetscCall(PetscOptionsString("-frf_output_file", "Output base name: BASE.h5 (all points), BASE.csv, BASE.png ('' for none)", "JRContWrite", c->out, c->out, sizeof(c->out), NULL));
-  PetscCall(PetscOptionsBool("-frf_plot", "Draw BASE.png", "JRContWrite", c->plot, &c->plot, NULL));
-  PetscCall(PetscOptionsBool("-frf_normalize", "Plot the normalised displacement amplitude / force [m/N]", "JRContWrite", c->normalize, &c->normalize, NULL));
+  PetscCall(PetscOptionsString("-frf_output_file", "Output base name: BASE.h5 (all points), BASE.csv, BASE.png ('' for none)", "JRPostWriteCurves", c->out, c->out, sizeof(c->out), NULL));
+  PetscCall(PetscOptionsBool("-frf_plot", "Draw BASE.png", "JRPostWriteCurves", c->plot, &c->plot, NULL));
+  PetscCall(PetscOptionsBool("-frf_normalize", "Plot the normalised displacement amplitude / force [m/N]", "JRPostWriteCurves", c->normalize, &c->normalize, NULL));
   PetscCall(PetscOptionsBool("-frf_stability", "Stability of every point by Hill's method (Floquet exponents), folds and branch points", "JRContStability", c->stab, &c->stab, NULL));
   PetscCall(PetscOptionsEnum("-frf_stability_select", "Which exponents are the physical ones: vector (eigenvectors centred on the mean harmonic) or imag (|Im| <= w/2)", "JRHBMFloquet", JRHillSelects, (PetscEnum)c->stabsel, (PetscEnum *)&c->stabsel, NULL));
   PetscCall(PetscOptionsReal("-frf_stability_tol", "A point is stable if every kept exponent has Re < tol w", "JRContStability", c->stabtol, &c->stabtol, NULL));
@@ -579,5 +579,18 @@ PetscErrorCode JRContDestroy(JRCont *cont)
   PetscCall(JRContPlaneWorkDestroy(c));
   PetscCall(PetscFree(c));
   *cont = NULL;
+  PetscFunctionReturn(0);
+}
+
+/* The summary table of JRContSolve: one row per level (peak, damping, points, Newton, retries, time, balance, states) */
+PetscErrorCode JRContPrintSummary(JRCont c)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscPrintf(c->comm, "frf summary (%s continuation; peak of response 1: the maximum of the solution curve; zeta_eq = energy dissipated per cycle / (8 pi mean kinetic energy) at the peak;\n  residual: largest ||R|| / ||F f|| of the curve's points; energy balance: largest |W_in - W_damping - W_contact| / W_in over the curve;\n  elements at the peak: full stick / stick-slip / separation with stick-slip / full separation)\n", c->type_name));
+  PetscCall(PetscPrintf(c->comm, "  %10s %12s %13s %13s %10s %7s %7s %7s %9s %9s %9s  %s\n", "F [N]", "peak [Hz]", "amp [m]", "amp/F [m/N]", "zeta_eq", "points", "newton", "retries", "time [s]", "residual", "balance", "states"));
+  for (PetscInt lev = 0; lev < c->nlev; lev++) {
+    JRContBranch *b = &c->br[lev];
+    PetscCall(PetscPrintf(c->comm, "  %10.4g %12.6g %13.5e %13.5e %10.4e %7" PetscInt_FMT " %7" PetscInt_FMT " %7" PetscInt_FMT " %9.3g %9.2e %9.2e  %" PetscInt_FMT " / %" PetscInt_FMT " / %" PetscInt_FMT " / %" PetscInt_FMT "%s\n", (double)b->F, (double)(b->wpeak / (2 * PETSC_PI)), (double)b->apeak, (double)(b->apeak / b->F), (double)b->zeta, b->np, b->newton, b->retries, (double)b->seconds, (double)b->resmax, (double)b->ebal, b->states[0], b->states[1], b->states[2], b->states[3], b->complete ? "" : "  (incomplete)"));
+  }
   PetscFunctionReturn(0);
 }

@@ -1,8 +1,8 @@
 /*
-   JRCont's outputs: the curves written by JRContWrite (BASE.csv, BASE.h5, BASE.png) and the summary table that
-   JRContSolve prints, one row per level.
+   JRPost's writer of the frequency-response curves of a JRCont (JRPostWriteCurves): BASE.csv, BASE.h5, BASE.png.
 */
 #include <jointrom/private/contimpl.h>
+#include <jointrom/private/postimpl.h>
 #include <petscviewerhdf5.h>
 
 /* The responses' description, from the JRHBM: their DOFs or points and direction, H and the modes */
@@ -196,18 +196,20 @@ static PetscErrorCode Plot(JRCont c, const Outputs *o, const char csv[], const c
 }
 
 /*
-  JRContWrite - BASE.h5 (every point), BASE.csv (level,F_N,omega_rad_s,freq_hz,amp_1..amp_n[,pp_1..pp_n],stable: the
+  JRPostWriteCurves - the curves of c: BASE.h5 (every point), BASE.csv (level,F_N,omega_rad_s,freq_hz,amp_1..amp_n[,pp_1..pp_n],stable: the
   responses by their index, 1-based) and BASE.png (response 1). The HDF5 group /response_<i> names response i:
   its point x_m, y_m, z_m and direction (JRHBMSetOutputPoints: an FE model) or its dof (a matrices model).
-  BASE is -frf_output_file or JRContSetOutputBase ('' for none); -frf_plot 0 leaves out the PNG.
+  BASE is the curves' own (-frf_output_file or JRContSetOutputBase, '' for none: in -task compare each model's), not
+  post's; -frf_plot 0 leaves out the PNG.
 */
-PetscErrorCode JRContWrite(JRCont c)
+PetscErrorCode JRPostWriteCurves(JRPost post, JRCont c)
 {
   char      h5[PETSC_MAX_PATH_LEN + 8], csv[PETSC_MAX_PATH_LEN + 8], png[PETSC_MAX_PATH_LEN + 8];
   Outputs   o;
   PetscBool made;
 
   PetscFunctionBeginUser;
+  (void)post;
   if (!c->write) PetscFunctionReturn(0);
   PetscCall(JRHBMGetOutputs(c->hbm, &c->nout, &o.dofs));
   PetscCall(JRHBMGetOutputPoints(c->hbm, &o.xyz, &o.dir));
@@ -223,18 +225,5 @@ PetscErrorCode JRContWrite(JRCont c)
     PetscCall(Plot(c, &o, csv, png, &made));
     PetscCall(PetscPrintf(c->comm, "frf: wrote %s, %s%s%s\n", h5, csv, made ? ", " : "", made ? png : ""));
   } else PetscCall(PetscPrintf(c->comm, "frf: wrote %s, %s\n", h5, csv));
-  PetscFunctionReturn(0);
-}
-
-/* The summary table of JRContSolve: one row per level (peak, damping, points, Newton, retries, time, balance, states) */
-PetscErrorCode JRContPrintSummary(JRCont c)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscPrintf(c->comm, "frf summary (%s continuation; peak of response 1: the maximum of the solution curve; zeta_eq = energy dissipated per cycle / (8 pi mean kinetic energy) at the peak;\n  residual: largest ||R|| / ||F f|| of the curve's points; energy balance: largest |W_in - W_damping - W_contact| / W_in over the curve;\n  elements at the peak: full stick / stick-slip / separation with stick-slip / full separation)\n", c->type_name));
-  PetscCall(PetscPrintf(c->comm, "  %10s %12s %13s %13s %10s %7s %7s %7s %9s %9s %9s  %s\n", "F [N]", "peak [Hz]", "amp [m]", "amp/F [m/N]", "zeta_eq", "points", "newton", "retries", "time [s]", "residual", "balance", "states"));
-  for (PetscInt lev = 0; lev < c->nlev; lev++) {
-    JRContBranch *b = &c->br[lev];
-    PetscCall(PetscPrintf(c->comm, "  %10.4g %12.6g %13.5e %13.5e %10.4e %7" PetscInt_FMT " %7" PetscInt_FMT " %7" PetscInt_FMT " %9.3g %9.2e %9.2e  %" PetscInt_FMT " / %" PetscInt_FMT " / %" PetscInt_FMT " / %" PetscInt_FMT "%s\n", (double)b->F, (double)(b->wpeak / (2 * PETSC_PI)), (double)b->apeak, (double)(b->apeak / b->F), (double)b->zeta, b->np, b->newton, b->retries, (double)b->seconds, (double)b->resmax, (double)b->ebal, b->states[0], b->states[1], b->states[2], b->states[3], b->complete ? "" : "  (incomplete)"));
-  }
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,146 @@
+/*
+   JRModes in files: -modes_save writes the modes (HDF5) with the node coordinates and the signature of the stuck
+   springs they were computed with; -modes_load reads them back instead of solving, after checking both.
+*/
+#include <jointrom/private/modelimpl.h>
+#include <petscviewerhdf5.h>
+#include <petscblaslapack.h>
+
+/* Write omega^2 and the modes (and the coordinates) to an HDF5 file, through a temporary name */
+PetscErrorCode JRModesSave(JRModes md, const char file[])
+{
+  PetscViewer v;
+  char        tmp[PETSC_MAX_PATH_LEN + 32];
+  Vec         lam;
+  PetscMPIInt rank, size;
+  PetscInt    nm = md->nm, hasx = md->X ? 1 : 0;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(md->comm, &rank));
+  PetscCallMPI(MPI_Comm_size(md->comm, &size));
+  PetscCall(JRFileTempName(md->comm, file, tmp, sizeof(tmp)));
+  PetscCall(PetscViewerHDF5Open(md->comm, tmp, FILE_MODE_WRITE, &v));
+  PetscCall(PetscViewerHDF5PushGroup(v, "/jointrom_modes"));
+  PetscCall(VecCreateMPI(md->comm, rank ? 0 : nm, nm, &lam));
+  PetscCall(PetscObjectSetName((PetscObject)lam, "omega2"));
+  if (!rank)
+    for (PetscInt i = 0; i < nm; i++) PetscCall(VecSetValue(lam, i, md->lambda[i], INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(lam));
+  PetscCall(VecAssemblyEnd(lam));
+  PetscCall(VecView(lam, v));
+  PetscCall(VecDestroy(&lam));
+  for (PetscInt i = 0; i < nm; i++) {
+    char name[32];
+    PetscCall(PetscSNPrintf(name, sizeof(name), "phi_%" PetscInt_FMT, i));
+    PetscCall(PetscObjectSetName((PetscObject)md->phi[i], name));
+    PetscCall(VecView(md->phi[i], v));
+  }
+  if (md->X) { /* a plain copy: a vector of a DMPlex would go to /fields */
+    Vec y;
+    PetscCall(MatCreateVecs(md->K, &y, NULL));
+    PetscCall(VecCopy(md->X, y));
+    PetscCall(PetscObjectSetName((PetscObject)y, "coordinates"));
+    PetscCall(VecView(y, v));
+    PetscCall(VecDestroy(&y));
+  }
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "modes", PETSC_INT, &nm));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "ranks", PETSC_INT, &size));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "has_coordinates", PETSC_INT, &hasx));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "stuck_signature", PETSC_REAL, &md->sig));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "units", PETSC_STRING, "omega2: rad^2/s^2; phi_i: mass-normalised modes over every DOF (kg^-1/2) in the model's parallel DOF numbering; coordinates: m"));
+  PetscCall(PetscViewerDestroy(&v));
+  PetscCall(JRFileRename(md->comm, tmp, file));
+  PetscFunctionReturn(0);
+}
+
+/* Read the nev lowest modes from a -modes_save file */
+PetscErrorCode JRModesLoad_Private(JRModes md, const char file[])
+{
+  PetscViewer        v;
+  PetscInt           nm = 0, ranks = 0, hasx = 0, n, nf;
+  PetscMPIInt        size;
+  PetscBool          has;
+  Vec                lam, all, x;
+  VecScatter         sc;
+  const PetscScalar *l;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(md->comm, &size));
+  PetscCall(PetscTestFile(file, 'r', &has));
+  PetscCheck(has, md->comm, PETSC_ERR_FILE_OPEN, "-modes_load %s: cannot read the file", file);
+  {
+    char what[PETSC_MAX_PATH_LEN + 32];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "-modes_load %s", file));
+    PetscCall(JRErrorContextPush(what));
+    PetscCall(PetscViewerHDF5Open(md->comm, file, FILE_MODE_READ, &v));
+    PetscCall(PetscViewerHDF5HasAttribute(v, "/jointrom_modes", "modes", &has));
+    PetscCall(JRErrorContextPop());
+  }
+  PetscCheck(has, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: not a modes file of this program (no /jointrom_modes; write one with -modes_save)", file);
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "modes", PETSC_INT, NULL, &nm));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "ranks", PETSC_INT, NULL, &ranks));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "has_coordinates", PETSC_INT, NULL, &hasx));
+  if (md->load_all) md->nev = nm; /* a mixed basis: every vector of the file */
+  PetscCheck(nm >= md->nev, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s holds %" PetscInt_FMT " modes, %" PetscInt_FMT " are asked for (-hbm_modes / -modes_nev)", file, nm, md->nev);
+  PetscCheck(ranks == size, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s was written on %" PetscInt_FMT " ranks, this run has %d: the FE DOF numbering depends on the partition; run on %" PetscInt_FMT " ranks or recompute the modes", file, ranks, (int)size, ranks);
+  {
+    PetscReal sig = 0;
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "stuck_signature", PETSC_REAL, NULL, &sig));
+    PetscCall(PetscInfo(NULL, "stuck signature: file %.17g, this run %.17g\n", (double)sig, (double)md->sig));
+    PetscCheck(PetscAbsReal(sig - md->sig) <= 1e-9 * PetscMax(PetscAbsReal(sig), PetscAbsReal(md->sig)), md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: its modes are of %s, this run needs %s (-hbm_basis, -interface_*, preload): recompute them", file, sig == 0 ? "the free structure" : sig < 0 ? "a mixed basis (stuck + free)" : "a stuck interface", md->sig == 0 ? "the free structure's" : md->sig < 0 ? "a mixed basis of this interface" : "those of this stuck interface");
+  }
+  PetscCall(MatGetSize(md->K, &n, NULL));
+  PetscCall(PetscViewerHDF5PushGroup(v, "/jointrom_modes"));
+  PetscCall(MatCreateVecs(md->K, &x, NULL));
+  if (md->X && hasx) {
+    PetscReal d, s;
+    PetscCall(PetscObjectSetName((PetscObject)x, "coordinates"));
+    PetscCall(VecLoad(x, v));
+    PetscCall(VecAXPY(x, -1.0, md->X));
+    PetscCall(VecNorm(x, NORM_INFINITY, &d));
+    PetscCall(VecNorm(md->X, NORM_INFINITY, &s));
+    PetscCheck(d <= 1e-9 * s, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: its node coordinates differ from the model's by %g m: it was computed for another mesh (or DOF numbering)", file, (double)d);
+  }
+  PetscCall(VecCreateMPI(md->comm, PETSC_DECIDE, nm, &lam));
+  PetscCall(PetscObjectSetName((PetscObject)lam, "omega2"));
+  {
+    char what[PETSC_MAX_PATH_LEN + 32];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "-modes_load %s", file));
+    PetscCall(JRErrorContextPush(what)); /* a library's error on the datasets read below names the file */
+  }
+  PetscCall(VecLoad(lam, v));
+  PetscCall(VecScatterCreateToAll(lam, &sc, &all));
+  PetscCall(VecScatterBegin(sc, lam, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, lam, all, INSERT_VALUES, SCATTER_FORWARD));
+  md->nm = md->nev;
+  PetscCall(PetscMalloc1(md->nm, &md->lambda));
+  PetscCall(VecGetArrayRead(all, &l));
+  for (PetscInt i = 0; i < md->nm; i++) md->lambda[i] = PetscRealPart(l[i]);
+  PetscCall(VecRestoreArrayRead(all, &l));
+  for (PetscInt i = 0; i < md->nm; i++) PetscCheck(!PetscIsInfOrNanReal(md->lambda[i]), md->comm, PETSC_ERR_FILE_UNEXPECTED, "mode %" PetscInt_FMT " has omega^2 = %g rad^2/s^2, not a finite number", i + 1, (double)md->lambda[i]);
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecDestroy(&all));
+  PetscCall(VecDestroy(&lam));
+  PetscCall(VecDuplicateVecs(x, md->nm, &md->phi));
+  for (PetscInt i = 0; i < md->nm; i++) {
+    char name[32];
+    PetscCall(PetscSNPrintf(name, sizeof(name), "phi_%" PetscInt_FMT, i));
+    PetscCall(PetscObjectSetName((PetscObject)md->phi[i], name));
+    PetscCall(VecGetSize(md->phi[i], &nf));
+    PetscCall(VecLoad(md->phi[i], v));
+    {
+      PetscReal nrm;
+      PetscCall(VecNorm(md->phi[i], NORM_INFINITY, &nrm));
+      PetscCheck(!PetscIsInfOrNanReal(nrm), md->comm, PETSC_ERR_FILE_UNEXPECTED, "mode %" PetscInt_FMT " holds a value that is not a finite number", i + 1);
+    }
+  }
+  PetscCall(JRErrorContextPop());
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscCall(PetscViewerDestroy(&v));
+  PetscCall(VecDestroy(&x));
+  PetscCall(PetscInfo(NULL, "Read %" PetscInt_FMT " modes of %" PetscInt_FMT " DOFs from %s\n", md->nm, nf, file));
+  PetscFunctionReturn(0);
+}
+
+/* The default shift, a little below zero (free-free structures have a singular K): -1e-6 |diag K|_1 / |diag M|_1 */
