@@ -30,6 +30,14 @@ o=$($J -options_file runs/chain_frf.opts -frf_output_file "$tmp/chain" -frf_plot
 r=$(echo "$o" | awk '/^frf summary/{f=1; next} f && $1 ~ /^[0-9.]+$/ {if ($10 > m) m = $10} END{print m + 0}')
 p1=$(echo "$o" | awk '/^peak level 1. /{print $5}')
 check "[ $rc = 0 ] && ! echo \"\$o\" | grep -q incomplete && awk -v r='$r' -v p='$p1' 'BEGIN{exit !(r <= 1e-8 && p > 206.5 && p < 207.5)}'" "chain_frf.opts: every curve complete (exit $rc), largest residual of every point $r (<= 1e-8), the 1 N peak at the stuck resonance: $p1 Hz"
+# stability of chain_frf's 1 N curve on 1 and 2 ranks: every point stable, which the time integration of its peak
+# (the stuck resonance, 207 Hz, where Hill's method with the periodic Jacobian flagged unstable stretches) confirms
+for n in 1 2; do
+  o=$(mpiexec -n $n $J -options_file runs/chain_frf.opts -frf_force 1 -frf_stability -frf_verify_points 1 -frf_output_file '' -frf_plot 0 -cont_monitor 0 2>&1)
+  s=$(echo "$o" | awk '/^stability level 1\. unstable_points/{print $5, $7}')
+  v=$(echo "$o" | awk '/^verify level 1\./{print $11}')
+  check "[ '${s% *}' = 0 ] && [ -n '$v' ] && ! echo \"\$o\" | grep -q 'not periodic' && awk -v d='$v' 'BEGIN{exit !(d < 1e-2)}'" "chain_frf.opts 1 N on $n rank(s), -frf_stability: ${s% *} of ${s#* } points unstable; the peak by time integration stays on its response (rel_diff $v)"
+done
 o=$($J $osc -frf_force 2 -cont_max_points 10 -frf_plot 0 -frf_output_file "$tmp/part" 2>&1); rc=$?
 check "[ $rc = 1 ] && [ \$(echo \"\$o\" | grep -c 'jointrom: error') = 1 ] && echo \"\$o\" | grep -q 'level 1 (F = 2. N): the curve is incomplete: -cont_max_points 10 reached' && [ \$(wc -l < '$tmp/part.csv') = 11 ]" "a curve cut short (-cont_max_points 10): exit $rc, one error line naming the level, its 10 points written"
 o=$($J $osc -frf_force 2 -cont_max_points 10 -cont_allow_partial -frf_plot 0 -frf_output_file "$tmp/part" 2>&1); rc=$?

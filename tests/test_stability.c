@@ -7,7 +7,14 @@
      integration (RK4, here) from a middle-branch point's state leaves it, from stable points' states stays; the folds
      reported at the extremes of the single-harmonic relation's frequency (H = 1), to 1e-3;
    - a friction oscillator with a gap (jenkins_nv closing on impact: hardening, two folds): flags against the same
-     time integration, the element marched as a play operator.
+     time integration, the element marched as a play operator;
+   - the Floquet exponents in time (JRHBMFloquetTime, the path of points with friction elements changing state)
+     against the eigenvalues of the linear system and against Hill's method with every exponent computed (QZ) on the
+     Duffing oscillator, where Hill's method is exact: the same largest real part and the same flag at every point;
+   - a Jenkins oscillator (constant normal load): every point stable by incremental dissipativity; at its peak and
+     where Hill's method differs most, the exponents in time against the monodromy matrix of an RK4 march of the
+     element's play operator (by differences, on the orbit the march settles on); and through full stick and
+     grazing slip the exponents in time flag no point unstable, as incremental dissipativity proves.
    Every rank checks the same numbers (also run on 2 ranks).
 */
 #include "jrtest_problem.h"
@@ -129,6 +136,28 @@ static double Integrate(const Osc *o, double w, PetscInt H, const PetscReal *a, 
   return hypot(2 * fs / ns, 2 * fc / ns) / A0 - 1.0;
 }
 
+/* One RK4 step of m x'' + c x' + k x + kt (x - s) = F sin(w t) with a jenkins element (slip force fs): every stage
+   sees the committed slip s pushed by its own motion (the return map), which is then committed at the step's end.
+   (A stage force from the committed slip alone, kt (x - s), exceeds fs while slipping by kt v dt / 2: a spurious
+   viscous damping of about kt dt / 2.) */
+static void JenkinsReturnMapStep(double m, double c, double k, double kt, double fs, double F, double w, double t, double dt, double *x, double *v, double *s)
+{
+  double k1x, k1v, k2x, k2v, k3x, k3v, k4x, k4v;
+#define ACC(xx, vv, tt) ((F * sin(w * (tt)) - c * (vv) - k * (xx) - kt * ((xx) - fmin(fmax(*s, (xx) - fs / kt), (xx) + fs / kt))) / m)
+  k1x = *v;
+  k1v = ACC(*x, *v, t);
+  k2x = *v + 0.5 * dt * k1v;
+  k2v = ACC(*x + 0.5 * dt * k1x, *v + 0.5 * dt * k1v, t + 0.5 * dt);
+  k3x = *v + 0.5 * dt * k2v;
+  k3v = ACC(*x + 0.5 * dt * k2x, *v + 0.5 * dt * k2v, t + 0.5 * dt);
+  k4x = *v + dt * k3v;
+  k4v = ACC(*x + dt * k3x, *v + dt * k3v, t + dt);
+#undef ACC
+  *x += dt / 6.0 * (k1x + 2 * k2x + 2 * k3x + k4x);
+  *v += dt / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
+  *s = fmin(fmax(*s, *x - fs / kt), *x + fs / kt);
+}
+
 /* The single-harmonic Duffing relation ((k - m w^2 + 3/4 k3 A^2)^2 + (c w)^2) A^2 = F^2: its higher frequency at
    amplitude A (0 where none) */
 static double DuffingUpper(const Osc *o, double A)
@@ -212,7 +241,7 @@ static PetscErrorCode FoldedCase(const char *name, const Osc *o, const char *opt
       PetscInt outer_unstable = 0;
       for (PetscInt k = 0; k < kf - 1; k++) outer_unstable += !st[k];
       for (PetscInt k = kmin + 2; k < np; k++) outer_unstable += !st[k];
-      CHECK(nf == 2 && nun == kmin - kf - 3 && outer_unstable == 0, "%s: Hill's method finds the %" PetscInt_FMT " middle-branch points between the %" PetscInt_FMT " folds unstable (%" PetscInt_FMT " of them flagged) and the outer branches stable (%" PetscInt_FMT " flagged unstable of %" PetscInt_FMT ")", name, kmin - kf - 3, nf, nun, outer_unstable, np - (kmin - kf) - 1);
+      CHECK(nf == 2 && nun == kmin - kf - 3 && outer_unstable == 0, "%s: the stability analysis finds the %" PetscInt_FMT " middle-branch points between the %" PetscInt_FMT " folds unstable (%" PetscInt_FMT " of them flagged) and the outer branches stable (%" PetscInt_FMT " flagged unstable of %" PetscInt_FMT ")", name, kmin - kf - 3, nf, nun, outer_unstable, np - (kmin - kf) - 1);
     }
   }
   PetscCheck(ku >= 0 && kup >= 0 && klo >= 0, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "%s: no middle branch", name);
@@ -265,6 +294,11 @@ int main(int argc, char **argv)
         CHECK(MatchError(6, re, im, 6, lr, li, w, H) > 1e-3, "linear 3-DOF, highest mode at %.2f w > (H + 1/2) w: the strip criterion misses it (error %.1e), as documented", wn / w, MatchError(6, re, im, 6, lr, li, w, H));
       }
       if (cs == 2) CHECK(MatchError(6, re, im, 6, lr, li, w, H) < 1e-8, "linear 3-DOF: SLEPc PEP path (-frf_stability_dense_max 0), exponents nearest the origin = eigenvalues mod i k w, relative error %.1e", MatchError(6, re, im, 6, lr, li, w, H));
+      if (cs == 0) {
+        PetscInt ne, ns;
+        PetscCall(JRHBMFloquetTime(p.hbm, w, a, 0, &ne, re, im, &mr, &ns));
+        CHECK(ne == 6 && MatchError(6, re, im, 6, lr, li, w, 40) < 1e-4, "linear 3-DOF: Floquet exponents in time (monodromy, RK4 %" PetscInt_FMT " steps per period) = eigenvalues of K + l C + l^2 M mod i k w, relative error %.1e", ns, MatchError(6, re, im, 6, lr, li, w, 40));
+      }
       PetscCall(VecDestroy(&a));
       PetscCall(ProblemDestroy(&p));
     }
@@ -275,6 +309,29 @@ int main(int argc, char **argv)
     const Osc o = {1.0, 0.4, pow(2 * PETSC_PI * 10, 2), 2.0, 6e6, 0, 0, 0, 0, 0};
     Problem   p;
     PetscCall(FoldedCase("Duffing H = 5", &o, "-frf_stability -hbm_physical -hbm_harmonics 5 -frf_force 2.0 -frf_fmin 5 -frf_fmax 25 -cont_max_points 3000", 5, 1e-3, 100, 400, &p));
+    { /* the exponents in time against Hill's QZ with every exponent computed, at every point */
+      PetscInt         np, n, bad = 0, nun = 0;
+      const PetscReal *om, *aa;
+      double           worst = 0.0;
+      Vec              x;
+      PetscCall(JRContGetBranch(p.cont, 0, &np, &om, &aa, NULL));
+      PetscCall(JRHBMGetSolveSize(p.hbm, &n, NULL));
+      PetscCall(JRHBMCreateVecs(p.hbm, &x, NULL));
+      for (PetscInt k = 0; k < np; k++) {
+        PetscReal    mh, mt, *xa;
+        const double scale = 1e-3 * om[k];
+        PetscCall(VecGetArray(x, &xa));
+        for (PetscInt i = 0; i < n; i++) xa[i] = aa[k * n + i];
+        PetscCall(VecRestoreArray(x, &xa));
+        PetscCall(JRHBMFloquet(p.hbm, om[k], x, JR_HILL_SELECT_VECTOR, 1000, NULL, NULL, NULL, &mh, NULL));
+        PetscCall(JRHBMFloquetTime(p.hbm, om[k], x, 0, NULL, NULL, NULL, &mt, NULL));
+        worst = fmax(worst, fabs(mh - mt) / om[k]);
+        if ((mh > scale && mt <= 0) || (mh < -scale && mt >= 0)) bad++;
+        if (mt > 0) nun++;
+      }
+      CHECK(bad == 0 && worst < 2e-3 && nun > 10, "Duffing H = 5, %" PetscInt_FMT " points: the largest real part in time (monodromy) and by Hill's QZ agree within %.1e w (< 2e-3 w), the same sign at every point not within 1e-3 w of zero (%" PetscInt_FMT " differ; %" PetscInt_FMT " unstable)", np, worst, bad, nun);
+      PetscCall(VecDestroy(&x));
+    }
     PetscCall(ProblemDestroy(&p));
     /* the folds at H = 1 against the single-harmonic relation */
     {
@@ -310,6 +367,113 @@ int main(int argc, char **argv)
     const Osc    o = {1.0, 0.4, k, 1.5, 0, 0.5 * k, k, 0.3, -k * 2e-3, 1};
     Problem      p;
     PetscCall(FoldedCase("friction with a gap (jenkins_nv) H = 7", &o, "-frf_stability -hbm_physical -hbm_harmonics 7 -hbm_samples 256 -frf_force 1.5 -frf_fmin 5 -frf_fmax 25 -cont_max_points 3000", 7, 0.02, 100, 2000, &p));
+    PetscCall(ProblemDestroy(&p));
+  }
+
+  /* ---- Jenkins oscillator: incrementally dissipative; perturbed RK4 against the exponents in time ---- */
+  {
+    const double     m = 1.0, c = 0.4, k = pow(2 * PETSC_PI * 10, 2), kt = k, mu = 0.3, n0 = 1.0, F = 1.0;
+    const PetscInt   ns = 4000;
+    Problem          p;
+    PetscInt         np, n, kp = 0;
+    const PetscReal *om, *aa, *amp, *mr;
+    const PetscInt  *st;
+    PetscInt         nun = 0;
+    const PetscInt   Hj = 5;
+    char             opts[256];
+    PetscCall(PetscSNPrintf(opts, sizeof(opts), "-frf_stability -hbm_physical -hbm_harmonics %d -hbm_samples %d -frf_force 1.0 -frf_fmin 8 -frf_fmax 20", (int)Hj, (int)(Hj > 8 ? 1024 : 256)));
+    PetscCall(Options(opts));
+    PetscCall(ProblemCreate(1, (double[]){k}, (double[]){m}, (double[]){c}, 1, (El[]){{"jenkins", 0, -1, -1, -1, kt, 0, mu, n0}}, &p));
+    PetscCall(JRContSolve(p.cont));
+    PetscCall(JRContGetBranch(p.cont, 0, &np, &om, &aa, &amp));
+    PetscCall(JRContGetStability(p.cont, 0, &st, &mr, NULL, NULL, NULL, NULL));
+    PetscCall(JRHBMGetSolveSize(p.hbm, &n, NULL));
+    for (PetscInt q = 0; q < np; q++) {
+      if (amp[q] > amp[kp]) kp = q;
+      nun += !st[q];
+    }
+    CHECK(nun == 0, "Jenkins oscillator (constant normal load): every one of the %" PetscInt_FMT " points stable by incremental dissipativity (%" PetscInt_FMT " flagged unstable)", np, nun);
+    /* two points: the peak, and the one where the exponents in time and Hill's method differ most */
+    {
+      Vec          xv;
+      PetscScalar *xa;
+      PetscInt     kd = 0;
+      double       dmax = -1;
+      PetscCall(JRHBMCreateVecs(p.hbm, &xv, NULL));
+      for (PetscInt q = 0; q < np; q++) {
+        PetscReal mt, mh;
+        PetscCall(VecGetArray(xv, &xa));
+        for (PetscInt i = 0; i < n; i++) xa[i] = aa[q * n + i];
+        PetscCall(VecRestoreArray(xv, &xa));
+        PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, NULL, NULL, NULL, &mt, NULL));
+        PetscCall(JRHBMFloquet(p.hbm, om[q], xv, JR_HILL_SELECT_VECTOR, 1000, NULL, NULL, NULL, &mh, NULL));
+        if (fabs(mt - mh) > dmax) {
+          dmax = fabs(mt - mh);
+          kd   = q;
+        }
+      }
+      for (int pt = 0; pt < 2; pt++) {
+        const PetscInt   q = pt ? kd : kp;
+        const PetscReal *a = aa + q * n, w = om[q], T = 2 * PETSC_PI / w, dt = T / ns, fs = mu * n0;
+        double           x0 = a[0], v0 = 0.0, s0 = 0.0, A = hypot(a[1], a[2]), rate;
+        PetscReal        mt, mh;
+        PetscInt         P;
+        PetscCall(VecGetArray(xv, &xa));
+        for (PetscInt i = 0; i < n; i++) xa[i] = a[i];
+        PetscCall(VecRestoreArray(xv, &xa));
+        PetscCall(JRHBMFloquetTime(p.hbm, w, xv, 0, NULL, NULL, NULL, &mt, NULL));
+        PetscCall(JRHBMFloquet(p.hbm, w, xv, JR_HILL_SELECT_VECTOR, 1000, NULL, NULL, NULL, &mh, NULL));
+        P = 30 + (PetscInt)(10.0 / (PetscMax(-mt, 1e-3) * T)); /* to the periodic orbit: a decay by about e^-10 */
+        for (PetscInt h = 1; h <= Hj; h++) {
+          x0 += a[2 * h];
+          v0 += h * w * a[2 * h - 1];
+        }
+        for (PetscInt j = 0; j <= 2 * ns; j++) { /* the slip at t = 0: two periods of the point's motion (play operator) */
+          double xj = a[0];
+          for (PetscInt h = 1; h <= Hj; h++) xj += a[2 * h - 1] * sin(h * w * j * dt) + a[2 * h] * cos(h * w * j * dt);
+          s0 = fmin(fmax(s0, xj - fs / kt), xj + fs / kt);
+        }
+        for (PetscInt c0 = 0; c0 < P; c0++)
+          for (PetscInt j = 0; j < ns; j++) JenkinsReturnMapStep(m, c, k, kt, fs, F, w, j * dt, dt, &x0, &v0, &s0);
+        { /* the march's own monodromy matrix on the orbit it reached, by differences in x, v / w, s */
+          double       Mo[9], wr[3], wi[3], wk[64], dum, e = 1e-7 * A, base[3] = {x0, v0, s0}, end[3] = {0, 0, 0};
+          PetscBLASInt n3 = 3, one = 1, lw = 64, info;
+          for (int col = -1; col < 3; col++) {
+            double y[3] = {base[0], base[1], base[2]};
+            if (col >= 0) y[col] += col == 1 ? e * w : e;
+            for (PetscInt j = 0; j < ns; j++) JenkinsReturnMapStep(m, c, k, kt, fs, F, w, j * dt, dt, &y[0], &y[1], &y[2]);
+            if (col < 0) {
+              for (int i = 0; i < 3; i++) end[i] = y[i];
+              continue;
+            }
+            for (int i = 0; i < 3; i++) Mo[i + 3 * col] = (y[i] - end[i]) / e / (i == 1 ? w : 1.0);
+          }
+          PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &n3, Mo, &n3, wr, wi, &dum, &one, &dum, &one, wk, &lw, &info));
+          rate = -PETSC_MAX_REAL;
+          for (int i = 0; i < 3; i++) rate = fmax(rate, log(hypot(wr[i], wi[i])) / T);
+        }
+        CHECK(st[q] && rate < 0 && fabs(rate - mt) < 0.02 * fabs(mt), "Jenkins oscillator at %.3f Hz (%s, stick-slip): an RK4 march from the point's state settles on its orbit (%" PetscInt_FMT " periods); that march's monodromy matrix (differences of 1e-7 of the amplitude) has the largest exponent %.4f 1/s < 0, perturbations decay; the exponents in time: %.4f 1/s (Hill's method with the periodic Jacobian: %.4f 1/s)", w / (2 * PETSC_PI), pt ? "where Hill's method differs most" : "the peak", P, rate, mt, mh);
+      }
+      PetscCall(VecDestroy(&xv));
+    }
+    (void)mr;
+    PetscCall(ProblemDestroy(&p));
+  }
+
+  /* ---- the exponents in time on a Jenkins oscillator through full stick and grazing slip: all stable (the theorem) ---- */
+  {
+    const double     k = pow(2 * PETSC_PI * 100, 2);
+    Problem          p;
+    PetscInt         np, nun = 0;
+    const PetscReal *om;
+    const PetscInt  *st;
+    PetscCall(Options("-frf_stability -frf_stability_dissipative 0 -hbm_physical -hbm_gamma 0.01 -hbm_harmonics 1 -frf_force 0.2 -frf_fmin 80 -frf_fmax 170"));
+    PetscCall(ProblemCreate(1, (double[]){k}, (double[]){1.0}, NULL, 1, (El[]){{"jenkins", 0, -1, -1, -1, k, 0, 0.1, 100}}, &p));
+    PetscCall(JRContSolve(p.cont));
+    PetscCall(JRContGetBranch(p.cont, 0, &np, &om, NULL, NULL));
+    PetscCall(JRContGetStability(p.cont, 0, &st, NULL, NULL, NULL, NULL, NULL));
+    for (PetscInt q = 0; q < np; q++) nun += !st[q];
+    CHECK(np > 50 && nun == 0, "Jenkins oscillator (runs/oscillator_frf.opts at 0.2 N: full stick, then slip near the 141 Hz resonance), every point by the exponents in time (-frf_stability_dissipative 0): %" PetscInt_FMT " of %" PetscInt_FMT " unstable (incremental dissipativity: none)", nun, np);
     PetscCall(ProblemDestroy(&p));
   }
 

@@ -88,5 +88,15 @@ typedef enum {
 PETSC_EXTERN const char *const JRHillSelects[];
 PETSC_EXTERN PetscErrorCode JRHBMFloquet(JRHBM, PetscReal, Vec, JRHillSelect, PetscInt, PetscInt *, PetscReal[], PetscReal[], PetscReal *, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMHillSupported(JRHBM, PetscBool *);
+PETSC_EXTERN PetscErrorCode JRHBMFloquetTime(JRHBM, PetscReal, Vec, PetscInt, PetscInt *, PetscReal[], PetscReal[], PetscReal *, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRHBMJacobianSign(JRHBM, PetscReal, Vec, PetscInt *);
+/* What decides a point's stability (src/hbm/dissipative.c) */
+typedef enum {
+  JR_STABILITY_DISSIPATIVE, /* incrementally dissipative at the point: stable, no eigenproblem */
+  JR_STABILITY_HILL,        /* smooth elements only: Hill's method, exact up to truncation */
+  JR_STABILITY_HILL_HYSTERETIC, /* friction elements changing state: Hill's method indicates, it does not decide */
+  JR_STABILITY_TIME         /* the same points decided by the monodromy matrix in time (JRHBMFloquetTime) */
+} JRStabilityVerdict;
+PETSC_EXTERN PetscErrorCode JRHBMStabilityVerdict(JRHBM, Vec, PetscBool, JRStabilityVerdict *);
 
 #endif

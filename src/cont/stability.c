@@ -114,35 +114,61 @@ static PetscErrorCode Detect(JRCont c, JRContBranch *b)
 }
 
 /* JRContStability - level lev's points' stability (b->stable, b->maxre, b->detsign), its folds and branch points, and
-   (unless quiet) their lines; a: work vector of the solve space. Does nothing without -frf_stability; a condensed model
-   is not analysed (a note says so once). Collective. */
+   (unless quiet) their lines; a: work vector of the solve space. Each point is decided (JRHBMStabilityVerdict) by
+   incremental dissipativity where it holds (stable, maxre NaN; -frf_stability_dissipative 0: never), by the
+   monodromy matrix in time where friction elements change state (JRHBMFloquetTime; -frf_stability_time 0: Hill's
+   method, whose flags there indicate rather than decide, counted and said), and by Hill's method (JRHBMFloquet) for
+   smooth elements. Does nothing without -frf_stability; a condensed model is analysed only when incrementally
+   dissipative at every point (else a note says so once). Collective. */
 PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
 {
-  JRContBranch  *b = &c->br[lev];
-  PetscBool      ok;
-  PetscInt       nun = 0;
-  PetscLogDouble t0, t1;
+  JRContBranch      *b = &c->br[lev];
+  PetscBool          ok;
+  PetscInt           nun = 0, ncount[4] = {0, 0, 0, 0};
+  PetscLogDouble     t0, t1;
+  JRStabilityVerdict v = JR_STABILITY_HILL;
 
   PetscFunctionBeginUser;
   PetscCall(JRContBranchStabilityFree(b));
   if (!c->stab) PetscFunctionReturn(0);
   PetscCall(JRHBMHillSupported(c->hbm, &ok));
-  if (!ok) {
-    if (lev == 0 && !c->quiet) PetscCall(PetscPrintf(c->comm, "stability: not computed, the model is condensed onto its joints (-hbm_condense no keeps the modal unknowns); the CSV's stable column is -1\n"));
-    PetscFunctionReturn(0);
-  }
   PetscCall(PetscTime(&t0));
+  for (PetscInt k = 0; k < b->np && !ok; k++) { /* condensed: only the certificate, which must then hold at every point */
+    PetscCall(LoadPoint(c, b, k, a));
+    PetscCall(JRHBMStabilityVerdict(c->hbm, a, c->stabdiss, &v));
+    if (v != JR_STABILITY_DISSIPATIVE) {
+      if (lev == 0 && !c->quiet) PetscCall(PetscPrintf(c->comm, "stability: not computed, the model is condensed onto its joints and not incrementally dissipative at every point (-hbm_condense no keeps the modal unknowns); the CSV's stable column is -1\n"));
+      PetscFunctionReturn(0);
+    }
+  }
   PetscCall(PetscMalloc3(b->np, &b->stable, b->np, &b->maxre, b->np, &b->detsign));
   for (PetscInt k = 0; k < b->np; k++) {
     PetscCall(LoadPoint(c, b, k, a));
-    PetscCall(JRHBMFloquet(c->hbm, b->omega[k], a, c->stabsel, c->stabdense, NULL, NULL, NULL, &b->maxre[k], &b->detsign[k]));
-    b->stable[k] = b->maxre[k] < c->stabtol * b->omega[k] ? 1 : 0;
+    PetscCall(JRHBMStabilityVerdict(c->hbm, a, c->stabdiss, &v));
+    if (v == JR_STABILITY_HILL_HYSTERETIC && c->stabtime) v = JR_STABILITY_TIME;
+    switch (v) {
+    case JR_STABILITY_DISSIPATIVE:
+      b->maxre[k]   = NAN;
+      b->detsign[k] = 0;
+      if (ok) PetscCall(JRHBMJacobianSign(c->hbm, b->omega[k], a, &b->detsign[k]));
+      break;
+    case JR_STABILITY_TIME:
+      PetscCall(JRHBMFloquetTime(c->hbm, b->omega[k], a, c->stabsteps, NULL, NULL, NULL, &b->maxre[k], NULL));
+      PetscCall(JRHBMJacobianSign(c->hbm, b->omega[k], a, &b->detsign[k]));
+      break;
+    default:
+      PetscCall(JRHBMFloquet(c->hbm, b->omega[k], a, c->stabsel, c->stabdense, NULL, NULL, NULL, &b->maxre[k], &b->detsign[k]));
+    }
+    b->stable[k] = v == JR_STABILITY_DISSIPATIVE || b->maxre[k] < c->stabtol * b->omega[k] ? 1 : 0;
+    ncount[v]++;
     if (!b->stable[k]) nun++;
   }
   PetscCall(Detect(c, b));
   PetscCall(PetscTime(&t1));
   b->stab_seconds = t1 - t0;
-  if (!c->quiet) PetscCall(PetscPrintf(c->comm, "stability level %g unstable_points %" PetscInt_FMT " of %" PetscInt_FMT " folds %" PetscInt_FMT " branch_points %" PetscInt_FMT " seconds %.3g (curve %.3g)\n", (double)b->F, nun, b->np, b->nfold, b->nbranch, (double)b->stab_seconds, (double)b->seconds));
+  b->nhyst        = ncount[JR_STABILITY_HILL_HYSTERETIC];
+  if (!c->quiet) PetscCall(PetscPrintf(c->comm, "stability level %g unstable_points %" PetscInt_FMT " of %" PetscInt_FMT " folds %" PetscInt_FMT " branch_points %" PetscInt_FMT " seconds %.3g (curve %.3g) dissipative %" PetscInt_FMT " time %" PetscInt_FMT " hill %" PetscInt_FMT " hill_hysteretic %" PetscInt_FMT "\n", (double)b->F, nun, b->np, b->nfold, b->nbranch, (double)b->stab_seconds, (double)b->seconds, ncount[JR_STABILITY_DISSIPATIVE], ncount[JR_STABILITY_TIME], ncount[JR_STABILITY_HILL], ncount[JR_STABILITY_HILL_HYSTERETIC]));
+  if (!c->quiet && b->nhyst) PetscCall(PetscPrintf(c->comm, "stability level %g: %" PetscInt_FMT " points by Hill's method with friction elements changing state: its periodic Jacobian misses the slip's memory, so these flags indicate and do not decide (docs/theory.md section 16); -frf_verify_unstable checks the unstable ones by time integration\n", (double)b->F, b->nhyst));
   PetscFunctionReturn(0);
 }
 

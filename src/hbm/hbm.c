@@ -524,6 +524,7 @@ PetscErrorCode JRHBMDestroy(JRHBM *hbm)
   PetscCall(PetscFree2(h->llu, h->lpiv));
   PetscCall(PetscFree3(h->epsi, h->ep, h->ework));
   PetscCall(JRHBMHillDestroy(h));
+  PetscCall(JRHBMMonodromyDestroy(h));
   PetscCall(PetscFree3(h->Q, h->QV, h->VF));
   PetscCall(PetscFree4(h->V, h->lamv, h->cv, h->G0));
   PetscCall(PetscFree2(h->Z0, h->piv0));

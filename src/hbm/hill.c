@@ -1,5 +1,7 @@
 /*
-   Floquet exponents of a harmonic-balance solution by Hill's method (docs/theory.md, section 15).
+   Floquet exponents of a harmonic-balance solution by Hill's method (docs/theory.md, section 16): exact up to truncation
+   for smooth elements; for friction elements, whose force remembers the last reversal, J + lambda D1 + lambda^2 D2 is
+   not the linearisation (floquet.c marches it instead).
 
    A perturbation exp(lambda t) p(t) of the periodic solution, p over the same harmonics, satisfies
 
@@ -28,7 +30,7 @@ struct _JRHill {
   PetscInt      nk, *keep;         /* the modes kept: all but the rigid-body ones (pinned mean, section 1) */
   PetscInt      N;                 /* nk (2H + 1) */
   Mat           J;                 /* dR/da (N x N, dense) */
-  PetscReal    *JH, *D1, *D2;      /* N x N column-major: J with the structural damping of section 15, D1, D2 */
+  PetscReal    *JH, *D1, *D2;      /* N x N column-major: J with the structural damping of section 16, D1, D2 */
   PetscReal    *A, *B, *VR, *work; /* 2N x 2N pencil, its right eigenvectors, LAPACK work */
   PetscReal    *ar, *ai, *be, *key, *lu;
   PetscInt     *idx;
@@ -354,6 +356,26 @@ PetscErrorCode JRHBMFloquet(JRHBM h, PetscReal w, Vec a, JRHillSelect sel, Petsc
   if (im) PetscCall(PetscArraycpy(im, out + 2 + nk, nk));
   PetscCall(PetscFree(out));
   PetscCall(PetscLogEventEnd(JR_HBMHill, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* JRHBMJacobianSign - the sign of det(dR/da) at the solution a at frequency w (0 if singular), as JRHBMFloquet()
+   gives it, without the eigenproblem. Collective; rank 0 factors and broadcasts. */
+PetscErrorCode JRHBMJacobianSign(JRHBM h, PetscReal w, Vec a, PetscInt *detsign)
+{
+  PetscInt s = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(HillWork(h));
+  PetscCall(JRHBMComputeJacobian(h, w, a, h->hill->J, NULL));
+  if (!h->rank) {
+    const PetscReal *J;
+    PetscCall(MatDenseGetArrayRead(h->hill->J, &J));
+    PetscCall(DetSign(h, J, &s));
+    PetscCall(MatDenseRestoreArrayRead(h->hill->J, &J));
+  }
+  if (h->size > 1) PetscCallMPI(MPI_Bcast(&s, 1, MPIU_INT, 0, h->comm));
+  *detsign = s;
   PetscFunctionReturn(0);
 }
 

@@ -5,6 +5,7 @@
 PetscClassId  JR_CONTACT_CLASSID, JR_MODEL_CLASSID, JR_HBM_CLASSID;
 PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_ModesStatic, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep;
 PetscLogEvent JR_HBMHill;
+PetscLogEvent JR_HBMFloquetTime;
 
 static PetscBool JRPackageInitialized = PETSC_FALSE;
 
@@ -28,6 +29,7 @@ PetscErrorCode JRInitializePackage(void)
   PetscCall(PetscLogEventRegister("JR_HBMResidual", JR_HBM_CLASSID, &JR_HBMResidual));
   PetscCall(PetscLogEventRegister("JR_Jacobian", JR_HBM_CLASSID, &JR_HBMJacobian));
   PetscCall(PetscLogEventRegister("JR_Hill", JR_HBM_CLASSID, &JR_HBMHill));
+  PetscCall(PetscLogEventRegister("JR_FloquetTime", JR_HBM_CLASSID, &JR_HBMFloquetTime));
   PetscCall(PetscLogEventRegister("JR_HBMSolve", JR_HBM_CLASSID, &JR_HBMSolve));
   PetscCall(PetscLogEventRegister("JR_ContStep", JR_HBM_CLASSID, &JR_ContStep));
   PetscCall(JRLogRegister());

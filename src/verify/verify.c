@@ -67,7 +67,7 @@ struct _p_JRVerify {
   /* options */
   PetscInt    npoints, steps, maxperiods;
   PetscReal   tol, ptol;
-  PetscBool   rest, setupcalled, view;
+  PetscBool   rest, setupcalled, view, unstable;
   /* the modal equations */
   PetscInt     nm, H, nc;
   PetscBool    identity;  /* Mm = I */
@@ -107,7 +107,7 @@ PetscErrorCode JRVerifyCreate(MPI_Comm comm, JRVerify *v)
 }
 
 /* -frf_verify_points N (0: off), -frf_verify_tol, -frf_verify_steps, -frf_verify_periodic_tol,
-   -frf_verify_max_periods, -frf_verify_from_rest, -frf_verify_view (the TS's -frf_verify_ts_* are read at set-up) */
+   -frf_verify_max_periods, -frf_verify_from_rest, -frf_verify_unstable, -frf_verify_view (the TS's -frf_verify_ts_* are read at set-up) */
 PetscErrorCode JRVerifySetFromOptions(JRVerify v)
 {
   PetscBool help;
@@ -120,6 +120,7 @@ PetscErrorCode JRVerifySetFromOptions(JRVerify v)
   PetscCall(PetscOptionsReal("-frf_verify_periodic_tol", "Steady state: relative change of the state over a period (and its extrapolated rest) below this", "JRVerifySolve", v->ptol, &v->ptol, NULL));
   PetscCall(PetscOptionsInt("-frf_verify_max_periods", "At most this many periods per point", "JRVerifySolve", v->maxperiods, &v->maxperiods, NULL));
   PetscCall(PetscOptionsBool("-frf_verify_view", "View the check's settings and the stiffest mode bound at set-up", "JRVerifyView", v->view, &v->view, NULL));
+  PetscCall(PetscOptionsBool("-frf_verify_unstable", "Also the middle point of every stretch that -frf_stability flags unstable (at most 20 per level)", "JRVerifyCurves", v->unstable, &v->unstable, NULL));
   PetscCall(PetscOptionsBool("-frf_verify_from_rest", "Start from rest instead of the harmonic balance's state at t = 0", "JRVerifySolve", v->rest, &v->rest, NULL));
   PetscOptionsEnd();
   PetscCall(PetscOptionsHasHelp(NULL, &help));
@@ -814,24 +815,41 @@ PetscErrorCode JRVerifyCurves(JRVerify v, JRHBM h, JRCont cont)
   PetscInt  npts = 0;
 
   PetscFunctionBeginUser;
-  if (!v || !v->npoints || !cont) PetscFunctionReturn(0);
+  if (!v || (!v->npoints && !v->unstable) || !cont) PetscFunctionReturn(0);
   PetscCall(JRVerifySetHBM(v, h));
   PetscCall(JRVerifySetUp(v));
   PetscCall(JRContGetNumLevels(cont, &nlev));
   nout = h->nout;
   for (PetscInt lev = 0; lev < nlev; lev++) {
-    PetscInt         np, idx[100], n;
+    PetscInt         np, idx[100], n, npk;
     const PetscReal *om, *aa, *amp;
     PetscReal        F;
     PetscCall(JRContGetLevel(cont, lev, &F));
     PetscCall(JRContGetBranch(cont, lev, &np, &om, &aa, &amp));
     if (!np) continue;
-    PetscCall(PickPoints(np, om, amp, nout, v->npoints, idx, &n));
+    n = 0;
+    if (v->npoints) PetscCall(PickPoints(np, om, amp, nout, v->npoints, idx, &n));
+    npk = n;
+    if (v->unstable) { /* the middle of each stretch flagged unstable */
+      const PetscInt *st;
+      PetscCall(JRContGetStability(cont, lev, &st, NULL, NULL, NULL, NULL, NULL));
+      for (PetscInt k = 0; st && k < np && n < 100;) {
+        PetscInt e = k;
+        if (st[k]) {
+          k++;
+          continue;
+        }
+        while (e + 1 < np && !st[e + 1]) e++;
+        if (n < npk + 20) idx[n++] = (k + e) / 2;
+        k = e + 1;
+      }
+    }
     for (PetscInt i = 0; i < n; i++) {
       JRVerifyResult r;
       const PetscInt k = idx[i];
       const PetscReal fhz = om[k] / (2 * PETSC_PI);
       PetscCall(JRVerifySolve(v, F, om[k], aa + k * h->n, &r));
+      if (i >= npk) PetscCall(PetscPrintf(v->comm, "verify: level %g freq_hz %.8g flagged unstable by -frf_stability\n", (double)F, (double)fhz));
       PetscCall(PetscPrintf(v->comm, "verify level %g freq_hz %.12g amplitude_hbm %.10e amplitude_time %.10e rel_diff %.3e higher_harmonics %.3e periods %" PetscInt_FMT " higher_harmonics_hbm %.3e phase_deg %.3e steps %" PetscInt_FMT " change %.2e seconds %.3g\n", (double)F, (double)fhz, (double)r.amp_hbm, (double)r.amp_time, (double)r.rel_diff, (double)r.higher_time, r.periods, (double)r.higher_hbm, (double)r.phase_deg, r.steps, (double)r.change, (double)r.seconds));
       if (!r.periodic) PetscCall(PetscPrintf(v->comm, "verify: WARNING level %g freq_hz %.8g: not periodic after %" PetscInt_FMT " periods (change over the last %.2e > -frf_verify_periodic_tol %g, or still decaying): raise -frf_verify_max_periods\n", (double)F, (double)fhz, r.periods, (double)r.change, (double)v->ptol));
       if (r.rel_diff > v->tol) PetscCall(PetscPrintf(v->comm, "verify: WARNING level %g freq_hz %.8g: the time integration's first harmonic differs from the harmonic balance's by %.3e (> -frf_verify_tol %g); higher harmonics %.3e of the response (%.3e in the harmonic balance)%s\n", (double)F, (double)fhz, (double)r.rel_diff, (double)v->tol, (double)r.higher_time, (double)r.higher_hbm, r.rel_diff > 0.5 ? ": the time integration settled on another response (the point is unstable, or near a fold where the harmonic balance's truncation moves it)" : ": the same modal equations, so the harmonic balance's truncation (-hbm_harmonics, -hbm_samples; the elements' motions may carry more higher harmonics than the response) or the time step (-frf_verify_steps)"));

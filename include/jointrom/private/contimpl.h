@@ -28,6 +28,7 @@ typedef struct {
   PetscReal      *maxre;        /* the largest real part of the kept Floquet exponents [1/s] */
   PetscInt       *detsign;      /* the sign of det(dR/da) */
   PetscReal       stab_seconds; /* their wall time */
+  PetscInt        nhyst;        /* points decided by Hill's method with friction elements changing state */
   PetscInt        nfold, nbranch;
   PetscReal      *wfold, *wbranch; /* the folds' and branch points' frequencies [rad/s] */
 } JRContBranch;
@@ -65,6 +66,9 @@ struct _p_JRCont {
   JRHillSelect      stabsel;    /* -frf_stability_select */
   PetscReal         stabtol;    /* -frf_stability_tol: stable if every kept exponent has Re < tol w */
   PetscInt          stabdense;  /* -frf_stability_dense_max */
+  PetscBool         stabtime;   /* -frf_stability_time: friction elements changing state, Floquet exponents in time */
+  PetscInt          stabsteps;  /* -frf_stability_time_steps: their least RK4 steps per period */
+  PetscBool         stabdiss;   /* -frf_stability_dissipative: the incremental-dissipativity certificate where it holds */
 };
 
 PETSC_INTERN PetscErrorCode JRContCreate_Natural(JRCont);

@@ -117,6 +117,11 @@ struct _p_JRHBM {
   PetscReal         eomega;
   PetscReal        *epsi, *ep, *ework; /* ework: n + n^2 + n */
   struct _JRHill   *hill;         /* JRHBMFloquet(): the work of Hill's method (src/hbm/hill.c) */
+  struct _JRMonodromy *mono;      /* JRHBMFloquetTime(): the work of the time-domain Floquet exponents (src/hbm/floquet.c) */
+  PetscInt          dissip;       /* JRHBMStabilityVerdict(): 0 not yet known, 1 no certificate (smooth or other elements, or
+                                     a linear part that is not dissipative), 2 every element jenkins, 3 jenkins and
+                                     jenkins_nv (decided per point) */
+  PetscBool         fric;         /* JRHBMStabilityVerdict(): the model has friction elements (jenkins, jenkins_nv) */
 };
 
 /* C = alpha op(A) op(B) + beta C, column-major (BLAS gemm; k = 0 only scales C) */
@@ -137,6 +142,7 @@ PETSC_INTERN PetscErrorCode JRHBMLinear(JRHBM, PetscReal, const PetscReal *, Pet
 
 /* src/hbm/hill.c: Floquet exponents */
 PETSC_INTERN PetscErrorCode JRHBMHillDestroy(JRHBM);
+PETSC_INTERN PetscErrorCode JRHBMMonodromyDestroy(JRHBM);
 
 /* src/hbm/condense.c: the condensation onto the joints */
 PETSC_INTERN PetscErrorCode JRHBMCondenseSetUp(JRHBM, const JRElements *);

@@ -1,0 +1,421 @@
+/*
+   Floquet exponents of a periodic response with hysteretic elements, in the time domain (docs/theory.md, section 16).
+
+   Hill's method (hill.c) puts exp(lambda t) p(t) into the periodic Jacobian dR/da. For a friction element that
+   Jacobian is the derivative of the steady periodic force: while stuck, df(t) = kt (du(t) - du(t_r)), t_r the start
+   of the stick phase, a memory that an exp(lambda t) perturbation scales by exp(lambda t_r), not exp(lambda t), so
+   Hill's quadratic problem is not the linearisation for such elements. Here the linearisation itself is marched over
+   one period: the variational equations of the modal equations (section 14's time-domain form, the kept modes),
+
+     Mm dq'' + Cv dq' + (Km - Kc) dq + sum_e r_e df_e + sum_e s_e dn_e = 0,   Cv = Cm + (gamma / w) Kg,
+
+   with each element's force linearised about the harmonic-balance motion, marched as the play operator: the slip
+   w <- clamp(w, u - mu n / kt, u + mu n / kt) committed after every step, and at every stage a return map from the
+   committed slip, whose derivative is dw (the committed one, stuck), du -+ mu kn dv / kt (slipping at the upper or
+   lower bound, kn for jenkins_nv in contact, else 0); df = kt (du - dw), dn = kn dv in contact (jenkins_nv), and
+   df = 3 kt u^2 du for a cubic spring. The state (dq, dq', dw) has 2 nk + ne entries (ne friction elements); its fundamental matrix after one
+   period T (RK4, the step at most 0.5 / w_max, w_max the stiffest mode with every element stuck, and at least the
+   harmonic balance's samples per period) is the monodromy matrix, whose eigenvalues rho are the Floquet multipliers:
+   exponents log(rho) / T. A stuck element's slip is a neutral state (rho = 1): a perturbed slip stays.
+
+   Rank 0 holds every element (gathered once) and the point's motion, marches, and broadcasts.
+*/
+#include <jointrom/private/hbmimpl.h>
+
+struct _JRMonodromy {
+  PetscInt   ne, nk, m, ns;           /* elements (all ranks), kept modes, state size 2 nk + ne, steps per period */
+  PetscInt  *type;                    /* 0 jenkins, 1 jenkins_nv, 2 cubic */
+  PetscInt  *mem;                     /* each element's slip in the state (2 nk + mem[e]), -1 for a cubic spring */
+  PetscReal *kt, *kn, *mu, *n0;       /* ne each */
+  PetscReal *Ra, *Sa;                 /* ne x nm column-major: the rows over every mode (the point's motion) */
+  PetscInt   l, *srow;                /* l = ne + the jenkins_nv elements; each element's normal row in RS (-1: none) */
+  PetscReal *RS;                      /* l x nk column-major: [r_e; s_e of jenkins_nv] over the kept modes (the perturbation) */
+  PetscReal *MRS;                     /* nk x l: -Mm^-1 [R^T S^T] */
+  PetscReal *K, *C, *Kg, *Mi, *G;     /* nk x nk column-major: Km - Kc, Cm, Kg, Mm^-1; G = -Mm^-1 [K, Cv] (nk x 2 nk) */
+  PetscReal  wmax;                    /* the stiffest mode with every element stuck [rad/s] */
+  PetscReal *u, *v, *wn;              /* the point's motion at the half steps (ne x (2 ns + 1)), committed slip (ne x (ns + 1)) */
+  PetscReal *Y, *Y0, *Ys, *DUV, *DFN, *Wc; /* the march's work: DUV = [du; dv], DFN = [df; dn] (2 ne x m) */
+  PetscReal *ev, *wr, *wi, *work;
+  PetscBLASInt lwork;
+};
+
+/* Free the time-domain Floquet work (JRHBMDestroy) */
+PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
+{
+  struct _JRMonodromy *f = h->mono;
+
+  PetscFunctionBeginUser;
+  if (!f) PetscFunctionReturn(0);
+  PetscCall(PetscFree5(f->type, f->kt, f->kn, f->mu, f->n0));
+  PetscCall(PetscFree2(f->mem, f->srow));
+  PetscCall(PetscFree4(f->Ra, f->Sa, f->RS, f->MRS));
+  PetscCall(PetscFree5(f->K, f->C, f->Kg, f->Mi, f->G));
+  PetscCall(PetscFree3(f->u, f->v, f->wn));
+  PetscCall(PetscFree3(f->Y, f->Y0, f->Ys));
+  PetscCall(PetscFree3(f->DUV, f->DFN, f->Wc));
+  PetscCall(PetscFree4(f->ev, f->wr, f->wi, f->work));
+  PetscCall(PetscFree(h->mono));
+  PetscFunctionReturn(0);
+}
+
+/* Every element's parameters and rows on rank 0 (collective), the kept modes' linear matrices, and the stiffest mode */
+static PetscErrorCode MonodromySetUp(JRHBM h)
+{
+  struct _JRMonodromy *f;
+  const PetscInt       nm = h->nm;
+  PetscInt             nloc = 0, ne = 0, nk = 0, *keep;
+  PetscMPIInt          size = h->size, *cnt, *dsp, mine;
+  PetscReal           *loc, *all = NULL, *Kc;
+  const PetscInt       rec = 5 + 2 * nm; /* type, kt, kn, mu, n0, r (nm), s (nm) */
+
+  PetscFunctionBeginUser;
+  if (h->mono) PetscFunctionReturn(0);
+  PetscCall(PetscNew(&f));
+  if (!h->repl || !h->rank)
+    for (PetscInt t = 0; t < h->ngroups; t++) nloc += h->g[t].nloc;
+  PetscCall(PetscMalloc1(rec * nloc + 1, &loc));
+  nloc = 0;
+  for (PetscInt t = 0; t < h->ngroups && (!h->repl || !h->rank); t++) {
+    const JRHBMGroup *g = &h->g[t];
+    const PetscReal   ty = !strcmp(g->c->type_name, JRCONTACTJENKINSNV) ? 1 : !strcmp(g->c->type_name, JRCONTACTCUBIC) ? 2 : 0;
+    for (PetscInt e = 0; e < g->nloc; e++, nloc++) {
+      PetscReal *r = loc + rec * nloc;
+      r[0]         = ty;
+      r[1]         = g->c->kt[e];
+      r[2]         = g->c->kn ? g->c->kn[e] : 0.0;
+      r[3]         = g->c->mu ? g->c->mu[e] : 0.0;
+      r[4]         = g->c->n0 ? g->c->n0[e] : 0.0;
+      for (PetscInt i = 0; i < nm; i++) {
+        r[5 + i]      = g->R[e + i * g->nloc];
+        r[5 + nm + i] = g->normal ? g->S[e + i * g->nloc] : 0.0;
+      }
+    }
+  }
+  PetscCall(PetscMalloc2(size, &cnt, size, &dsp));
+  PetscCall(PetscMPIIntCast(rec * nloc, &mine));
+  PetscCallMPI(MPI_Gather(&mine, 1, MPI_INT, cnt, 1, MPI_INT, 0, h->comm));
+  if (!h->rank) {
+    PetscInt tot = 0;
+    for (PetscMPIInt r = 0; r < size; r++) {
+      dsp[r] = (PetscMPIInt)tot;
+      tot += cnt[r];
+    }
+    ne = tot / rec;
+    PetscCall(PetscMalloc1(tot + 1, &all));
+  }
+  PetscCallMPI(MPI_Gatherv(loc, mine, MPIU_REAL, all, cnt, dsp, MPIU_REAL, 0, h->comm));
+  PetscCall(PetscFree2(cnt, dsp));
+  PetscCall(PetscFree(loc));
+  /* Km - Kc: Kc summed over the ranks unless every rank has every element */
+  PetscCall(PetscCalloc1(nm * nm, &Kc));
+  if (h->basis != JR_HBM_BASIS_FREE && h->Kc) {
+    if (h->repl || h->size == 1) PetscCall(PetscArraycpy(Kc, h->Kc, nm * nm));
+    else PetscCall(MPIU_Allreduce(h->Kc, Kc, nm * nm, MPIU_REAL, MPIU_SUM, h->comm));
+  }
+  if (h->rank) {
+    PetscCall(PetscFree(Kc));
+    h->mono = f;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscMalloc1(nm, &keep));
+  for (PetscInt i = 0; i < nm; i++)
+    if (!h->pin || h->pin[i] == 0.0) keep[nk++] = i;
+  f->ne = ne;
+  f->nk = nk;
+  f->m  = 2 * nk;
+  PetscCall(PetscMalloc5(ne, &f->type, ne, &f->kt, ne, &f->kn, ne, &f->mu, ne, &f->n0));
+  PetscCall(PetscMalloc2(ne, &f->mem, ne, &f->srow));
+  f->l = ne;
+  for (PetscInt e = 0; e < ne; e++) f->srow[e] = (PetscInt)all[rec * e] == 1 ? f->l++ : -1;
+  PetscCall(PetscMalloc4(ne * nm + 1, &f->Ra, ne * nm + 1, &f->Sa, f->l * nk + 1, &f->RS, f->l * nk + 1, &f->MRS));
+  PetscCall(PetscMalloc5(nk * nk, &f->K, nk * nk, &f->C, nk * nk, &f->Kg, nk * nk, &f->Mi, 2 * nk * nk, &f->G));
+  for (PetscInt e = 0; e < ne; e++) {
+    const PetscReal *r = all + rec * e;
+    f->type[e]         = (PetscInt)r[0];
+    f->kt[e]           = r[1];
+    f->kn[e]           = r[2];
+    f->mu[e]           = r[3];
+    f->n0[e]           = r[4];
+    f->mem[e]          = f->type[e] == 2 ? -1 : f->m++ - 2 * nk;
+    for (PetscInt i = 0; i < nm; i++) {
+      f->Ra[e + i * ne] = r[5 + i];
+      f->Sa[e + i * ne] = r[5 + nm + i];
+    }
+    for (PetscInt i = 0; i < nk; i++) {
+      f->RS[e + i * f->l] = r[5 + keep[i]];
+      if (f->srow[e] >= 0) f->RS[f->srow[e] + i * f->l] = r[5 + nm + keep[i]];
+    }
+  }
+  for (PetscInt j = 0; j < nk; j++)
+    for (PetscInt i = 0; i < nk; i++) {
+      const PetscInt q = keep[i] * nm + keep[j]; /* row-major (i, j) */
+      f->K[i + j * nk]  = h->Km[q] - Kc[keep[i] + keep[j] * nm];
+      f->C[i + j * nk]  = h->Cm ? h->Cm[q] : 0.0;
+      f->Kg[i + j * nk] = h->Kg[q];
+      f->Mi[i + j * nk] = h->Mm[q];
+    }
+  { /* Mm^-1, and w_max^2: the largest eigenvalue of (K + sum kt r r^T + kn s s^T, Mm), every element stuck */
+    PetscReal   *Ks, *Mc, *ev, *wk;
+    PetscBLASInt bn, info, itype = 1, lw;
+    PetscCall(PetscBLASIntCast(nk, &bn));
+    PetscCall(PetscBLASIntCast(PetscMax(1, 3 * nk), &lw));
+    PetscCall(PetscMalloc4(nk * nk, &Ks, nk * nk, &Mc, nk + 1, &ev, 3 * nk + 1, &wk));
+    PetscCall(PetscArraycpy(Ks, f->K, nk * nk));
+    PetscCall(PetscArraycpy(Mc, f->Mi, nk * nk));
+    for (PetscInt e = 0; e < ne; e++)
+      for (PetscInt j = 0; j < nk; j++)
+        for (PetscInt i = 0; i < nk; i++) Ks[i + j * nk] += PetscAbsReal(f->kt[e]) * f->RS[e + i * f->l] * f->RS[e + j * f->l] + (f->srow[e] >= 0 ? f->kn[e] * f->RS[f->srow[e] + i * f->l] * f->RS[f->srow[e] + j * f->l] : 0.0);
+    if (nk) {
+      PetscCallBLAS("LAPACKsygv", LAPACKsygv_(&itype, "N", "U", &bn, Ks, &bn, Mc, &bn, ev, wk, &lw, &info));
+      PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK sygv failed (info %d): the modal mass is not positive definite", (int)info);
+      f->wmax = PetscSqrtReal(PetscMax(ev[nk - 1], 0.0));
+    }
+    /* Mm^-1 by LU of a copy: the columns of the identity */
+    PetscCall(PetscArraycpy(Mc, f->Mi, nk * nk));
+    PetscCall(PetscArrayzero(f->Mi, nk * nk));
+    for (PetscInt i = 0; i < nk; i++) f->Mi[i + i * nk] = 1.0;
+    if (nk) {
+      PetscBLASInt *piv;
+      PetscCall(PetscMalloc1(nk, &piv));
+      PetscCallBLAS("LAPACKgesv", LAPACKgesv_(&bn, &bn, Mc, &bn, piv, f->Mi, &bn, &info));
+      PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the modal mass is singular (LAPACK gesv info %d)", (int)info);
+      PetscCall(PetscFree(piv));
+    }
+    PetscCall(PetscFree4(Ks, Mc, ev, wk));
+    if (ne) PetscCall(JRGemm("N", "T", nk, f->l, nk, -1.0, f->Mi, nk, f->RS, f->l, 0.0, f->MRS, nk));
+  }
+  {
+    const PetscInt m = f->m;
+    PetscCall(PetscMalloc3(m * m, &f->Y, m * m, &f->Y0, m * m, &f->Ys));
+    PetscCall(PetscMalloc3(f->l * m + 1, &f->DUV, f->l * m + 1, &f->DFN, ne * m + 1, &f->Wc));
+    f->lwork = (PetscBLASInt)(4 * m + 4);
+    PetscCall(PetscMalloc4(m * m, &f->ev, m, &f->wr, m, &f->wi, f->lwork, &f->work));
+  }
+  PetscCall(PetscFree(keep));
+  PetscCall(PetscFree(Kc));
+  PetscCall(PetscFree(all));
+  h->mono = f;
+  PetscFunctionReturn(0);
+}
+
+/* The slip bound r = mu n / kt and its normal load n of element e at the motion (u, v) */
+static inline PetscReal Bound(const struct _JRMonodromy *f, PetscInt e, PetscReal v, PetscReal *n)
+{
+  *n = f->type[e] == 1 ? PetscMax(0.0, f->n0[e] + f->kn[e] * v) : PetscMax(f->n0[e], 0.0);
+  return f->kt[e] > 0 ? f->mu[e] * *n / f->kt[e] : 0.0;
+}
+
+/* The linearised element forces at half step s from the committed slip of step j: DFN from DUV and Wc */
+static void ElementForces(const struct _JRMonodromy *f, PetscInt s, PetscInt j)
+{
+  const PetscInt ne = f->ne, m = f->m, N2 = 2 * f->ns + 1, l = f->l;
+
+  for (PetscInt e = 0; e < ne; e++) {
+    const PetscReal u = f->u[e * N2 + s], w = f->wn[e * (f->ns + 1) + j], kt = f->kt[e], kn = f->kn[e];
+    PetscReal       n, r;
+    if (f->type[e] == 2) { /* cubic: f = kt u^3 */
+      for (PetscInt c = 0; c < m; c++) f->DFN[e + c * l] = 3 * kt * u * u * f->DUV[e + c * l];
+      continue;
+    }
+    r = Bound(f, e, f->v[e * N2 + s], &n);
+    {
+      const PetscBool contact = (PetscBool)(f->type[e] == 1 && n > 0);
+      const PetscReal drdv    = contact && kt > 0 ? f->mu[e] * kn / kt : 0.0;
+      const PetscInt  side    = w < u - r ? -1 : w > u + r ? 1 : 0; /* slipping at the lower / upper bound, or stuck */
+      const PetscInt  sr      = f->srow[e];
+      for (PetscInt c = 0; c < m; c++) {
+        const PetscReal du = f->DUV[e + c * l], dv = sr >= 0 ? f->DUV[sr + c * l] : 0.0;
+        const PetscReal dw = side == 0 ? f->Wc[e + c * ne] : side < 0 ? du - drdv * dv : du + drdv * dv;
+        f->DFN[e + c * l] = kt * (du - dw);
+        if (sr >= 0) f->DFN[sr + c * l] = contact ? kn * dv : 0.0;
+      }
+    }
+  }
+}
+
+/* The right-hand side of the variational equations at half step s (committed slip of step j) for the state Z = [Q; P;
+   W] (m x m, column-major) into D: Q' = P (rows 0..nk-1), P' = G [Q; P] - Mm^-1 (R^T df + S^T dn) (rows nk..2nk-1) */
+static PetscErrorCode Rhs(JRHBM h, PetscInt s, PetscInt j, const PetscReal *Z, PetscReal *D)
+{
+  struct _JRMonodromy *f  = h->mono;
+  const PetscInt       nk = f->nk, ne = f->ne, m = f->m;
+
+  PetscFunctionBeginUser;
+  for (PetscInt c = 0; c < m; c++)
+    for (PetscInt i = 0; i < nk; i++) D[i + c * m] = Z[nk + i + c * m];
+  PetscCall(JRGemm("N", "N", nk, m, 2 * nk, 1.0, f->G, nk, Z, m, 0.0, D + nk, m));
+  if (ne) {
+    PetscCall(JRGemm("N", "N", f->l, m, nk, 1.0, f->RS, f->l, Z, m, 0.0, f->DUV, f->l));
+    ElementForces(f, s, j);
+    PetscCall(JRGemm("N", "N", nk, m, f->l, 1.0, f->MRS, nk, f->DFN, f->l, 1.0, D + nk, m));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The point's element motions at the half steps of one period and the committed slip at the steps (the play
+   operator from rest over two periods first, as the alternating frequency-time march starts) */
+static void PointMotion(JRHBM h, PetscReal w, const PetscReal *a)
+{
+  struct _JRMonodromy *f = h->mono;
+  const PetscInt       ne = f->ne, nm = h->nm, ns = f->ns, N2 = 2 * ns + 1;
+  const PetscReal      dt = 2 * PETSC_PI / w / ns;
+
+  for (PetscInt e = 0; e < ne; e++) {
+    PetscReal U[JR_MAX_NC], V[JR_MAX_NC], s = 0.0, n;
+    for (PetscInt k = 0; k < h->nc; k++) {
+      U[k] = V[k] = 0.0;
+      for (PetscInt i = 0; i < nm; i++) {
+        U[k] += f->Ra[e + i * ne] * a[k * nm + i];
+        V[k] += f->Sa[e + i * ne] * a[k * nm + i];
+      }
+    }
+    for (PetscInt q = 0; q < N2; q++) {
+      const PetscReal t = 0.5 * q * dt;
+      PetscReal       uu = U[0], vv = V[0];
+      for (PetscInt hh = 1; hh <= h->H; hh++) {
+        const PetscReal sn = PetscSinReal(hh * w * t), cs = PetscCosReal(hh * w * t);
+        uu += U[2 * hh - 1] * sn + U[2 * hh] * cs;
+        vv += V[2 * hh - 1] * sn + V[2 * hh] * cs;
+      }
+      f->u[e * N2 + q] = uu;
+      f->v[e * N2 + q] = vv;
+    }
+    if (f->type[e] == 2) continue;
+    for (PetscInt p = 0; p < 3; p++) /* two periods to the periodic slip, then the third's committed values */
+      for (PetscInt j = 0; j <= ns; j++) {
+        const PetscReal r = Bound(f, e, f->v[e * N2 + 2 * j], &n), uu = f->u[e * N2 + 2 * j];
+        s = PetscMin(PetscMax(s, uu - r), uu + r);
+        if (p == 2) f->wn[e * (ns + 1) + j] = s;
+      }
+  }
+}
+
+/*
+  JRHBMFloquetTime - the Floquet exponents of the solution a (solve space, modal) at frequency w from the monodromy
+  matrix of the variational equations marched over one period (collective; rank 0 marches and broadcasts).
+
+  Input: steps, the least RK4 steps per period (more if the stiffest mode or the harmonic balance's samples ask).
+  Output: nexp = 2 nk + ne (nk the modes other than rigid-body ones, ne the friction elements: their slips); re, im (room for
+  nexp each, may be NULL): the exponents, largest real part first [1/s] (a zero multiplier, a slip that a slipping
+  element forgets, gives -inf); maxre: the largest real part; nsteps: the RK4 steps per period taken (may be NULL).
+  An error for a condensed model (JRHBMHillSupported()).
+*/
+PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt steps, PetscInt *nexp, PetscReal re[], PetscReal im[], PetscReal *maxre, PetscInt *nsteps)
+{
+  struct _JRMonodromy *f;
+  PetscInt             m = 0, hdr[2];
+  PetscReal           *out;
+  PetscBool            ok;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMHillSupported(h, &ok));
+  PetscCheck(ok, h->comm, PETSC_ERR_SUP, "Floquet exponents in time need the modal unknowns: this model is condensed onto its joints (-hbm_condense no keeps the modes)");
+  PetscCall(PetscLogEventBegin(JR_HBMFloquetTime, 0, 0, 0, 0));
+  PetscCall(MonodromySetUp(h));
+  f = h->mono;
+  if (!h->rank) {
+    const PetscInt ns = PetscMax(steps, PetscMax(h->Ns, (PetscInt)PetscCeilReal(2 * PETSC_PI * f->wmax / (0.5 * w))));
+    m                 = f->m;
+    if (ns != f->ns) {
+      PetscCall(PetscFree3(f->u, f->v, f->wn));
+      f->ns = ns;
+      PetscCall(PetscMalloc3(f->ne * (2 * ns + 1) + 1, &f->u, f->ne * (2 * ns + 1) + 1, &f->v, f->ne * (ns + 1) + 1, &f->wn));
+    }
+  }
+  hdr[0] = m;
+  hdr[1] = h->rank ? 0 : f->ns;
+  if (h->size > 1) PetscCallMPI(MPI_Bcast(hdr, 2, MPIU_INT, 0, h->comm));
+  m = hdr[0];
+  if (nexp) *nexp = m;
+  if (nsteps) *nsteps = hdr[1];
+  PetscCall(PetscMalloc1(1 + 2 * m, &out));
+  if (!h->rank) {
+    const PetscInt     nk = f->nk, ne = f->ne, ns = f->ns;
+    const PetscReal    dt = 2 * PETSC_PI / w / ns, T = ns * dt;
+    const PetscScalar *x;
+    PetscReal         *Y = f->Y, *Y0 = f->Y0, *Ys = f->Ys, *K1 = f->ev;
+    PetscReal         *acc;
+    PetscBLASInt       bm, info, one = 1;
+    { /* G = -Mm^-1 [K, Cm + (gamma / w) Kg] at this frequency */
+      PetscReal *Cv = f->Y0;
+      for (PetscInt i = 0; i < nk * nk; i++) Cv[i] = f->C[i] + h->gamma / w * f->Kg[i];
+      PetscCall(JRGemm("N", "N", nk, nk, nk, -1.0, f->Mi, nk, f->K, nk, 0.0, f->G, nk));
+      PetscCall(JRGemm("N", "N", nk, nk, nk, -1.0, f->Mi, nk, Cv, nk, 0.0, f->G + nk * nk, nk));
+    }
+    PetscCall(VecGetArrayRead(a, &x));
+    PointMotion(h, w, x);
+    PetscCall(VecRestoreArrayRead(a, &x));
+    PetscCall(PetscMalloc1(m * m, &acc));
+    PetscCall(PetscArrayzero(Y, m * m));
+    for (PetscInt i = 0; i < m; i++) Y[i + i * m] = 1.0;
+    for (PetscInt j = 0; j < ns; j++) {
+      /* the committed slips of step j: rows 2 nk .. */
+      for (PetscInt c = 0; c < m; c++)
+        for (PetscInt e = 0; e < ne; e++) f->Wc[e + c * ne] = f->mem[e] < 0 ? 0.0 : Y[2 * nk + f->mem[e] + c * m];
+      PetscCall(PetscArraycpy(Y0, Y, m * m));
+      PetscCall(PetscArrayzero(acc, m * m));
+      for (PetscInt st = 0; st < 4; st++) { /* RK4 on (Q, P); the slip rows held */
+        const PetscInt  s  = 2 * j + (st == 0 ? 0 : st == 3 ? 2 : 1);
+        const PetscReal cw = st == 0 || st == 3 ? 1.0 : 2.0, cn = st == 2 ? 1.0 : 0.5;
+        PetscCall(Rhs(h, s, j, st == 0 ? Y0 : Ys, K1));
+        for (PetscInt c = 0; c < m; c++)
+          for (PetscInt i = 0; i < 2 * nk; i++) {
+            acc[i + c * m] += cw * K1[i + c * m];
+            if (st < 3) Ys[i + c * m] = Y0[i + c * m] + cn * dt * K1[i + c * m];
+          }
+      }
+      for (PetscInt c = 0; c < m; c++)
+        for (PetscInt i = 0; i < 2 * nk; i++) Y[i + c * m] = Y0[i + c * m] + dt / 6 * acc[i + c * m];
+      /* commit the slips at step j + 1: the return map's derivative from step j's committed slip */
+      if (ne) {
+        const PetscInt N2 = 2 * ns + 1;
+        PetscCall(JRGemm("N", "N", f->l, m, nk, 1.0, f->RS, f->l, Y, m, 0.0, f->DUV, f->l));
+        for (PetscInt e = 0; e < ne; e++) {
+          const PetscReal u = f->u[e * N2 + 2 * j + 2], wj = f->wn[e * (ns + 1) + j];
+          PetscReal       n, r;
+          PetscInt        side;
+          if (f->type[e] == 2) continue;
+          r    = Bound(f, e, f->v[e * N2 + 2 * j + 2], &n);
+          side = wj < u - r ? -1 : wj > u + r ? 1 : 0;
+          if (!side) continue;
+          {
+            const PetscReal drdv = f->type[e] == 1 && n > 0 && f->kt[e] > 0 ? f->mu[e] * f->kn[e] / f->kt[e] : 0.0;
+            for (PetscInt c = 0; c < m; c++) Y[2 * nk + f->mem[e] + c * m] = f->DUV[e + c * f->l] + (drdv != 0.0 ? (side < 0 ? -drdv : drdv) * f->DUV[f->srow[e] + c * f->l] : 0.0);
+          }
+        }
+      }
+    }
+    PetscCall(PetscFree(acc));
+    /* the multipliers */
+    PetscCall(PetscBLASIntCast(m, &bm));
+    if (m) {
+      PetscReal dummy;
+      PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &bm, Y, &bm, f->wr, f->wi, &dummy, &one, &dummy, &one, f->work, &f->lwork, &info));
+      PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK geev failed (info %d) at %g Hz", (int)info, (double)(w / (2 * PETSC_PI)));
+    }
+    for (PetscInt i = 0; i < m; i++) {
+      const PetscReal mod = PetscSqrtReal(f->wr[i] * f->wr[i] + f->wi[i] * f->wi[i]);
+      out[1 + i]          = mod > 0 ? PetscLogReal(mod) / T : PETSC_NINFINITY;
+      out[1 + m + i]      = PetscAtan2Real(f->wi[i], f->wr[i]) / T;
+    }
+    for (PetscInt i = 1; i < m; i++) { /* largest real part first */
+      const PetscReal r = out[1 + i], q = out[1 + m + i];
+      PetscInt        k = i - 1;
+      while (k >= 0 && out[1 + k] < r) {
+        out[2 + k]     = out[1 + k];
+        out[2 + m + k] = out[1 + m + k];
+        k--;
+      }
+      out[2 + k]     = r;
+      out[2 + m + k] = q;
+    }
+    out[0] = m ? out[1] : 0.0;
+  }
+  if (h->size > 1) PetscCallMPI(MPI_Bcast(out, (PetscMPIInt)(1 + 2 * m), MPIU_REAL, 0, h->comm));
+  *maxre = out[0];
+  if (re) PetscCall(PetscArraycpy(re, out + 1, m));
+  if (im) PetscCall(PetscArraycpy(im, out + 1 + m, m));
+  PetscCall(PetscFree(out));
+  PetscCall(PetscLogEventEnd(JR_HBMFloquetTime, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
