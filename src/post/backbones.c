@@ -39,21 +39,22 @@ PetscErrorCode JRPostCompareBackbones(JRPost post, JRNLModes n, JRNLModes r)
   MPI_Comm         comm = post->comm;
   const char      *base = post->base, *bn, *br;
   PetscInt         np, nc = 0;
-  const PetscReal *q, *w, *xi, *amp;
+  const PetscReal *q, *w, *xi;
   PetscReal        worstf = 0, worstd = 0, worstdr = 0, fn[2], dn[2], fr[2], dr[2], tn, tr;
   FILE            *fp = NULL;
   char             csv[PETSC_MAX_PATH_LEN + 32], tmp[PETSC_MAX_PATH_LEN + 48];
 
   PetscFunctionBeginUser;
-  PetscCall(JRNLModesGetBackbone(n, &np, &q, &w, &xi, &amp, NULL));
+  PetscCall(JRNLModesGetBackbone(n, &np, &q, &w, &xi, NULL, NULL));
   if (base[0]) {
     PetscCall(PetscSNPrintf(csv, sizeof(csv), "%s_nlmodes_compare.csv", base));
     PetscCall(JRFileOpenTemp(comm, csv, &fp, tmp, sizeof(tmp)));
     if (fp) fprintf(fp, "point,q,n2n_freq_hz,rom_freq_hz,freq_rel_diff,n2n_damping_ratio,rom_damping_ratio,damping_diff,damping_rel_diff,n2n_amp_1,rom_amp_1\n");
   }
   for (PetscInt k = 0; k < np; k++) {
-    PetscReal wr, xr, ar, f0, f1, d0, d1, ef, ed;
+    PetscReal wr, xr, ar, an, f0, f1, d0, d1, ef, ed;
     PetscBool in;
+    PetscCall(JRNLModesInterpolate(n, q[k], NULL, NULL, &an, &in)); /* response 1 at the point itself */
     PetscCall(JRNLModesInterpolate(r, q[k], &wr, &xr, &ar, &in));
     if (!in) continue; /* beyond the reduced backbone (an incomplete one) */
     f0 = w[k] / (2 * PETSC_PI);
@@ -67,7 +68,7 @@ PetscErrorCode JRPostCompareBackbones(JRPost post, JRNLModes n, JRNLModes r)
     worstdr = PetscMax(worstdr, PetscAbsReal(ed / d0));
     nc++;
     PetscCall(PetscPrintf(comm, "compare backbone point %" PetscInt_FMT " amplitude %.10e n2n_freq_hz %.10g rom_freq_hz %.10g freq_rel_diff %+.4e n2n_damping_ratio %.8e rom_damping_ratio %.8e damping_diff %+.4e\n", k, (double)q[k], (double)f0, (double)f1, (double)ef, (double)d0, (double)d1, (double)ed));
-    if (fp) fprintf(fp, "%" PetscInt_FMT ",%.12e,%.12g,%.12g,%.6e,%.10e,%.10e,%.6e,%.6e,%.10e,%.10e\n", k, (double)q[k], (double)f0, (double)f1, (double)ef, (double)d0, (double)d1, (double)ed, (double)(ed / d0), (double)amp[k], (double)ar);
+    if (fp) fprintf(fp, "%" PetscInt_FMT ",%.12e,%.12g,%.12g,%.6e,%.10e,%.10e,%.6e,%.6e,%.10e,%.10e\n", k, (double)q[k], (double)f0, (double)f1, (double)ef, (double)d0, (double)d1, (double)ed, (double)(ed / d0), (double)an, (double)ar);
   }
   PetscCall(Ranges(n, fn, dn));
   PetscCall(Ranges(r, fr, dr));
