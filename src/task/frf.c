@@ -113,7 +113,7 @@ static PetscErrorCode RunOptions(FRFRun *r)
     PetscCall(PetscOptionsString("-frf_output_file", "Output base name", "JRTaskFRF", r->base, r->base, sizeof(r->base), NULL));
     PetscCall(PetscOptionsBool("-frf_plot", "Draw the PNG plots", "JRTaskFRF", r->plot, &r->plot, NULL));
   }
-  if (r->compare || r->help) {
+  if (r->compare) {
     PetscCall(PetscOptionsBool("-compare_frf", "-task compare: the frequency-response curves of both models (-frf_force levels)", "JRTaskCompare", r->curves, &r->curves, NULL));
     PetscCall(PetscOptionsBool("-compare_nlmodes", "-task compare: the backbones of both models' nonlinear mode over the same amplitudes (-nlm_*), BASE_n2n_nlmodes.*, BASE_rom_nlmodes.*, BASE_nlmodes_compare.*", "JRTaskCompare", r->backbones, &r->backbones, NULL));
   }
