@@ -428,7 +428,7 @@ static PetscErrorCode Solve(FRFRun *r)
 
   PetscFunctionBeginUser;
   if (r->nlmodes) {
-    PetscCall(JRTaskNLModesSolve(r->nlm, r->hbmc));
+    PetscCall(JRTaskNLModesSolve(comm, r->nlm, r->hbmc));
     PetscFunctionReturn(0);
   }
   if (r->compare && !r->curves) PetscFunctionReturn(0);
@@ -459,19 +459,16 @@ static PetscErrorCode Solve(FRFRun *r)
    comparison (after the curves and their check by time integration: the harmonic balances become autonomous) */
 static PetscErrorCode Backbones(FRFRun *r)
 {
-  MPI_Comm    comm = r->comm;
-  PetscReal   amin, amax;
-  const char *cinfo;
+  MPI_Comm  comm = r->comm;
+  PetscReal amin, amax;
 
   PetscFunctionBeginUser;
   PetscCall(PetscPrintf(comm, "compare: node-to-node model, nonlinear mode\n"));
-  PetscCall(JRTaskNLModesSolve(r->nlm, r->hbm));
+  PetscCall(JRTaskNLModesSolve(comm, r->nlm, r->hbm));
   PetscCall(JRNLModesGetRange(r->nlm, &amin, &amax));
   PetscCall(JRNLModesSetRange(r->nlmr, amin, amax));
   PetscCall(PetscPrintf(comm, "compare: reduced model, nonlinear mode\n"));
-  PetscCall(JRHBMGetSolveSize(r->hbmr, NULL, &cinfo));
-  if (cinfo[0]) PetscCall(PetscPrintf(comm, "compare: the reduced model's backbone in its modal unknowns (the EPMC normalises the mode there), not %s\n", cinfo));
-  PetscCall(JRTaskNLModesSolve(r->nlmr, r->hbmr));
+  PetscCall(JRTaskNLModesSolve(comm, r->nlmr, r->hbmr));
   PetscCall(JRPostCompareBackbones(r->post, r->nlm, r->nlmr));
   PetscFunctionReturn(0);
 }

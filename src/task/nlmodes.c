@@ -14,9 +14,13 @@
 #include <jointrom/private/taskimpl.h>
 
 /* The backbone on hbm: solved, written, summarised (the frequency and damping ranges and the solve time) */
-PetscErrorCode JRTaskNLModesSolve(JRNLModes nlm, JRHBM hbm)
+PetscErrorCode JRTaskNLModesSolve(MPI_Comm comm, JRNLModes nlm, JRHBM hbm)
 {
+  const char *cinfo;
+
   PetscFunctionBeginUser;
+  PetscCall(JRHBMGetSolveSize(hbm, NULL, &cinfo));
+  if (cinfo[0]) PetscCall(PetscPrintf(comm, "nlmodes: the reduced model's backbone in its modal unknowns (the EPMC normalises the mode there), not %s\n", cinfo));
   PetscCall(JRNLModesSetHBM(nlm, hbm));
   PetscCall(PetscLogStagePush(JR_StageSolve));
   PetscCall(JRNLModesSetUp(nlm));

@@ -8,7 +8,7 @@
    or, with nlmodes, in the backbone of a nonlinear mode */
 PETSC_INTERN PetscErrorCode JRTaskFRFPipeline(MPI_Comm, PetscBool);
 /* src/task/nlmodes.c: the backbone on the pipeline's harmonic balance, its outputs and summary */
-PETSC_INTERN PetscErrorCode JRTaskNLModesSolve(JRNLModes, JRHBM);
+PETSC_INTERN PetscErrorCode JRTaskNLModesSolve(MPI_Comm, JRNLModes, JRHBM);
 PETSC_INTERN PetscErrorCode JRTaskNLModesCheckComplete(MPI_Comm, JRNLModes);
 
 #endif
