@@ -76,6 +76,7 @@ PETSC_EXTERN PetscErrorCode JRHBMGetDampingDescription(JRHBM, const char **);
 PETSC_EXTERN PetscErrorCode JRHBMView(JRHBM, PetscViewer);
 PETSC_EXTERN PetscErrorCode JRHBMDestroy(JRHBM *);
 /* the extended periodic motion concept's autonomous system (src/hbm/epmc.c): unknowns [a | w | xi] */
+PETSC_EXTERN PetscErrorCode JRHBMCheckEPMC(JRHBM);
 PETSC_EXTERN PetscErrorCode JRHBMSetEPMC(JRHBM, PetscInt, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMGetEPMCMode(JRHBM, PetscReal *, const PetscReal **, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMComputeEPMC(JRHBM, PetscReal, Vec, Vec, Mat);

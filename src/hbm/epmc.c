@@ -14,14 +14,23 @@
 /*
   JRHBMSetEPMC - the harmonic balance becomes the EPMC's autonomous system of the k-th stuck mode of the basis (0-based
   in JRHBMStickFrequencies' order): no excitation, JRHBMComputeEPMC gives its residual and Jacobian. omega: the
-  stuck mode's circular frequency [rad/s] (may be NULL). A condensed reduced model (-hbm_condense) is not supported:
-  its unknowns are the joints' motions, not the modes the normalisation needs. Collective.
+  stuck mode's circular frequency [rad/s] (may be NULL). The EPMC's unknowns are the modal ones, which its
+  normalisation needs: a reduced model condensed onto its joints by -hbm_condense auto goes back to them (the same
+  equations; its later forced responses are not condensed either); -hbm_condense yes is an error. Collective.
 */
 PetscErrorCode JRHBMSetEPMC(JRHBM h, PetscInt k, PetscReal *omega)
 {
   PetscFunctionBeginUser;
   PetscCall(JRHBMSetUp(h));
-  PetscCheck(!h->cond, h->comm, PETSC_ERR_SUP, "Nonlinear modes (EPMC) need the modal unknowns: this reduced model is condensed onto its joints; add -hbm_condense no");
+  if (h->cond) PetscCall(JRHBMCheckEPMC(h));
+  if (h->cond) { /* back to the modal unknowns: the condensation's operators and the solver's sizes */
+    const JRElements *el;
+    h->condense = JR_HBM_CONDENSE_NO;
+    PetscCall(JRHBMGetElements(h, &el));
+    PetscCall(JRHBMCondenseSetUp(h, el));
+    PetscCall(JRHBMSetUpSolver(h));
+    PetscCall(PetscInfo(NULL, "EPMC: the reduced model's condensation onto its joints undone\n"));
+  }
   PetscCheck(k >= 0 && k < h->nm, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Nonlinear modes: stuck mode %" PetscInt_FMT " (0-based) of a basis of %" PetscInt_FMT, k, h->nm);
   PetscCall(PetscFree3(h->epsi, h->ep, h->ework));
   PetscCall(PetscMalloc3(h->nm, &h->epsi, h->nm, &h->ep, 2 * h->n + h->n * h->n, &h->ework));
@@ -41,6 +50,17 @@ PetscErrorCode JRHBMSetEPMC(JRHBM h, PetscInt k, PetscReal *omega)
   h->epmc  = PETSC_TRUE;
   h->emode = k;
   if (omega) *omega = h->eomega;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMCheckEPMC - whether the options read by JRHBMSetFromOptions allow the EPMC's system (JRHBMSetEPMC): an error
+  naming the option if not (-hbm_condense yes), so that a run can fail before any work
+*/
+PetscErrorCode JRHBMCheckEPMC(JRHBM h)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(h->condense != JR_HBM_CONDENSE_YES, h->comm, PETSC_ERR_ARG_INCOMP, "-hbm_condense yes: nonlinear modes (EPMC) need the modal unknowns, not the joints' motions; leave -hbm_condense auto (or no)");
   PetscFunctionReturn(0);
 }
 

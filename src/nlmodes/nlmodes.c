@@ -84,6 +84,46 @@ PetscErrorCode JRNLModesGetOutputBase(JRNLModes m, const char **base)
   PetscFunctionReturn(0);
 }
 
+/* The output base name ("" for none) and whether to draw BASE.png, set in code after JRNLModesSetFromOptions (-task
+   compare names both models' files from -frf_output_file) */
+PetscErrorCode JRNLModesSetOutput(JRNLModes m, const char base[], PetscBool plot)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(m->out, base ? base : "", sizeof(m->out)));
+  m->plot = plot;
+  PetscFunctionReturn(0);
+}
+
+/* A prefix put before "nlm_" on the correctors' options (-<prefix>nlm_snes_*), as JRHBMSetOptionsPrefix does for the
+   harmonic balance: -task compare gives the reduced model's "rom_"; the -nlm_* options themselves are shared */
+PetscErrorCode JRNLModesSetOptionsPrefix(JRNLModes m, const char prefix[])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!m->setupcalled, m->comm, PETSC_ERR_ARG_WRONGSTATE, "JRNLModesSetOptionsPrefix() before JRNLModesSetUp()");
+  PetscCall(PetscStrncpy(m->prefix, prefix ? prefix : "", sizeof(m->prefix)));
+  PetscFunctionReturn(0);
+}
+
+/* The modal amplitude range [m kg^1/2] (as -nlm_amp_min, -nlm_amp_max; 0: the default from the elements), e.g. another
+   backbone's, so that two models are followed over the same amplitudes */
+PetscErrorCode JRNLModesSetRange(JRNLModes m, PetscReal amin, PetscReal amax)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(amin >= 0 && amax >= 0 && (!(amin > 0 && amax > 0) || amax > amin), m->comm, PETSC_ERR_ARG_OUTOFRANGE, "Nonlinear modes: amplitude range %g .. %g: positive and increasing", (double)amin, (double)amax);
+  m->amin = amin;
+  m->amax = amax;
+  PetscFunctionReturn(0);
+}
+
+/* The modal amplitude range [m kg^1/2]: after JRNLModesSetUp, the one followed (the default filled in) */
+PetscErrorCode JRNLModesGetRange(JRNLModes m, PetscReal *amin, PetscReal *amax)
+{
+  PetscFunctionBeginUser;
+  if (amin) *amin = m->amin;
+  if (amax) *amax = m->amax;
+  PetscFunctionReturn(0);
+}
+
 /* y (scaled) -> x = [q y_a | w0 y_w | w0 y_xi] */
 static PetscErrorCode Unscale(JRNLModes m, Vec y, Vec x)
 {
@@ -273,7 +313,8 @@ PetscErrorCode JRNLModesSetUp(JRNLModes m)
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, m->n, &m->a));
   PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, m->N, m->N, NULL, &m->J));
   PetscCall(SNESCreate(PETSC_COMM_SELF, &m->snes));
-  PetscCall(SNESSetOptionsPrefix(m->snes, "nlm_"));
+  PetscCall(SNESSetOptionsPrefix(m->snes, m->prefix));
+  PetscCall(SNESAppendOptionsPrefix(m->snes, "nlm_"));
   PetscCall(SNESSetFunction(m->snes, m->f, FormFunction, m));
   PetscCall(SNESSetJacobian(m->snes, m->J, m->J, FormJacobian, m));
   PetscCall(SNESSetType(m->snes, SNESNEWTONDENSE));
@@ -287,7 +328,8 @@ PetscErrorCode JRNLModesSetUp(JRNLModes m)
     PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, m->N + 1, m->N + 1, NULL, &m->Ja));
     PetscCall(PetscCalloc2(m->N + 1, &m->zp, m->N + 1, &m->tz));
     PetscCall(SNESCreate(PETSC_COMM_SELF, &m->snesa));
-    PetscCall(SNESSetOptionsPrefix(m->snesa, "nlm_"));
+    PetscCall(SNESSetOptionsPrefix(m->snesa, m->prefix));
+    PetscCall(SNESAppendOptionsPrefix(m->snesa, "nlm_"));
     PetscCall(SNESSetFunction(m->snesa, m->fz, FormFunctionArc, m));
     PetscCall(SNESSetJacobian(m->snesa, m->Ja, m->Ja, FormJacobianArc, m));
     PetscCall(SNESSetType(m->snesa, SNESNEWTONDENSE));
@@ -586,6 +628,40 @@ PetscErrorCode JRNLModesGetStats(JRNLModes m, PetscReal *seconds, PetscInt *newt
   if (seconds) *seconds = m->seconds;
   if (newton) *newton = m->newton;
   if (complete) *complete = m->complete;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRNLModesInterpolate - the backbone at the modal amplitude q: omega [rad/s], xi [1/s] and the first-harmonic
+  amplitude of response 1 [m] (any may be NULL), linear in log q between the two points around q (the first such
+  pair along the backbone); inside: false (and nothing set) when q lies outside the computed points' range
+*/
+PetscErrorCode JRNLModesInterpolate(JRNLModes m, PetscReal q, PetscReal *omega, PetscReal *xi, PetscReal *amp1, PetscBool *inside)
+{
+  const PetscReal tol = 1e-12;
+
+  PetscFunctionBeginUser;
+  *inside = PETSC_FALSE;
+  if (!m->np || !(q > 0)) PetscFunctionReturn(0);
+  for (PetscInt k = 0; k < m->np; k++) {
+    PetscReal t;
+    PetscInt  j = k;
+    if (k + 1 < m->np) {
+      const PetscReal lo = PetscMin(m->qs[k], m->qs[k + 1]), hi = PetscMax(m->qs[k], m->qs[k + 1]);
+      if (q < lo * (1 - tol) || q > hi * (1 + tol)) continue;
+      t = hi > lo ? (PetscLogReal(q) - PetscLogReal(m->qs[k])) / (PetscLogReal(m->qs[k + 1]) - PetscLogReal(m->qs[k])) : 0;
+      t = PetscMin(1, PetscMax(0, t));
+      j = k + 1;
+    } else {
+      if (PetscAbsReal(q / m->qs[k] - 1) > tol) continue; /* a backbone of one point */
+      t = 0;
+    }
+    if (omega) *omega = m->omega[k] + t * (m->omega[j] - m->omega[k]);
+    if (xi) *xi = m->xi[k] + t * (m->xi[j] - m->xi[k]);
+    if (amp1) *amp1 = m->amp[k * m->nout] + t * (m->amp[j * m->nout] - m->amp[k * m->nout]);
+    *inside = PETSC_TRUE;
+    break;
+  }
   PetscFunctionReturn(0);
 }
 

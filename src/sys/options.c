@@ -15,7 +15,7 @@ extern const char *const JROptionNames[];     /* generated from the sources by s
 extern const char *const JROptionValued[][2]; /* the options that take a value: name, what the value is */
 
 /* jointrom's option groups, checked before the work; a nested solver's options inside them are read later */
-static const char *const Groups[]  = {"task", "model_", "preload_", "interface_", "modes_", "rom_", "hbm_", "cont_", "frf_verify_", "frf_", "element_", "nlm_", NULL};
+static const char *const Groups[]  = {"task", "model_", "preload_", "interface_", "modes_", "rom_", "hbm_", "cont_", "frf_verify_", "frf_", "element_", "nlm_", "compare_", NULL};
 static const char *const Nested[]  = {"snes_", "ksp_", "ts_", "pc_", "eps_", "st_", "tao_", "bv_", "ds_", "rg_", "fn_", "mat_", "vec_", "dm_", "petsc", "mg_", "sub_", NULL};
 static const char *const Viewers[] = {"view", "monitor", "converged_reason", "draw", NULL};
 
@@ -66,9 +66,12 @@ static PetscBool Ours(const char *name)
 {
   for (PetscInt g = 0; Groups[g]; g++) {
     const size_t l = strlen(Groups[g]);
+    const char  *rest;
     if (strncmp(name, Groups[g], l)) continue;
+    rest = name + l;
+    if (!strncmp(rest, "hbm_", 4) || !strncmp(rest, "nlm_", 4)) rest += 4; /* a solver's own prefix after its owner's: rom_nlm_snes_ */
     for (PetscInt k = 0; Nested[k]; k++)
-      if (!strncmp(name + l, Nested[k], strlen(Nested[k]))) return PETSC_FALSE;
+      if (!strncmp(rest, Nested[k], strlen(Nested[k]))) return PETSC_FALSE;
     for (PetscInt k = 0; Viewers[k]; k++)
       if (strstr(name + l, Viewers[k]) && strcmp(name + l, "view") && !Known(name - 1)) return PETSC_FALSE;
     return PETSC_TRUE;

@@ -80,7 +80,8 @@ static PetscErrorCode Curves(MPI_Comm comm, JRPost post, JRHBM hbm, const char b
 typedef struct {
   MPI_Comm           comm;
   PetscBool          nlmodes;         /* -task nlmodes: the backbone of a nonlinear mode instead of the curves */
-  JRNLModes          nlm;
+  PetscBool          curves, backbones; /* -task compare: -compare_frf, -compare_nlmodes */
+  JRNLModes          nlm, nlmr;       /* the backbone (-task nlmodes; -task compare: node-to-node's), the reduced model's */
   PetscBool          compare, help, fe, n2n, isrom, loaded, joints, stickfe, plot, set, oset;
   JRModel            model;
   JRPreload          pre;
@@ -112,8 +113,13 @@ static PetscErrorCode RunOptions(FRFRun *r)
     PetscCall(PetscOptionsString("-frf_output_file", "Output base name", "JRTaskFRF", r->base, r->base, sizeof(r->base), NULL));
     PetscCall(PetscOptionsBool("-frf_plot", "Draw the PNG plots", "JRTaskFRF", r->plot, &r->plot, NULL));
   }
+  if (r->compare) {
+    PetscCall(PetscOptionsBool("-compare_frf", "-task compare: the frequency-response curves of both models (-frf_force levels)", "JRTaskCompare", r->curves, &r->curves, NULL));
+    PetscCall(PetscOptionsBool("-compare_nlmodes", "-task compare: the backbones of both models' nonlinear mode over the same amplitudes (-nlm_*), BASE_n2n_nlmodes.*, BASE_rom_nlmodes.*, BASE_nlmodes_compare.*", "JRTaskCompare", r->backbones, &r->backbones, NULL));
+  }
   if (r->fe || r->help) PetscCall(PetscOptionsBool("-frf_stick_fe", "Also the natural frequencies of the whole FE model with every element stuck (SLEPc): the modal truncation error", "JRTaskFRF", r->stickfe, &r->stickfe, NULL));
   PetscOptionsEnd();
+  PetscCheck(r->help || r->curves || r->backbones, comm, PETSC_ERR_ARG_WRONG, "-task compare -compare_frf 0: nothing to compare; add -compare_nlmodes (the backbones)");
   PetscCheck(r->help || r->fe || !r->compare, comm, PETSC_ERR_ARG_WRONG, "-task compare needs an FE model with a contact interface (-model_type brb, lap1, lap3, lap, gmsh)");
   if (r->fe || r->help) {
     PetscBool d, o;
@@ -128,6 +134,29 @@ static PetscErrorCode RunOptions(FRFRun *r)
     PetscCall(PetscOptionsHasName(NULL, NULL, "-frf_output", &o));
     PetscCheck(r->help || !r->fe || (!d && !o), comm, PETSC_ERR_ARG_INCOMP, "%s: on an FE model the DOF numbers depend on the partition; give points instead: -frf_at x,y,z and -frf_output_at x,y,z,... [m] with -frf_dir x|y|z", d ? "-frf_dof" : "-frf_output");
   }
+  PetscFunctionReturn(0);
+}
+
+/* -task compare -compare_nlmodes: the two backbones' options (-nlm_*, shared; the reduced model's correctors
+   -rom_nlm_snes_*), their files named after -frf_output_file BASE: BASE_n2n_nlmodes.*, BASE_rom_nlmodes.* (their PNG
+   is the comparison's) */
+static PetscErrorCode BackboneOptions(FRFRun *r)
+{
+  char      b[PETSC_MAX_PATH_LEN + 16];
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRNLModesCreate(r->comm, &r->nlm));
+  PetscCall(JRNLModesSetFromOptions(r->nlm));
+  PetscCall(JRNLModesCreate(r->comm, &r->nlmr));
+  PetscCall(JRNLModesSetOptionsPrefix(r->nlmr, "rom_"));
+  PetscCall(JRNLModesSetFromOptions(r->nlmr));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-nlm_output_file", &set));
+  PetscCheck(r->help || !set, r->comm, PETSC_ERR_ARG_INCOMP, "-task compare -compare_nlmodes names the backbones' files after -frf_output_file BASE (BASE_n2n_nlmodes.*, BASE_rom_nlmodes.*): drop -nlm_output_file");
+  PetscCall(PetscSNPrintf(b, sizeof(b), "%s%s", r->base, r->base[0] ? "_n2n_nlmodes" : ""));
+  PetscCall(JRNLModesSetOutput(r->nlm, b, PETSC_FALSE));
+  PetscCall(PetscSNPrintf(b, sizeof(b), "%s%s", r->base, r->base[0] ? "_rom_nlmodes" : ""));
+  PetscCall(JRNLModesSetOutput(r->nlmr, b, PETSC_FALSE));
   PetscFunctionReturn(0);
 }
 
@@ -153,6 +182,7 @@ static PetscErrorCode SetFromOptions(FRFRun *r)
     PetscCall(PetscStrncpy(r->base, base, sizeof(r->base)));
   }
   PetscCall(RunOptions(r));
+  if (r->compare && (r->backbones || r->help)) PetscCall(BackboneOptions(r));
   if (r->fe || r->help) {
     PetscCall(JRPreloadCreate(comm, &r->pre));
     PetscCall(JRPreloadSetModel(r->pre, r->model));
@@ -170,6 +200,7 @@ static PetscErrorCode SetFromOptions(FRFRun *r)
   PetscCall(JRHBMCreate(comm, &r->hbm));
   if (r->fe) PetscCall(JRHBMSetBasis(r->hbm, JR_HBM_BASIS_MIXED)); /* stuck + free-interface modes: -hbm_basis free for the thesis's */
   PetscCall(JRHBMSetFromOptions(r->hbm));
+  if ((r->nlmodes || r->backbones) && !r->help) PetscCall(JRHBMCheckEPMC(r->hbm)); /* the reduced model's reads the same */
   { /* the continuation's options (-cont_*, -frf_force, the range): the case of a reduced model */
     JRCont    c;
     PetscInt  nl;
@@ -400,6 +431,7 @@ static PetscErrorCode Solve(FRFRun *r)
     PetscCall(JRTaskNLModesSolve(comm, r->nlm, r->hbmc));
     PetscFunctionReturn(0);
   }
+  if (r->compare && !r->curves) PetscFunctionReturn(0);
   if (r->compare) {
     char bn[PETSC_MAX_PATH_LEN + 8], br[PETSC_MAX_PATH_LEN + 8];
     PetscCall(PetscSNPrintf(bn, sizeof(bn), "%s%s", r->base, r->base[0] ? "_n2n" : ""));
@@ -420,6 +452,24 @@ static PetscErrorCode Solve(FRFRun *r)
     PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) %.4g s\n", (double)r->tn));
     r->contc = r->isrom ? r->contr : r->cont;
   }
+  PetscFunctionReturn(0);
+}
+
+/* -task compare -compare_nlmodes: the node-to-node backbone, the reduced model's over the same amplitudes, their
+   comparison (after the curves and their check by time integration: the harmonic balances become autonomous) */
+static PetscErrorCode Backbones(FRFRun *r)
+{
+  MPI_Comm  comm = r->comm;
+  PetscReal amin, amax;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscPrintf(comm, "compare: node-to-node model, nonlinear mode\n"));
+  PetscCall(JRTaskNLModesSolve(comm, r->nlm, r->hbm));
+  PetscCall(JRNLModesGetRange(r->nlm, &amin, &amax));
+  PetscCall(JRNLModesSetRange(r->nlmr, amin, amax));
+  PetscCall(PetscPrintf(comm, "compare: reduced model, nonlinear mode\n"));
+  PetscCall(JRTaskNLModesSolve(comm, r->nlmr, r->hbmr));
+  PetscCall(JRPostCompareBackbones(r->post, r->nlm, r->nlmr));
   PetscFunctionReturn(0);
 }
 
@@ -477,6 +527,7 @@ static PetscErrorCode Destroy(FRFRun *r)
   PetscFunctionBeginUser;
   PetscCall(JRVerifyDestroy(&r->ver));
   PetscCall(JRNLModesDestroy(&r->nlm));
+  PetscCall(JRNLModesDestroy(&r->nlmr));
   PetscCall(JRContDestroy(&r->contr));
   PetscCall(JRContDestroy(&r->cont));
   PetscCall(JRHBMDestroy(&r->hbmr));
@@ -504,6 +555,7 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare, PetscBool nlmodes)
   r.compare = compare;
   r.nlmodes = nlmodes;
   r.plot    = PETSC_TRUE;
+  r.curves  = PETSC_TRUE;
   r.dir     = 2;
   r.nd      = 3;
   r.no      = 63;
@@ -520,10 +572,13 @@ static PetscErrorCode FRF(MPI_Comm comm, PetscBool compare, PetscBool nlmodes)
   PetscCall(SetUpModels(&r));
   PetscCall(ViewBasis(&r));
   PetscCall(Solve(&r));
-  if (r.ver) PetscCall(JRVerifyCurves(r.ver, r.hbmc, r.contc));
+  if (r.ver && r.contc) PetscCall(JRVerifyCurves(r.ver, r.hbmc, r.contc));
+  if (r.backbones) PetscCall(Backbones(&r));
   PetscCall(Report(&r));
-  if (r.cont) PetscCall(JRContCheckComplete(r.cont)); /* an incomplete curve: an error once everything is written */
+  if (r.cont) PetscCall(JRContCheckComplete(r.cont)); /* an incomplete curve or backbone: an error once everything is written */
   if (r.contr) PetscCall(JRContCheckComplete(r.contr));
+  if (r.nlm) PetscCall(JRTaskNLModesCheckComplete(comm, r.nlm));
+  if (r.nlmr) PetscCall(JRTaskNLModesCheckComplete(comm, r.nlmr));
   PetscCall(Destroy(&r));
   PetscFunctionReturn(0);
 }
@@ -538,7 +593,9 @@ PetscErrorCode JRTaskFRF(MPI_Comm comm)
 /*
   -task compare: node-to-node and reduced model of one case in one run, sharing the FE model, preload and modes:
   FRF overlays per level (BASE_compare.png), BASE_compare.csv, and per level
-  "compare level <F> n2n_freq_hz <f> rom_freq_hz <f> n2n_amp <a> rom_amp <a> n2n_s <t> rom_s <t>".
+  "compare level <F> n2n_freq_hz <f> rom_freq_hz <f> n2n_amp <a> rom_amp <a> n2n_s <t> rom_s <t>"; with
+  -compare_nlmodes also both backbones over the same amplitudes (BASE_nlmodes_compare.csv, .png, "compare backbone"
+  lines; JRPostCompareBackbones), and with -compare_frf 0 the backbones alone.
 */
 PetscErrorCode JRTaskCompare(MPI_Comm comm)
 {

@@ -15,6 +15,7 @@ struct _p_JRNLModes {
   PetscReal   dmax;             /* -nlm_step_max: the largest step in log10 q between solves */
   PetscInt    maxcuts;          /* -nlm_max_cuts: step halvings before the backbone stops */
   char        out[PETSC_MAX_PATH_LEN]; /* -nlm_output_file */
+  char        prefix[64];       /* JRNLModesSetOptionsPrefix(): before nlm_ on the correctors' options */
   PetscInt    n, N, nout;       /* harmonic unknowns, with w and xi, responses */
   PetscReal   w0, xi0;          /* the stuck mode: circular frequency, linear equivalent damping [1/s] */
   PetscReal   q;                /* the modal amplitude the SNES solves at */

@@ -9,5 +9,6 @@
 PETSC_INTERN PetscErrorCode JRTaskFRFPipeline(MPI_Comm, PetscBool);
 /* src/task/nlmodes.c: the backbone on the pipeline's harmonic balance, its outputs and summary */
 PETSC_INTERN PetscErrorCode JRTaskNLModesSolve(MPI_Comm, JRNLModes, JRHBM);
+PETSC_INTERN PetscErrorCode JRTaskNLModesCheckComplete(MPI_Comm, JRNLModes);
 
 #endif
