@@ -2,7 +2,7 @@
    JRReduce: the reduced-order joints, the whole of both reductions (thesis 4.1-4.5, 5.2-5.5; options prefix rom_).
 
      JRReduceCreate -> JRReduceSetFromOptions -> JRReduceSetCase / JRReduceSetExcitation / JRReduceSetOutput
-       -> JRReduceAssignJoints (the first reduction's regions, on the node-to-node elements)
+       -> JRReduceAssignJoints (the first reduction's regions, on the node-to-node elements: src/reduce/joints.c)
        -> JRReduceSetUp (the mode of interest, the members' weights and the case, the fit weights' selection, the
           second reduction's fit: src/reduce/fit.c) -> JRReduceCreateHBM (the reduced model's harmonic balance, with
           the stiffness correction) -> JRReduceSave -> JRReduceDestroy
@@ -10,319 +10,6 @@
 */
 #include <jointrom/private/reduceimpl.h>
 #include <jointrom/private/modelimpl.h>
-
-/*
-  First reduction, joints from regions (options prefix rom_): -rom_joints
-    none     node-to-node (default)
-    each     every element its own joint: the node-to-node model again (a check)
-    strips   cuts -rom_strips x1,x2,... [m] along the beam axis
-    bolts    one joint per bolt: cuts midway between neighbouring bolts (thesis Fig 4.13: the 3-joint BRB)
-    between  cuts at the bolts' axes: the outer side of each end bolt and the spans between bolts (Fig 4.15: the
-             4-joint BRB; Fig 5.25: the 2-joint single bolt, cut at its axis of symmetry)
-    sides    each side of each bolt (cuts at the axes and midway: Fig 4.17, the 6-joint BRB)
-    zones    each side of each bolt split by normal load (thesis 5.2.2, Fig 5.29, 5.61: 4 joints per bolt): a
-             high-load zone (members with n0 >= -rom_zone_fraction, default 0.5, of the largest n0 of that side)
-             and a low-load zone (the rest, gaps included)
-    boxes    boxes -rom_boxes x0,x1,y0,y1, x0,x1,y0,y1, ... [m], one joint each: every element must lie in exactly
-             one box
-    auto     from the normal load at rest: every element belongs to its nearest bolt (in the interface's plane) and
-             to a ring around it by load level, -rom_auto_rings k rings per bolt (default 2) whose radii split the
-             bolt's load into k equal parts (the innermost ring carries the first 1/k of it; the outermost also holds
-             every member beyond, gaps included); each ring is cut at the bolt's axis into its two sides: 2k joints
-             per bolt. The inner half of the rings are the high-load joints.
-  and -rom_split_width splits every strip-type region at mid-width. Each region must hold elements (else an error
-  naming it); its members move with the average of their relative motions (4.4).
-*/
-static const char *const JointKinds[] = {"none", "each", "strips", "bolts", "between", "sides", "zones", "boxes", "auto"};
-/* what a region of each kind is, in the joints' report: the regions between the cuts along the beam axis */
-static const char *const RegionWords[] = {"", "element", "strip", "bolt region", "span", "bolt side", "bolt side", "box", "ring"};
-
-/* -rom_joints boxes: element e in the one box that holds its pair's point; *nreg boxes, cnt[] their members */
-static PetscErrorCode AssignBoxes(JRReduce o, const JRPairs *P, JRElements *el, const PetscInt pair[], PetscInt *nreg, PetscInt **cnt)
-{
-  MPI_Comm         comm = o->comm;
-  const PetscReal *box  = o->box;
-  const PetscInt   nb   = o->nbox / 4;
-
-  PetscFunctionBeginUser;
-  PetscCheck(o->nbox >= 4 && o->nbox % 4 == 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes needs x0,x1,y0,y1 per joint [m], got %" PetscInt_FMT " values", o->nbox);
-  for (PetscInt b = 0; b < nb; b++) PetscCheck(box[4 * b + 1] > box[4 * b] && box[4 * b + 3] > box[4 * b + 2], comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: box %" PetscInt_FMT " (%g..%g, %g..%g m) is empty: x0 < x1 and y0 < y1", b, (double)box[4 * b], (double)box[4 * b + 1], (double)box[4 * b + 2], (double)box[4 * b + 3]);
-  PetscCall(PetscCalloc1(nb, cnt));
-  for (PetscInt e = 0; e < el->n; e++) {
-    const PetscReal *x  = P->x + 3 * pair[e];
-    PetscInt         in = -1;
-    for (PetscInt b = 0; b < nb; b++) {
-      if (!(x[0] >= box[4 * b] && x[0] <= box[4 * b + 1] && x[1] >= box[4 * b + 2] && x[1] <= box[4 * b + 3])) continue;
-      PetscCheck(in < 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: the element at (%g, %g) m lies in box %" PetscInt_FMT " and in box %" PetscInt_FMT ": the regions overlap", (double)x[0], (double)x[1], in, b);
-      in = b;
-    }
-    PetscCheck(in >= 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: the element at (%g, %g) m lies in no box: every element must belong to a region", (double)x[0], (double)x[1]);
-    el->joint[e] = in;
-    (*cnt)[in]++;
-  }
-  for (PetscInt b = 0; b < nb; b++) PetscCheck((*cnt)[b] > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_boxes: box %" PetscInt_FMT " (%g..%g, %g..%g m) holds no element: an empty joint", b, (double)box[4 * b], (double)box[4 * b + 1], (double)box[4 * b + 2], (double)box[4 * b + 3]);
-  *nreg = nb;
-  PetscCall(PetscCalloc1(nb, &o->ji));
-  for (PetscInt b = 0; b < nb; b++) {
-    o->ji[b].zone = -1;
-    PetscCall(PetscSNPrintf(o->ji[b].kind, sizeof(o->ji[b].kind), "box %g..%g, %g..%g m", (double)box[4 * b], (double)box[4 * b + 1], (double)box[4 * b + 2], (double)box[4 * b + 3]));
-  }
-  PetscFunctionReturn(0);
-}
-
-/* -rom_joints auto: rings of equal load around each bolt, each cut at the bolt's axis (the members sorted by their
-   distance from their nearest bolt, ties by index, so every rank assigns the same) */
-static PetscErrorCode AssignAuto(JRReduce o, JRModel model, const JRPairs *P, JRElements *el, const PetscInt pair[], PetscInt *nreg, PetscInt **cnt)
-{
-  MPI_Comm       comm = o->comm;
-  const PetscInt k    = o->rings;
-  const JRBolts *B;
-  PetscInt      *bolt, *ord, *bx, nb;
-  PetscReal     *rad, *ltot, lsum = 0;
-
-  PetscFunctionBeginUser;
-  PetscCall(JRModelGetBolts(model, &B));
-  PetscCheck(B && B->n > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints auto needs a model with bolts");
-  nb = B->n;
-  PetscCall(PetscMalloc5(el->n, &bolt, el->n, &ord, el->n, &rad, nb, &ltot, nb, &bx));
-  for (PetscInt b = 0; b < nb; b++) bx[b] = b; /* the bolts in order of x */
-  for (PetscInt b = 1; b < nb; b++)
-    for (PetscInt c = b; c > 0 && B->x[3 * bx[c]] < B->x[3 * bx[c - 1]]; c--) {
-      const PetscInt t = bx[c];
-      bx[c]            = bx[c - 1];
-      bx[c - 1]        = t;
-    }
-  for (PetscInt b = 0; b < nb; b++) ltot[b] = 0;
-  for (PetscInt e = 0; e < el->n; e++) {
-    const PetscReal *x = P->x + 3 * pair[e];
-    bolt[e]            = -1;
-    for (PetscInt b = 0; b < nb; b++) {
-      const PetscReal *xb = B->x + 3 * bx[b], d = PetscSqrtReal(PetscSqr(x[0] - xb[0]) + PetscSqr(x[1] - xb[1]));
-      if (bolt[e] < 0 || d < rad[e]) {
-        bolt[e] = b;
-        rad[e]  = d;
-      }
-    }
-    ord[e] = e;
-    if (el->n0[e] > 0) ltot[bolt[e]] += el->n0[e];
-  }
-  for (PetscInt a = 1; a < el->n; a++) /* by bolt, then distance, then index (insertion sort: stable) */
-    for (PetscInt c = a; c > 0; c--) {
-      const PetscInt i = ord[c], j = ord[c - 1];
-      if (!(bolt[i] < bolt[j] || (bolt[i] == bolt[j] && rad[i] < rad[j]))) break;
-      ord[c]     = j;
-      ord[c - 1] = i;
-    }
-  for (PetscInt a = 0, b = -1, ring = 0; a < el->n; a++) {
-    const PetscInt   e = ord[a];
-    const PetscReal *x = P->x + 3 * pair[e];
-    if (bolt[e] != b) {
-      b    = bolt[e];
-      ring = 0;
-      lsum = 0;
-    }
-    /* the ring: the first whose share of the bolt's load is not yet filled when this member's load is counted */
-    if (el->n0[e] > 0) lsum += el->n0[e];
-    while (ring < k - 1 && lsum > (ring + 1) * ltot[b] / k * (1 + 1e-12)) ring++;
-    el->joint[e] = (2 * b + (x[0] < B->x[3 * bx[b]] ? 0 : 1)) * k + ring;
-  }
-  *nreg = 2 * nb * k;
-  PetscCall(PetscCalloc1(*nreg, cnt));
-  for (PetscInt e = 0; e < el->n; e++) (*cnt)[el->joint[e]]++;
-  PetscCall(PetscCalloc1(*nreg, &o->ji));
-  for (PetscInt r = 0; r < *nreg; r++) {
-    const PetscInt b = r / (2 * k), side = (r / k) % 2, ring = r % k;
-    o->ji[r].zone    = k > 1 ? (2 * ring < k ? 1 : 0) : -1;
-    PetscCall(PetscSNPrintf(o->ji[r].kind, sizeof(o->ji[r].kind), "ring %" PetscInt_FMT " of %" PetscInt_FMT " of bolt %" PetscInt_FMT ", %s side%s", ring + 1, k, b + 1, side ? "+x" : "-x", k > 1 ? (2 * ring < k ? ", high-load" : ", low-load") : ""));
-    PetscCheck((*cnt)[r] > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints auto: %s holds no element: an empty joint (fewer -rom_auto_rings)", o->ji[r].kind);
-  }
-  PetscCall(PetscFree5(bolt, ord, rad, ltot, bx));
-  PetscFunctionReturn(0);
-}
-
-/* The cuts along the beam axis of -rom_joints bolts (midway between bolts), between (at the bolts' axes), sides and
-   zones (both); strips: -rom_strips's */
-static PetscErrorCode JointCuts(JRReduce o, JRModel model, PetscInt *ncut, PetscReal cut[])
-{
-  const PetscInt kind = o->joints;
-  const JRBolts *B;
-  PetscReal      xb[64];
-  PetscInt       nb;
-
-  PetscFunctionBeginUser;
-  *ncut = o->ncut;
-  PetscCall(PetscArraycpy(cut, o->cut, 64));
-  if (kind < 3) PetscFunctionReturn(0);
-  PetscCall(JRModelGetBolts(model, &B));
-  PetscCheck(B && B->n > 0 && B->n <= 32, o->comm, PETSC_ERR_ARG_WRONG, "-rom_joints %s needs a model with bolts (1 to 32)", JointKinds[kind]);
-  nb = B->n;
-  for (PetscInt b = 0; b < nb; b++) xb[b] = B->x[3 * b];
-  for (PetscInt b = 1; b < nb; b++) /* sort */
-    for (PetscInt c = b; c > 0 && xb[c] < xb[c - 1]; c--) {
-      const PetscReal t = xb[c];
-      xb[c]             = xb[c - 1];
-      xb[c - 1]         = t;
-    }
-  *ncut = 0;
-  for (PetscInt b = 0; b < nb; b++) {
-    if (kind != 3 && kind != 4 && b > 0) cut[(*ncut)++] = 0.5 * (xb[b - 1] + xb[b]); /* sides, zones */
-    if (kind == 3 && b > 0) cut[(*ncut)++] = 0.5 * (xb[b - 1] + xb[b]);                  /* bolts */
-    if (kind != 3) cut[(*ncut)++] = xb[b];                                               /* between, sides, zones */
-  }
-  PetscFunctionReturn(0);
-}
-
-/* -rom_joints strips, bolts, between, sides, zones: regions between cuts along the beam axis (halves of the width
-   with -rom_split_width; zones: each split into a high-load and a low-load zone by -rom_zone_fraction) */
-static PetscErrorCode AssignCuts(JRReduce o, JRModel model, const JRPairs *P, JRElements *el, const PetscInt pair[], PetscInt *nreg, PetscInt **cnt)
-{
-  MPI_Comm        comm = o->comm;
-  const PetscInt  kind = o->joints, nz = kind == 6 ? 2 : 1;
-  const PetscBool split = o->split_width;
-  PetscInt        ncut;
-  PetscReal       cut[64], ylo = PETSC_MAX_REAL, yhi = -PETSC_MAX_REAL;
-
-  PetscFunctionBeginUser;
-  PetscCall(JointCuts(o, model, &ncut, cut));
-  PetscCheck(kind != 2 || ncut > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints strips needs the cuts -rom_strips x1,x2,... [m]");
-  for (PetscInt k = 1; k < ncut; k++) PetscCheck(cut[k] > cut[k - 1], comm, PETSC_ERR_ARG_WRONG, "-rom_strips: the cuts must increase, but %g m follows %g m", (double)cut[k], (double)cut[k - 1]);
-  for (PetscInt e = 0; e < el->n; e++) {
-    ylo = PetscMin(ylo, P->x[3 * pair[e] + 1]);
-    yhi = PetscMax(yhi, P->x[3 * pair[e] + 1]);
-  }
-  *nreg = (ncut + 1) * (split ? 2 : 1) * nz;
-  PetscCall(PetscCalloc1(*nreg, cnt));
-  for (PetscInt e = 0; e < el->n; e++) {
-    const PetscReal *x = P->x + 3 * pair[e];
-    PetscInt         k = 0;
-    while (k < ncut && x[0] >= cut[k]) k++;
-    el->joint[e] = (split ? 2 * k + (x[1] > 0.5 * (ylo + yhi) ? 1 : 0) : k) * nz;
-  }
-  if (kind == 6) { /* zones: high load (>= zf of the side's largest n0) and low load */
-    PetscReal *nmax;
-    PetscCall(PetscCalloc1(*nreg, &nmax));
-    for (PetscInt e = 0; e < el->n; e++) nmax[el->joint[e]] = PetscMax(nmax[el->joint[e]], el->n0[e]);
-    for (PetscInt e = 0; e < el->n; e++) el->joint[e] += (nmax[el->joint[e]] > 0 && el->n0[e] >= o->zone_fraction * nmax[el->joint[e]]) ? 1 : 0;
-    PetscCall(PetscFree(nmax));
-  }
-  for (PetscInt e = 0; e < el->n; e++) (*cnt)[el->joint[e]]++;
-  PetscCall(PetscCalloc1(*nreg, &o->ji));
-  for (PetscInt r = 0; r < *nreg; r++) {
-    const PetscInt k = (split ? r / (2 * nz) : r / nz);
-    o->ji[r].zone    = nz > 1 ? r % 2 : -1;
-    PetscCall(PetscSNPrintf(o->ji[r].kind, sizeof(o->ji[r].kind), "%s %" PetscInt_FMT " of %" PetscInt_FMT "%s%s", RegionWords[kind], k + 1, ncut + 1, split ? ((r / nz) % 2 ? ", upper half" : ", lower half") : "", nz > 1 ? (r % 2 ? ", high-load zone" : ", low-load zone") : ""));
-    PetscCheck((*cnt)[r] > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints %s: the region x %s%g .. %g%s m%s%s holds no element: an empty joint (%s)", JointKinds[kind], k ? "" : "< ", (double)(k ? cut[k - 1] : cut[0]), (double)(k < ncut ? cut[k] : cut[ncut - 1]), k < ncut ? "" : " and beyond", split ? ((r / nz) % 2 ? ", upper half of the width" : ", lower half of the width") : "", nz > 1 ? (r % 2 ? ", high-load zone" : ", low-load zone") : "", kind == 2 ? "move the cuts" : kind == 6 ? "change -rom_zone_fraction" : "fewer regions");
-  }
-  PetscFunctionReturn(0);
-}
-
-/* The joints' report (JRJointInfo, o->ji) from the elements el with their joints and positions x (3 per element) */
-static PetscErrorCode JointInfoSet(JRReduce o, const JRElements *el, const PetscReal x[])
-{
-  PetscFunctionBeginUser;
-  if (!o->ji) {
-    PetscCall(PetscCalloc1(el->njoints, &o->ji));
-    for (PetscInt j = 0; j < el->njoints; j++) o->ji[j].zone = -1;
-  }
-  o->nji = el->njoints;
-  for (PetscInt e = 0; e < el->n; e++) {
-    JRJointInfo *J = &o->ji[el->joint[e]];
-    J->members++;
-    if (el->n0[e] > 0) {
-      J->contact++;
-      J->load += el->n0[e];
-    }
-    for (PetscInt c = 0; x && c < 3; c++) J->x[c] += x[3 * e + c];
-  }
-  for (PetscInt j = 0; j < o->nji; j++)
-    for (PetscInt c = 0; c < 3; c++) o->ji[j].x[c] /= o->ji[j].members;
-  PetscFunctionReturn(0);
-}
-
-/* A joint for a line: index, members, centroid and region */
-static PetscErrorCode JointName(JRReduce o, PetscInt j, char buf[], size_t len)
-{
-  const JRJointInfo *J = &o->ji[j];
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(buf, len, "%" PetscInt_FMT " (%" PetscInt_FMT " members, centroid (%.4g, %.4g) m, %s)", j, J->members, (double)J->x[0], (double)J->x[1], J->kind));
-  PetscFunctionReturn(0);
-}
-
-/*
-  The joints' report: per joint its members (those in contact at rest), the normal load they carry at rest and its
-  share of the interface's (the preload), their centroid and the region; then how the partition splits the members
-  between high-load and low-load joints: -rom_joints zones by its zones, auto by its rings (the inner half), any other
-  partition by load per member (a joint is high-load when its members carry more than the interface's mean per
-  member). Rank 0 prints; every rank has
-  every element, so the lines do not depend on the ranks.
-*/
-static PetscErrorCode JointReport(JRReduce o, const JRElements *el)
-{
-  MPI_Comm  comm = o->comm;
-  PetscReal ltot = 0, lh = 0, mean;
-  PetscInt  nh = 0, mh = 0, ch = 0, ctot = 0;
-  char      list[256] = "";
-
-  PetscFunctionBeginUser;
-  for (PetscInt j = 0; j < o->nji; j++) {
-    ltot += o->ji[j].load;
-    ctot += o->ji[j].contact;
-  }
-  mean = ltot / el->n;
-  if (o->joints == 1) PetscCall(PetscPrintf(comm, "rom: every element its own joint: %" PetscInt_FMT " joints (%" PetscInt_FMT " in contact at rest, normal load %.6g N)\n", o->nji, ctot, (double)ltot));
-  for (PetscInt j = 0; j < o->nji && o->joints != 1; j++) {
-    const JRJointInfo *J = &o->ji[j];
-    PetscCall(PetscPrintf(comm, "rom: joint %" PetscInt_FMT ": %" PetscInt_FMT " members (%" PetscInt_FMT " in contact), normal load %.6g N (%.1f%% of the preload), centroid (%.4g, %.4g, %.4g) m, %s\n", j, J->members, J->contact, (double)J->load, (double)(ltot > 0 ? 100 * J->load / ltot : 0), (double)J->x[0], (double)J->x[1], (double)J->x[2], J->kind));
-  }
-  for (PetscInt j = 0; j < o->nji; j++) {
-    const JRJointInfo *J  = &o->ji[j];
-    const PetscBool    hi = J->zone >= 0 ? (PetscBool)(J->zone == 1) : (PetscBool)(J->load > mean * J->members);
-    size_t             len;
-    if (!hi) continue;
-    nh++;
-    mh += J->members;
-    ch += J->contact;
-    lh += J->load;
-    PetscCall(PetscStrlen(list, &len));
-    if (len < sizeof(list) - 24) PetscCall(PetscSNPrintf(list + len, sizeof(list) - len, "%s%" PetscInt_FMT, len ? "," : "", j));
-  }
-  if (o->joints == 1) PetscFunctionReturn(0);
-  PetscCall(PetscPrintf(comm, "rom: partition %s: %" PetscInt_FMT " high-load joints (%s, %s) hold %" PetscInt_FMT " of %" PetscInt_FMT " members (%.1f%%), %" PetscInt_FMT " of %" PetscInt_FMT " in contact (%.1f%%) and %.1f%% of the preload; %" PetscInt_FMT " low-load joints the rest\n", JointKinds[o->joints], nh, nh ? list : "none", o->joints == 6 ? "the zones' high-load joints" : o->joints == 8 ? "the inner rings" : "more load per member than the interface's mean", mh, el->n, (double)(100.0 * mh / el->n), ch, ctot, (double)(ctot ? 100.0 * ch / ctot : 0), (double)(ltot > 0 ? 100 * lh / ltot : 0), o->nji - nh));
-  PetscCall(PetscPrintf(comm, "rom partition joints %" PetscInt_FMT " high_load_joints %" PetscInt_FMT " member_share %.4f contact_share %.4f load_share %.4f\n", o->nji, nh, (double)((PetscReal)mh / el->n), (double)(ctot ? (PetscReal)ch / ctot : 0), (double)(ltot > 0 ? lh / ltot : 0)));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode AssignJoints(JRReduce o, JRModel model, const JRPairs *P, JRElements *el, const PetscInt pair[])
-{
-  PetscInt   nreg = 0, *cnt = NULL;
-  PetscReal *x;
-
-  PetscFunctionBeginUser;
-  if (o->joints == 0) PetscFunctionReturn(0);
-  PetscCall(PetscFree(o->ji));
-  PetscCall(PetscMalloc1(el->n, &el->joint));
-  if (o->joints == 1) { /* each */
-    nreg = el->n;
-    for (PetscInt e = 0; e < el->n; e++) el->joint[e] = e;
-    PetscCall(PetscCalloc1(nreg, &o->ji));
-    for (PetscInt e = 0; e < el->n; e++) {
-      o->ji[e].zone = -1;
-      PetscCall(PetscStrncpy(o->ji[e].kind, RegionWords[1], sizeof(o->ji[e].kind)));
-    }
-  } else if (o->joints == 7) PetscCall(AssignBoxes(o, P, el, pair, &nreg, &cnt));
-  else if (o->joints == 8) PetscCall(AssignAuto(o, model, P, el, pair, &nreg, &cnt));
-  else PetscCall(AssignCuts(o, model, P, el, pair, &nreg, &cnt));
-  el->njoints = nreg;
-  PetscCall(PetscMalloc1(3 * el->n + 1, &x));
-  for (PetscInt e = 0; e < el->n; e++)
-    for (PetscInt c = 0; c < 3; c++) x[3 * e + c] = P->x[3 * pair[e] + c];
-  PetscCall(JointInfoSet(o, el, x));
-  PetscCall(PetscFree(x));
-  PetscCall(JointReport(o, el));
-  PetscCall(PetscFree(cnt));
-  PetscFunctionReturn(0);
-}
 
 /* The stuck mode of hbm nearest the middle of the case's frequency range (or, without one, the lowest elastic one):
    the mode of interest of a reduced model; k its index, f its frequency [Hz] */
@@ -415,7 +102,7 @@ static PetscErrorCode StiffnessJoints(JRReduce red, JRHBM hbm, JRHBM hr, const J
     if (!(d > 0)) break;
     dsum += d;
     nn++;
-    if (red->ji && red->nji == nj) PetscCall(JointName(red, j, buf, sizeof(buf)));
+    if (red->ji && red->nji == nj) PetscCall(JRReduceJointName(red, j, buf, sizeof(buf)));
     else PetscCall(PetscSNPrintf(buf, sizeof(buf), "%" PetscInt_FMT, j));
     PetscCall(PetscStrlen(names, &len));
     PetscCall(PetscSNPrintf(names + len, sizeof(names) - len, "%s%s: %.2f%% -> %.2f%%", len ? "; " : "", buf, (double)(100 * En[j]), (double)(100 * Er[j])));
@@ -627,7 +314,7 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
   r->ncut = 64;
   r->nbox = 256;
   PetscOptionsBegin(comm, "rom_", "Reduced-order joints (prefix rom_)", "JRReduce");
-  PetscCall(PetscOptionsEList("-joints", "First reduction, the joints: none (node-to-node), each, strips (-rom_strips cuts), bolts, between, sides, zones (per bolt side and load), boxes (-rom_boxes), auto (rings of equal load around each bolt, -rom_auto_rings)", "JRReduceAssignJoints", JointKinds, 9, JointKinds[r->joints], &r->joints, NULL));
+  PetscCall(PetscOptionsEList("-joints", "First reduction, the joints: none (node-to-node), each, strips (-rom_strips cuts), bolts, between, sides, zones (per bolt side and load), boxes (-rom_boxes), auto (rings of equal load around each bolt, -rom_auto_rings)", "JRReduceAssignJoints", JRReduceJointKinds, 9, JRReduceJointKinds[r->joints], &r->joints, NULL));
   PetscCall(PetscOptionsRealArray("-strips", "Cut positions along the beam axis x1,x2,... [m], increasing", "JRReduceAssignJoints", r->cut, &r->ncut, &set));
   PetscCall(PetscOptionsRealArray("-boxes", "Boxes x0,x1,y0,y1 per joint [m]", "JRReduceAssignJoints", r->box, &r->nbox, &bset));
   PetscCall(PetscOptionsReal("-zone_fraction", "-rom_joints zones: the high-load zone of a bolt side holds the members with n0 at least this fraction of the side's largest", "JRReduceAssignJoints", r->zone_fraction, &r->zone_fraction, NULL));
@@ -717,19 +404,6 @@ PetscErrorCode JRReduceSetOutput(JRReduce r, const char base[], PetscBool plot)
   PetscFunctionReturn(0);
 }
 
-/* JRReduceAssignJoints - the first reduction's regions: el->joint and el->njoints of the node-to-node elements el
-   (element e on pair pair[e] of the model); nothing with -rom_joints none */
-PetscErrorCode JRReduceAssignJoints(JRReduce r, JRModel model, JRElements *el, const PetscInt pair[])
-{
-  const JRPairs *P;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(JR_ReduceJoints, 0, 0, 0, 0));
-  PetscCall(JRModelGetPairs(model, &P));
-  PetscCall(AssignJoints(r, model, P, el, pair));
-  PetscCall(PetscLogEventEnd(JR_ReduceJoints, 0, 0, 0, 0));
-  PetscFunctionReturn(0);
-}
 
 
 /*
@@ -862,6 +536,6 @@ PetscErrorCode JRReduceView(JRReduce r, PetscViewer viewer)
 
   PetscFunctionBeginUser;
   if (!viewer) viewer = PETSC_VIEWER_STDOUT_(r->comm);
-  PetscCall(PetscViewerASCIIPrintf(viewer, "JRReduce: joints %s, %" PetscInt_FMT " elements per joint%s, joint motion %s, stiffness correction %s (%g)\n", JointKinds[r->joints], r->m, r->m ? "" : " (first reduction)", jm[r->fit.jmotion], r->corr_on ? "on" : "off", (double)r->corr));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "JRReduce: joints %s, %" PetscInt_FMT " elements per joint%s, joint motion %s, stiffness correction %s (%g)\n", JRReduceJointKinds[r->joints], r->m, r->m ? "" : " (first reduction)", jm[r->fit.jmotion], r->corr_on ? "on" : "off", (double)r->corr));
   PetscFunctionReturn(0);
 }

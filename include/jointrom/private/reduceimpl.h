@@ -65,4 +65,7 @@ PETSC_INTERN PetscErrorCode JRLSQSolve(JRLSQ *, PetscReal[], PetscReal, PetscRea
 PETSC_INTERN void           JRGram(PetscInt, PetscInt, const PetscReal[], const PetscReal[], PetscReal[], PetscReal[]);
 PETSC_INTERN PetscErrorCode JRGramNNLS(PetscInt, const PetscReal[], const PetscReal[], PetscReal, PetscInt, const PetscInt[], PetscReal[], PetscReal *);
 PETSC_INTERN PetscErrorCode JRActiveSetNNLS(PetscInt, const PetscReal[], const PetscReal[], PetscReal[], PetscReal *);
+/* src/reduce/joints.c: the -rom_joints kinds and a joint in words (index, members, centroid, region) */
+PETSC_INTERN const char *const JRReduceJointKinds[];
+PETSC_INTERN PetscErrorCode JRReduceJointName(JRReduce, PetscInt, char[], size_t);
 #endif
