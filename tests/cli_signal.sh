@@ -32,8 +32,9 @@ signal() {
 catch() {
   local d=$1 sig=$2 pat=$3 seen=finished pid rc
   shift 3
-  set -m # job control again in this subshell ($(catch ...)): else the background run starts with SIGINT ignored
-  "$@" > "$d/log" 2>&1 &
+  # the run starts with the default actions, whatever this script inherited (a background job, or a make run from
+  # one, starts with SIGINT ignored, and a signal ignored at the start stays ignored: in the script and in jointrom)
+  env --default-signal=INT,TERM,HUP "$@" > "$d/log" 2>&1 &
   pid=$!
   while kill -0 $pid 2> /dev/null; do
     if compgen -G "$d/$pat" > /dev/null; then
