@@ -102,3 +102,23 @@ read fd ad <<< "$(pk "$od")"; read fe ae <<< "$(pk "$oe")"; read f2 a2 <<< "$(pk
 check "[ -n '$fd' ] && [ -n '$fe' ] && close $fd $fe 1e-3 && close $ad $ae 1e-2" "BRB 5 N: peak $fd Hz, $ad m with the default basis ($n static vectors) = $fe Hz, $ae m with 24 + 24 modes and $((4 * ${n:-1})) static vectors (0.1%, 1%)"
 check "[ -n '$n' ] && [ '$n' -ge 1 ] && lt '$(rho "$od")' 0.05 && lt '$(rho "$od")' '$(rho "$o0")' && echo \"\$o0\" | grep -q '^WARNING basis check' && ! echo \"\$od\" | grep -q '^WARNING basis check'" "basis check: $(rho "$od") with the default static correction (no warning), $(rho "$o0") without it (a warning)"
 check "[ '$(nsv "$o2")' = '$n' ] && close '$f2' '$fd' 1e-7 && close '$a2' '$ad' 1e-6" "2 ranks: $(nsv "$o2") static vectors, peak $f2 Hz, $a2 m = 1 rank's"
+
+# -rom_joints auto: 2 rings of equal load around each of the 3 bolts, each cut at the bolt's axis: 12 joints, all
+# 133 members; by construction each bolt's inner ring carries at most half its load and the next member would take it
+# past half (so the inner rings together carry 40-50% here); the same report on 1 and 2 ranks
+ba="-task frf $brb -frf_force 0.1 -rom_joints auto -cont_max_points 3 -cont_allow_partial -frf_output_file ''"
+oa1=$(eval $J $ba 2>&1); oa2=$(eval mpiexec -n 2 $J $ba 2>&1)
+ra() { echo "$1" | grep -E '^rom(: joint [0-9]|: partition| partition)'; }
+pa=$(echo "$oa2" | grep '^rom partition '); ls=$(field "$pa" load_share)
+na=$(echo "$oa2" | grep -c '^rom: joint [0-9]*:.*ring'); ma=$(echo "$oa2" | awk '/^rom: joint [0-9]+:/{s += $4} END{print s}')
+check "[ '$na' = 12 ] && [ '$ma' = 133 ] && [ \"\$(field \"\$pa\" high_load_joints)\" = 6 ] && lt '$ls' 0.5000001 && lt 0.4 '$ls' && [ \"\$(ra \"\$oa1\")\" = \"\$(ra \"\$oa2\")\" ]" "-rom_joints auto: 12 ring joints of 133 members, the inner rings carry $ls of the preload (at most half), the same report on 1 and 2 ranks"
+# the stiffness correction's warning (tests/cli_rom.sh: on lap3) on the coarse Brake-Reuss beam with stiff contact (kt 1e8 N/m: the interface then holds enough of the
+# mode's strain energy for the factor to leave [0.9, 1.1]), members not weighted: 17 column strips with the 3 columns
+# at the lap's end x < 0.3325 m lumped into joint 0, on 1 and 2 ranks: the same report, factor and warning
+bw="${brb/-interface_kt 1e6/-interface_kt 1e8} -frf_fmax 160 -frf_force 0.1 -rom_mode_weights 0 -cont_max_points 3 -cont_allow_partial -frf_output_file ''"
+cuts=$(awk 'BEGIN{for (i = 0; i < 18; i++) {x = 0.3175 + 0.005 * i; if (x > 0.3325) printf "%s%.4f", (n++ ? "," : ""), x}}')
+o1=$(eval $J -task frf $bw -rom_joints strips -rom_strips $cuts 2>&1)
+o2=$(eval mpiexec -n 2 $J -task frf $bw -rom_joints strips -rom_strips $cuts 2>&1)
+rl() { echo "$1" | grep -E '^rom(: joint [0-9]|: partition|: WARNING stiff| partition| stiffness_)'; }
+sj=$(echo "$o2" | grep '^rom stiffness_joints'); c=$(field "$sj" factor); nw=$(echo "$o2" | grep -c 'WARNING stiffness')
+check "[ -n '$c' ] && lt 1.1 '$c' && [ \"\$(field \"\$sj\" joints)\" = 0 ] && [ '$nw' = 1 ] && [ \"\$(rl \"\$o1\")\" = \"\$(rl \"\$o2\")\" ] && [ \$(rl \"\$o1\" | wc -l) -ge 19 ]" "jenkins BRB (kt 1e8), 15 strips with the lap's end lumped into joint 0: factor $c, one warning naming joint 0 alone; the joints' report, factor and warning the same on 1 and 2 ranks"
