@@ -136,27 +136,6 @@ static double Integrate(const Osc *o, double w, PetscInt H, const PetscReal *a, 
   return hypot(2 * fs / ns, 2 * fc / ns) / A0 - 1.0;
 }
 
-/* One RK4 step of m x'' + c x' + k x + kt (x - s) = F sin(w t) with a jenkins element (slip force fs): every stage
-   sees the committed slip s pushed by its own motion (the return map), which is then committed at the step's end.
-   (A stage force from the committed slip alone, kt (x - s), exceeds fs while slipping by kt v dt / 2: a spurious
-   viscous damping of about kt dt / 2.) */
-static void JenkinsReturnMapStep(double m, double c, double k, double kt, double fs, double F, double w, double t, double dt, double *x, double *v, double *s)
-{
-  double k1x, k1v, k2x, k2v, k3x, k3v, k4x, k4v;
-#define ACC(xx, vv, tt) ((F * sin(w * (tt)) - c * (vv) - k * (xx) - kt * ((xx) - fmin(fmax(*s, (xx) - fs / kt), (xx) + fs / kt))) / m)
-  k1x = *v;
-  k1v = ACC(*x, *v, t);
-  k2x = *v + 0.5 * dt * k1v;
-  k2v = ACC(*x + 0.5 * dt * k1x, *v + 0.5 * dt * k1v, t + 0.5 * dt);
-  k3x = *v + 0.5 * dt * k2v;
-  k3v = ACC(*x + 0.5 * dt * k2x, *v + 0.5 * dt * k2v, t + 0.5 * dt);
-  k4x = *v + dt * k3v;
-  k4v = ACC(*x + dt * k3x, *v + dt * k3v, t + dt);
-#undef ACC
-  *x += dt / 6.0 * (k1x + 2 * k2x + 2 * k3x + k4x);
-  *v += dt / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
-  *s = fmin(fmax(*s, *x - fs / kt), *x + fs / kt);
-}
 
 /* The single-harmonic Duffing relation ((k - m w^2 + 3/4 k3 A^2)^2 + (c w)^2) A^2 = F^2: its higher frequency at
    amplitude A (0 where none) */
@@ -434,14 +413,14 @@ int main(int argc, char **argv)
           s0 = fmin(fmax(s0, xj - fs / kt), xj + fs / kt);
         }
         for (PetscInt c0 = 0; c0 < P; c0++)
-          for (PetscInt j = 0; j < ns; j++) JenkinsReturnMapStep(m, c, k, kt, fs, F, w, j * dt, dt, &x0, &v0, &s0);
+          for (PetscInt j = 0; j < ns; j++) JenkinsOscillatorStep(m, c, k, kt, fs, F, w, j * dt, dt, &x0, &v0, &s0);
         { /* the march's own monodromy matrix on the orbit it reached, by differences in x, v / w, s */
           double       Mo[9], wr[3], wi[3], wk[64], dum, e = 1e-7 * A, base[3] = {x0, v0, s0}, end[3] = {0, 0, 0};
           PetscBLASInt n3 = 3, one = 1, lw = 64, info;
           for (int col = -1; col < 3; col++) {
             double y[3] = {base[0], base[1], base[2]};
             if (col >= 0) y[col] += col == 1 ? e * w : e;
-            for (PetscInt j = 0; j < ns; j++) JenkinsReturnMapStep(m, c, k, kt, fs, F, w, j * dt, dt, &y[0], &y[1], &y[2]);
+            for (PetscInt j = 0; j < ns; j++) JenkinsOscillatorStep(m, c, k, kt, fs, F, w, j * dt, dt, &y[0], &y[1], &y[2]);
             if (col < 0) {
               for (int i = 0; i < 3; i++) end[i] = y[i];
               continue;
