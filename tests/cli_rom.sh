@@ -181,8 +181,8 @@ check "[ \$(echo \"\$ob\" | grep -c '^rom: joint') = 2 ] && [ \"\$ob\" = \"\$oa\
 # = sum w^2 kt), so the reduced model's stuck stiffness matrix is the first reduction's and so is its stuck resonance
 # (same basis, LAPACK); with a weight of 10 the fit gives a little of it away for the loops
 sf() { $J -task frf $brb $b1 -frf_force 0.01 -rom_joints sides "$@" -frf_output_file '' 2>&1 | grep '^rom stiffness_correction'; }
-f0=$(field "$(sf -rom_elements 0)" rom_before_hz); fd=$(field "$(sf -rom_elements 3 -rom_fit_stiffness_weight 10)" rom_before_hz); fs=$(field "$(sf -rom_elements 3)" rom_before_hz)
-c0=$(field "$(sf -rom_elements 0)" stiffness_correction); cn=$(sf -rom_elements 0 -rom_stiffness_correction 0)
+s0=$(sf -rom_elements 0); f0=$(field "$s0" rom_before_hz); fd=$(field "$(sf -rom_elements 3 -rom_fit_stiffness_weight 10)" rom_before_hz); fs=$(field "$(sf -rom_elements 3)" rom_before_hz)
+c0=$(field "$s0" stiffness_correction); cn=$(sf -rom_elements 0 -rom_stiffness_correction 0)
 check "[ -n '$c0' ] && close \$(field \"\$cn\" needed) $c0 1e-9 && close \$(field \"\$cn\" stiffness_correction) 1 0" "-rom_stiffness_correction 0: '$cn' (the factor the correction applies: $c0)"
 check "[ -n '$f0' ] && close $fs $f0 1e-8 && ! close $fd $f0 1e-7" "-rom_fit_stiffness_weight 1e4 (default): 6 x 3 stuck resonance $fs Hz = first reduction's $f0 Hz (weight 10: $fd Hz)"
 # jenkins_nv, -rom_joint_motion mode: the fit's error with the normal loads varying in the mode (AFT, one harmonic),
