@@ -126,7 +126,8 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   PetscBool          ok;
   PetscInt           nun = 0, ncount[4] = {0, 0, 0, 0};
   PetscLogDouble     t0, t1;
-  JRStabilityVerdict v = JR_STABILITY_HILL;
+  JRStabilityVerdict v = JR_STABILITY_HILL, *verdict;
+  PetscBool         *intime, any = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCall(JRContBranchStabilityFree(b));
@@ -142,27 +143,35 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
     }
   }
   PetscCall(PetscMalloc3(b->np, &b->stable, b->np, &b->maxre, b->np, &b->detsign));
+  PetscCall(PetscMalloc1(b->np + 1, &verdict));
+  PetscCall(PetscCalloc1(b->np + 1, &intime));
   for (PetscInt k = 0; k < b->np; k++) {
     PetscCall(LoadPoint(c, b, k, a));
     PetscCall(JRHBMStabilityVerdict(c->hbm, a, c->stabdiss, &v));
     if (v == JR_STABILITY_HILL_HYSTERETIC && c->stabtime) v = JR_STABILITY_TIME;
+    verdict[k] = v;
     switch (v) {
     case JR_STABILITY_DISSIPATIVE:
       b->maxre[k]   = NAN;
       b->detsign[k] = 0;
       if (ok) PetscCall(JRHBMJacobianSign(c->hbm, b->omega[k], a, &b->detsign[k]));
       break;
-    case JR_STABILITY_TIME:
-      PetscCall(JRHBMFloquetTime(c->hbm, b->omega[k], a, c->stabsteps, NULL, NULL, NULL, &b->maxre[k], NULL));
+    case JR_STABILITY_TIME: /* below, the points shared out over the ranks */
+      intime[k] = any = PETSC_TRUE;
       PetscCall(JRHBMJacobianSign(c->hbm, b->omega[k], a, &b->detsign[k]));
       break;
     default:
       PetscCall(JRHBMFloquet(c->hbm, b->omega[k], a, c->stabsel, c->stabdense, NULL, NULL, NULL, &b->maxre[k], &b->detsign[k]));
     }
-    b->stable[k] = v == JR_STABILITY_DISSIPATIVE || b->maxre[k] < c->stabtol * b->omega[k] ? 1 : 0;
-    ncount[v]++;
+  }
+  if (any) PetscCall(JRHBMFloquetTimePoints(c->hbm, b->np, b->omega, b->x, c->n, intime, c->stabsteps, b->maxre));
+  for (PetscInt k = 0; k < b->np; k++) {
+    b->stable[k] = verdict[k] == JR_STABILITY_DISSIPATIVE || b->maxre[k] < c->stabtol * b->omega[k] ? 1 : 0;
+    ncount[verdict[k]]++;
     if (!b->stable[k]) nun++;
   }
+  PetscCall(PetscFree(verdict));
+  PetscCall(PetscFree(intime));
   PetscCall(Detect(c, b));
   PetscCall(PetscTime(&t1));
   b->stab_seconds = t1 - t0;

@@ -10,15 +10,22 @@
      Mm dq'' + Cv dq' + (Km - Kc) dq + sum_e r_e df_e + sum_e s_e dn_e = 0,   Cv = Cm + (gamma / w) Kg,
 
    with each element's force linearised about the harmonic-balance motion, marched as the play operator: the slip
-   w <- clamp(w, u - mu n / kt, u + mu n / kt) committed after every step, and at every stage a return map from the
-   committed slip, whose derivative is dw (the committed one, stuck), du -+ mu kn dv / kt (slipping at the upper or
-   lower bound, kn for jenkins_nv in contact, else 0); df = kt (du - dw), dn = kn dv in contact (jenkins_nv), and
-   df = 3 kt u^2 du for a cubic spring. The state (dq, dq', dw) has 2 nk + ne entries (ne friction elements); its fundamental matrix after one
-   period T (RK4, the step at most 0.5 / w_max, w_max the stiffest mode with every element stuck, and at least the
-   harmonic balance's samples per period) is the monodromy matrix, whose eigenvalues rho are the Floquet multipliers:
-   exponents log(rho) / T. A stuck element's slip is a neutral state (rho = 1): a perturbed slip stays.
+   w <- clamp(w, u - mu n / kt, u + mu n / kt) committed at the end of every step, and a return map from the committed
+   slip, whose derivative is dw (the committed one, stuck), du -+ mu kn dv / kt (slipping at the upper or lower bound,
+   kn for jenkins_nv in contact, else 0); df = kt (du - dw), dn = kn dv in contact (jenkins_nv), and df = 3 kt u^2 du
+   for a cubic spring. The state (dq, dq', dw) has 2 nk + ne entries (ne friction elements); its fundamental matrix
+   after one period T is the monodromy matrix, whose eigenvalues rho are the Floquet multipliers: exponents
+   log(rho) / T. A stuck element's slip is a neutral state (rho = 1): a perturbed slip stays.
 
-   Rank 0 holds every element (gathered once) and the point's motion, marches, and broadcasts.
+   With friction elements only (MarchPatterns), the elements' states over a step are those of the play operator on
+   the steps' ends, and the equations over a step are linear with constant coefficients: the step's map is the
+   exponential of their matrix (a Taylor polynomial, dt w_max <= 1, w_max the stiffest mode with every element
+   stuck), kept by the states' pattern, which mostly repeats over a period; a step where a state changes gets the
+   map of the two states weighted by their shares. With a cubic spring (MarchRK4) the march is RK4 (dt w_max <= 0.5)
+   with the states at every stage. At least the harmonic balance's samples per period either way.
+
+   Every rank holds every element (gathered once); JRHBMFloquetTime marches one point on rank 0 and broadcasts,
+   JRHBMFloquetTimePoints shares a level's points out over the ranks.
 */
 #include <jointrom/private/hbmimpl.h>
 
@@ -37,7 +44,19 @@ struct _JRMonodromy {
   PetscReal *Y, *Y0, *Ys, *DUV, *DFN, *Wc; /* the march's work: DUV = [du; dv], DFN = [df; dn] (2 ne x m) */
   PetscReal *ev, *wr, *wi, *work;
   PetscBLASInt lwork;
+  PetscBool  smooth;                  /* a cubic spring: its stiffness follows the motion within a step (RK4 march) */
+  PetscInt   nslot, next;             /* step maps kept, and the slot the next new one takes */
+  unsigned char *key, *slotkey;       /* the current step's pattern (ne), each kept map's (JR_MONO_SLOTS x ne) */
+  unsigned char *ka, *kb, *kend;      /* a step's states of each element before and after a change within it, at its end */
+  PetscReal     *th;                  /* the share of the step in state ka (ne) */
+  PetscReal *SL, *SW;                 /* the kept step maps: n2 x n2 and n2 x ne each, n2 = 2 nk */
+  PetscReal *XL, *XW, *T1, *T2;       /* the step map's work (n2 x n2, n2 x ne, n2 x max(n2, ne) x 2), the march's (n2 x m) */
+  PetscReal *trig;                    /* sin, cos of h w t at the half steps ((2 ns + 1) x 2 H) */
 };
+
+#define JR_MONO_SLOTS  16 /* step maps kept per point: a period's stick-slip patterns mostly repeat */
+#define JR_MONO_TAYLOR 8   /* terms of the step map's Taylor polynomial: error (w_max dt)^9 / 9! <= 3e-6 per step */
+#define JR_MONO_WDT    1.0 /* the step map's dt w_max at most (RK4's: 0.5) */
 
 /* Free the time-domain Floquet work (JRHBMDestroy) */
 PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
@@ -54,6 +73,10 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscCall(PetscFree3(f->Y, f->Y0, f->Ys));
   PetscCall(PetscFree3(f->DUV, f->DFN, f->Wc));
   PetscCall(PetscFree4(f->ev, f->wr, f->wi, f->work));
+  PetscCall(PetscFree4(f->key, f->slotkey, f->SL, f->SW));
+  PetscCall(PetscFree4(f->XL, f->XW, f->T1, f->T2));
+  PetscCall(PetscFree(f->trig));
+  PetscCall(PetscFree4(f->ka, f->kb, f->kend, f->th));
   PetscCall(PetscFree(h->mono));
   PetscFunctionReturn(0);
 }
@@ -93,8 +116,8 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
   }
   PetscCall(PetscMalloc2(size, &cnt, size, &dsp));
   PetscCall(PetscMPIIntCast(rec * nloc, &mine));
-  PetscCallMPI(MPI_Gather(&mine, 1, MPI_INT, cnt, 1, MPI_INT, 0, h->comm));
-  if (!h->rank) {
+  PetscCallMPI(MPI_Allgather(&mine, 1, MPI_INT, cnt, 1, MPI_INT, h->comm));
+  {
     PetscInt tot = 0;
     for (PetscMPIInt r = 0; r < size; r++) {
       dsp[r] = (PetscMPIInt)tot;
@@ -103,7 +126,7 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
     ne = tot / rec;
     PetscCall(PetscMalloc1(tot + 1, &all));
   }
-  PetscCallMPI(MPI_Gatherv(loc, mine, MPIU_REAL, all, cnt, dsp, MPIU_REAL, 0, h->comm));
+  PetscCallMPI(MPI_Allgatherv(loc, mine, MPIU_REAL, all, cnt, dsp, MPIU_REAL, h->comm));
   PetscCall(PetscFree2(cnt, dsp));
   PetscCall(PetscFree(loc));
   /* Km - Kc: Kc summed over the ranks unless every rank has every element */
@@ -111,11 +134,6 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
   if (h->basis != JR_HBM_BASIS_FREE && h->Kc) {
     if (h->repl || h->size == 1) PetscCall(PetscArraycpy(Kc, h->Kc, nm * nm));
     else PetscCall(MPIU_Allreduce(h->Kc, Kc, nm * nm, MPIU_REAL, MPIU_SUM, h->comm));
-  }
-  if (h->rank) {
-    PetscCall(PetscFree(Kc));
-    h->mono = f;
-    PetscFunctionReturn(0);
   }
   PetscCall(PetscMalloc1(nm, &keep));
   for (PetscInt i = 0; i < nm; i++)
@@ -191,6 +209,14 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
     f->lwork = (PetscBLASInt)(4 * m + 4);
     PetscCall(PetscMalloc4(m * m, &f->ev, m, &f->wr, m, &f->wi, f->lwork, &f->work));
   }
+  for (PetscInt e = 0; e < ne; e++)
+    if (f->type[e] == 2) f->smooth = PETSC_TRUE;
+  if (!f->smooth) {
+    const PetscInt n2 = 2 * nk, mx = PetscMax(n2, ne);
+    PetscCall(PetscMalloc4(ne + 1, &f->key, JR_MONO_SLOTS * ne + 1, &f->slotkey, (JR_MONO_SLOTS + 1) * n2 * n2 + 1, &f->SL, (JR_MONO_SLOTS + 1) * n2 * ne + 1, &f->SW));
+    PetscCall(PetscMalloc4(n2 * n2 + 1, &f->XL, n2 * ne + 1, &f->XW, 2 * n2 * mx + 1, &f->T1, n2 * f->m + 1, &f->T2));
+    PetscCall(PetscMalloc4(ne + 1, &f->ka, ne + 1, &f->kb, ne + 1, &f->kend, ne + 1, &f->th));
+  }
   PetscCall(PetscFree(keep));
   PetscCall(PetscFree(Kc));
   PetscCall(PetscFree(all));
@@ -257,9 +283,15 @@ static PetscErrorCode Rhs(JRHBM h, PetscInt s, PetscInt j, const PetscReal *Z, P
 static void PointMotion(JRHBM h, PetscReal w, const PetscReal *a)
 {
   struct _JRMonodromy *f = h->mono;
-  const PetscInt       ne = f->ne, nm = h->nm, ns = f->ns, N2 = 2 * ns + 1;
+  const PetscInt       ne = f->ne, nm = h->nm, ns = f->ns, N2 = 2 * ns + 1, H = h->H;
   const PetscReal      dt = 2 * PETSC_PI / w / ns;
 
+  for (PetscInt q = 0; q < N2; q++) /* sin, cos of h w t at the half steps, the same for every element */
+    for (PetscInt hh = 1; hh <= H; hh++) {
+      const PetscReal t = 0.5 * q * dt;
+      f->trig[q * 2 * H + 2 * hh - 2] = PetscSinReal(hh * w * t);
+      f->trig[q * 2 * H + 2 * hh - 1] = PetscCosReal(hh * w * t);
+    }
   for (PetscInt e = 0; e < ne; e++) {
     PetscReal U[JR_MAX_NC], V[JR_MAX_NC], s = 0.0, n;
     for (PetscInt k = 0; k < h->nc; k++) {
@@ -270,12 +302,11 @@ static void PointMotion(JRHBM h, PetscReal w, const PetscReal *a)
       }
     }
     for (PetscInt q = 0; q < N2; q++) {
-      const PetscReal t = 0.5 * q * dt;
-      PetscReal       uu = U[0], vv = V[0];
-      for (PetscInt hh = 1; hh <= h->H; hh++) {
-        const PetscReal sn = PetscSinReal(hh * w * t), cs = PetscCosReal(hh * w * t);
-        uu += U[2 * hh - 1] * sn + U[2 * hh] * cs;
-        vv += V[2 * hh - 1] * sn + V[2 * hh] * cs;
+      const PetscReal *tr = f->trig + q * 2 * H;
+      PetscReal        uu = U[0], vv = V[0];
+      for (PetscInt hh = 1; hh <= H; hh++) {
+        uu += U[2 * hh - 1] * tr[2 * hh - 2] + U[2 * hh] * tr[2 * hh - 1];
+        vv += V[2 * hh - 1] * tr[2 * hh - 2] + V[2 * hh] * tr[2 * hh - 1];
       }
       f->u[e * N2 + q] = uu;
       f->v[e * N2 + q] = vv;
@@ -290,20 +321,293 @@ static void PointMotion(JRHBM h, PetscReal w, const PetscReal *a)
   }
 }
 
+/* Element e's state at half step s against the committed slip of step j: side -1 / 1 slipping at the lower / upper
+   bound, 0 stuck; contact: a jenkins_nv element in contact; drdv: the bound's derivative in the normal motion */
+static inline PetscInt Side(const struct _JRMonodromy *f, PetscInt e, PetscInt s, PetscInt j, PetscBool *contact, PetscReal *drdv)
+{
+  const PetscInt  N2 = 2 * f->ns + 1;
+  const PetscReal u = f->u[e * N2 + s], w = f->wn[e * (f->ns + 1) + j];
+  PetscReal       n, r = Bound(f, e, f->v[e * N2 + s], &n);
+
+  *contact = (PetscBool)(f->type[e] == 1 && n > 0);
+  *drdv    = *contact && f->kt[e] > 0 ? f->mu[e] * f->kn[e] / f->kt[e] : 0.0;
+  return w < u - r ? -1 : w > u + r ? 1 : 0;
+}
+
+/* The fundamental matrix Y (m x m, from the identity) over one period with a cubic spring, whose stiffness follows
+   the motion within a step: RK4 with the elements' states at every stage, the slips committed at the steps' ends */
+static PetscErrorCode MarchRK4(JRHBM h, PetscReal dt)
+{
+  struct _JRMonodromy *f  = h->mono;
+  const PetscInt       nk = f->nk, ne = f->ne, m = f->m, ns = f->ns;
+  PetscReal           *Y = f->Y, *Y0 = f->Y0, *Ys = f->Ys, *K1 = f->ev, *acc;
+
+  PetscFunctionBeginUser;
+PetscCall(PetscMalloc1(m * m, &acc));
+  for (PetscInt j = 0; j < ns; j++) {
+    /* the committed slips of step j: rows 2 nk .. */
+    for (PetscInt c = 0; c < m; c++)
+      for (PetscInt e = 0; e < ne; e++) f->Wc[e + c * ne] = f->mem[e] < 0 ? 0.0 : Y[2 * nk + f->mem[e] + c * m];
+    PetscCall(PetscArraycpy(Y0, Y, m * m));
+    PetscCall(PetscArrayzero(acc, m * m));
+    for (PetscInt st = 0; st < 4; st++) { /* RK4 on (Q, P); the slip rows held */
+      const PetscInt  s  = 2 * j + (st == 0 ? 0 : st == 3 ? 2 : 1);
+      const PetscReal cw = st == 0 || st == 3 ? 1.0 : 2.0, cn = st == 2 ? 1.0 : 0.5;
+      PetscCall(Rhs(h, s, j, st == 0 ? Y0 : Ys, K1));
+      for (PetscInt c = 0; c < m; c++)
+        for (PetscInt i = 0; i < 2 * nk; i++) {
+          acc[i + c * m] += cw * K1[i + c * m];
+          if (st < 3) Ys[i + c * m] = Y0[i + c * m] + cn * dt * K1[i + c * m];
+        }
+    }
+    for (PetscInt c = 0; c < m; c++)
+      for (PetscInt i = 0; i < 2 * nk; i++) Y[i + c * m] = Y0[i + c * m] + dt / 6 * acc[i + c * m];
+    /* commit the slips at step j + 1: the return map's derivative from step j's committed slip */
+    if (ne) {
+      const PetscInt N2 = 2 * ns + 1;
+      PetscCall(JRGemm("N", "N", f->l, m, nk, 1.0, f->RS, f->l, Y, m, 0.0, f->DUV, f->l));
+      for (PetscInt e = 0; e < ne; e++) {
+        const PetscReal u = f->u[e * N2 + 2 * j + 2], wj = f->wn[e * (ns + 1) + j];
+        PetscReal       n, r;
+        PetscInt        side;
+        if (f->type[e] == 2) continue;
+        r    = Bound(f, e, f->v[e * N2 + 2 * j + 2], &n);
+        side = wj < u - r ? -1 : wj > u + r ? 1 : 0;
+        if (!side) continue;
+        {
+          const PetscReal drdv = f->type[e] == 1 && n > 0 && f->kt[e] > 0 ? f->mu[e] * f->kn[e] / f->kt[e] : 0.0;
+          for (PetscInt c = 0; c < m; c++) Y[2 * nk + f->mem[e] + c * m] = f->DUV[e + c * f->l] + (drdv != 0.0 ? (side < 0 ? -drdv : drdv) * f->DUV[f->srow[e] + c * f->l] : 0.0);
+        }
+      }
+    }
+  }
+  PetscCall(PetscFree(acc));
+  PetscFunctionReturn(0);
+}
+
+/* The zero of the line through (0, a) and (1, b), in [0, 1] */
+static inline PetscReal Zero(PetscReal a, PetscReal b)
+{
+  return a != b ? PetscMin(PetscMax(a / (a - b), 0.0), 1.0) : 0.5;
+}
+
+/* Element e's states over step j as the play operator on the steps' ends (PointMotion) has them: it slips over the
+   step only where its slip is committed at the step's end, from where |u - w| - mu n / kt crosses zero if it was stuck
+   at the last step's end; a jenkins_nv contact opens or closes where n crosses zero (each zero by linear interpolation
+   between the half steps). Output: the states before and after (side + 1, plus 3 in contact) and the share th of the
+   step before; f->kend[e] becomes the step's end side + 1. */
+static void StepStates(struct _JRMonodromy *f, PetscInt e, PetscInt j, unsigned char *ka, unsigned char *kb, PetscReal *th)
+{
+  const PetscInt  N2 = 2 * f->ns + 1;
+  const PetscReal w  = f->wn[e * (f->ns + 1) + j];
+  PetscReal       g[3], n[3], ts = -1.0, tc = -1.0, drdv;
+  PetscBool       c[3];
+  PetscInt        sprev, send, sa = 0, ca, cb;
+
+  for (PetscInt q = 0; q < 3; q++) {
+    const PetscInt  s = 2 * j + q;
+    PetscReal       nn;
+    const PetscReal r = Bound(f, e, f->v[e * N2 + s], &nn);
+    g[q]              = PetscAbsReal(f->u[e * N2 + s] - w) - r;
+    n[q]              = f->n0[e] + f->kn[e] * f->v[e * N2 + s];
+    c[q]              = (PetscBool)(f->type[e] == 1 && nn > 0);
+  }
+  sprev       = j ? (PetscInt)f->kend[e] - 1 : Side(f, e, 2 * f->ns, f->ns - 1, &c[1], &drdv);
+  c[1]        = (PetscBool)(f->type[e] == 1 && n[1] > 0);
+  send        = Side(f, e, 2 * j + 2, j, &c[2], &drdv);
+  f->kend[e]  = (unsigned char)(send + 1);
+  if (send) {
+    sa = sprev == send ? send : 0;
+    if (!sa) ts = g[1] > 0 ? 0.5 * Zero(g[0], g[1]) : 0.5 + 0.5 * Zero(g[1], g[2]);
+  }
+  ca = cb = c[0];
+  if (c[0] != c[2]) {
+    cb = c[2];
+    tc = c[1] == c[2] ? 0.5 * Zero(n[0], n[1]) : 0.5 + 0.5 * Zero(n[1], n[2]);
+  }
+  *ka = (unsigned char)(sa + 1 + (ca ? 3 : 0));
+  *kb = (unsigned char)(send + 1 + (cb ? 3 : 0));
+  *th = ts >= 0 && tc >= 0 ? 0.5 * (ts + tc) : ts >= 0 ? ts : tc >= 0 ? tc : 1.0;
+}
+
+/* The map of the state over step j of length dt with every element's state frozen at the step's middle (f->key,
+   stuck or slipping at either bound, and in contact or not): the variational equations are then linear with constant
+   coefficients, Z' = A Z, A = [L, Aw; 0, 0] in the blocks (Q, P) and the slips W, L = [0, I; G + Mm^-1 (-R^T D)], and
+   the map is exp(A dt) = [SL, SW; 0, I], here its Taylor polynomial of JR_MONO_TAYLOR terms by Horner's rule (dt
+   w_max <= 0.5). Into slot k. */
+static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dt, PetscInt k)
+{
+  const PetscInt nk = f->nk, ne = f->ne, n2 = 2 * nk, l = f->l;
+  PetscReal     *SL = f->SL + k * n2 * n2, *SW = f->SW + k * n2 * ne, *D = f->T1, *tl = f->T1, *tw = f->T1 + n2 * n2;
+
+  PetscFunctionBeginUser;
+  /* D (l x nk): the element forces' rows over Q; Aw: a stuck element's force -kt w; each element's two states weighted */
+  PetscCall(PetscArrayzero(D, l * nk));
+  PetscCall(PetscArrayzero(f->XW, n2 * ne));
+  for (PetscInt e = 0; e < ne; e++)
+    for (PetscInt q = 0; q < 2; q++) {
+      const unsigned char st = q ? f->kb[e] : f->ka[e];
+      const PetscReal     wq = q ? 1.0 - f->th[e] : f->th[e];
+      const PetscInt      side = st % 3 - 1, sr = f->srow[e];
+      const PetscBool     contact = (PetscBool)(st >= 3);
+      const PetscReal     kt = f->kt[e], drdv = contact && kt > 0 ? f->mu[e] * f->kn[e] / kt : 0.0;
+      if (wq == 0.0) continue;
+      for (PetscInt i = 0; i < nk; i++) {
+        D[e + i * l] += wq * (side == 0 ? kt * f->RS[e + i * l] : drdv != 0.0 ? -side * kt * drdv * f->RS[sr + i * l] : 0.0);
+        if (sr >= 0 && contact) D[sr + i * l] += wq * f->kn[e] * f->RS[sr + i * l];
+      }
+      if (side == 0)
+        for (PetscInt i = 0; i < nk; i++) f->XW[nk + i + f->mem[e] * n2] += -wq * kt * f->MRS[i + e * nk] * dt;
+    }
+  /* XL = L dt */
+  PetscCall(PetscArrayzero(f->XL, n2 * n2));
+  for (PetscInt i = 0; i < nk; i++) f->XL[i + (nk + i) * n2] = dt;
+  for (PetscInt c = 0; c < n2; c++)
+    for (PetscInt i = 0; i < nk; i++) f->XL[nk + i + c * n2] = dt * f->G[i + c * nk];
+  if (l) {
+    PetscReal *MD = f->T2; /* Mm^-1 (-R^T D) = MRS D, nk x nk */
+    PetscCall(JRGemm("N", "N", nk, nk, l, 1.0, f->MRS, nk, D, l, 0.0, MD, nk));
+    for (PetscInt c = 0; c < nk; c++)
+      for (PetscInt i = 0; i < nk; i++) f->XL[nk + i + c * n2] += dt * MD[i + c * nk];
+  }
+  /* Horner: S <- I + X S / i, i = p .. 1, from S = I: SL <- I + XL SL / i, SW <- (XL SW + XW) / i */
+  PetscCall(PetscArrayzero(SL, n2 * n2));
+  for (PetscInt i = 0; i < n2; i++) SL[i + i * n2] = 1.0;
+  PetscCall(PetscArrayzero(SW, n2 * ne));
+  for (PetscInt i = JR_MONO_TAYLOR; i >= 1; i--) {
+    PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0 / i, f->XL, n2, SL, n2, 0.0, tl, n2));
+    for (PetscInt c = 0; c < n2; c++) tl[c + c * n2] += 1.0;
+    if (ne) {
+      PetscCall(PetscArraycpy(tw, f->XW, n2 * ne));
+      PetscCall(JRGemm("N", "N", n2, ne, n2, 1.0 / i, f->XL, n2, SW, n2, 1.0 / i, tw, n2));
+      PetscCall(PetscArraycpy(SW, tw, n2 * ne));
+    }
+    PetscCall(PetscArraycpy(SL, tl, n2 * n2));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The fundamental matrix Y (m x m) over one period of friction elements (no cubic spring): per step the map of the
+   step's middle pattern (StepMap, kept by pattern: a period's patterns mostly repeat), then the slips committed at
+   the step's end by the return map's derivative, as the RK4 march below */
+static PetscErrorCode MarchPatterns(JRHBM h, PetscReal dt)
+{
+  struct _JRMonodromy *f  = h->mono;
+  const PetscInt       nk = f->nk, ne = f->ne, n2 = 2 * nk, m = f->m, ns = f->ns, l = f->l;
+  PetscReal           *Y  = f->Y;
+
+  PetscFunctionBeginUser;
+  f->nslot = f->next = 0;
+  for (PetscInt j = 0; j < ns; j++) {
+    PetscInt  k      = -1;
+    PetscBool change = PETSC_FALSE;
+    for (PetscInt e = 0; e < ne; e++) {
+      StepStates(f, e, j, &f->ka[e], &f->kb[e], &f->th[e]);
+      f->key[e] = f->kb[e];
+      if (f->ka[e] != f->kb[e]) change = PETSC_TRUE;
+    }
+    if (change) { /* a state changes within the step: the map of the states weighted by their shares, not kept */
+      k = JR_MONO_SLOTS;
+      PetscCall(StepMap(f, dt, k));
+    }
+    for (PetscInt q = 0; q < f->nslot && k < 0; q++)
+      if (!memcmp(f->key, f->slotkey + q * ne, (size_t)ne)) k = q;
+    if (k < 0) {
+      k       = f->next;
+      f->next = (f->next + 1) % JR_MONO_SLOTS;
+      if (f->nslot < JR_MONO_SLOTS) f->nslot++;
+      PetscCall(PetscArraycpy(f->slotkey + k * ne, f->key, ne));
+      PetscCall(StepMap(f, dt, k));
+    }
+    /* [Q; P] <- SL [Q; P] + SW W */
+    PetscCall(JRGemm("N", "N", n2, m, n2, 1.0, f->SL + k * n2 * n2, n2, Y, m, 0.0, f->T2, n2));
+    if (ne) PetscCall(JRGemm("N", "N", n2, m, ne, 1.0, f->SW + k * n2 * ne, n2, Y + n2, m, 1.0, f->T2, n2));
+    for (PetscInt c = 0; c < m; c++) PetscCall(PetscArraycpy(Y + c * m, f->T2 + c * n2, n2));
+    /* the slips committed at step j + 1 */
+    if (ne) {
+      PetscCall(JRGemm("N", "N", l, m, nk, 1.0, f->RS, l, Y, m, 0.0, f->DUV, l));
+      for (PetscInt e = 0; e < ne; e++) {
+        PetscBool contact;
+        PetscReal drdv;
+        const PetscInt side = Side(f, e, 2 * j + 2, j, &contact, &drdv);
+        if (!side) continue;
+        for (PetscInt c = 0; c < m; c++) Y[n2 + f->mem[e] + c * m] = f->DUV[e + c * l] + (drdv != 0.0 ? side * drdv * f->DUV[f->srow[e] + c * l] : 0.0);
+      }
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The largest-first Floquet exponents out (2 m: real parts, then imaginary parts) of the solution x (solve space) at
+   frequency w, by the monodromy matrix marched on this rank alone (MonodromySetUp() first) */
+static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, PetscInt steps, PetscReal *out)
+{
+  struct _JRMonodromy *f  = h->mono;
+  const PetscInt       m  = f->m, nk = f->nk;
+  const PetscInt       ns = PetscMax(steps, PetscMax(h->Ns, (PetscInt)PetscCeilReal(2 * PETSC_PI * f->wmax / ((f->smooth ? 0.5 : JR_MONO_WDT) * w))));
+  const PetscReal      dt = 2 * PETSC_PI / w / ns, T = ns * dt;
+  PetscReal           *Y  = f->Y;
+  PetscBLASInt         bm, info, one = 1;
+
+  PetscFunctionBeginUser;
+  if (ns != f->ns) {
+    PetscCall(PetscFree3(f->u, f->v, f->wn));
+    PetscCall(PetscFree(f->trig));
+    f->ns = ns;
+    PetscCall(PetscMalloc3(f->ne * (2 * ns + 1) + 1, &f->u, f->ne * (2 * ns + 1) + 1, &f->v, f->ne * (ns + 1) + 1, &f->wn));
+    PetscCall(PetscMalloc1((2 * ns + 1) * 2 * h->H + 1, &f->trig));
+  }
+  { /* G = -Mm^-1 [K, Cm + (gamma / w) Kg] at this frequency */
+    PetscReal *Cv = f->Y0;
+    for (PetscInt i = 0; i < nk * nk; i++) Cv[i] = f->C[i] + h->gamma / w * f->Kg[i];
+    PetscCall(JRGemm("N", "N", nk, nk, nk, -1.0, f->Mi, nk, f->K, nk, 0.0, f->G, nk));
+    PetscCall(JRGemm("N", "N", nk, nk, nk, -1.0, f->Mi, nk, Cv, nk, 0.0, f->G + nk * nk, nk));
+  }
+  PointMotion(h, w, x);
+  PetscCall(PetscArrayzero(Y, m * m));
+  for (PetscInt i = 0; i < m; i++) Y[i + i * m] = 1.0;
+  if (f->smooth) PetscCall(MarchRK4(h, dt));
+  else PetscCall(MarchPatterns(h, dt));
+  /* the multipliers */
+  PetscCall(PetscBLASIntCast(m, &bm));
+  if (m) {
+    PetscReal dummy;
+    PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &bm, Y, &bm, f->wr, f->wi, &dummy, &one, &dummy, &one, f->work, &f->lwork, &info));
+    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK geev failed (info %d) at %g Hz", (int)info, (double)(w / (2 * PETSC_PI)));
+  }
+  for (PetscInt i = 0; i < m; i++) {
+    const PetscReal mod = PetscSqrtReal(f->wr[i] * f->wr[i] + f->wi[i] * f->wi[i]);
+    out[i]              = mod > 0 ? PetscLogReal(mod) / T : PETSC_NINFINITY;
+    out[m + i]          = PetscAtan2Real(f->wi[i], f->wr[i]) / T;
+  }
+  for (PetscInt i = 1; i < m; i++) { /* largest real part first */
+    const PetscReal r = out[i], q = out[m + i];
+    PetscInt        k = i - 1;
+    while (k >= 0 && out[k] < r) {
+      out[1 + k]     = out[k];
+      out[1 + m + k] = out[m + k];
+      k--;
+    }
+    out[1 + k]     = r;
+    out[1 + m + k] = q;
+  }
+  PetscFunctionReturn(0);
+}
+
 /*
   JRHBMFloquetTime - the Floquet exponents of the solution a (solve space, modal) at frequency w from the monodromy
   matrix of the variational equations marched over one period (collective; rank 0 marches and broadcasts).
 
-  Input: steps, the least RK4 steps per period (more if the stiffest mode or the harmonic balance's samples ask).
+  Input: steps, the least steps per period (more if the stiffest mode or the harmonic balance's samples ask).
   Output: nexp = 2 nk + ne (nk the modes other than rigid-body ones, ne the friction elements: their slips); re, im (room for
   nexp each, may be NULL): the exponents, largest real part first [1/s] (a zero multiplier, a slip that a slipping
-  element forgets, gives -inf); maxre: the largest real part; nsteps: the RK4 steps per period taken (may be NULL).
+  element forgets, gives -inf); maxre: the largest real part; nsteps: the steps per period taken (may be NULL).
   An error for a condensed model (JRHBMHillSupported()).
 */
 PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt steps, PetscInt *nexp, PetscReal re[], PetscReal im[], PetscReal *maxre, PetscInt *nsteps)
 {
   struct _JRMonodromy *f;
-  PetscInt             m = 0, hdr[2];
+  PetscInt             m;
   PetscReal           *out;
   PetscBool            ok;
 
@@ -313,109 +617,57 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt steps, Pet
   PetscCall(PetscLogEventBegin(JR_HBMFloquetTime, 0, 0, 0, 0));
   PetscCall(MonodromySetUp(h));
   f = h->mono;
+  m = f->m;
+  PetscCall(PetscCalloc1(1 + 2 * m, &out));
   if (!h->rank) {
-    const PetscInt ns = PetscMax(steps, PetscMax(h->Ns, (PetscInt)PetscCeilReal(2 * PETSC_PI * f->wmax / (0.5 * w))));
-    m                 = f->m;
-    if (ns != f->ns) {
-      PetscCall(PetscFree3(f->u, f->v, f->wn));
-      f->ns = ns;
-      PetscCall(PetscMalloc3(f->ne * (2 * ns + 1) + 1, &f->u, f->ne * (2 * ns + 1) + 1, &f->v, f->ne * (ns + 1) + 1, &f->wn));
-    }
-  }
-  hdr[0] = m;
-  hdr[1] = h->rank ? 0 : f->ns;
-  if (h->size > 1) PetscCallMPI(MPI_Bcast(hdr, 2, MPIU_INT, 0, h->comm));
-  m = hdr[0];
-  if (nexp) *nexp = m;
-  if (nsteps) *nsteps = hdr[1];
-  PetscCall(PetscMalloc1(1 + 2 * m, &out));
-  if (!h->rank) {
-    const PetscInt     nk = f->nk, ne = f->ne, ns = f->ns;
-    const PetscReal    dt = 2 * PETSC_PI / w / ns, T = ns * dt;
     const PetscScalar *x;
-    PetscReal         *Y = f->Y, *Y0 = f->Y0, *Ys = f->Ys, *K1 = f->ev;
-    PetscReal         *acc;
-    PetscBLASInt       bm, info, one = 1;
-    { /* G = -Mm^-1 [K, Cm + (gamma / w) Kg] at this frequency */
-      PetscReal *Cv = f->Y0;
-      for (PetscInt i = 0; i < nk * nk; i++) Cv[i] = f->C[i] + h->gamma / w * f->Kg[i];
-      PetscCall(JRGemm("N", "N", nk, nk, nk, -1.0, f->Mi, nk, f->K, nk, 0.0, f->G, nk));
-      PetscCall(JRGemm("N", "N", nk, nk, nk, -1.0, f->Mi, nk, Cv, nk, 0.0, f->G + nk * nk, nk));
-    }
     PetscCall(VecGetArrayRead(a, &x));
-    PointMotion(h, w, x);
+    PetscCall(FloquetLocal(h, w, x, steps, out + 1));
     PetscCall(VecRestoreArrayRead(a, &x));
-    PetscCall(PetscMalloc1(m * m, &acc));
-    PetscCall(PetscArrayzero(Y, m * m));
-    for (PetscInt i = 0; i < m; i++) Y[i + i * m] = 1.0;
-    for (PetscInt j = 0; j < ns; j++) {
-      /* the committed slips of step j: rows 2 nk .. */
-      for (PetscInt c = 0; c < m; c++)
-        for (PetscInt e = 0; e < ne; e++) f->Wc[e + c * ne] = f->mem[e] < 0 ? 0.0 : Y[2 * nk + f->mem[e] + c * m];
-      PetscCall(PetscArraycpy(Y0, Y, m * m));
-      PetscCall(PetscArrayzero(acc, m * m));
-      for (PetscInt st = 0; st < 4; st++) { /* RK4 on (Q, P); the slip rows held */
-        const PetscInt  s  = 2 * j + (st == 0 ? 0 : st == 3 ? 2 : 1);
-        const PetscReal cw = st == 0 || st == 3 ? 1.0 : 2.0, cn = st == 2 ? 1.0 : 0.5;
-        PetscCall(Rhs(h, s, j, st == 0 ? Y0 : Ys, K1));
-        for (PetscInt c = 0; c < m; c++)
-          for (PetscInt i = 0; i < 2 * nk; i++) {
-            acc[i + c * m] += cw * K1[i + c * m];
-            if (st < 3) Ys[i + c * m] = Y0[i + c * m] + cn * dt * K1[i + c * m];
-          }
-      }
-      for (PetscInt c = 0; c < m; c++)
-        for (PetscInt i = 0; i < 2 * nk; i++) Y[i + c * m] = Y0[i + c * m] + dt / 6 * acc[i + c * m];
-      /* commit the slips at step j + 1: the return map's derivative from step j's committed slip */
-      if (ne) {
-        const PetscInt N2 = 2 * ns + 1;
-        PetscCall(JRGemm("N", "N", f->l, m, nk, 1.0, f->RS, f->l, Y, m, 0.0, f->DUV, f->l));
-        for (PetscInt e = 0; e < ne; e++) {
-          const PetscReal u = f->u[e * N2 + 2 * j + 2], wj = f->wn[e * (ns + 1) + j];
-          PetscReal       n, r;
-          PetscInt        side;
-          if (f->type[e] == 2) continue;
-          r    = Bound(f, e, f->v[e * N2 + 2 * j + 2], &n);
-          side = wj < u - r ? -1 : wj > u + r ? 1 : 0;
-          if (!side) continue;
-          {
-            const PetscReal drdv = f->type[e] == 1 && n > 0 && f->kt[e] > 0 ? f->mu[e] * f->kn[e] / f->kt[e] : 0.0;
-            for (PetscInt c = 0; c < m; c++) Y[2 * nk + f->mem[e] + c * m] = f->DUV[e + c * f->l] + (drdv != 0.0 ? (side < 0 ? -drdv : drdv) * f->DUV[f->srow[e] + c * f->l] : 0.0);
-          }
-        }
-      }
-    }
-    PetscCall(PetscFree(acc));
-    /* the multipliers */
-    PetscCall(PetscBLASIntCast(m, &bm));
-    if (m) {
-      PetscReal dummy;
-      PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &bm, Y, &bm, f->wr, f->wi, &dummy, &one, &dummy, &one, f->work, &f->lwork, &info));
-      PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK geev failed (info %d) at %g Hz", (int)info, (double)(w / (2 * PETSC_PI)));
-    }
-    for (PetscInt i = 0; i < m; i++) {
-      const PetscReal mod = PetscSqrtReal(f->wr[i] * f->wr[i] + f->wi[i] * f->wi[i]);
-      out[1 + i]          = mod > 0 ? PetscLogReal(mod) / T : PETSC_NINFINITY;
-      out[1 + m + i]      = PetscAtan2Real(f->wi[i], f->wr[i]) / T;
-    }
-    for (PetscInt i = 1; i < m; i++) { /* largest real part first */
-      const PetscReal r = out[1 + i], q = out[1 + m + i];
-      PetscInt        k = i - 1;
-      while (k >= 0 && out[1 + k] < r) {
-        out[2 + k]     = out[1 + k];
-        out[2 + m + k] = out[1 + m + k];
-        k--;
-      }
-      out[2 + k]     = r;
-      out[2 + m + k] = q;
-    }
     out[0] = m ? out[1] : 0.0;
   }
   if (h->size > 1) PetscCallMPI(MPI_Bcast(out, (PetscMPIInt)(1 + 2 * m), MPIU_REAL, 0, h->comm));
+  if (nexp) *nexp = m;
+  if (nsteps) *nsteps = PetscMax(steps, PetscMax(h->Ns, (PetscInt)PetscCeilReal(2 * PETSC_PI * f->wmax / ((f->smooth ? 0.5 : JR_MONO_WDT) * w))));
   *maxre = out[0];
   if (re) PetscCall(PetscArraycpy(re, out + 1, m));
   if (im) PetscCall(PetscArraycpy(im, out + 1 + m, m));
   PetscCall(PetscFree(out));
+  PetscCall(PetscLogEventEnd(JR_HBMFloquetTime, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMFloquetTimePoints - the largest real part of the Floquet exponents in time (JRHBMFloquetTime) of the points k
+  with todo[k] among np solutions X (np x n, the solve space, the same on every rank) at frequencies omega; the points
+  shared out over the ranks, each marched by one (collective). maxre[k] of the others is left as it is.
+*/
+PetscErrorCode JRHBMFloquetTimePoints(JRHBM h, PetscInt np, const PetscReal omega[], const PetscScalar X[], PetscInt n, const PetscBool todo[], PetscInt steps, PetscReal maxre[])
+{
+  struct _JRMonodromy *f;
+  PetscReal           *out, *mine;
+  PetscBool            ok;
+  PetscInt             q = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMHillSupported(h, &ok));
+  PetscCheck(ok, h->comm, PETSC_ERR_SUP, "Floquet exponents in time need the modal unknowns: this model is condensed onto its joints (-hbm_condense no keeps the modes)");
+  PetscCall(PetscLogEventBegin(JR_HBMFloquetTime, 0, 0, 0, 0));
+  PetscCall(MonodromySetUp(h));
+  f = h->mono;
+  PetscCall(PetscMalloc1(2 * f->m + 1, &out));
+  PetscCall(PetscCalloc1(np + 1, &mine));
+  for (PetscInt k = 0; k < np; k++) {
+    if (!todo[k]) continue;
+    if (q++ % h->size != h->rank) continue;
+    PetscCall(FloquetLocal(h, omega[k], X + k * n, steps, out));
+    mine[k] = f->m ? out[0] : 0.0;
+  }
+  if (h->size > 1) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, mine, (PetscMPIInt)np, MPIU_REAL, MPIU_SUM, h->comm));
+  for (PetscInt k = 0; k < np; k++)
+    if (todo[k]) maxre[k] = mine[k];
+  PetscCall(PetscFree(out));
+  PetscCall(PetscFree(mine));
   PetscCall(PetscLogEventEnd(JR_HBMFloquetTime, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

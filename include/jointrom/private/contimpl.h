@@ -67,7 +67,7 @@ struct _p_JRCont {
   PetscReal         stabtol;    /* -frf_stability_tol: stable if every kept exponent has Re < tol w */
   PetscInt          stabdense;  /* -frf_stability_dense_max */
   PetscBool         stabtime;   /* -frf_stability_time: friction elements changing state, Floquet exponents in time */
-  PetscInt          stabsteps;  /* -frf_stability_time_steps: their least RK4 steps per period */
+  PetscInt          stabsteps;  /* -frf_stability_time_steps: their least steps per period */
   PetscBool         stabdiss;   /* -frf_stability_dissipative: the incremental-dissipativity certificate where it holds */
 };
 

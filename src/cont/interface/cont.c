@@ -59,7 +59,7 @@ PetscErrorCode JRContCreate(MPI_Comm comm, JRCont *cont)
   c->stabdense = 400;
   c->stabdiss  = PETSC_TRUE;
   c->stabtime  = PETSC_TRUE;
-  c->stabsteps = 128;
+  c->stabsteps = 64;
   PetscCall(PetscMalloc1(1, &c->levels));
   c->levels[0] = 1.0;
   PetscCall(PetscStrncpy(c->out, "out/frf", sizeof(c->out)));
@@ -222,7 +222,7 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
   PetscCall(PetscOptionsReal("-frf_stability_tol", "A point is stable if every kept exponent has Re < tol w", "JRContStability", c->stabtol, &c->stabtol, NULL));
   PetscCall(PetscOptionsBool("-frf_stability_dissipative", "Points whose elements make the response incrementally dissipative (jenkins; jenkins_nv stuck or separated over the cycle) are stable without an eigenproblem; 0: Hill's method everywhere", "JRContStability", c->stabdiss, &c->stabdiss, NULL));
   PetscCall(PetscOptionsBool("-frf_stability_time", "Points with friction elements changing state: Floquet exponents of the monodromy matrix marched over one period; 0: Hill's method, whose flags there indicate", "JRHBMFloquetTime", c->stabtime, &c->stabtime, NULL));
-  PetscCall(PetscOptionsInt("-frf_stability_time_steps", "Least RK4 steps per period of the monodromy matrix (more for the stiffest mode, and at least -hbm_samples)", "JRHBMFloquetTime", c->stabsteps, &c->stabsteps, NULL));
+  PetscCall(PetscOptionsInt("-frf_stability_time_steps", "Least steps per period of the monodromy matrix (more for the stiffest mode, and at least -hbm_samples)", "JRHBMFloquetTime", c->stabsteps, &c->stabsteps, NULL));
   PetscCall(PetscOptionsInt("-frf_stability_dense_max", "Largest nm (2H+1) solved by LAPACK's QZ; above it SLEPc's PEP (prefix hbm_hill_, strip selection)", "JRHBMFloquet", c->stabdense, &c->stabdense, NULL));
   PetscOptionsEnd();
   c->secant = pred == 0 ? PETSC_TRUE : PETSC_FALSE;
