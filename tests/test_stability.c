@@ -14,7 +14,14 @@
    - a Jenkins oscillator (constant normal load): every point stable by incremental dissipativity; at its peak and
      where Hill's method differs most, the exponents in time against the monodromy matrix of an RK4 march of the
      element's play operator (by differences, on the orbit the march settles on); and through full stick and
-     grazing slip the exponents in time flag no point unstable, as incremental dissipativity proves.
+     grazing slip the exponents in time flag no point unstable, as incremental dissipativity proves;
+   - a symmetric 3-DOF system forced on its axis (cubic springs on the two equal outer masses), whose symmetric branch
+     loses and regains its stability to antisymmetric motion: at H = 1 the two branch points reported within 1e-5 of
+     where the single-harmonic Jacobian's antisymmetric block is singular (a closed form on the symmetric branch, solved
+     here), none at a force where it never is; at H = 3 within 1e-5 of where the antisymmetric Floquet exponent of the
+     full equations (RK4 monodromy about each point's motion, here) changes sign; the curve stays symmetric through
+     them, its points unstable exactly between them, and RK4 of the full equations from the most unstable point's state
+     with x1 - x2 perturbed grows at that point's largest real part (to 5%), 1% outside the branch points decays.
    Every rank checks the same numbers (also run on 2 ranks).
 */
 #include "jrtest_problem.h"
@@ -240,6 +247,245 @@ static PetscErrorCode FoldedCase(const char *name, const Osc *o, const char *opt
   PetscFunctionReturn(0);
 }
 
+/* A symmetric 3-DOF system: mass m0 (DOF 0, forced, viscous c0 and a spring k0 to ground) joined by springs kc to the
+   equal masses m (DOFs 1, 2), each held to ground by a spring kg, a damper c and a cubic spring knl. The forcing keeps
+   x1 = x2 (an invariant subspace). With one harmonic, x1 = Re(X e^{i w t}), x0 = Re(X0 e^{i w t}), s = |X|^2, the
+   symmetric balance is
+       D0 X0 - 2 kc X = F,   -kc X0 + (Da + 3/4 knl s) X = 0,   D0 = k0 + 2 kc - m0 w^2 + i c0 w,  Da = ka - m w^2 + i c w,
+   ka = kc + kg, so that |alpha + beta s|^2 s = F^2 with alpha = D0 Da / kc - 2 kc, beta = 3/4 knl D0 / kc: a cubic in
+   s. The antisymmetric motion y = x1 - x2 linearised about it, m y'' + c y' + ka y + 3 knl x1^2 y = 0, has the first
+   harmonic P Y + Q conj(Y) = 0 (x1^2 y's first harmonic is s/2 Y + X^2/4 conj(Y)), P = Da + 3/2 knl s, |Q| = 3/4 knl s:
+   the harmonic-balance Jacobian's antisymmetric block, Y -> P Y + Q conj(Y) as a real 2 x 2 map of determinant
+   |P|^2 - |Q|^2, is singular where |P| = |Q|: the branch points, where the symmetric branch loses or regains its
+   stability to antisymmetric motion. */
+typedef struct {
+  double m0, m, k0, kc, kg, c0, c, knl, F;
+} Sym3;
+
+/* s = |X1|^2 on the symmetric branch at w: the root of p(s) = |alpha + beta s|^2 s - F^2 by bisection; *single: it is
+   the only root (p' = |alpha|^2 + 4 Re(alpha conj(beta)) s + 3 |beta|^2 s^2 has no positive root, or p's local maximum
+   is below zero or its local minimum above), so that the branch has one point at w */
+static double SymAmplitude(const Sym3 *o, double w, PetscBool *single)
+{
+  const double ka = o->kc + o->kg, d0r = o->k0 + 2 * o->kc - o->m0 * w * w, d0i = o->c0 * w, dar = ka - o->m * w * w, dai = o->c * w;
+  const double ar = (d0r * dar - d0i * dai) / o->kc - 2 * o->kc, ai = (d0r * dai + d0i * dar) / o->kc;
+  const double br = 0.75 * o->knl * d0r / o->kc, bi = 0.75 * o->knl * d0i / o->kc;
+  const double a2 = ar * ar + ai * ai, ab = ar * br + ai * bi, b2 = br * br + bi * bi, F2 = o->F * o->F;
+  double       lo = 0, hi = 1e-6;
+#define P3(s) (((b2 * (s) + 2 * ab) * (s) + a2) * (s) - F2)
+  *single = PETSC_TRUE;
+  if (ab < 0 && 4 * ab * ab > 3 * a2 * b2) { /* p' = 0 at s1 < s2, both positive: a local maximum and minimum */
+    const double s1 = (-2 * ab - PetscSqrtReal(4 * ab * ab - 3 * a2 * b2)) / (3 * b2), s2 = (-2 * ab + PetscSqrtReal(4 * ab * ab - 3 * a2 * b2)) / (3 * b2);
+    *single = (PetscBool)(P3(s1) < 0 || P3(s2) > 0);
+  }
+  while (P3(hi) < 0) hi *= 2;
+  for (int it = 0; it < 200; it++) {
+    const double mid = 0.5 * (lo + hi);
+    if (P3(mid) < 0) lo = mid;
+    else hi = mid;
+  }
+#undef P3
+  return 0.5 * (lo + hi);
+}
+
+/* (|P|^2 - |Q|^2) / ka^2 on the symmetric branch at w: negative inside the antisymmetric instability */
+static double SymBranchFunction(const Sym3 *o, double w, PetscBool *single)
+{
+  const double s = SymAmplitude(o, w, single), ka = o->kc + o->kg, pr = ka - o->m * w * w + 1.5 * o->knl * s, pi = o->c * w, q = 0.75 * o->knl * s;
+  return (pr * pr + pi * pi - q * q) / (ka * ka);
+}
+
+/* The reference branch points in [w1, w2]: sign changes of SymBranchFunction on n intervals, bisected; *single: the
+   branch has no fold anywhere in the range */
+static PetscInt SymBranchPoints(const Sym3 *o, double w1, double w2, PetscInt n, double *wb, PetscInt nmax, PetscBool *single)
+{
+  PetscInt  nb = 0;
+  PetscBool one;
+  double    wp = w1, hp = SymBranchFunction(o, w1, single);
+  for (PetscInt i = 1; i <= n; i++) {
+    const double w = w1 + (w2 - w1) * i / n, h = SymBranchFunction(o, w, &one);
+    *single = (PetscBool)(*single && one);
+    if (h * hp < 0 && nb < nmax) {
+      double lo = wp, hi = w, hlo = hp;
+      for (int it = 0; it < 200; it++) {
+        const double mid = 0.5 * (lo + hi), hm = SymBranchFunction(o, mid, &one);
+        if (hm * hlo > 0) {
+          lo  = mid;
+          hlo = hm;
+        } else hi = mid;
+      }
+      wb[nb++] = 0.5 * (lo + hi);
+    }
+    wp = w;
+    hp = h;
+  }
+  return nb;
+}
+
+/* RK4 of the full 3-DOF equations from point a's state (H harmonics; x(0) = a0 + sum ac_h, x'(0) = sum h w as_h) with
+   x1, x2 pushed apart by +-e (e = 1e-6 |X1|), over P periods at ns steps each: the growth rate [1/s] of the
+   antisymmetric perturbation, from the largest |x1 - x2| over period P/2 and over the last one */
+static double SymAntisymmetricGrowth(const Sym3 *o, PetscInt H, double w, const PetscReal *a, PetscInt P, PetscInt ns)
+{
+  const double ka = o->kc + o->kg, dt = 2 * PETSC_PI / w / ns, e = 1e-6 * hypot(a[4], a[7]);
+  double       x[3], v[3], ymid = 0.0, ymax = 0.0;
+
+  for (int i = 0; i < 3; i++) {
+    x[i] = a[i];
+    v[i] = 0.0;
+    for (PetscInt h = 1; h <= H; h++) {
+      x[i] += a[6 * h + i];
+      v[i] += h * w * a[6 * h - 3 + i];
+    }
+  }
+  x[1] += e;
+  x[2] -= e;
+  for (PetscInt j = 0; j < P * ns; j++) {
+    const double t = j * dt;
+    double       kx[4][3], kv[4][3];
+    for (int st = 0; st < 4; st++) {
+      const double h = st == 0 ? 0 : st == 3 ? dt : 0.5 * dt;
+      double       y[3], u[3];
+      for (int i = 0; i < 3; i++) {
+        y[i] = x[i] + (st ? h * kx[st - 1][i] : 0);
+        u[i] = v[i] + (st ? h * kv[st - 1][i] : 0);
+      }
+      kv[st][0] = (o->F * sin(w * (t + h)) - o->c0 * u[0] - (o->k0 + 2 * o->kc) * y[0] + o->kc * (y[1] + y[2])) / o->m0;
+      for (int i = 1; i < 3; i++) {
+        kv[st][i] = (-o->c * u[i] - ka * y[i] + o->kc * y[0] - o->knl * y[i] * y[i] * y[i]) / o->m;
+      }
+      for (int i = 0; i < 3; i++) kx[st][i] = u[i];
+    }
+    for (int i = 0; i < 3; i++) {
+      x[i] += dt / 6 * (kx[0][i] + 2 * kx[1][i] + 2 * kx[2][i] + kx[3][i]);
+      v[i] += dt / 6 * (kv[0][i] + 2 * kv[1][i] + 2 * kv[2][i] + kv[3][i]);
+    }
+    if (j >= (P / 2 - 1) * ns && j < P / 2 * ns) ymid = fmax(ymid, fabs(x[1] - x[2]));
+    if (j >= (P - 1) * ns) ymax = fmax(ymax, fabs(x[1] - x[2]));
+  }
+  return log(ymax / ymid) / ((P - P / 2) * dt * ns);
+}
+
+/* The antisymmetric Floquet exponent of the full equations about point a's motion (H harmonics): RK4 over one period
+   (ns steps) of the symmetric motion (x0, x1 = x2 from a's state) and of two antisymmetric variations,
+   m y'' + c y' + ka y + 3 knl x1^2 y = 0 from (y, y') = (1, 0) and (0, w); the largest log|rho| / T of the 2 x 2
+   monodromy matrix's multipliers rho */
+static double SymAntisymmetricExponent(const Sym3 *o, PetscInt H, double w, const PetscReal *a, PetscInt ns)
+{
+  const double ka = o->kc + o->kg, T = 2 * PETSC_PI / w, dt = T / ns;
+  double       z[8] = {a[0], 0, a[1], 0, 1, 0, 0, w}, tr, det, disc;
+
+  for (PetscInt h = 1; h <= H; h++) {
+    z[0] += a[6 * h];
+    z[1] += h * w * a[6 * h - 3];
+    z[2] += a[6 * h + 1];
+    z[3] += h * w * a[6 * h - 2];
+  }
+  for (PetscInt j = 0; j < ns; j++) {
+    double k[4][8];
+    for (int st = 0; st < 4; st++) {
+      const double h = st == 0 ? 0 : st == 3 ? dt : 0.5 * dt;
+      double       y[8];
+      for (int i = 0; i < 8; i++) y[i] = z[i] + (st ? h * k[st - 1][i] : 0);
+      k[st][0] = y[1];
+      k[st][1] = (o->F * sin(w * (j * dt + h)) - o->c0 * y[1] - (o->k0 + 2 * o->kc) * y[0] + 2 * o->kc * y[2]) / o->m0;
+      k[st][2] = y[3];
+      k[st][3] = (-o->c * y[3] - ka * y[2] + o->kc * y[0] - o->knl * y[2] * y[2] * y[2]) / o->m;
+      for (int c = 4; c < 8; c += 2) {
+        k[st][c]     = y[c + 1];
+        k[st][c + 1] = (-o->c * y[c + 1] - (ka + 3 * o->knl * y[2] * y[2]) * y[c]) / o->m;
+      }
+    }
+    for (int i = 0; i < 8; i++) z[i] += dt / 6 * (k[0][i] + 2 * k[1][i] + 2 * k[2][i] + k[3][i]);
+  }
+  tr   = z[4] + z[7] / w; /* the monodromy matrix in (y, y' / w): [z4 z6; z5/w z7/w] */
+  det  = z[4] * z[7] / w - z[6] * z[5] / w;
+  disc = tr * tr - 4 * det;
+  if (disc < 0) return log(det) / (2 * T); /* a complex pair: |rho|^2 = det */
+  return log(fmax(fabs(tr + sqrt(disc)), fabs(tr - sqrt(disc))) / 2) / T;
+}
+
+/* The symmetric 3-DOF system at H harmonics, force o->F over [f1, f2] Hz, nexpect branch points in the reference: the
+   branch points reported against the reference's (H = 1: SymBranchPoints; else where SymAntisymmetricExponent changes
+   sign along the traced curve); the traced curve symmetric (x1 = x2: the symmetric subspace is invariant, so the
+   continuation stays on it through the branch points); its points unstable exactly between the reference branch points;
+   RK4 from the most unstable point's state with an antisymmetric perturbation grows at its largest real part, from
+   stable points' 1% outside the branch points it decays */
+static PetscErrorCode SymmetricCase(const Sym3 *o, PetscInt H, double f1, double f2, PetscInt nexpect)
+{
+  const double     ka = o->kc + o->kg, tol = 1e-5;
+  const double     K[9] = {o->k0 + 2 * o->kc, -o->kc, -o->kc, -o->kc, ka, 0, -o->kc, 0, ka}, M[9] = {o->m0, 0, 0, 0, o->m, 0, 0, 0, o->m};
+  const double     C[9] = {o->c0, 0, 0, 0, o->c, 0, 0, 0, o->c};
+  const El         e[2] = {{"cubic", 1, -1, -1, -1, o->knl, 0, 0, 0}, {"cubic", 2, -1, -1, -1, o->knl, 0, 0, 0}};
+  Problem          p;
+  PetscInt         np, n, nf, nb, nref, bad = 0, nin = 0;
+  const PetscReal *om, *a, *wb, *mr;
+  const PetscInt  *st;
+  double           wref[4], asym = 0.0, err = 0.0;
+  PetscBool        single;
+  char             opts[256], name[64];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(name, sizeof(name), "symmetric 3-DOF H = %d, F = %d N", (int)H, (int)o->F));
+  PetscCall(PetscSNPrintf(opts, sizeof(opts), "-frf_stability -hbm_physical -hbm_harmonics %d -frf_dof 0 -frf_force %g -frf_fmin %g -frf_fmax %g -cont_step_max 0.005", (int)H, o->F, f1, f2));
+  PetscCall(Options(opts));
+  PetscCall(ProblemCreate(3, K, M, C, 2, e, &p));
+  PetscCall(JRContSolve(p.cont));
+  PetscCall(JRContGetBranch(p.cont, 0, &np, &om, &a, NULL));
+  PetscCall(JRContGetStability(p.cont, 0, &st, &mr, &nf, NULL, &nb, &wb));
+  PetscCall(JRHBMGetSolveSize(p.hbm, &n, NULL));
+  PetscCheck(st && mr && n == 3 * (2 * H + 1), PETSC_COMM_WORLD, PETSC_ERR_PLIB, "%s: no stability computed, or %" PetscInt_FMT " unknowns (%d expected)", name, n, (int)(3 * (2 * H + 1)));
+  if (H == 1) {
+    nref = SymBranchPoints(o, 2 * PETSC_PI * f1, 2 * PETSC_PI * f2, 4000, wref, 4, &single);
+    PetscCheck(single && nref == nexpect, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "%s: the reference has %" PetscInt_FMT " branch points (%" PetscInt_FMT " meant)%s", name, nref, nexpect, single ? "" : " and a fold");
+  } else { /* where the full equations' antisymmetric exponent changes sign along the curve, linearly between its points */
+    double ep = 0.0;
+    nref = 0;
+    for (PetscInt k = 0; k < np; k++) {
+      const double ek = SymAntisymmetricExponent(o, H, om[k], a + k * n, 400);
+      if (k > 0 && ek * ep < 0 && nref < 4) wref[nref++] = om[k - 1] + (om[k] - om[k - 1]) * ep / (ep - ek);
+      ep = ek;
+    }
+    PetscCheck(nref == nexpect, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "%s: the full equations' antisymmetric exponent changes sign %" PetscInt_FMT " times along the curve (%" PetscInt_FMT " meant)", name, nref, nexpect);
+  }
+  for (PetscInt i = 0; i < nb && i < nref; i++) err = fmax(err, fabs(wb[i] - wref[i]) / wref[i]);
+  if (nref == 2) {
+    CHECK(nb == 2 && err < tol, "%s: %" PetscInt_FMT " branch points reported at %.7g and %.7g Hz; %s at %.7g and %.7g Hz (relative error %.1e < %.0e)", name, nb, nb > 0 ? wb[0] / (2 * PETSC_PI) : 0, nb > 1 ? wb[1] / (2 * PETSC_PI) : 0, H == 1 ? "the single-harmonic reference (|P|^2 = |Q|^2 on the symmetric branch)" : "the full equations' antisymmetric Floquet exponent (RK4 monodromy about the points' motions) changes sign", wref[0] / (2 * PETSC_PI), wref[1] / (2 * PETSC_PI), err, tol);
+  } else {
+    CHECK(nb == 0, "%s: no branch point reported (%" PetscInt_FMT "), as the reference's |P|^2 - |Q|^2 keeps its sign over %g-%g Hz", name, nb, f1, f2);
+  }
+  /* x1 = x2 at every point: DOFs 1 and 2 in every block of 3 ([a0 | as_1 | ac_1 | ... | as_H | ac_H]) */
+  for (PetscInt k = 0; k < np; k++)
+    for (PetscInt j = 0; j < n / 3; j++) asym = fmax(asym, fabs(a[k * n + 3 * j + 1] - a[k * n + 3 * j + 2]) / hypot(a[k * n + 4], a[k * n + 7]));
+  CHECK(asym < 1e-10 && nf == 0, "%s: the continuation traces the symmetric branch (|x1 - x2| / |x1| <= %.1e over %" PetscInt_FMT " points, no fold)", name, asym, np);
+  /* the flags: unstable strictly between the reference branch points, stable elsewhere (each side's nearest point free) */
+  for (PetscInt k = 0; k < np; k++) {
+    const PetscBool inside = (PetscBool)(nref == 2 && om[k] > wref[0] && om[k] < wref[1]);
+    PetscBool       near   = PETSC_FALSE;
+    for (PetscInt i = 0; i < nref; i++)
+      if ((k > 0 && (om[k - 1] - wref[i]) * (om[k] - wref[i]) <= 0) || (k < np - 1 && (om[k] - wref[i]) * (om[k + 1] - wref[i]) <= 0)) near = PETSC_TRUE;
+    if (!near && st[k] == (PetscInt)inside) bad++;
+    nin += inside;
+  }
+  CHECK(bad == 0, "%s: of the %" PetscInt_FMT " points, those between the reference branch points (%" PetscInt_FMT " of them) flagged unstable, the rest stable, the two beside each branch point aside (%" PetscInt_FMT " wrong)", name, np, nin, bad);
+  if (nref == 2) { /* time integration: the most unstable point's antisymmetric perturbation grows; 1% outside, decays */
+    PetscInt ku = 0, ko[2] = {-1, -1};
+    double   gu, go[2];
+    for (PetscInt k = 0; k < np; k++) {
+      if (mr[k] > mr[ku]) ku = k;
+      for (int i = 0; i < 2; i++) {
+        const double wo = wref[i] * (i ? 1.01 : 0.99);
+        if (ko[i] < 0 || fabs(om[k] - wo) < fabs(om[ko[i]] - wo)) ko[i] = k;
+      }
+    }
+    gu = SymAntisymmetricGrowth(o, H, om[ku], a + ku * n, 40, 200);
+    for (int i = 0; i < 2; i++) go[i] = SymAntisymmetricGrowth(o, H, om[ko[i]], a + ko[i] * n, 40, 200);
+    CHECK(!st[ku] && st[ko[0]] && st[ko[1]] && fabs(gu - mr[ku]) < 0.05 * mr[ku] && go[0] < 0 && go[1] < 0, "%s: RK4 of the 3-DOF equations over 40 periods from the points' states, x1 - x2 pushed apart: at %.4f Hz (flagged unstable, largest Re %.4g 1/s) the perturbation grows at %.4g 1/s (within 5%%); at %.4f and %.4f Hz (1%% outside, flagged stable, largest Re %.3g and %.3g 1/s) it decays at %.3g and %.3g 1/s", name, om[ku] / (2 * PETSC_PI), mr[ku], gu, om[ko[0]] / (2 * PETSC_PI), om[ko[1]] / (2 * PETSC_PI), mr[ko[0]], mr[ko[1]], go[0], go[1]);
+  }
+  PetscCall(ProblemDestroy(&p));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   PetscCall(SlepcInitialize(&argc, &argv, NULL, NULL));
@@ -454,6 +700,17 @@ int main(int argc, char **argv)
     for (PetscInt q = 0; q < np; q++) nun += !st[q];
     CHECK(np > 50 && nun == 0, "Jenkins oscillator (runs/oscillator_frf.opts at 0.2 N: full stick, then slip near the 141 Hz resonance), every point by the exponents in time (-frf_stability_dissipative 0): %" PetscInt_FMT " of %" PetscInt_FMT " unstable (incremental dissipativity: none)", nun, np);
     PetscCall(ProblemDestroy(&p));
+  }
+
+  /* ---- a symmetric 3-DOF system forced on its axis: symmetry-breaking branch points at H = 1 and 3 ---- */
+  { /* the symmetric resonance, its peak at 10.74 Hz and not folded at 20 N, is unstable to antisymmetric motion over
+       10.41-10.89 Hz; at 5 N it is stable throughout */
+    const double ka = pow(2 * PETSC_PI * 10, 2);
+    Sym3         o  = {1.0, 1.0, 0.1 * ka, 0.2 * ka, 0.8 * ka, 40.0, 2.0, 4e6, 20.0};
+    PetscCall(SymmetricCase(&o, 1, 8, 13, 2));
+    PetscCall(SymmetricCase(&o, 3, 8, 13, 2));
+    o.F = 5.0;
+    PetscCall(SymmetricCase(&o, 1, 8, 13, 0));
   }
 
   PetscCall(SlepcFinalize());
