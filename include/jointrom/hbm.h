@@ -100,5 +100,6 @@ typedef enum {
   JR_STABILITY_TIME         /* the same points decided by the monodromy matrix in time (JRHBMFloquetTime) */
 } JRStabilityVerdict;
 PETSC_EXTERN PetscErrorCode JRHBMStabilityVerdict(JRHBM, Vec, PetscBool, JRStabilityVerdict *);
+PETSC_EXTERN PetscErrorCode JRHBMStabilityCheap(JRHBM, PetscBool *, PetscInt *);
 
 #endif

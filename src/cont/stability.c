@@ -131,6 +131,12 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
 
   PetscFunctionBeginUser;
   PetscCall(JRContBranchStabilityFree(b));
+  if (!c->stabset) { /* the default, decided at the first level */
+    PetscInt size;
+    PetscCall(JRHBMStabilityCheap(c->hbm, &c->stab, &size));
+    c->stabset = PETSC_TRUE;
+    if (!c->stab && !c->quiet) PetscCall(PetscPrintf(c->comm, "stability: not computed by default for this model: each point's eigenproblem (the monodromy matrix in time, or Hill's problem) has %" PetscInt_FMT " unknowns and would cost several times the curve (docs/performance.md); -frf_stability computes it, -frf_stability 0 silences this line\n", size));
+  }
   if (!c->stab) PetscFunctionReturn(0);
   PetscCall(JRHBMHillSupported(c->hbm, &ok));
   PetscCall(PetscTime(&t0));

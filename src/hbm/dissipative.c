@@ -132,3 +132,35 @@ PetscErrorCode JRHBMStabilityVerdict(JRHBM h, Vec a, PetscBool certify, JRStabil
   if (!any) *v = JR_STABILITY_DISSIPATIVE;
   PetscFunctionReturn(0);
 }
+
+/*
+  JRHBMStabilityCheap - whether deciding the stability of every point (JRContStability) costs little next to the
+  curve: the model is incrementally dissipative at every point (every element jenkins: one LU per point, or a
+  condensed model, analysed only then), or its points with friction elements changing state have a monodromy
+  matrix of at most 64 states (2 kept modes + friction elements), or, with smooth elements only, Hill's problem has
+  at most 128 unknowns. size: that state's or problem's size (0 for the first). Collective.
+*/
+PetscErrorCode JRHBMStabilityCheap(JRHBM h, PetscBool *cheap, PetscInt *size)
+{
+  PetscInt ne = 0, all, nk = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(ModelDissipative(h));
+  *size  = 0;
+  *cheap = PETSC_TRUE;
+  if (h->dissip == 2 || h->cond) PetscFunctionReturn(0);
+  if (!h->fric) {
+    *size  = 2 * h->nm * h->nc;
+    *cheap = (PetscBool)(*size <= 128);
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt t = 0; t < h->ngroups && (!h->repl || !h->rank); t++)
+    if (strcmp(h->g[t].c->type_name, JRCONTACTCUBIC)) ne += h->g[t].nloc;
+  PetscCall(MPIU_Allreduce(&ne, &all, 1, MPIU_INT, MPI_SUM, h->comm));
+  for (PetscInt i = 0; i < h->nm; i++)
+    if (!h->pin || h->pin[i] == 0.0) nk++;
+  *size  = 2 * nk + all;
+  *cheap = (PetscBool)(*size <= 64);
+  PetscFunctionReturn(0);
+}

@@ -49,6 +49,8 @@ struct _JRMonodromy {
   unsigned char *key, *slotkey;       /* the current step's pattern (ne), each kept map's (JR_MONO_SLOTS x ne) */
   unsigned char *ka, *kb, *kend;      /* a step's states of each element before and after a change within it, at its end */
   PetscReal     *th;                  /* the share of the step in state ka (ne) */
+  PetscInt      *cls, *memp, mt;      /* per point: each element's class (JR_MONO_TRACK, _HOLD, _FORGET) and its slip's
+                                         row among the tracked ones (-1: not tracked); the state's size 2 nk + tracked */
   PetscReal *SL, *SW;                 /* the kept step maps: n2 x n2 and n2 x ne each, n2 = 2 nk */
   PetscReal *XL, *XW, *T1, *T2;       /* the step map's work (n2 x n2, n2 x ne, n2 x max(n2, ne) x 2), the march's (n2 x m) */
   PetscReal *trig;                    /* sin, cos of h w t at the half steps ((2 ns + 1) x 2 H) */
@@ -56,7 +58,14 @@ struct _JRMonodromy {
 
 #define JR_MONO_SLOTS  16 /* step maps kept per point: a period's stick-slip patterns mostly repeat */
 #define JR_MONO_TAYLOR 8   /* terms of the step map's Taylor polynomial: error (w_max dt)^9 / 9! <= 3e-6 per step */
-#define JR_MONO_WDT    1.0 /* the step map's dt w_max at most (RK4's: 0.5) */
+#define JR_MONO_WDT    1.0 /* the Taylor polynomial's dt w_max at most: larger steps are halved and the map squared */
+/* an element's slip over a point's period: it changes state (tracked), or it is stuck throughout (held: its slip a
+   neutral state, multiplier 1), or it slips at every step (forgotten at every step: multiplier 0) */
+enum {
+  JR_MONO_TRACK,
+  JR_MONO_HOLD,
+  JR_MONO_FORGET
+};
 
 /* Free the time-domain Floquet work (JRHBMDestroy) */
 PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
@@ -77,6 +86,7 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscCall(PetscFree4(f->XL, f->XW, f->T1, f->T2));
   PetscCall(PetscFree(f->trig));
   PetscCall(PetscFree4(f->ka, f->kb, f->kend, f->th));
+  PetscCall(PetscFree2(f->cls, f->memp));
   PetscCall(PetscFree(h->mono));
   PetscFunctionReturn(0);
 }
@@ -216,6 +226,7 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
     PetscCall(PetscMalloc4(ne + 1, &f->key, JR_MONO_SLOTS * ne + 1, &f->slotkey, (JR_MONO_SLOTS + 1) * n2 * n2 + 1, &f->SL, (JR_MONO_SLOTS + 1) * n2 * ne + 1, &f->SW));
     PetscCall(PetscMalloc4(n2 * n2 + 1, &f->XL, n2 * ne + 1, &f->XW, 2 * n2 * mx + 1, &f->T1, n2 * f->m + 1, &f->T2));
     PetscCall(PetscMalloc4(ne + 1, &f->ka, ne + 1, &f->kb, ne + 1, &f->kend, ne + 1, &f->th));
+    PetscCall(PetscMalloc2(ne + 1, &f->cls, ne + 1, &f->memp));
   }
   PetscCall(PetscFree(keep));
   PetscCall(PetscFree(Kc));
@@ -417,7 +428,7 @@ static void StepStates(struct _JRMonodromy *f, PetscInt e, PetscInt j, unsigned 
   send        = Side(f, e, 2 * j + 2, j, &c[2], &drdv);
   f->kend[e]  = (unsigned char)(send + 1);
   if (send) {
-    sa = sprev == send ? send : 0;
+    sa = sprev == send || f->cls[e] == JR_MONO_FORGET ? send : 0;
     if (!sa) ts = g[1] > 0 ? 0.5 * Zero(g[0], g[1]) : 0.5 + 0.5 * Zero(g[1], g[2]);
   }
   ca = cb = c[0];
@@ -430,20 +441,45 @@ static void StepStates(struct _JRMonodromy *f, PetscInt e, PetscInt j, unsigned 
   *th = ts >= 0 && tc >= 0 ? 0.5 * (ts + tc) : ts >= 0 ? ts : tc >= 0 ? tc : 1.0;
 }
 
+/* Each element's class over the point's period (the play operator on the steps' ends, PointMotion): tracked where it
+   changes state, held where it is stuck and its contact unchanged throughout, forgotten where its slip is committed
+   at every step; f->memp, f->mt. Returns f->mt. */
+static PetscInt Classify(struct _JRMonodromy *f)
+{
+  const PetscInt N2 = 2 * f->ns + 1;
+  PetscInt       nt = 0;
+
+  for (PetscInt e = 0; e < f->ne; e++) {
+    PetscInt  commits = 0, contacts = 0;
+    PetscBool contact;
+    PetscReal drdv;
+    for (PetscInt j = 0; j < f->ns; j++) {
+      if (Side(f, e, 2 * j + 2, j, &contact, &drdv)) commits++;
+      if (f->type[e] == 1 && f->n0[e] + f->kn[e] * f->v[e * N2 + 2 * j + 1] > 0) contacts++;
+    }
+    f->cls[e]  = commits == f->ns ? JR_MONO_FORGET : commits == 0 && (contacts == 0 || contacts == f->ns) ? JR_MONO_HOLD : JR_MONO_TRACK;
+    f->memp[e] = f->cls[e] == JR_MONO_TRACK ? nt++ : -1;
+  }
+  f->mt = 2 * f->nk + nt;
+  return f->mt;
+}
+
 /* The map of the state over step j of length dt with every element's state frozen at the step's middle (f->key,
    stuck or slipping at either bound, and in contact or not): the variational equations are then linear with constant
    coefficients, Z' = A Z, A = [L, Aw; 0, 0] in the blocks (Q, P) and the slips W, L = [0, I; G + Mm^-1 (-R^T D)], and
    the map is exp(A dt) = [SL, SW; 0, I], here its Taylor polynomial of JR_MONO_TAYLOR terms by Horner's rule (dt
    w_max <= 0.5). Into slot k. */
-static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dt, PetscInt k)
+static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt k)
 {
-  const PetscInt nk = f->nk, ne = f->ne, n2 = 2 * nk, l = f->l;
+  const PetscInt  sq = dtstep * f->wmax > JR_MONO_WDT ? (PetscInt)PetscCeilReal(PetscLog2Real(dtstep * f->wmax / JR_MONO_WDT)) : 0;
+  const PetscReal dt = dtstep / (PetscReal)(1 << sq);
+  const PetscInt nk = f->nk, ne = f->ne, n2 = 2 * nk, l = f->l, nt = f->mt - n2;
   PetscReal     *SL = f->SL + k * n2 * n2, *SW = f->SW + k * n2 * ne, *D = f->T1, *tl = f->T1, *tw = f->T1 + n2 * n2;
 
   PetscFunctionBeginUser;
   /* D (l x nk): the element forces' rows over Q; Aw: a stuck element's force -kt w; each element's two states weighted */
   PetscCall(PetscArrayzero(D, l * nk));
-  PetscCall(PetscArrayzero(f->XW, n2 * ne));
+  PetscCall(PetscArrayzero(f->XW, n2 * nt));
   for (PetscInt e = 0; e < ne; e++)
     for (PetscInt q = 0; q < 2; q++) {
       const unsigned char st = q ? f->kb[e] : f->ka[e];
@@ -456,8 +492,8 @@ static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dt, PetscInt k)
         D[e + i * l] += wq * (side == 0 ? kt * f->RS[e + i * l] : drdv != 0.0 ? -side * kt * drdv * f->RS[sr + i * l] : 0.0);
         if (sr >= 0 && contact) D[sr + i * l] += wq * f->kn[e] * f->RS[sr + i * l];
       }
-      if (side == 0)
-        for (PetscInt i = 0; i < nk; i++) f->XW[nk + i + f->mem[e] * n2] += -wq * kt * f->MRS[i + e * nk] * dt;
+      if (side == 0 && f->memp[e] >= 0)
+        for (PetscInt i = 0; i < nk; i++) f->XW[nk + i + f->memp[e] * n2] += -wq * kt * f->MRS[i + e * nk] * dt;
     }
   /* XL = L dt */
   PetscCall(PetscArrayzero(f->XL, n2 * n2));
@@ -473,14 +509,23 @@ static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dt, PetscInt k)
   /* Horner: S <- I + X S / i, i = p .. 1, from S = I: SL <- I + XL SL / i, SW <- (XL SW + XW) / i */
   PetscCall(PetscArrayzero(SL, n2 * n2));
   for (PetscInt i = 0; i < n2; i++) SL[i + i * n2] = 1.0;
-  PetscCall(PetscArrayzero(SW, n2 * ne));
+  PetscCall(PetscArrayzero(SW, n2 * nt));
   for (PetscInt i = JR_MONO_TAYLOR; i >= 1; i--) {
     PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0 / i, f->XL, n2, SL, n2, 0.0, tl, n2));
     for (PetscInt c = 0; c < n2; c++) tl[c + c * n2] += 1.0;
-    if (ne) {
-      PetscCall(PetscArraycpy(tw, f->XW, n2 * ne));
-      PetscCall(JRGemm("N", "N", n2, ne, n2, 1.0 / i, f->XL, n2, SW, n2, 1.0 / i, tw, n2));
-      PetscCall(PetscArraycpy(SW, tw, n2 * ne));
+    if (nt) {
+      PetscCall(PetscArraycpy(tw, f->XW, n2 * nt));
+      PetscCall(JRGemm("N", "N", n2, nt, n2, 1.0 / i, f->XL, n2, SW, n2, 1.0 / i, tw, n2));
+      PetscCall(PetscArraycpy(SW, tw, n2 * nt));
+    }
+    PetscCall(PetscArraycpy(SL, tl, n2 * n2));
+  }
+  for (PetscInt q = 0; q < sq; q++) { /* squaring: [SL, SW; 0, I]^2 = [SL SL, SL SW + SW; 0, I] */
+    PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, SL, n2, SL, n2, 0.0, tl, n2));
+    if (nt) {
+      PetscCall(PetscArraycpy(tw, SW, n2 * nt));
+      PetscCall(JRGemm("N", "N", n2, nt, n2, 1.0, SL, n2, SW, n2, 1.0, tw, n2));
+      PetscCall(PetscArraycpy(SW, tw, n2 * nt));
     }
     PetscCall(PetscArraycpy(SL, tl, n2 * n2));
   }
@@ -493,7 +538,7 @@ static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dt, PetscInt k)
 static PetscErrorCode MarchPatterns(JRHBM h, PetscReal dt)
 {
   struct _JRMonodromy *f  = h->mono;
-  const PetscInt       nk = f->nk, ne = f->ne, n2 = 2 * nk, m = f->m, ns = f->ns, l = f->l;
+  const PetscInt       nk = f->nk, ne = f->ne, n2 = 2 * nk, m = f->mt, nt = m - n2, ns = f->ns, l = f->l;
   PetscReal           *Y  = f->Y;
 
   PetscFunctionBeginUser;
@@ -521,21 +566,31 @@ static PetscErrorCode MarchPatterns(JRHBM h, PetscReal dt)
     }
     /* [Q; P] <- SL [Q; P] + SW W */
     PetscCall(JRGemm("N", "N", n2, m, n2, 1.0, f->SL + k * n2 * n2, n2, Y, m, 0.0, f->T2, n2));
-    if (ne) PetscCall(JRGemm("N", "N", n2, m, ne, 1.0, f->SW + k * n2 * ne, n2, Y + n2, m, 1.0, f->T2, n2));
+    if (nt) PetscCall(JRGemm("N", "N", n2, m, nt, 1.0, f->SW + k * n2 * ne, n2, Y + n2, m, 1.0, f->T2, n2));
     for (PetscInt c = 0; c < m; c++) PetscCall(PetscArraycpy(Y + c * m, f->T2 + c * n2, n2));
     /* the slips committed at step j + 1 */
-    if (ne) {
+    if (nt) {
       PetscCall(JRGemm("N", "N", l, m, nk, 1.0, f->RS, l, Y, m, 0.0, f->DUV, l));
       for (PetscInt e = 0; e < ne; e++) {
-        PetscBool contact;
-        PetscReal drdv;
-        const PetscInt side = Side(f, e, 2 * j + 2, j, &contact, &drdv);
+        PetscBool      contact;
+        PetscReal      drdv;
+        const PetscInt side = f->memp[e] < 0 ? 0 : Side(f, e, 2 * j + 2, j, &contact, &drdv);
         if (!side) continue;
-        for (PetscInt c = 0; c < m; c++) Y[n2 + f->mem[e] + c * m] = f->DUV[e + c * l] + (drdv != 0.0 ? side * drdv * f->DUV[f->srow[e] + c * l] : 0.0);
+        for (PetscInt c = 0; c < m; c++) Y[n2 + f->memp[e] + c * m] = f->DUV[e + c * l] + (drdv != 0.0 ? side * drdv * f->DUV[f->srow[e] + c * l] : 0.0);
       }
     }
   }
   PetscFunctionReturn(0);
+}
+
+/* The steps per period at frequency w: at least steps and the harmonic balance's samples; RK4 (a cubic spring) also
+   dt w_max <= 0.5, while the step maps are exact for any dt (scaling and squaring) */
+static PetscInt Steps(JRHBM h, PetscReal w, PetscInt steps)
+{
+  const struct _JRMonodromy *f = h->mono;
+  const PetscInt             ns = PetscMax(steps, h->Ns);
+
+  return f->smooth ? PetscMax(ns, (PetscInt)PetscCeilReal(2 * PETSC_PI * f->wmax / (0.5 * w))) : ns;
 }
 
 /* The largest-first Floquet exponents out (2 m: real parts, then imaginary parts) of the solution x (solve space) at
@@ -544,10 +599,11 @@ static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, P
 {
   struct _JRMonodromy *f  = h->mono;
   const PetscInt       m  = f->m, nk = f->nk;
-  const PetscInt       ns = PetscMax(steps, PetscMax(h->Ns, (PetscInt)PetscCeilReal(2 * PETSC_PI * f->wmax / ((f->smooth ? 0.5 : JR_MONO_WDT) * w))));
+  const PetscInt       ns = Steps(h, w, steps);
   const PetscReal      dt = 2 * PETSC_PI / w / ns, T = ns * dt;
   PetscReal           *Y  = f->Y;
   PetscBLASInt         bm, info, one = 1;
+  PetscInt             mt;
 
   PetscFunctionBeginUser;
   if (ns != f->ns) {
@@ -564,22 +620,29 @@ static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, P
     PetscCall(JRGemm("N", "N", nk, nk, nk, -1.0, f->Mi, nk, Cv, nk, 0.0, f->G + nk * nk, nk));
   }
   PointMotion(h, w, x);
-  PetscCall(PetscArrayzero(Y, m * m));
-  for (PetscInt i = 0; i < m; i++) Y[i + i * m] = 1.0;
+  mt = f->smooth ? m : Classify(f);
+  PetscCall(PetscArrayzero(Y, mt * mt));
+  for (PetscInt i = 0; i < mt; i++) Y[i + i * mt] = 1.0;
   if (f->smooth) PetscCall(MarchRK4(h, dt));
   else PetscCall(MarchPatterns(h, dt));
-  /* the multipliers */
-  PetscCall(PetscBLASIntCast(m, &bm));
-  if (m) {
+  /* the multipliers: the marched state's, then 1 per held slip and 0 per forgotten one */
+  PetscCall(PetscBLASIntCast(mt, &bm));
+  if (mt) {
     PetscReal dummy;
     PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &bm, Y, &bm, f->wr, f->wi, &dummy, &one, &dummy, &one, f->work, &f->lwork, &info));
     PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK geev failed (info %d) at %g Hz", (int)info, (double)(w / (2 * PETSC_PI)));
   }
-  for (PetscInt i = 0; i < m; i++) {
+  for (PetscInt i = 0; i < mt; i++) {
     const PetscReal mod = PetscSqrtReal(f->wr[i] * f->wr[i] + f->wi[i] * f->wi[i]);
     out[i]              = mod > 0 ? PetscLogReal(mod) / T : PETSC_NINFINITY;
     out[m + i]          = PetscAtan2Real(f->wi[i], f->wr[i]) / T;
   }
+  for (PetscInt e = 0, i = mt; e < f->ne && !f->smooth; e++)
+    if (f->cls[e] != JR_MONO_TRACK) {
+      out[i]     = f->cls[e] == JR_MONO_HOLD ? 0.0 : PETSC_NINFINITY;
+      out[m + i] = 0.0;
+      i++;
+    }
   for (PetscInt i = 1; i < m; i++) { /* largest real part first */
     const PetscReal r = out[i], q = out[m + i];
     PetscInt        k = i - 1;
@@ -628,7 +691,7 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt steps, Pet
   }
   if (h->size > 1) PetscCallMPI(MPI_Bcast(out, (PetscMPIInt)(1 + 2 * m), MPIU_REAL, 0, h->comm));
   if (nexp) *nexp = m;
-  if (nsteps) *nsteps = PetscMax(steps, PetscMax(h->Ns, (PetscInt)PetscCeilReal(2 * PETSC_PI * f->wmax / ((f->smooth ? 0.5 : JR_MONO_WDT) * w))));
+  if (nsteps) *nsteps = Steps(h, w, steps);
   *maxre = out[0];
   if (re) PetscCall(PetscArraycpy(re, out + 1, m));
   if (im) PetscCall(PetscArraycpy(im, out + 1 + m, m));

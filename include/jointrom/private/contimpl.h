@@ -63,6 +63,7 @@ struct _p_JRCont {
   PetscReal        *ampw; /* work: the amplitudes and peak-to-peak of one point at the outputs (2 nout) */
   struct _JRContPlaneWork *pw; /* work: solves on planes across the curve (src/cont/peak.c) */
   PetscBool         stab;       /* -frf_stability: Floquet exponents, folds and branch points of every point */
+  PetscBool         stabset;    /* -frf_stability given; else on where it is cheap (JRHBMStabilityCheap), decided once */
   JRHillSelect      stabsel;    /* -frf_stability_select */
   PetscReal         stabtol;    /* -frf_stability_tol: stable if every kept exponent has Re < tol w */
   PetscInt          stabdense;  /* -frf_stability_dense_max */

@@ -217,12 +217,12 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
   PetscCall(PetscOptionsString("-frf_output_file", "Output base name: BASE.h5 (all points), BASE.csv, BASE.png ('' for none)", "JRPostWriteCurves", c->out, c->out, sizeof(c->out), NULL));
   PetscCall(PetscOptionsBool("-frf_plot", "Draw BASE.png", "JRPostWriteCurves", c->plot, &c->plot, NULL));
   PetscCall(PetscOptionsBool("-frf_normalize", "Plot the normalised displacement amplitude / force [m/N]", "JRPostWriteCurves", c->normalize, &c->normalize, NULL));
-  PetscCall(PetscOptionsBool("-frf_stability", "Stability of every point by Hill's method (Floquet exponents), folds and branch points", "JRContStability", c->stab, &c->stab, NULL));
+  PetscCall(PetscOptionsBool("-frf_stability", "Stability of every point (Floquet exponents), folds and branch points; default: on where it costs little next to the curve (JRHBMStabilityCheap)", "JRContStability", c->stab, &c->stab, &c->stabset));
   PetscCall(PetscOptionsEnum("-frf_stability_select", "Which exponents are the physical ones: vector (eigenvectors centred on the mean harmonic) or imag (|Im| <= w/2)", "JRHBMFloquet", JRHillSelects, (PetscEnum)c->stabsel, (PetscEnum *)&c->stabsel, NULL));
   PetscCall(PetscOptionsReal("-frf_stability_tol", "A point is stable if every kept exponent has Re < tol w", "JRContStability", c->stabtol, &c->stabtol, NULL));
   PetscCall(PetscOptionsBool("-frf_stability_dissipative", "Points whose elements make the response incrementally dissipative (jenkins; jenkins_nv stuck or separated over the cycle) are stable without an eigenproblem; 0: Hill's method everywhere", "JRContStability", c->stabdiss, &c->stabdiss, NULL));
   PetscCall(PetscOptionsBool("-frf_stability_time", "Points with friction elements changing state: Floquet exponents of the monodromy matrix marched over one period; 0: Hill's method, whose flags there indicate", "JRHBMFloquetTime", c->stabtime, &c->stabtime, NULL));
-  PetscCall(PetscOptionsInt("-frf_stability_time_steps", "Least steps per period of the monodromy matrix (more for the stiffest mode, and at least -hbm_samples)", "JRHBMFloquetTime", c->stabsteps, &c->stabsteps, NULL));
+  PetscCall(PetscOptionsInt("-frf_stability_time_steps", "Least steps per period of the monodromy matrix (and at least -hbm_samples; with a cubic spring also dt w_max <= 0.5)", "JRHBMFloquetTime", c->stabsteps, &c->stabsteps, NULL));
   PetscCall(PetscOptionsInt("-frf_stability_dense_max", "Largest nm (2H+1) solved by LAPACK's QZ; above it SLEPc's PEP (prefix hbm_hill_, strip selection)", "JRHBMFloquet", c->stabdense, &c->stabdense, NULL));
   PetscOptionsEnd();
   c->secant = pred == 0 ? PETSC_TRUE : PETSC_FALSE;
