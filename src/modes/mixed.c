@@ -145,7 +145,7 @@ static PetscErrorCode ProjectOut(PetscInt nq, Vec Q[], Vec MQ[], PetscScalar d[]
    -modes_static_pc_factor_mat_solver_type says otherwise (-modes_static_ksp_*, -modes_static_pc_*). The shift sigma is
    -1e-6 times the lowest non-zero omega^2 of the modes (a free-free K is singular): on the loads, balanced by the
    modes' inertia, A^-1 is K^-1 to 1e-6 of that omega^2 over the response's own. */
-static PetscErrorCode StaticSolver(JRModes md, KSP *ksp, Mat *A)
+static PetscErrorCode StaticSolver(JRModes md, KSP *ksp, Mat *A, PetscReal *shift)
 {
   PetscReal sigma = 0.0;
   PC        pc;
@@ -154,6 +154,7 @@ static PetscErrorCode StaticSolver(JRModes md, KSP *ksp, Mat *A)
   for (PetscInt i = 0; i < md->nm && sigma == 0.0; i++)
     if (md->lambda[i] > 0) sigma = -1e-6 * md->lambda[i];
   if (sigma == 0.0) PetscCall(JRModesDefaultShift_Private(md, &sigma));
+  *shift = sigma;
   PetscCall(MatDuplicate(md->K, MAT_COPY_VALUES, A));
   PetscCall(MatAXPY(*A, -sigma, md->M, DIFFERENT_NONZERO_PATTERN));
   PetscCall(MatSetOption(*A, MAT_SYMMETRIC, PETSC_TRUE));
@@ -176,9 +177,11 @@ static PetscErrorCode StaticSolver(JRModes md, KSP *ksp, Mat *A)
   contact stiffness: S = W^1/2 B^T P A^-1 P^T B W^1/2 (nir x nir, col-major, on every rank), with B the interface rows,
   W = diag(k), P = I - Q Q^T M and A = K - sigma M. S is symmetric and its eigenvalues are dimensionless: a pattern of
   contact forces f = W^1/2 v deforms the interface, beyond what the modes carry, by v^T S v / |v|^2 times the contact
-  springs' own stretch. The nir solves go in blocks of columns.
+  springs' own stretch. The nir solves go in blocks of columns. With qa (the diagonal Q^T A Q of modes Q that are also
+  A-orthogonal: eigenvectors, or Ritz vectors of (K, M)), S = W^1/2 B^T (A^-1 - Q (Q^T A Q)^-1 Q^T) B W^1/2, the
+  flexibility outside the span in the energy of A, which the first form equals only for eigenvectors.
 */
-static PetscErrorCode ResidualFlexibility(JRModes md, KSP ksp, Interface *c, PetscInt nq, Vec Q[], Vec MQ[], const PetscReal BQ[], PetscReal S[])
+static PetscErrorCode ResidualFlexibility(JRModes md, KSP ksp, Interface *c, PetscInt nq, Vec Q[], Vec MQ[], const PetscReal BQ[], const PetscReal qa[], PetscReal S[])
 {
   const PetscInt nr = md->nir, bs = PetscMin(64, nr);
   PetscInt       nloc, N;
@@ -202,7 +205,7 @@ static PetscErrorCode ResidualFlexibility(JRModes md, KSP ksp, Interface *c, Pet
       PetscCall(MatDenseGetColumnVecWrite(B, j, &b));
       if (j < nb) {
         w[c0 + j] = 1.0;
-        PetscCall(InterfaceLoad(md, c, w, nq, MQ, BQ, d, b));
+        PetscCall(InterfaceLoad(md, c, w, qa ? 0 : nq, MQ, BQ, d, b));
         w[c0 + j] = 0.0;
       } else PetscCall(VecZeroEntries(b));
       PetscCall(MatDenseRestoreColumnVecWrite(B, j, &b));
@@ -213,7 +216,10 @@ static PetscErrorCode ResidualFlexibility(JRModes md, KSP ksp, Interface *c, Pet
       PetscCall(MatDenseGetColumnVecRead(X, j, &x));
       PetscCall(VecCopy(x, g));
       PetscCall(MatDenseRestoreColumnVecRead(X, j, &x));
-      PetscCall(ProjectOut(nq, Q, MQ, d, g));
+      if (qa) { /* g - Q (Q^T A Q)^-1 Q^T b, Q^T b = BQ's row of this pattern */
+        for (PetscInt q = 0; q < nq; q++) d[q] = -BQ[c0 + j + q * nr] / qa[q];
+        if (nq) PetscCall(VecMAXPY(g, nq, d, Q));
+      } else PetscCall(ProjectOut(nq, Q, MQ, d, g));
       PetscCall(InterfaceRows(md, c, g, r));
       for (PetscInt i = 0; i < nr; i++) S[i + (c0 + j) * nr] = r[i];
     }
@@ -234,8 +240,9 @@ static PetscErrorCode ResidualFlexibility(JRModes md, KSP ksp, Interface *c, Pet
   that many; -1: those above -modes_static_tol, at most -modes_static_max), the static responses
   g_k = P A^-1 P^T B W^1/2 v_k to their patterns v_k (residual flexibility modes: M-orthogonal to Q), returned in G
   (unnormalised; *G NULL if ns = 0). md->rho0 = lam_1 (the check before the correction), md->rho = lam_{ns+1} (after).
+  modes: Q are md's modes (eigenvectors or Ritz vectors, A-orthogonal: S in the energy of A, ResidualFlexibility).
 */
-static PetscErrorCode StaticCorrection(JRModes md, PetscInt nq, Vec Q[], Vec MQ[], PetscInt nwant, PetscInt *ns, Vec **G)
+static PetscErrorCode StaticCorrection(JRModes md, PetscInt nq, Vec Q[], Vec MQ[], PetscBool modes, PetscInt nwant, PetscInt *ns, Vec **G)
 {
   const PetscInt nr = md->nir;
   PetscLogDouble t0, t1;
@@ -247,6 +254,7 @@ static PetscErrorCode StaticCorrection(JRModes md, PetscInt nq, Vec Q[], Vec MQ[
   PetscScalar   *d;
   PetscBLASInt   bn, lwork, info;
   PetscInt       n = 0;
+  PetscReal      sigma = 0.0, *qa = NULL;
 
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
@@ -257,8 +265,13 @@ static PetscErrorCode StaticCorrection(JRModes md, PetscInt nq, Vec Q[], Vec MQ[
   PetscCall(PetscMalloc3(nr * PetscMax(nq, 1), &BQ, nr * nr, &S, nr, &lam));
   PetscCall(PetscMalloc3(8 * nr, &work, nr, &w, PetscMax(nq, 1), &d));
   for (PetscInt q = 0; q < nq; q++) PetscCall(InterfaceRows(md, &c, Q[q], BQ + q * nr));
-  PetscCall(StaticSolver(md, &ksp, &A));
-  PetscCall(ResidualFlexibility(md, ksp, &c, nq, Q, MQ, BQ, S));
+  PetscCall(StaticSolver(md, &ksp, &A, &sigma));
+  if (modes) { /* Q = md's modes, A-orthogonal */
+    PetscCall(PetscMalloc1(PetscMax(nq, 1), &qa));
+    for (PetscInt q = 0; q < nq; q++) qa[q] = md->lambda[q] - sigma;
+  }
+  PetscCall(ResidualFlexibility(md, ksp, &c, nq, Q, MQ, BQ, qa, S));
+  PetscCall(PetscFree(qa));
   PetscCall(PetscBLASIntCast(nr, &bn));
   PetscCall(PetscBLASIntCast(8 * nr, &lwork));
   PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &bn, S, &bn, lam, work, &lwork, &info));
@@ -305,7 +318,7 @@ PetscErrorCode JRModesCheckBasis(JRModes md)
   if (!md->nir || !md->check || !md->nm) PetscFunctionReturn(0);
   PetscCall(VecDuplicateVecs(md->phi[0], md->nm, &MQ));
   for (PetscInt i = 0; i < md->nm; i++) PetscCall(MatMult(md->M, md->phi[i], MQ[i]));
-  PetscCall(StaticCorrection(md, md->nm, md->phi, MQ, 0, &ns, &G));
+  PetscCall(StaticCorrection(md, md->nm, md->phi, MQ, PETSC_TRUE, 0, &ns, &G));
   md->nsadded = 0;
   PetscCall(VecDestroyVecs(md->nm, &MQ));
   PetscFunctionReturn(0);
@@ -402,7 +415,7 @@ PetscErrorCode JRModesMix(JRModes md, Mat K, PetscInt nf, PetscInt nrb, Vec rb[]
   PetscCall(VecDuplicate(md->phi[0], &Mv));
   for (PetscInt c = 0; c < ncand; c++) PetscCall(AppendOrthonormal(M, cand[c], Q, MQ, &nq, Mv, d));
   if (md->nir && (md->nstatic || md->check)) { /* the static correction of the interface, and the check */
-    PetscCall(StaticCorrection(md, nq, Q, MQ, md->nstatic, &ns, &G));
+    PetscCall(StaticCorrection(md, nq, Q, MQ, PETSC_FALSE, md->nstatic, &ns, &G));
     for (PetscInt k = 0; k < ns; k++) PetscCall(AppendOrthonormal(M, G[k], Q, MQ, &nq, Mv, d));
     md->nsadded = ns;
     if (ns) PetscCall(VecDestroyVecs(ns, &G));
