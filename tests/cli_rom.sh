@@ -1,16 +1,19 @@
 #!/usr/bin/env bash
-# Command-line checks of the reduced-order joints (-task compare, -rom_*) on the coarse Brake-Reuss beam (10 mm,
-# 133 jenkins elements), against the node-to-node model computed in the same run (an independent model: every pair
-# its own element): every element its own joint reproduces it exactly; the first reduction with mode-shape weights
-# and the second reduction (6 joints x 3 elements) within stated errors; the stiffness correction puts the reduced
-# model's stuck resonance on the node-to-node one; a saved reduced model reproduces the run that saved it (also
-# without the preload); bad regions and files; the joints' linear motion field (-rom_joint_motion linear) between the
+# Command-line checks of the reduced-order joints (-task compare, -rom_*) on the coarse Brake-Reuss beam (10 mm, 133
+# jenkins elements), against the node-to-node model computed in the same run (an independent model: every pair its own
+# element): every element its own joint reproduces it exactly; the first reduction with mode-shape weights and the
+# second reduction (6 joints x 3 elements) within stated errors; the stiffness correction puts the reduced model's stuck
+# resonance on the node-to-node one; a saved reduced model reproduces the run that saved it (also without the preload);
+# the same two with jenkins_nv elements (normal load following the normal motion) on the coarse single-bolt lap (lap1,
+# 132 pairs), at levels where pairs stick, slip and separate: every element its own joint reproduces node-to-node and
+# its contact states to round-off, a saved second reduction the run that saved it (on the same modes: to round-off); bad
+# regions and files; on the jenkins_nv laps, the joints' linear motion field (-rom_joint_motion linear) between the
 # mean's and node-to-node's, and carrying lap1's bending; with the stuck-mode coordinates (-rom_joint_motion mode) the
 # mode of interest kept exactly. Runs of one model after the first read its preload and modes (-preload_load,
-# -modes_load: the same basis, as -task compare's two models share it). The slower end-to-end checks (one-member
-# joints with the linear field, mode-shape weights vs the plain average, 6 x 4, 7, 10 elements, save and load of the
-# other joint motions, 1 vs 2 ranks, condensation of the first reduction, the auto partition and the stiffness
-# correction's warning on the Brake-Reuss beam, each on 1 and 2 ranks): tests/cli_long.sh.
+# -modes_load: the same basis, as -task compare's two models share it). The slower end-to-end checks (one-member joints
+# with the linear field, mode-shape weights vs the plain average, 6 x 4, 7, 10 elements, save and load of the other
+# joint motions, 1 vs 2 ranks, condensation of the first reduction, the auto partition and the stiffness correction's
+# warning on the Brake-Reuss beam, each on 1 and 2 ranks): tests/cli_long.sh.
 cd "$(dirname "$0")/.."
 . tests/cli_lib.sh
 brb="-model_type brb -model_mesh_h 0.01 -preload_force 11500 -interface_kt 1e6 -interface_mu 0.12 -hbm_modes 12 -hbm_gamma 0.002 -cont_monitor 0 -frf_plot 0 -frf_fmin 128 -frf_fmax 138"
@@ -114,6 +117,36 @@ info=$(echo "$o" | grep -o 'condensed onto.*')
 mpiexec -n 2 $J -task frf $brb $fix -frf_force 0.1,50 -rom_load "$tmp/rom.h5" -hbm_condense no -frf_output_file "$tmp/cd_no" > /dev/null 2>&1
 read nm dm <<< "$(same "$tmp/cd_no.csv" "$tmp/ld.csv")"
 check "[ -n '$info' ] && [ '$nm' -ge 100 ] && lt '$dm' 1e-7" "second reduction (6 x 3, loaded) $info; amplitudes at $nm common frequencies = the modal equations' within $dm (< 1e-7)"
+
+# 4c. 1 and 4 again with jenkins_nv elements (normal load following the normal motion, separation): the single-bolt
+# lap of runs/lap1_rom.opts on its coarsest mesh (8 mm, graded: 132 pairs, 74 in contact at rest) and a small basis (8
+# stuck + 8 free modes + 30 static vectors: both models share whichever basis), on 2 ranks. At 0.5 N the node-to-node
+# peak has pairs in full stick, in stick-slip and separating and closing within the cycle (the contact states' counts
+# printed per level), some of the separating ones closed at rest (the preload's CSV against the contact map); every
+# element its own joint reproduces it, and every level's states, to round-off. The compare run writes its preload and
+# modes, which the saving and the loading runs read (no basis check: it is the compare run's): on the same basis the
+# loaded model (4 zone joints, 3 elements each and, -rom_joint_motion mode, 3 more for each low-load joint's open
+# members, each placed half at each of two points: 36 elements) gives the saving run's curves to round-off, not to the
+# modes' tolerance as in 4
+nv="-model_type lap1 -model_mesh_h 0.008 -model_mesh_grade 4 -preload_force 10000 -interface_element jenkins_nv -interface_kt 1e8 -interface_kn 1e8 -interface_mu 0.1 -hbm_modes 8 -modes_static_max 30 -hbm_gamma 0.002 -frf_fmin 110 -frf_fmax 160 -frf_normalize -frf_plot 0 -cont_monitor 0"
+states() { echo "$1" | awk '/^frf summary/{t++} $1 ~ /^[0-9.e+-]+$/ && $(NF-5) == "/" {printf "%s:%s/%s/%s/%s ", t, $(NF-6), $(NF-4), $(NF-2), $NF}'; }
+o=$(mpiexec -n 2 $J -task compare $nv -frf_force 0.01,0.5,2 -rom_joints each -frf_output_file "$tmp/nv" 2>&1)
+read f a <<< "$(worst "$o")"
+nl=$(echo "$o" | grep -c '^compare level')
+check "[ '$nl' = 3 ] && lt '$f' 1e-9 && lt '$a' 1e-8" "jenkins_nv lap1, -rom_joints each: reduced = node-to-node at 3 levels (0.01, 0.5, 2 N), worst peak frequency error $f, amplitude error $a"
+cs=$(echo "$o" | grep '^contact level 1 ')
+st=$(states "$o"); sn=$(echo "$st" | tr ' ' '\n' | sed -n 's/^1://p' | tr '\n' ' '); sr=$(echo "$st" | tr ' ' '\n' | sed -n 's/^2://p' | tr '\n' ' '); sr=${sr% }; sn=${sn% }
+# the pairs closed at rest (preload CSV) that open within the cycle at 0.5 N (contact map), row by row: one per pair
+so=$(awk -F, 'FNR == 1 {for (i = 1; i <= NF; i++) c[$i] = i; next} NR == FNR {cl[FNR] = $c["closed"]; next} cl[FNR] == 1 && $c["state_level_1"] >= 2 {s++} END{print s + 0}' "$tmp/nv_preload.csv" "$tmp/nv_contact.csv" 2>/dev/null)
+check "[ -n '$cs' ] && [ \$(field '$cs' full_stick) -gt 0 ] && [ \$(field '$cs' stick_slip) -gt 0 ] && [ \$(field '$cs' separation_stick_slip) -gt 0 ] && [ '$so' -gt 0 ] && [ \$(echo '$sn' | wc -w) = 3 ] && [ '$sn' = '$sr' ]" "jenkins_nv lap1, 0.5 N: stick, slip and separation at the node-to-node peak ($cs; $so pairs closed at rest open within the cycle); every element its own joint, the same states at every level (full stick / stick-slip / separating / open): $sr"
+nvl="-preload_load $tmp/nv_preload.h5 -modes_load $tmp/nv_modes.h5 -modes_check 0"
+osv=$(mpiexec -n 2 $J -task frf $nv $nvl -frf_force 0.01,0.5,2 -rom_joints zones -rom_elements 3 -rom_joint_motion mode -rom_save "$tmp/nvrom.h5" -frf_output_file "$tmp/nvsv" 2>&1)
+o=$(mpiexec -n 2 $J -task frf $nv -modes_load $tmp/nv_modes.h5 -modes_check 0 -frf_force 0.01,0.5,2 -rom_load "$tmp/nvrom.h5" -frf_output_file "$tmp/nvld" 2>&1)
+pk=$(paste <(echo "$osv" | grep '^peak level') <(echo "$o" | grep '^peak level') | awk '{for (i = 5; i <= 7; i += 2) {e = $(i+9) / $i - 1; if (e < 0) e = -e; if (e > m) m = e} n++} END{printf "%d %.2e", n, m}')
+cv=$(awk -F, 'NR == FNR {a[FNR] = $0; n1 = FNR; next} {n2 = FNR; if (FNR > 1) {split(a[FNR], x, ","); for (i = 4; i <= 6; i++) {d = $i - x[i]; s = x[i] < 0 ? -x[i] : x[i]; d = (d < 0 ? -d : d) / (s > 0 ? s : 1); if (d > m) m = d}}} END{printf "%d %d %.2e", n1, n2, m}' "$tmp/nvsv.csv" "$tmp/nvld.csv" 2>/dev/null)
+read np dp <<< "$pk"; read n1 n2 dc <<< "$cv"
+sl=$(echo "$(states "$o")" | tr ' ' '\n' | sed -n '2s/^1://p')
+check "[ '$np' = 3 ] && lt '$dp' 1e-8 && [ '$n1' -gt 100 ] && [ '$n1' = '$n2' ] && lt '$dc' 1e-8 && echo '$sl' | awk -F/ '{exit !(\$3 > 0)}' && ! echo \"\$o\" | grep -q '^preload total'" "jenkins_nv lap1, -rom_load of 4 zone joints x 3 (mode; $(echo "$osv" | grep -o '[0-9]* elements in [0-9]* joints' | head -1)) reproduces the saving run (no preload solved): 3 peaks within $dp, the curves' $((n1 - 1)) points within $dc; at 0.5 N its elements separate too (states $sl)"
 
 # 5. bad input
 expect_error "missing ROM file" "no such file" $J -task frf $brb -frf_force 1 -rom_load "$tmp/none.h5" -frf_output_file ''
