@@ -124,7 +124,8 @@ check "[ -n '$info' ] && [ '$nm' -ge 100 ] && lt '$dm' 1e-7" "second reduction (
 # peak has pairs in full stick, in stick-slip and separating and closing within the cycle (the contact states' counts
 # printed per level), some of the separating ones closed at rest (the preload's CSV against the contact map); every
 # element its own joint reproduces it, and every level's states, to round-off. The compare run writes its preload and
-# modes, which the saving and the loading runs read (no basis check: it is the compare run's): on the same basis the
+# modes, which the saving and the loading runs read (the saving run checks the read basis: within the computing run's
+# bounds): on the same basis the
 # loaded model (4 zone joints, 3 elements each and, -rom_joint_motion mode, 3 more for each low-load joint's open
 # members, each placed half at each of two points: 36 elements) gives the saving run's curves to round-off, not to the
 # modes' tolerance as in 4
@@ -139,8 +140,14 @@ st=$(states "$o"); sn=$(echo "$st" | tr ' ' '\n' | sed -n 's/^1://p' | tr '\n' '
 # the pairs closed at rest (preload CSV) that open within the cycle at 0.5 N (contact map), row by row: one per pair
 so=$(awk -F, 'FNR == 1 {for (i = 1; i <= NF; i++) c[$i] = i; next} NR == FNR {cl[FNR] = $c["closed"]; next} cl[FNR] == 1 && $c["state_level_1"] >= 2 {s++} END{print s + 0}' "$tmp/nv_preload.csv" "$tmp/nv_contact.csv" 2>/dev/null)
 check "[ -n '$cs' ] && [ \$(field '$cs' full_stick) -gt 0 ] && [ \$(field '$cs' stick_slip) -gt 0 ] && [ \$(field '$cs' separation_stick_slip) -gt 0 ] && [ '$so' -gt 0 ] && [ \$(echo '$sn' | wc -w) = 3 ] && [ '$sn' = '$sr' ]" "jenkins_nv lap1, 0.5 N: stick, slip and separation at the node-to-node peak ($cs; $so pairs closed at rest open within the cycle); every element its own joint, the same states at every level (full stick / stick-slip / separating / open): $sr"
-nvl="-preload_load $tmp/nv_preload.h5 -modes_load $tmp/nv_modes.h5 -modes_check 0"
+bc=$(echo "$o" | grep '^basis check'); r0=$(field "$bc" rho); rm0=$(field "$bc" rho_modes)
+nvl="-preload_load $tmp/nv_preload.h5 -modes_load $tmp/nv_modes.h5"
 osv=$(mpiexec -n 2 $J -task frf $nv $nvl -frf_force 0.01,0.5,2 -rom_joints zones -rom_elements 3 -rom_joint_motion mode -rom_save "$tmp/nvrom.h5" -frf_output_file "$tmp/nvsv" 2>&1)
+# the read basis's check, of the whole basis (its static vectors included): no more than the computing run's without
+# them (a larger span misses less), no less than that run's estimate after them (the next pattern's flexibility: a
+# rank-n correction cannot lower the (n+1)-th eigenvalue)
+r1=$(field "$(echo "$osv" | grep '^basis check')" rho)
+check "[ -n '$r1' ] && [ -n '$r0' ] && awk -v a='$r0' -v b='$r1' -v c='$rm0' 'BEGIN{exit !(a <= b * (1 + 1e-6) && b <= c)}'" "jenkins_nv lap1, basis check of the read mixed basis $r1 between the computing run's $r0 (after the static vectors, estimated) and $rm0 (without them)"
 o=$(mpiexec -n 2 $J -task frf $nv -modes_load $tmp/nv_modes.h5 -modes_check 0 -frf_force 0.01,0.5,2 -rom_load "$tmp/nvrom.h5" -frf_output_file "$tmp/nvld" 2>&1)
 pk=$(paste <(echo "$osv" | grep '^peak level') <(echo "$o" | grep '^peak level') | awk '{for (i = 5; i <= 7; i += 2) {e = $(i+9) / $i - 1; if (e < 0) e = -e; if (e > m) m = e} n++} END{printf "%d %.2e", n, m}')
 cv=$(awk -F, 'NR == FNR {a[FNR] = $0; n1 = FNR; next} {n2 = FNR; if (FNR > 1) {split(a[FNR], x, ","); for (i = 4; i <= 6; i++) {d = $i - x[i]; s = x[i] < 0 ? -x[i] : x[i]; d = (d < 0 ? -d : d) / (s > 0 ? s : 1); if (d > m) m = d}}} END{printf "%d %d %.2e", n1, n2, m}' "$tmp/nvsv.csv" "$tmp/nvld.csv" 2>/dev/null)
