@@ -10,7 +10,7 @@ lap1="-task frf -model_type lap1 -model_mesh_h 0.008 -preload_force 10000 -inter
 solve() { # np stab args... -> "solve_seconds stability_seconds curve_seconds"
   local np=$1 st=$2
   shift 2
-  mpiexec -n "$np" bin/jointrom "$@" -frf_output_file '' -frf_plot 0 -frf_stability "$st" -log_view 2>&1 |
+  mpiexec -n "$np" bin/jointrom "$@" -frf_output_file '' -frf_plot 0 -frf_stability "$st" -log_view < /dev/null 2>&1 |
     awk '/JR 6 solve:/{t=$5} /^stability level/{for(i=1;i<=NF;i++){if($i=="seconds")s+=$(i+1); if($i=="(curve")c+=$(i+1)}} END{printf "%s %.4g %.4g\n", t, s, c}'
 }
 median() { sort -g | awk '{a[NR]=$1} END{print a[int((NR+1)/2)]}'; }
