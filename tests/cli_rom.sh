@@ -147,6 +147,10 @@ osv=$(mpiexec -n 2 $J -task frf $nv $nvl -frf_force 0.01,0.5,2 -rom_joints zones
 # them (a larger span misses less), no less than that run's estimate after them (the next pattern's flexibility: a
 # rank-n correction cannot lower the (n+1)-th eigenvalue)
 r1=$(field "$(echo "$osv" | grep '^basis check')" rho)
+# with the mode's own motion every joint holds its members' share of the mode's strain energy (theory section 10):
+# a stiffness correction outside [0.9, 1.1] then names no joint
+se=$(echo "$osv" | grep -m1 '^rom stiffness_energy'); sj=$(echo "$osv" | grep -m1 '^rom stiffness_joints')
+check "[ -n '$se' ] && awk -v a='$(field "$se" members_share)' -v b='$(field "$se" joints_share)' 'BEGIN{d = a - b; if (d < 0) d = -d; exit !(d < 1e-6 * a)}' && { [ -z '$sj' ] || [ '$(field "$sj" joints)' = none ]; }" "jenkins_nv lap1, 4 zone joints, -rom_joint_motion mode: joints' share of the stuck mode's strain energy = members' ($(field "$se" joints_share)); the correction's warning names no joint (${sj:-no warning})"
 check "[ -n '$r1' ] && [ -n '$r0' ] && awk -v a='$r0' -v b='$r1' -v c='$rm0' 'BEGIN{exit !(a <= b * (1 + 1e-6) && b <= c)}'" "jenkins_nv lap1, basis check of the read mixed basis $r1 between the computing run's $r0 (after the static vectors, estimated) and $rm0 (without them)"
 o=$(mpiexec -n 2 $J -task frf $nv -modes_load $tmp/nv_modes.h5 -modes_check 0 -frf_force 0.01,0.5,2 -rom_load "$tmp/nvrom.h5" -frf_output_file "$tmp/nvld" 2>&1)
 pk=$(paste <(echo "$osv" | grep '^peak level') <(echo "$o" | grep '^peak level') | awk '{for (i = 5; i <= 7; i += 2) {e = $(i+9) / $i - 1; if (e < 0) e = -e; if (e > m) m = e} n++} END{printf "%d %.2e", n, m}')

@@ -56,7 +56,7 @@ static PetscErrorCode StiffnessJoints(JRReduce red, JRHBM hbm, JRHBM hr, const J
   const PetscBool   bad  = (PetscBool)(c == 0 || c < 0.9 || c > 1.1);
   const PetscReal   sgn  = (c == 0 || c > 1) ? 1.0 : -1.0;
   PetscInt          nm, nmr, *ord, nn = 0;
-  PetscReal        *q, *u, *v, *En, *Er, om, lam, sn = 0, sr = 0, dtot = 0, dsum = 0;
+  PetscReal        *q, *u, *v, *En, *Er, om, lam, sn = 0, sr = 0, dtot = 0, dsum = 0, tiny;
   char              names[1024] = "", ids[256] = "", buf[256];
   size_t            len;
 
@@ -81,8 +81,10 @@ static PetscErrorCode StiffnessJoints(JRReduce red, JRHBM hbm, JRHBM hr, const J
     Er[j] /= lam;
     sn += En[j];
     sr += Er[j];
-    if (sgn * (En[j] - Er[j]) > 0) dtot += sgn * (En[j] - Er[j]);
   }
+  tiny = 1e-2 * PetscMax(sn, sr); /* a joint whose share differs by less than 1% of the joints' is not responsible */
+  for (PetscInt j = 0; j < nj; j++)
+    if (sgn * (En[j] - Er[j]) > tiny) dtot += sgn * (En[j] - Er[j]);
   PetscCall(PetscPrintf(comm, "rom stiffness_energy stuck_mode %" PetscInt_FMT " members_share %.6e joints_share %.6e\n", k, (double)sn, (double)sr));
   if (!bad) {
     PetscCall(PetscFree3(q, u, v));
@@ -99,7 +101,7 @@ static PetscErrorCode StiffnessJoints(JRReduce red, JRHBM hbm, JRHBM hr, const J
   for (PetscInt a = 0; a < nj && dtot > 0 && dsum < 0.8 * dtot && nn < 8; a++) {
     const PetscInt  j = ord[a];
     const PetscReal d = sgn * (En[j] - Er[j]);
-    if (!(d > 0)) break;
+    if (!(d > tiny)) break;
     dsum += d;
     nn++;
     if (red->ji && red->nji == nj) PetscCall(JRReduceJointName(red, j, buf, sizeof(buf)));
