@@ -91,19 +91,16 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscFunctionReturn(0);
 }
 
-/* Every element's parameters and rows on rank 0 (collective), the kept modes' linear matrices, and the stiffest mode */
-static PetscErrorCode MonodromySetUp(JRHBM h)
+/* Every element's record on every rank (collective): type (0 jenkins, 1 jenkins_nv, 2 cubic), kt, kn, mu, n0 and its
+   rows r, s over the nm modes, rec = 5 + 2 nm reals each, in all (*ne records) */
+static PetscErrorCode GatherElements(JRHBM h, PetscInt rec, PetscReal **all, PetscInt *ne)
 {
-  struct _JRMonodromy *f;
-  const PetscInt       nm = h->nm;
-  PetscInt             nloc = 0, ne = 0, nk = 0, *keep;
-  PetscMPIInt          size = h->size, *cnt, *dsp, mine;
-  PetscReal           *loc, *all = NULL, *Kc;
-  const PetscInt       rec = 5 + 2 * nm; /* type, kt, kn, mu, n0, r (nm), s (nm) */
+  const PetscInt nm   = h->nm;
+  PetscInt       nloc = 0, tot = 0;
+  PetscMPIInt    size = h->size, *cnt, *dsp, mine;
+  PetscReal     *loc;
 
   PetscFunctionBeginUser;
-  if (h->mono) PetscFunctionReturn(0);
-  PetscCall(PetscNew(&f));
   if (!h->repl || !h->rank)
     for (PetscInt t = 0; t < h->ngroups; t++) nloc += h->g[t].nloc;
   PetscCall(PetscMalloc1(rec * nloc + 1, &loc));
@@ -127,18 +124,70 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
   PetscCall(PetscMalloc2(size, &cnt, size, &dsp));
   PetscCall(PetscMPIIntCast(rec * nloc, &mine));
   PetscCallMPI(MPI_Allgather(&mine, 1, MPI_INT, cnt, 1, MPI_INT, h->comm));
-  {
-    PetscInt tot = 0;
-    for (PetscMPIInt r = 0; r < size; r++) {
-      dsp[r] = (PetscMPIInt)tot;
-      tot += cnt[r];
-    }
-    ne = tot / rec;
-    PetscCall(PetscMalloc1(tot + 1, &all));
+  for (PetscMPIInt r = 0; r < size; r++) {
+    dsp[r] = (PetscMPIInt)tot;
+    tot += cnt[r];
   }
-  PetscCallMPI(MPI_Allgatherv(loc, mine, MPIU_REAL, all, cnt, dsp, MPIU_REAL, h->comm));
+  *ne = tot / rec;
+  PetscCall(PetscMalloc1(tot + 1, all));
+  PetscCallMPI(MPI_Allgatherv(loc, mine, MPIU_REAL, *all, cnt, dsp, MPIU_REAL, h->comm));
   PetscCall(PetscFree2(cnt, dsp));
   PetscCall(PetscFree(loc));
+  PetscFunctionReturn(0);
+}
+
+/* f->Mi = Mm^-1 (from the modal mass in f->Mi), f->MRS = -Mm^-1 [R^T S^T], and w_max^2: the largest eigenvalue of
+   (K + sum kt r r^T + kn s s^T, Mm), every element stuck */
+static PetscErrorCode MassInverse(struct _JRMonodromy *f)
+{
+  const PetscInt nk = f->nk, ne = f->ne;
+  PetscReal     *Ks, *Mc, *ev, *wk;
+  PetscBLASInt   bn, info, itype = 1, lw;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscBLASIntCast(nk, &bn));
+  PetscCall(PetscBLASIntCast(PetscMax(1, 3 * nk), &lw));
+  PetscCall(PetscMalloc4(nk * nk, &Ks, nk * nk, &Mc, nk + 1, &ev, 3 * nk + 1, &wk));
+  PetscCall(PetscArraycpy(Ks, f->K, nk * nk));
+  PetscCall(PetscArraycpy(Mc, f->Mi, nk * nk));
+  for (PetscInt e = 0; e < ne; e++)
+    for (PetscInt j = 0; j < nk; j++)
+      for (PetscInt i = 0; i < nk; i++) Ks[i + j * nk] += PetscAbsReal(f->kt[e]) * f->RS[e + i * f->l] * f->RS[e + j * f->l] + (f->srow[e] >= 0 ? f->kn[e] * f->RS[f->srow[e] + i * f->l] * f->RS[f->srow[e] + j * f->l] : 0.0);
+  if (nk) {
+    PetscCallBLAS("LAPACKsygv", LAPACKsygv_(&itype, "N", "U", &bn, Ks, &bn, Mc, &bn, ev, wk, &lw, &info));
+    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK sygv failed (info %d): the modal mass is not positive definite", (int)info);
+    f->wmax = PetscSqrtReal(PetscMax(ev[nk - 1], 0.0));
+  }
+  /* Mm^-1 by LU of a copy: the columns of the identity */
+  PetscCall(PetscArraycpy(Mc, f->Mi, nk * nk));
+  PetscCall(PetscArrayzero(f->Mi, nk * nk));
+  for (PetscInt i = 0; i < nk; i++) f->Mi[i + i * nk] = 1.0;
+  if (nk) {
+    PetscBLASInt *piv;
+    PetscCall(PetscMalloc1(nk, &piv));
+    PetscCallBLAS("LAPACKgesv", LAPACKgesv_(&bn, &bn, Mc, &bn, piv, f->Mi, &bn, &info));
+    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the modal mass is singular (LAPACK gesv info %d)", (int)info);
+    PetscCall(PetscFree(piv));
+  }
+  PetscCall(PetscFree4(Ks, Mc, ev, wk));
+  if (ne) PetscCall(JRGemm("N", "T", nk, f->l, nk, -1.0, f->Mi, nk, f->RS, f->l, 0.0, f->MRS, nk));
+  PetscFunctionReturn(0);
+}
+
+/* Every element's parameters and rows on every rank (collective), the kept modes' linear matrices, and the stiffest
+   mode */
+static PetscErrorCode MonodromySetUp(JRHBM h)
+{
+  struct _JRMonodromy *f;
+  const PetscInt       nm = h->nm;
+  PetscInt             ne = 0, nk = 0, *keep;
+  PetscReal           *all = NULL, *Kc;
+  const PetscInt       rec = 5 + 2 * nm; /* type, kt, kn, mu, n0, r (nm), s (nm) */
+
+  PetscFunctionBeginUser;
+  if (h->mono) PetscFunctionReturn(0);
+  PetscCall(PetscNew(&f));
+  PetscCall(GatherElements(h, rec, &all, &ne));
   /* Km - Kc: Kc summed over the ranks unless every rank has every element */
   PetscCall(PetscCalloc1(nm * nm, &Kc));
   if (h->basis != JR_HBM_BASIS_FREE && h->Kc) {
@@ -182,36 +231,7 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
       f->Kg[i + j * nk] = h->Kg[q];
       f->Mi[i + j * nk] = h->Mm[q];
     }
-  { /* Mm^-1, and w_max^2: the largest eigenvalue of (K + sum kt r r^T + kn s s^T, Mm), every element stuck */
-    PetscReal   *Ks, *Mc, *ev, *wk;
-    PetscBLASInt bn, info, itype = 1, lw;
-    PetscCall(PetscBLASIntCast(nk, &bn));
-    PetscCall(PetscBLASIntCast(PetscMax(1, 3 * nk), &lw));
-    PetscCall(PetscMalloc4(nk * nk, &Ks, nk * nk, &Mc, nk + 1, &ev, 3 * nk + 1, &wk));
-    PetscCall(PetscArraycpy(Ks, f->K, nk * nk));
-    PetscCall(PetscArraycpy(Mc, f->Mi, nk * nk));
-    for (PetscInt e = 0; e < ne; e++)
-      for (PetscInt j = 0; j < nk; j++)
-        for (PetscInt i = 0; i < nk; i++) Ks[i + j * nk] += PetscAbsReal(f->kt[e]) * f->RS[e + i * f->l] * f->RS[e + j * f->l] + (f->srow[e] >= 0 ? f->kn[e] * f->RS[f->srow[e] + i * f->l] * f->RS[f->srow[e] + j * f->l] : 0.0);
-    if (nk) {
-      PetscCallBLAS("LAPACKsygv", LAPACKsygv_(&itype, "N", "U", &bn, Ks, &bn, Mc, &bn, ev, wk, &lw, &info));
-      PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK sygv failed (info %d): the modal mass is not positive definite", (int)info);
-      f->wmax = PetscSqrtReal(PetscMax(ev[nk - 1], 0.0));
-    }
-    /* Mm^-1 by LU of a copy: the columns of the identity */
-    PetscCall(PetscArraycpy(Mc, f->Mi, nk * nk));
-    PetscCall(PetscArrayzero(f->Mi, nk * nk));
-    for (PetscInt i = 0; i < nk; i++) f->Mi[i + i * nk] = 1.0;
-    if (nk) {
-      PetscBLASInt *piv;
-      PetscCall(PetscMalloc1(nk, &piv));
-      PetscCallBLAS("LAPACKgesv", LAPACKgesv_(&bn, &bn, Mc, &bn, piv, f->Mi, &bn, &info));
-      PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the modal mass is singular (LAPACK gesv info %d)", (int)info);
-      PetscCall(PetscFree(piv));
-    }
-    PetscCall(PetscFree4(Ks, Mc, ev, wk));
-    if (ne) PetscCall(JRGemm("N", "T", nk, f->l, nk, -1.0, f->Mi, nk, f->RS, f->l, 0.0, f->MRS, nk));
-  }
+  PetscCall(MassInverse(f));
   {
     const PetscInt m = f->m;
     PetscCall(PetscMalloc3(m * m, &f->Y, m * m, &f->Y0, m * m, &f->Ys));
