@@ -484,11 +484,12 @@ static PetscInt Classify(struct _JRMonodromy *f)
   return f->mt;
 }
 
-/* The map of the state over step j of length dt with every element's state frozen at the step's middle (f->key,
-   stuck or slipping at either bound, and in contact or not): the variational equations are then linear with constant
-   coefficients, Z' = A Z, A = [L, Aw; 0, 0] in the blocks (Q, P) and the slips W, L = [0, I; G + Mm^-1 (-R^T D)], and
-   the map is exp(A dt) = [SL, SW; 0, I], here its Taylor polynomial of JR_MONO_TAYLOR terms by Horner's rule (dt
-   w_max <= 0.5). Into slot k. */
+/* The map of the state over a step of length dtstep with the elements' states of StepStates (f->ka, f->kb, f->th:
+   stuck or slipping at either bound, in contact or not, each element's two states weighted by their shares): the
+   variational equations are then linear with constant coefficients, Z' = A Z, A = [L, Aw; 0, 0] in the blocks (Q, P)
+   and the marched slips W, L = [0, I; G + Mm^-1 (-R^T D)], and the map is exp(A dtstep) = [SL, SW; 0, I]: the Taylor
+   polynomial of JR_MONO_TAYLOR terms by Horner's rule on a step halved sq times to dt w_max <= JR_MONO_WDT, then
+   squared sq times. Into slot k. */
 static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt k)
 {
   const PetscInt  sq = dtstep * f->wmax > JR_MONO_WDT ? (PetscInt)PetscCeilReal(PetscLog2Real(dtstep * f->wmax / JR_MONO_WDT)) : 0;
@@ -552,9 +553,9 @@ static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt
   PetscFunctionReturn(0);
 }
 
-/* The fundamental matrix Y (m x m) over one period of friction elements (no cubic spring): per step the map of the
-   step's middle pattern (StepMap, kept by pattern: a period's patterns mostly repeat), then the slips committed at
-   the step's end by the return map's derivative, as the RK4 march below */
+/* The fundamental matrix Y (f->mt x f->mt, from the identity) over one period of friction elements (no cubic spring):
+   per step the map of its states (StepMap; kept by pattern where no state changes within the step: a period's
+   patterns mostly repeat), then the tracked slips committed at the step's end by the return map's derivative */
 static PetscErrorCode MarchPatterns(JRHBM h, PetscReal dt)
 {
   struct _JRMonodromy *f  = h->mono;
