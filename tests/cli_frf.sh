@@ -10,6 +10,10 @@ o=$($J -options_file runs/oscillator_frf.opts -frf_output_file "$tmp/osc" -cont_
 check "[ \$(echo \"\$o\" | grep -c '^peak level') = 5 ]" "oscillator_frf.opts: one 'peak level' line per force level"
 check "[ \"\$(head -c 4 '$tmp/osc.h5' | tail -c 3)\" = HDF ] && head -1 '$tmp/osc.csv' | grep -q '^level,F_N,omega_rad_s,freq_hz,amp_1,stable$' && [ \$(wc -l < '$tmp/osc.csv') -gt 100 ]" "frf outputs: HDF5 file, CSV with header and the points"
 if command -v gnuplot > /dev/null; then check "[ \"\$(head -c 4 '$tmp/osc.png' | tail -c 3)\" = PNG ]" "frf plot PNG written"; fi
+# the stability by default on a model whose points the certificate decides (a jenkins element): a stability line
+# per level, every point of the CSV flagged stable (1), none left undecided (-1)
+ns=$(echo "$o" | grep -c '^stability level'); nu=$(awk -F, 'NR > 1 && $NF != 1' "$tmp/osc.csv" | wc -l)
+check "[ '$ns' = 5 ] && [ '$nu' = 0 ]" "oscillator_frf.opts without -frf_stability: stability computed by default ($ns 'stability level' lines), $nu points of the CSV not flagged stable"
 if command -v h5dump > /dev/null; then check "h5dump -a /response_1/dof '$tmp/osc.h5' | grep -q '(0): 0\$' && h5dump -a /response_1/name '$tmp/osc.h5' | grep -q '\"response 1 at DOF 0\"'" "frf HDF5: response 1 named by its DOF on a matrices model (/response_1 dof 0)"; fi
 # peak frequencies fall from sqrt((k+kt)/m) = 141.4 Hz towards sqrt(k/m) = 100 Hz as the force grows
 f=$(echo "$o" | awk '/^peak level/{print $5}' | tr '\n' ' ')
