@@ -678,6 +678,19 @@ static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, P
   PetscFunctionReturn(0);
 }
 
+/* The monodromy work of h, set up (collective); an error for a condensed model (JRHBMHillSupported()) */
+static PetscErrorCode FloquetBegin(JRHBM h, struct _JRMonodromy **f)
+{
+  PetscBool ok;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMHillSupported(h, &ok));
+  PetscCheck(ok, h->comm, PETSC_ERR_SUP, "Floquet exponents in time need the modal unknowns: this model is condensed onto its joints (-hbm_condense no keeps the modes)");
+  PetscCall(MonodromySetUp(h));
+  *f = h->mono;
+  PetscFunctionReturn(0);
+}
+
 /*
   JRHBMFloquetTime - the Floquet exponents of the solution a (solve space, modal) at frequency w from the monodromy
   matrix of the variational equations marched over one period (collective; rank 0 marches and broadcasts).
@@ -693,14 +706,10 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt steps, Pet
   struct _JRMonodromy *f;
   PetscInt             m;
   PetscReal           *out;
-  PetscBool            ok;
 
   PetscFunctionBeginUser;
-  PetscCall(JRHBMHillSupported(h, &ok));
-  PetscCheck(ok, h->comm, PETSC_ERR_SUP, "Floquet exponents in time need the modal unknowns: this model is condensed onto its joints (-hbm_condense no keeps the modes)");
   PetscCall(PetscLogEventBegin(JR_HBMFloquetTime, 0, 0, 0, 0));
-  PetscCall(MonodromySetUp(h));
-  f = h->mono;
+  PetscCall(FloquetBegin(h, &f));
   m = f->m;
   PetscCall(PetscCalloc1(1 + 2 * m, &out));
   if (!h->rank) {
@@ -723,33 +732,29 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt steps, Pet
 
 /*
   JRHBMFloquetTimePoints - the largest real part of the Floquet exponents in time (JRHBMFloquetTime) of the points k
-  with todo[k] among np solutions X (np x n, the solve space, the same on every rank) at frequencies omega; the points
+  with pick[k] among np solutions X (np x n, the solve space, the same on every rank) at frequencies omega; the points
   shared out over the ranks, each marched by one (collective). maxre[k] of the others is left as it is.
 */
-PetscErrorCode JRHBMFloquetTimePoints(JRHBM h, PetscInt np, const PetscReal omega[], const PetscScalar X[], PetscInt n, const PetscBool todo[], PetscInt steps, PetscReal maxre[])
+PetscErrorCode JRHBMFloquetTimePoints(JRHBM h, PetscInt np, const PetscReal omega[], const PetscScalar X[], PetscInt n, const PetscBool pick[], PetscInt steps, PetscReal maxre[])
 {
   struct _JRMonodromy *f;
   PetscReal           *out, *mine;
-  PetscBool            ok;
   PetscInt             q = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(JRHBMHillSupported(h, &ok));
-  PetscCheck(ok, h->comm, PETSC_ERR_SUP, "Floquet exponents in time need the modal unknowns: this model is condensed onto its joints (-hbm_condense no keeps the modes)");
   PetscCall(PetscLogEventBegin(JR_HBMFloquetTime, 0, 0, 0, 0));
-  PetscCall(MonodromySetUp(h));
-  f = h->mono;
+  PetscCall(FloquetBegin(h, &f));
   PetscCall(PetscMalloc1(2 * f->m + 1, &out));
   PetscCall(PetscCalloc1(np + 1, &mine));
   for (PetscInt k = 0; k < np; k++) {
-    if (!todo[k]) continue;
+    if (!pick[k]) continue;
     if (q++ % h->size != h->rank) continue;
     PetscCall(FloquetLocal(h, omega[k], X + k * n, steps, out));
     mine[k] = f->m ? out[0] : 0.0;
   }
   if (h->size > 1) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, mine, (PetscMPIInt)np, MPIU_REAL, MPIU_SUM, h->comm));
   for (PetscInt k = 0; k < np; k++)
-    if (todo[k]) maxre[k] = mine[k];
+    if (pick[k]) maxre[k] = mine[k];
   PetscCall(PetscFree(out));
   PetscCall(PetscFree(mine));
   PetscCall(PetscLogEventEnd(JR_HBMFloquetTime, 0, 0, 0, 0));
