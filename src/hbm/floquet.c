@@ -41,7 +41,7 @@ struct _JRMonodromy {
   PetscReal *K, *C, *Kg, *Mi, *G;     /* nk x nk column-major: Km - Kc, Cm, Kg, Mm^-1; G = -Mm^-1 [K, Cv] (nk x 2 nk) */
   PetscReal  wmax;                    /* the stiffest mode with every element stuck [rad/s] */
   PetscReal *u, *v, *wn;              /* the point's motion at the half steps (ne x (2 ns + 1)), committed slip (ne x (ns + 1)) */
-  PetscReal *Y, *Y0, *Ys, *DUV, *DFN, *Wc; /* the march's work: DUV = [du; dv], DFN = [df; dn] (2 ne x m) */
+  PetscReal *Y, *Y0, *Ys, *DUV, *DFN, *Wc; /* the march's work: DUV = [du; dv], DFN = [df; dn] (max(l, 2 ne) x m) */
   PetscReal *ev, *wr, *wi, *work;
   PetscBLASInt lwork;
   PetscBool  smooth;                  /* a cubic spring: its stiffness follows the motion within a step (RK4 march) */
@@ -54,6 +54,9 @@ struct _JRMonodromy {
   PetscReal *SL, *SW;                 /* the kept step maps: n2 x n2 and n2 x ne each, n2 = 2 nk */
   PetscReal *XL, *XW, *T1, *T2;       /* the step map's work (n2 x n2, n2 x ne, n2 x max(n2, ne) x 2), the march's (n2 x m) */
   PetscReal *trig;                    /* sin, cos of h w t at the half steps ((2 ns + 1) x 2 H) */
+  PetscReal *PS;                      /* the exponential's work (5 n2 x n2: four for the polynomial, L's LU) */
+  PetscBLASInt *piv;                  /* L's pivots (n2) */
+  PetscReal *RT;                      /* per point: the tracked elements' rows [r_e; s_e] over the kept modes (2 nt x nk) */
 };
 
 #define JR_MONO_SLOTS  16 /* step maps kept per point: a period's stick-slip patterns mostly repeat */
@@ -87,6 +90,7 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscCall(PetscFree(f->trig));
   PetscCall(PetscFree4(f->ka, f->kb, f->kend, f->th));
   PetscCall(PetscFree2(f->cls, f->memp));
+  PetscCall(PetscFree3(f->PS, f->piv, f->RT));
   PetscCall(PetscFree(h->mono));
   PetscFunctionReturn(0);
 }
@@ -235,7 +239,7 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
   {
     const PetscInt m = f->m;
     PetscCall(PetscMalloc3(m * m, &f->Y, m * m, &f->Y0, m * m, &f->Ys));
-    PetscCall(PetscMalloc3(f->l * m + 1, &f->DUV, f->l * m + 1, &f->DFN, ne * m + 1, &f->Wc));
+    PetscCall(PetscMalloc3(PetscMax(f->l, 2 * ne) * m + 1, &f->DUV, f->l * m + 1, &f->DFN, ne * m + 1, &f->Wc));
     f->lwork = (PetscBLASInt)(4 * m + 4);
     PetscCall(PetscMalloc4(m * m, &f->ev, m, &f->wr, m, &f->wi, f->lwork, &f->work));
   }
@@ -247,6 +251,7 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
     PetscCall(PetscMalloc4(n2 * n2 + 1, &f->XL, n2 * ne + 1, &f->XW, 2 * n2 * mx + 1, &f->T1, n2 * f->m + 1, &f->T2));
     PetscCall(PetscMalloc4(ne + 1, &f->ka, ne + 1, &f->kb, ne + 1, &f->kend, ne + 1, &f->th));
     PetscCall(PetscMalloc2(ne + 1, &f->cls, ne + 1, &f->memp));
+    PetscCall(PetscMalloc3(5 * n2 * n2 + 1, &f->PS, n2 + 1, &f->piv, 2 * ne * nk + 1, &f->RT));
   }
   PetscCall(PetscFree(keep));
   PetscCall(PetscFree(Kc));
@@ -480,22 +485,57 @@ static PetscInt Classify(struct _JRMonodromy *f)
     f->cls[e]  = commits == f->ns ? JR_MONO_FORGET : commits == 0 && (contacts == 0 || contacts == f->ns) ? JR_MONO_HOLD : JR_MONO_TRACK;
     f->memp[e] = f->cls[e] == JR_MONO_TRACK ? nt++ : -1;
   }
+  for (PetscInt e = 0; e < f->ne; e++) /* the tracked elements' rows, for their motion at the steps' ends */
+    if (f->memp[e] >= 0)
+      for (PetscInt i = 0; i < f->nk; i++) {
+        f->RT[2 * f->memp[e] + i * 2 * nt]     = f->RS[e + i * f->l];
+        f->RT[2 * f->memp[e] + 1 + i * 2 * nt] = f->srow[e] >= 0 ? f->RS[f->srow[e] + i * f->l] : 0.0;
+      }
   f->mt = 2 * f->nk + nt;
   return f->mt;
+}
+
+/* SL = exp(XL) ^ (2^sq) (n2 x n2): the Taylor polynomial of degree JR_MONO_TAYLOR = 8 by Paterson and Stockmeyer's
+   scheme, p(X) = B0 + X^4 B1 with B0, B1 of degree 3 and 4 in X (four products), then squared sq times; work
+   (4 n2 x n2) */
+static PetscErrorCode ExpmTaylor(PetscInt n2, const PetscReal *XL, PetscInt sq, PetscReal *SL, PetscReal *work)
+{
+  PetscReal *X2 = work, *X3 = work + n2 * n2, *X4 = work + 2 * n2 * n2, *B = work + 3 * n2 * n2;
+  PetscReal  c[JR_MONO_TAYLOR + 1];
+
+  PetscFunctionBeginUser;
+  c[0] = 1.0;
+  for (PetscInt i = 1; i <= JR_MONO_TAYLOR; i++) c[i] = c[i - 1] / i;
+  PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, XL, n2, XL, n2, 0.0, X2, n2));
+  PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, X2, n2, XL, n2, 0.0, X3, n2));
+  PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, X2, n2, X2, n2, 0.0, X4, n2));
+  for (PetscInt i = 0; i < n2 * n2; i++) B[i] = c[5] * XL[i] + c[6] * X2[i] + c[7] * X3[i] + c[8] * X4[i];
+  for (PetscInt i = 0; i < n2; i++) B[i + i * n2] += c[4];
+  PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, X4, n2, B, n2, 0.0, SL, n2));
+  for (PetscInt i = 0; i < n2 * n2; i++) SL[i] += c[1] * XL[i] + c[2] * X2[i] + c[3] * X3[i];
+  for (PetscInt i = 0; i < n2; i++) SL[i + i * n2] += c[0];
+  for (PetscInt q = 0; q < sq; q++) {
+    PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, SL, n2, SL, n2, 0.0, X2, n2));
+    PetscCall(PetscArraycpy(SL, X2, n2 * n2));
+  }
+  PetscFunctionReturn(0);
 }
 
 /* The map of the state over a step of length dtstep with the elements' states of StepStates (f->ka, f->kb, f->th:
    stuck or slipping at either bound, in contact or not, each element's two states weighted by their shares): the
    variational equations are then linear with constant coefficients, Z' = A Z, A = [L, Aw; 0, 0] in the blocks (Q, P)
-   and the marched slips W, L = [0, I; G + Mm^-1 (-R^T D)], and the map is exp(A dtstep) = [SL, SW; 0, I]: the Taylor
-   polynomial of JR_MONO_TAYLOR terms by Horner's rule on a step halved sq times to dt w_max <= JR_MONO_WDT, then
-   squared sq times. Into slot k. */
+   and the marched slips W, L = [0, I; G + Mm^-1 (-R^T D)], and the map is exp(A dtstep) = [SL, SW; 0, I]:
+   SL = exp(L dtstep) by ExpmTaylor on a step halved sq times to dt w_max <= JR_MONO_WDT, and SW, the response to a
+   held slip, = L^-1 (SL - I) Aw, L being invertible (the stiffness of the state pattern, K + R^T D, nonsingular);
+   where it is not (an LU pivot below 1e-10 of the largest), the Taylor polynomial of the augmented matrix's
+   column block by Horner's rule, squared along. Into slot k. */
 static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt k)
 {
   const PetscInt  sq = dtstep * f->wmax > JR_MONO_WDT ? (PetscInt)PetscCeilReal(PetscLog2Real(dtstep * f->wmax / JR_MONO_WDT)) : 0;
   const PetscReal dt = dtstep / (PetscReal)(1 << sq);
   const PetscInt nk = f->nk, ne = f->ne, n2 = 2 * nk, l = f->l, nt = f->mt - n2;
-  PetscReal     *SL = f->SL + k * n2 * n2, *SW = f->SW + k * n2 * ne, *D = f->T1, *tl = f->T1, *tw = f->T1 + n2 * n2;
+  PetscReal     *SL = f->SL + k * n2 * n2, *SW = f->SW + k * n2 * ne, *D = f->T1, *tw = f->T1 + n2 * n2, *LU = f->PS + 4 * n2 * n2;
+  PetscBool      direct = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   /* D (l x nk): the element forces' rows over Q; Aw: a stuck element's force -kt w; each element's two states weighted */
@@ -527,28 +567,45 @@ static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt
     for (PetscInt c = 0; c < nk; c++)
       for (PetscInt i = 0; i < nk; i++) f->XL[nk + i + c * n2] += dt * MD[i + c * nk];
   }
-  /* Horner: S <- I + X S / i, i = p .. 1, from S = I: SL <- I + XL SL / i, SW <- (XL SW + XW) / i */
-  PetscCall(PetscArrayzero(SL, n2 * n2));
-  for (PetscInt i = 0; i < n2; i++) SL[i + i * n2] = 1.0;
-  PetscCall(PetscArrayzero(SW, n2 * nt));
-  for (PetscInt i = JR_MONO_TAYLOR; i >= 1; i--) {
-    PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0 / i, f->XL, n2, SL, n2, 0.0, tl, n2));
-    for (PetscInt c = 0; c < n2; c++) tl[c + c * n2] += 1.0;
-    if (nt) {
+  if (nt) { /* L's LU (XL = L dt), used where its pivots are not tiny */
+    PetscBLASInt bn, info;
+    PetscReal    umin = PETSC_MAX_REAL, umax = 0.0;
+    PetscCall(PetscBLASIntCast(n2, &bn));
+    PetscCall(PetscArraycpy(LU, f->XL, n2 * n2));
+    PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bn, &bn, LU, &bn, f->piv, &info));
+    for (PetscInt i = 0; i < n2; i++) {
+      umin = PetscMin(umin, PetscAbsReal(LU[i + i * n2]));
+      umax = PetscMax(umax, PetscAbsReal(LU[i + i * n2]));
+    }
+    direct = (PetscBool)(!info && umin > 1e-10 * umax);
+  }
+  if (nt && !direct) { /* Horner on the column block: SW <- (XL SW + XW) / i, i = p .. 1, from SW = 0 */
+    PetscCall(PetscArrayzero(SW, n2 * nt));
+    for (PetscInt i = JR_MONO_TAYLOR; i >= 1; i--) {
       PetscCall(PetscArraycpy(tw, f->XW, n2 * nt));
       PetscCall(JRGemm("N", "N", n2, nt, n2, 1.0 / i, f->XL, n2, SW, n2, 1.0 / i, tw, n2));
       PetscCall(PetscArraycpy(SW, tw, n2 * nt));
     }
-    PetscCall(PetscArraycpy(SL, tl, n2 * n2));
   }
-  for (PetscInt q = 0; q < sq; q++) { /* squaring: [SL, SW; 0, I]^2 = [SL SL, SL SW + SW; 0, I] */
-    PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, SL, n2, SL, n2, 0.0, tl, n2));
-    if (nt) {
+  if (direct || !nt) PetscCall(ExpmTaylor(n2, f->XL, sq, SL, f->PS));
+  else { /* the squarings along: [SL, SW; 0, I]^2 = [SL SL, SL SW + SW; 0, I] */
+    PetscCall(ExpmTaylor(n2, f->XL, 0, SL, f->PS));
+    for (PetscInt q = 0; q < sq; q++) {
       PetscCall(PetscArraycpy(tw, SW, n2 * nt));
       PetscCall(JRGemm("N", "N", n2, nt, n2, 1.0, SL, n2, SW, n2, 1.0, tw, n2));
       PetscCall(PetscArraycpy(SW, tw, n2 * nt));
+      PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, SL, n2, SL, n2, 0.0, f->PS, n2));
+      PetscCall(PetscArraycpy(SL, f->PS, n2 * n2));
     }
-    PetscCall(PetscArraycpy(SL, tl, n2 * n2));
+  }
+  if (nt && direct) { /* SW = (L dt)^-1 (SL - I) (Aw dt) */
+    PetscBLASInt bn, bt, info;
+    PetscCall(PetscBLASIntCast(n2, &bn));
+    PetscCall(PetscBLASIntCast(nt, &bt));
+    PetscCall(PetscArraycpy(SW, f->XW, n2 * nt));
+    PetscCall(JRGemm("N", "N", n2, nt, n2, 1.0, SL, n2, f->XW, n2, -1.0, SW, n2));
+    PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bn, &bt, LU, &bn, f->piv, SW, &bn, &info));
+    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK getrs failed (info %d)", (int)info);
   }
   PetscFunctionReturn(0);
 }
@@ -559,7 +616,7 @@ static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt
 static PetscErrorCode MarchPatterns(JRHBM h, PetscReal dt)
 {
   struct _JRMonodromy *f  = h->mono;
-  const PetscInt       nk = f->nk, ne = f->ne, n2 = 2 * nk, m = f->mt, nt = m - n2, ns = f->ns, l = f->l;
+  const PetscInt       nk = f->nk, ne = f->ne, n2 = 2 * nk, m = f->mt, nt = m - n2, ns = f->ns;
   PetscReal           *Y  = f->Y;
 
   PetscFunctionBeginUser;
@@ -569,7 +626,7 @@ static PetscErrorCode MarchPatterns(JRHBM h, PetscReal dt)
     PetscBool change = PETSC_FALSE;
     for (PetscInt e = 0; e < ne; e++) {
       StepStates(f, e, j, &f->ka[e], &f->kb[e], &f->th[e]);
-      f->key[e] = f->kb[e];
+      f->key[e] = f->kb[e] >= 3 || f->kb[e] == 1 ? f->kb[e] : 0; /* slipping off contact: either side the same map */
       if (f->ka[e] != f->kb[e]) change = PETSC_TRUE;
     }
     if (change) { /* a state changes within the step: the map of the states weighted by their shares, not kept */
@@ -590,14 +647,14 @@ static PetscErrorCode MarchPatterns(JRHBM h, PetscReal dt)
     if (nt) PetscCall(JRGemm("N", "N", n2, m, nt, 1.0, f->SW + k * n2 * ne, n2, Y + n2, m, 1.0, f->T2, n2));
     for (PetscInt c = 0; c < m; c++) PetscCall(PetscArraycpy(Y + c * m, f->T2 + c * n2, n2));
     /* the slips committed at step j + 1 */
-    if (nt) {
-      PetscCall(JRGemm("N", "N", l, m, nk, 1.0, f->RS, l, Y, m, 0.0, f->DUV, l));
+    if (nt) { /* DUV: the tracked elements' [du; dv] (2 nt x m) */
+      PetscCall(JRGemm("N", "N", 2 * nt, m, nk, 1.0, f->RT, 2 * nt, Y, m, 0.0, f->DUV, 2 * nt));
       for (PetscInt e = 0; e < ne; e++) {
         PetscBool      contact;
         PetscReal      drdv;
-        const PetscInt side = f->memp[e] < 0 ? 0 : Side(f, e, 2 * j + 2, j, &contact, &drdv);
+        const PetscInt side = f->memp[e] < 0 ? 0 : Side(f, e, 2 * j + 2, j, &contact, &drdv), q = 2 * f->memp[e];
         if (!side) continue;
-        for (PetscInt c = 0; c < m; c++) Y[n2 + f->memp[e] + c * m] = f->DUV[e + c * l] + (drdv != 0.0 ? side * drdv * f->DUV[f->srow[e] + c * l] : 0.0);
+        for (PetscInt c = 0; c < m; c++) Y[n2 + f->memp[e] + c * m] = f->DUV[q + c * 2 * nt] + side * drdv * f->DUV[q + 1 + c * 2 * nt];
       }
     }
   }
