@@ -702,6 +702,58 @@ int main(int argc, char **argv)
     PetscCall(ProblemDestroy(&p));
   }
 
+  /* ---- fast modes condensed quasi-statically in the monodromy: the exponents tend to the full march's as w_f grows ----
+     a mass on a spring to ground, a light mass mu on a stiff spring ks to it, and a Jenkins element from the light one
+     to ground, structural damping gamma: the light mass's own frequency sqrt(ks / mu) is fast (above 20 H w, decaying
+     by e within a period), the other slow. At the points of the stick-slip resonance, the largest real part with the
+     light mass condensed (-frf_stability_time_fast 20) and marched (0), 16384 steps per period (the steps' own error
+     aside): they differ by e(mu, gamma) < 1e-3 of the largest |real part|, and e falls by 3-7 when mu / 4 doubles
+     w_f (the neglected inertia, (w / w_f)^2), at gamma 1% and 0.25%; at the default steps the two differ by < 1%. */
+  {
+    const double   k0 = pow(2 * PETSC_PI * 10, 2), ks = 2e4, kt = 1e4, fs = 0.3;
+    const PetscInt Hq = 3;
+    double         err[5] = {0, 0, 0, 0, 0}, ref[4] = {0, 0, 0, 0};
+    PetscInt       npq = 0, nfast = 0;
+    for (int pass = 0; pass < 4; pass++) {
+      const double     mu = pass % 2 ? 1.25e-4 : 5e-4, gam = pass / 2 ? 0.0025 : 0.01, K[4] = {k0 + ks, -ks, -ks, ks}, M[4] = {1.0, 0, 0, mu}, C[4] = {0.2, 0, 0, 0};
+      Problem          p;
+      PetscInt         np, n;
+      const PetscReal *om, *aa;
+      Vec              xv;
+      PetscScalar     *xa;
+      char             opts[256];
+      PetscCall(PetscSNPrintf(opts, sizeof(opts), "-hbm_physical -hbm_gamma %g -hbm_harmonics %d -frf_force 1.0 -frf_fmin 6 -frf_fmax 14", gam, (int)Hq));
+      PetscCall(Options(opts));
+      PetscCall(ProblemCreate(2, K, M, C, 1, (El[]){{"jenkins", 1, -1, -1, -1, kt, 0, 0.3, fs / 0.3}}, &p));
+      PetscCall(JRContSolve(p.cont));
+      PetscCall(JRContGetBranch(p.cont, 0, &np, &om, &aa, NULL));
+      PetscCall(JRHBMGetSolveSize(p.hbm, &n, NULL));
+      PetscCall(JRHBMCreateVecs(p.hbm, &xv, NULL));
+      for (PetscInt q = 0; q < np; q += PetscMax(1, np / 40)) {
+        PetscReal m0, m1;
+        PetscCall(VecGetArray(xv, &xa));
+        for (PetscInt i = 0; i < n; i++) xa[i] = aa[q * n + i];
+        PetscCall(VecRestoreArray(xv, &xa));
+        for (int st = 0; st < (pass ? 1 : 2); st++) {
+          PetscCall(JRHBMSetFloquetFast(p.hbm, 0));
+          PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, st ? 0 : 16384, NULL, NULL, NULL, &m0, NULL));
+          PetscCall(JRHBMSetFloquetFast(p.hbm, 20));
+          PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, st ? 0 : 16384, NULL, NULL, NULL, &m1, NULL));
+          err[st ? 4 : pass] = fmax(err[st ? 4 : pass], fabs(m1 - m0));
+          if (!st) ref[pass] = fmax(ref[pass], fabs(m0));
+        }
+        npq++;
+        nfast += (PetscInt)(ks / mu > pow(20.0 * Hq * om[q], 2) && gam / om[q] * ks / (2 * mu) >= om[q] / (2 * PETSC_PI));
+      }
+      PetscCall(VecDestroy(&xv));
+      PetscCall(ProblemDestroy(&p));
+    }
+    CHECK(nfast == npq, "2-DOF with a light mass (own frequency %.0f and %.0f rad/s) on a stiff spring: above 20 H w and damped by e within a period at all %" PetscInt_FMT " points checked, so condensed", sqrt(ks / 5e-4), sqrt(ks / 1.25e-4), npq);
+    for (int g = 0; g < 2; g++)
+      CHECK(err[2 * g] < 1e-3 * ref[2 * g] && err[2 * g + 1] < 1e-3 * ref[2 * g + 1] && err[2 * g] / err[2 * g + 1] > 3 && err[2 * g] / err[2 * g + 1] < 7, "2-DOF, gamma %g: the largest real part with the light mass condensed against marched (16384 steps) differs by at most %.2e 1/s (largest |real part| %.3g 1/s), %.2e with w_f doubled: %.2f times less (3-7: (w / w_f)^2)", g ? 0.0025 : 0.01, err[2 * g], ref[2 * g], err[2 * g + 1], err[2 * g] / err[2 * g + 1]);
+    CHECK(err[4] < 1e-2 * ref[0], "2-DOF, gamma 0.01, the default steps: condensed against marched differ by at most %.2e 1/s (< 1%% of %.3g 1/s)", err[4], ref[0]);
+  }
+
   /* ---- a symmetric 3-DOF system forced on its axis: symmetry-breaking branch points at H = 1 and 3 ---- */
   { /* the symmetric resonance, its peak at 10.74 Hz and not folded at 20 N, is unstable to antisymmetric motion over
        10.41-10.89 Hz; at 5 N it is stable throughout */

@@ -170,6 +170,7 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
       PetscCall(JRHBMFloquet(c->hbm, b->omega[k], a, c->stabsel, c->stabdense, NULL, NULL, NULL, &b->maxre[k], &b->detsign[k]));
     }
   }
+  if (any) PetscCall(JRHBMSetFloquetFast(c->hbm, c->stabfast));
   if (any) PetscCall(JRHBMFloquetTimePoints(c->hbm, b->np, b->omega, b->x, c->n, intime, c->stabsteps, b->maxre));
   for (PetscInt k = 0; k < b->np; k++) {
     b->stable[k] = verdict[k] == JR_STABILITY_DISSIPATIVE || b->maxre[k] < c->stabtol * b->omega[k] ? 1 : 0;

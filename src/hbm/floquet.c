@@ -41,7 +41,7 @@ struct _JRMonodromy {
   PetscReal *K, *C, *Kg, *Mi, *G;     /* nk x nk column-major: Km - Kc, Cm, Kg, Mm^-1; G = -Mm^-1 [K, Cv] (nk x 2 nk) */
   PetscReal  wmax;                    /* the stiffest mode with every element stuck [rad/s] */
   PetscReal *u, *v, *wn;              /* the point's motion at the half steps (ne x (2 ns + 1)), committed slip (ne x (ns + 1)) */
-  PetscReal *Y, *Y0, *Ys, *DUV, *DFN, *Wc; /* the march's work: DUV = [du; dv], DFN = [df; dn] (max(l, 2 ne) x m) */
+  PetscReal *Y, *Y0, *Ys, *DUV, *DFN, *Wc; /* the march's work: DUV = [du; dv], DFN = [df; dn] (max(l, 2 ne, nk) x m) */
   PetscReal *ev, *wr, *wi, *work;
   PetscBLASInt lwork;
   PetscBool  smooth;                  /* a cubic spring: its stiffness follows the motion within a step (RK4 march) */
@@ -57,6 +57,21 @@ struct _JRMonodromy {
   PetscReal *PS;                      /* the exponential's work (5 n2 x n2: four for the polynomial, L's LU) */
   PetscBLASInt *piv;                  /* L's pivots (n2) */
   PetscReal *RT;                      /* per point: the tracked elements' rows [r_e; s_e] over the kept modes (2 nt x nk) */
+  /* the fast modes' quasi-static condensation (JRHBMSetFloquetFast; QuasiStatic) */
+  PetscInt   nsl, nfa, n2r;           /* per point: slow and fast kept modes, the marched (q, q') size 2 nsl */
+  PetscInt  *isl, *ifa;               /* their indices among the kept modes */
+  PetscReal *Mm, *Cv;                 /* nk x nk column-major: the modal mass, the damping at the point's frequency */
+  PetscReal *QW;                      /* the condensation's work (9 nk x nk + 4 nk x ne) */
+  PetscReal *Ts, *Tws;                /* per kept map: the modes over the slow ones and the fast ones over the held slips,
+                                         T (nk x nsl, stride nk nk) and Kff^-1 Bw_f (nfa x nt, stride nk cap) */
+  PetscInt   cap;                     /* the tracked elements Tws has room for */
+  PetscReal *RSt, *cf, *cfn, *Kp;     /* [R; S]^T (nk x l); each element's stiffness coefficients (3 ne: kt r r^T, r s^T,
+                                         kn s s^T) in Kp = K + sum (...) (nk x nk), and the next step's; Kp is updated by the
+                                         elements whose coefficients change (kvalid) */
+  PetscBool  kvalid;
+  PetscReal *CB, *Rg;                 /* the commits' work (2 cap x (2 nk + cap)), the committing rows (2 ne x nk) */
+  PetscInt  *rows;                    /* the committing rows: u row (2 q) or v row (2 q + 1) of tracked slip q */
+  PetscReal *sdr;                     /* each committing element's side x d(mu n / kt)/dv */
 };
 
 #define JR_MONO_SLOTS  16 /* step maps kept per point: a period's stick-slip patterns mostly repeat */
@@ -91,6 +106,12 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscCall(PetscFree4(f->ka, f->kb, f->kend, f->th));
   PetscCall(PetscFree2(f->cls, f->memp));
   PetscCall(PetscFree3(f->PS, f->piv, f->RT));
+  PetscCall(PetscFree5(f->isl, f->ifa, f->Mm, f->Cv, f->QW));
+  PetscCall(PetscFree2(f->Ts, f->Tws));
+  PetscCall(PetscFree4(f->RSt, f->Kp, f->Rg, f->rows));
+  PetscCall(PetscFree(f->CB));
+  PetscCall(PetscFree2(f->cf, f->cfn));
+  PetscCall(PetscFree(f->sdr));
   PetscCall(PetscFree(h->mono));
   PetscFunctionReturn(0);
 }
@@ -239,7 +260,7 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
   {
     const PetscInt m = f->m;
     PetscCall(PetscMalloc3(m * m, &f->Y, m * m, &f->Y0, m * m, &f->Ys));
-    PetscCall(PetscMalloc3(PetscMax(f->l, 2 * ne) * m + 1, &f->DUV, f->l * m + 1, &f->DFN, ne * m + 1, &f->Wc));
+    PetscCall(PetscMalloc3(PetscMax(PetscMax(f->l, 2 * ne), nk) * m + 1, &f->DUV, f->l * m + 1, &f->DFN, ne * m + 1, &f->Wc));
     f->lwork = (PetscBLASInt)(4 * m + 4);
     PetscCall(PetscMalloc4(m * m, &f->ev, m, &f->wr, m, &f->wi, f->lwork, &f->work));
   }
@@ -252,6 +273,14 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
     PetscCall(PetscMalloc4(ne + 1, &f->ka, ne + 1, &f->kb, ne + 1, &f->kend, ne + 1, &f->th));
     PetscCall(PetscMalloc2(ne + 1, &f->cls, ne + 1, &f->memp));
     PetscCall(PetscMalloc3(5 * n2 * n2 + 1, &f->PS, n2 + 1, &f->piv, 2 * ne * nk + 1, &f->RT));
+    PetscCall(PetscMalloc5(nk + 1, &f->isl, nk + 1, &f->ifa, nk * nk + 1, &f->Mm, nk * nk + 1, &f->Cv, 9 * nk * nk + 4 * nk * ne + 1, &f->QW));
+    for (PetscInt j = 0; j < nk; j++)
+      for (PetscInt i = 0; i < nk; i++) f->Mm[i + j * nk] = h->Mm[keep[i] * nm + keep[j]];
+    PetscCall(PetscMalloc2(3 * ne + 1, &f->cf, 3 * ne + 1, &f->cfn));
+    PetscCall(PetscMalloc4(f->l * nk + 1, &f->RSt, nk * nk + 1, &f->Kp, 2 * ne * nk + 1, &f->Rg, 2 * ne + 1, &f->rows));
+    PetscCall(PetscMalloc1(ne + 1, &f->sdr));
+    for (PetscInt r = 0; r < f->l; r++)
+      for (PetscInt i = 0; i < nk; i++) f->RSt[i + r * nk] = f->RS[r + i * f->l];
   }
   PetscCall(PetscFree(keep));
   PetscCall(PetscFree(Kc));
@@ -521,6 +550,136 @@ static PetscErrorCode ExpmTaylor(PetscInt n2, const PetscReal *XL, PetscInt sq, 
   PetscFunctionReturn(0);
 }
 
+/* The stiffness of the step's element states (f->ka, f->kb, f->th: each element's two states weighted by their
+   shares), Kp = K + sum_e (a r r^T + b r s^T + c s s^T): a = kt stuck, b = -side kt d(mu n / kt)/dv slipping in
+   contact (jenkins_nv), c = kn in contact; updated by the elements whose coefficients change, in full at a point's
+   first step. Bw (nk x nt): a held slip's force kt w on the modes, kt r_e of the tracked elements stuck. */
+static PetscErrorCode StiffnessUpdate(struct _JRMonodromy *f, PetscReal *Bw)
+{
+  const PetscInt nk = f->nk, ne = f->ne, nt = f->mt - f->n2r;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArrayzero(Bw, nk * nt));
+  for (PetscInt e = 0; e < ne; e++) {
+    PetscReal *c = f->cfn + 3 * e, bw = 0.0;
+    c[0] = c[1] = c[2] = 0.0;
+    for (PetscInt q = 0; q < 2; q++) {
+      const unsigned char st = q ? f->kb[e] : f->ka[e];
+      const PetscReal     wq = q ? 1.0 - f->th[e] : f->th[e];
+      const PetscInt      side = st % 3 - 1;
+      const PetscBool     contact = (PetscBool)(st >= 3);
+      const PetscReal     kt = f->kt[e], drdv = contact && kt > 0 ? f->mu[e] * f->kn[e] / kt : 0.0;
+      if (wq == 0.0) continue;
+      if (side == 0) c[0] += wq * kt;
+      else if (drdv != 0.0) c[1] += -wq * side * kt * drdv;
+      if (f->srow[e] >= 0 && contact) c[2] += wq * f->kn[e];
+      if (side == 0) bw += wq * kt;
+    }
+    if (bw != 0.0 && f->memp[e] >= 0)
+      for (PetscInt i = 0; i < nk; i++) Bw[i + f->memp[e] * nk] = bw * f->RSt[i + e * nk];
+  }
+  if (!f->kvalid) { /* Kp = K + [R; S]^T V^T, V's columns a r + b s (row e) and c s (row srow[e]) */
+    PetscReal *V = f->DUV;
+    for (PetscInt e = 0; e < ne; e++) {
+      const PetscReal *c = f->cfn + 3 * e, *r = f->RSt + e * nk, *sv = f->srow[e] >= 0 ? f->RSt + f->srow[e] * nk : NULL;
+      for (PetscInt i = 0; i < nk; i++) V[i + e * nk] = c[0] * r[i] + (sv ? c[1] * sv[i] : 0.0);
+      if (sv)
+        for (PetscInt i = 0; i < nk; i++) V[i + f->srow[e] * nk] = c[2] * sv[i];
+    }
+    PetscCall(PetscArraycpy(f->Kp, f->K, nk * nk));
+    PetscCall(JRGemm("N", "T", nk, nk, f->l, 1.0, f->RSt, nk, V, nk, 1.0, f->Kp, nk));
+    f->kvalid = PETSC_TRUE;
+  } else
+    for (PetscInt e = 0; e < ne; e++) {
+      const PetscReal *c = f->cfn + 3 * e, *o = f->cf + 3 * e, *r = f->RSt + e * nk, *sv = f->srow[e] >= 0 ? f->RSt + f->srow[e] * nk : NULL;
+      const PetscReal  da = c[0] - o[0], db = c[1] - o[1], dc = c[2] - o[2];
+      if (da == 0.0 && db == 0.0 && dc == 0.0) continue;
+      for (PetscInt j = 0; j < nk; j++) {
+        const PetscReal vj = da * r[j] + (sv ? db * sv[j] : 0.0), sj = sv ? dc * sv[j] : 0.0;
+        for (PetscInt i = 0; i < nk; i++) f->Kp[i + j * nk] += r[i] * vj + (sv ? sv[i] * sj : 0.0);
+      }
+    }
+  PetscCall(PetscArraycpy(f->cf, f->cfn, 3 * ne));
+  PetscFunctionReturn(0);
+}
+
+/* The fast kept modes (f->ifa) condensed quasi-statically for the step's element states (f->Kp, the stiffness with
+   them, StiffnessUpdate; Bw, the held slips' forces): the fast modes follow the slow ones and the
+   held slips statically, q = T q_s + T_w w, T = [I; -Kff^-1 Kfs], T_w = [0; Kff^-1 Bw_f] (rows slow; fast), and the
+   slow modes obey Mr q_s'' + Cr q_s' + Kr q_s = Br w with Mr = T^T Mm T, Cr = T^T Cv T, Kr = T^T Kp T (the Schur
+   complement) and Br = Bw_s - Ksf Kff^-1 Bw_f. Out: X = Mr^-1 [Kr, Cr, Br] (nsl x (2 nsl + nt)), wmax >= the
+   stiffest slow mode (the square root of X's first block's 1-norm), and slot k's T and Kff^-1 Bw_f for the commits. */
+static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, const PetscReal *Bw, PetscInt k, PetscReal **X, PetscReal *wmax)
+{
+  const PetscInt nk = f->nk, nsl = f->nsl, nfa = f->nfa, nt = f->mt - f->n2r;
+  PetscReal     *Kp = f->Kp, *T = f->Ts + k * nk * nk, *MT = f->QW + 2 * nk * nk, *Mr = MT + nk * nk, *KF = Mr + nk * nk, *RH = KF + nk * nk;
+  PetscReal     *Tw = f->Tws + k * nk * f->cap, norm = 0.0;
+  PetscBLASInt   bf, bs, brhs, info;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscBLASIntCast(nfa, &bf));
+  PetscCall(PetscBLASIntCast(nsl, &bs));
+  /* Kff's LU; T's fast rows -Kff^-1 Kfs (in MT first) and T_w = Kff^-1 Bw_f */
+  for (PetscInt b = 0; b < nfa; b++)
+    for (PetscInt a = 0; a < nfa; a++) KF[a + b * nfa] = Kp[f->ifa[a] + f->ifa[b] * nk];
+  PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bf, &bf, KF, &bf, f->piv, &info));
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the fast modes' stiffness is singular (LAPACK getrf info %d); -frf_stability_time_fast 0 marches every mode", (int)info);
+  for (PetscInt b = 0; b < nsl; b++)
+    for (PetscInt a = 0; a < nfa; a++) MT[a + b * nfa] = -Kp[f->ifa[a] + f->isl[b] * nk];
+  PetscCall(PetscBLASIntCast(nsl, &brhs));
+  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bf, &brhs, KF, &bf, f->piv, MT, &bf, &info));
+  { /* T_w's columns of the held slips that are stuck over the step (the others' Bw is 0), solved in CB */
+    PetscInt   nc = 0, *col = f->rows;
+    PetscReal *tc = f->CB;
+    for (PetscInt c = 0; c < nt; c++) {
+      PetscBool nz = PETSC_FALSE;
+      for (PetscInt i = 0; i < nk && !nz; i++) nz = (PetscBool)(Bw[i + c * nk] != 0.0);
+      if (!nz) continue;
+      for (PetscInt a = 0; a < nfa; a++) tc[a + nc * nfa] = Bw[f->ifa[a] + c * nk];
+      col[nc++] = c;
+    }
+    PetscCall(PetscBLASIntCast(nc, &brhs));
+    if (nc) PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bf, &brhs, KF, &bf, f->piv, tc, &bf, &info));
+    PetscCall(PetscArrayzero(Tw, nfa * nt));
+    for (PetscInt q = 0; q < nc; q++) PetscCall(PetscArraycpy(Tw + col[q] * nfa, tc + q * nfa, nfa));
+    /* RH's last block Br = Bw_s - Ksf T_w (nsl x nt; 0 where Bw is), by the columns solved (Ksf in KS) */
+    {
+      PetscReal *KS = tc + nfa * nc, *BR = KS + nsl * nfa;
+      for (PetscInt a = 0; a < nfa; a++)
+        for (PetscInt i = 0; i < nsl; i++) KS[i + a * nsl] = Kp[f->isl[i] + f->ifa[a] * nk];
+      for (PetscInt q = 0; q < nc; q++)
+        for (PetscInt i = 0; i < nsl; i++) BR[i + q * nsl] = Bw[f->isl[i] + col[q] * nk];
+      PetscCall(JRGemm("N", "N", nsl, nc, nfa, -1.0, KS, nsl, tc, nfa, 1.0, BR, nsl));
+      PetscCall(PetscArrayzero(RH + 2 * nsl * nsl, nsl * nt));
+      for (PetscInt q = 0; q < nc; q++) PetscCall(PetscArraycpy(RH + (2 * nsl + col[q]) * nsl, BR + q * nsl, nsl));
+    }
+  }
+  PetscCall(PetscArrayzero(T, nk * nsl));
+  for (PetscInt b = 0; b < nsl; b++) {
+    T[f->isl[b] + b * nk] = 1.0;
+    for (PetscInt a = 0; a < nfa; a++) T[f->ifa[a] + b * nk] = MT[a + b * nfa];
+  }
+  /* RH = [Kr, Cr, Br] (Br above): Kr = T^T (Kp T), Cr = T^T (Cv T) */
+  PetscCall(JRGemm("N", "N", nk, nsl, nk, 1.0, Kp, nk, T, nk, 0.0, MT, nk));
+  PetscCall(JRGemm("T", "N", nsl, nsl, nk, 1.0, T, nk, MT, nk, 0.0, RH, nsl));
+  PetscCall(JRGemm("N", "N", nk, nsl, nk, 1.0, f->Cv, nk, T, nk, 0.0, MT, nk));
+  PetscCall(JRGemm("T", "N", nsl, nsl, nk, 1.0, T, nk, MT, nk, 0.0, RH + nsl * nsl, nsl));
+  PetscCall(JRGemm("N", "N", nk, nsl, nk, 1.0, f->Mm, nk, T, nk, 0.0, MT, nk));
+  PetscCall(JRGemm("T", "N", nsl, nsl, nk, 1.0, T, nk, MT, nk, 0.0, Mr, nsl));
+  PetscCall(PetscBLASIntCast(2 * nsl + nt, &brhs));
+  PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bs, &bs, Mr, &bs, f->piv, &info));
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the condensed modal mass is singular (LAPACK getrf info %d)", (int)info);
+  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bs, &brhs, Mr, &bs, f->piv, RH, &bs, &info));
+  for (PetscInt c = 0; c < nsl; c++) {
+    PetscReal cs = 0.0;
+    for (PetscInt i = 0; i < nsl; i++) cs += PetscAbsReal(RH[i + c * nsl]);
+    norm = PetscMax(norm, cs);
+  }
+  *X    = RH;
+  *wmax = PetscSqrtReal(norm);
+  PetscFunctionReturn(0);
+}
+
 /* The map of the state over a step of length dtstep with the elements' states of StepStates (f->ka, f->kb, f->th:
    stuck or slipping at either bound, in contact or not, each element's two states weighted by their shares): the
    variational equations are then linear with constant coefficients, Z' = A Z, A = [L, Aw; 0, 0] in the blocks (Q, P)
@@ -531,41 +690,38 @@ static PetscErrorCode ExpmTaylor(PetscInt n2, const PetscReal *XL, PetscInt sq, 
    column block by Horner's rule, squared along. Into slot k. */
 static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt k)
 {
-  const PetscInt  sq = dtstep * f->wmax > JR_MONO_WDT ? (PetscInt)PetscCeilReal(PetscLog2Real(dtstep * f->wmax / JR_MONO_WDT)) : 0;
-  const PetscReal dt = dtstep / (PetscReal)(1 << sq);
-  const PetscInt nk = f->nk, ne = f->ne, n2 = 2 * nk, l = f->l, nt = f->mt - n2;
-  PetscReal     *SL = f->SL + k * n2 * n2, *SW = f->SW + k * n2 * ne, *D = f->T1, *tw = f->T1 + n2 * n2, *LU = f->PS + 4 * n2 * n2;
+  const PetscInt nk = f->nk, ne = f->ne, n2 = f->n2r, m2 = 2 * nk, nt = f->mt - n2;
+  PetscReal     *SL = f->SL + k * m2 * m2, *SW = f->SW + k * m2 * ne, *tw = f->T1 + m2 * m2, *LU = f->PS + 4 * m2 * m2;
+  PetscReal     *Bw = f->QW + 7 * nk * nk + 2 * nk * ne, wmax = f->wmax, dt;
+  PetscInt       sq;
   PetscBool      direct = PETSC_FALSE;
 
   PetscFunctionBeginUser;
-  /* D (l x nk): the element forces' rows over Q; Aw: a stuck element's force -kt w; each element's two states weighted */
-  PetscCall(PetscArrayzero(D, l * nk));
-  PetscCall(PetscArrayzero(f->XW, n2 * nt));
-  for (PetscInt e = 0; e < ne; e++)
-    for (PetscInt q = 0; q < 2; q++) {
-      const unsigned char st = q ? f->kb[e] : f->ka[e];
-      const PetscReal     wq = q ? 1.0 - f->th[e] : f->th[e];
-      const PetscInt      side = st % 3 - 1, sr = f->srow[e];
-      const PetscBool     contact = (PetscBool)(st >= 3);
-      const PetscReal     kt = f->kt[e], drdv = contact && kt > 0 ? f->mu[e] * f->kn[e] / kt : 0.0;
-      if (wq == 0.0) continue;
-      for (PetscInt i = 0; i < nk; i++) {
-        D[e + i * l] += wq * (side == 0 ? kt * f->RS[e + i * l] : drdv != 0.0 ? -side * kt * drdv * f->RS[sr + i * l] : 0.0);
-        if (sr >= 0 && contact) D[sr + i * l] += wq * f->kn[e] * f->RS[sr + i * l];
-      }
-      if (side == 0 && f->memp[e] >= 0)
-        for (PetscInt i = 0; i < nk; i++) f->XW[nk + i + f->memp[e] * n2] += -wq * kt * f->MRS[i + e * nk] * dt;
-    }
-  /* XL = L dt */
+  PetscCall(StiffnessUpdate(f, Bw));
   PetscCall(PetscArrayzero(f->XL, n2 * n2));
-  for (PetscInt i = 0; i < nk; i++) f->XL[i + (nk + i) * n2] = dt;
-  for (PetscInt c = 0; c < n2; c++)
-    for (PetscInt i = 0; i < nk; i++) f->XL[nk + i + c * n2] = dt * f->G[i + c * nk];
-  if (l) {
-    PetscReal *MD = f->T2; /* Mm^-1 (-R^T D) = MRS D, nk x nk */
-    PetscCall(JRGemm("N", "N", nk, nk, l, 1.0, f->MRS, nk, D, l, 0.0, MD, nk));
+  PetscCall(PetscArrayzero(f->XW, n2 * nt));
+  if (!f->nfa) { /* XL = L dt = [0, I; -Mm^-1 Kp, -Mm^-1 Cv] dt, XW = Aw dt = [0; Mm^-1 Bw] dt */
+    sq = dtstep * wmax > JR_MONO_WDT ? (PetscInt)PetscCeilReal(PetscLog2Real(dtstep * wmax / JR_MONO_WDT)) : 0;
+    dt = dtstep / (PetscReal)(1 << sq);
+    for (PetscInt i = 0; i < nk; i++) f->XL[i + (nk + i) * n2] = dt;
+    PetscCall(JRGemm("N", "N", nk, nk, nk, -dt, f->Mi, nk, f->Kp, nk, 0.0, f->T2, nk));
     for (PetscInt c = 0; c < nk; c++)
-      for (PetscInt i = 0; i < nk; i++) f->XL[nk + i + c * n2] += dt * MD[i + c * nk];
+      for (PetscInt i = 0; i < nk; i++) {
+        f->XL[nk + i + c * n2]        = f->T2[i + c * nk];
+        f->XL[nk + i + (nk + c) * n2] = dt * f->G[i + (nk + c) * nk];
+      }
+    if (nt) PetscCall(JRGemm("N", "N", nk, nt, nk, dt, f->Mi, nk, Bw, nk, 0.0, f->XW + nk, n2));
+  } else { /* the slow modes with the fast ones condensed: [0, I; -Mr^-1 [Kr, Cr]] dt and [0; Mr^-1 Br] dt */
+    const PetscInt nsl = f->nsl;
+    PetscReal     *X = NULL;
+    PetscCall(QuasiStatic(f, Bw, k, &X, &wmax));
+    sq = dtstep * wmax > JR_MONO_WDT ? (PetscInt)PetscCeilReal(PetscLog2Real(dtstep * wmax / JR_MONO_WDT)) : 0;
+    dt = dtstep / (PetscReal)(1 << sq);
+    for (PetscInt i = 0; i < nsl; i++) f->XL[i + (nsl + i) * n2] = dt;
+    for (PetscInt c = 0; c < n2; c++)
+      for (PetscInt i = 0; i < nsl; i++) f->XL[nsl + i + c * n2] = -dt * X[i + c * nsl];
+    for (PetscInt c = 0; c < nt; c++)
+      for (PetscInt i = 0; i < nsl; i++) f->XW[nsl + i + c * n2] = dt * X[i + (n2 + c) * nsl];
   }
   if (nt) { /* L's LU (XL = L dt), used where its pivots are not tiny */
     PetscBLASInt bn, info;
@@ -610,17 +766,66 @@ static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt
   PetscFunctionReturn(0);
 }
 
+/* The tracked slips committed at the end of step j (whose map was slot k): a slipping element's slip becomes its
+   u -+ mu n / kt, so its row of Y becomes the rows of du + side drdv dv. A slip is read only where its element is
+   stuck (the step maps' held slips), so it is committed only where the element slips at the end of step j and not at
+   the end of step j + 1 on the same side (it sticks or reverses within that step), and at the period's end. The
+   modes' motion is Y's (Q) rows, or with fast modes condensed T q_s + T_w w (slot k's). */
+static PetscErrorCode Commit(struct _JRMonodromy *f, PetscInt j, PetscInt k)
+{
+  const PetscInt nk = f->nk, ne = f->ne, n2 = f->n2r, m = f->mt, nt = m - n2;
+  PetscInt       nr = 0;
+  PetscReal     *Y = f->Y, *side = f->sdr;
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < ne; e++) {
+    PetscBool      contact;
+    PetscReal      drdv, dn;
+    const PetscInt sd = f->memp[e] < 0 ? 0 : Side(f, e, 2 * j + 2, j, &contact, &drdv), q = 2 * f->memp[e];
+    if (!sd || (j + 1 < f->ns && Side(f, e, 2 * j + 4, j + 1, &contact, &dn) == sd)) continue;
+    side[e]       = sd * drdv;
+    f->rows[nr++] = q;
+    if (drdv != 0.0) f->rows[nr++] = q + 1;
+  }
+  if (!nr) PetscFunctionReturn(0);
+  for (PetscInt r = 0; r < nr; r++)
+    for (PetscInt i = 0; i < nk; i++) f->Rg[r + i * nr] = f->RT[f->rows[r] + i * 2 * nt];
+  if (f->nfa) { /* DUV = (Rg T) Y_q + (Rg_f Kff^-1 Bw_f) Y_w */
+    const PetscInt nsl = f->nsl, nfa = f->nfa;
+    PetscReal     *A = f->CB, *B = A + nr * nsl, *Rf = B + nr * nt;
+    PetscCall(JRGemm("N", "N", nr, nsl, nk, 1.0, f->Rg, nr, f->Ts + k * nk * nk, nk, 0.0, A, nr));
+    for (PetscInt a = 0; a < nfa; a++)
+      for (PetscInt r = 0; r < nr; r++) Rf[r + a * nr] = f->Rg[r + f->ifa[a] * nr];
+    PetscCall(JRGemm("N", "N", nr, nt, nfa, 1.0, Rf, nr, f->Tws + k * nk * f->cap, nfa, 0.0, B, nr));
+    PetscCall(JRGemm("N", "N", nr, m, f->nsl, 1.0, A, nr, Y, m, 0.0, f->DUV, nr));
+    PetscCall(JRGemm("N", "N", nr, m, nt, 1.0, B, nr, Y + n2, m, 1.0, f->DUV, nr));
+  } else PetscCall(JRGemm("N", "N", nr, m, nk, 1.0, f->Rg, nr, Y, m, 0.0, f->DUV, nr));
+  for (PetscInt r = 0, e = 0; r < nr; e++) {
+    const PetscInt q = 2 * f->memp[e];
+    if (f->memp[e] < 0 || f->rows[r] != q) continue;
+    if (r + 1 < nr && f->rows[r + 1] == q + 1) {
+      for (PetscInt c = 0; c < m; c++) Y[n2 + f->memp[e] + c * m] = f->DUV[r + c * nr] + side[e] * f->DUV[r + 1 + c * nr];
+      r += 2;
+    } else {
+      for (PetscInt c = 0; c < m; c++) Y[n2 + f->memp[e] + c * m] = f->DUV[r + c * nr];
+      r += 1;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The fundamental matrix Y (f->mt x f->mt, from the identity) over one period of friction elements (no cubic spring):
    per step the map of its states (StepMap; kept by pattern where no state changes within the step: a period's
    patterns mostly repeat), then the tracked slips committed at the step's end by the return map's derivative */
 static PetscErrorCode MarchPatterns(JRHBM h, PetscReal dt)
 {
   struct _JRMonodromy *f  = h->mono;
-  const PetscInt       nk = f->nk, ne = f->ne, n2 = 2 * nk, m = f->mt, nt = m - n2, ns = f->ns;
+  const PetscInt       nk = f->nk, ne = f->ne, n2 = f->n2r, m2 = 2 * nk, m = f->mt, nt = m - n2, ns = f->ns;
   PetscReal           *Y  = f->Y;
 
   PetscFunctionBeginUser;
   f->nslot = f->next = 0;
+  f->kvalid = PETSC_FALSE;
   for (PetscInt j = 0; j < ns; j++) {
     PetscInt  k      = -1;
     PetscBool change = PETSC_FALSE;
@@ -643,20 +848,11 @@ static PetscErrorCode MarchPatterns(JRHBM h, PetscReal dt)
       PetscCall(StepMap(f, dt, k));
     }
     /* [Q; P] <- SL [Q; P] + SW W */
-    PetscCall(JRGemm("N", "N", n2, m, n2, 1.0, f->SL + k * n2 * n2, n2, Y, m, 0.0, f->T2, n2));
-    if (nt) PetscCall(JRGemm("N", "N", n2, m, nt, 1.0, f->SW + k * n2 * ne, n2, Y + n2, m, 1.0, f->T2, n2));
+    PetscCall(JRGemm("N", "N", n2, m, n2, 1.0, f->SL + k * m2 * m2, n2, Y, m, 0.0, f->T2, n2));
+    if (nt) PetscCall(JRGemm("N", "N", n2, m, nt, 1.0, f->SW + k * m2 * ne, n2, Y + n2, m, 1.0, f->T2, n2));
     for (PetscInt c = 0; c < m; c++) PetscCall(PetscArraycpy(Y + c * m, f->T2 + c * n2, n2));
     /* the slips committed at step j + 1 */
-    if (nt) { /* DUV: the tracked elements' [du; dv] (2 nt x m) */
-      PetscCall(JRGemm("N", "N", 2 * nt, m, nk, 1.0, f->RT, 2 * nt, Y, m, 0.0, f->DUV, 2 * nt));
-      for (PetscInt e = 0; e < ne; e++) {
-        PetscBool      contact;
-        PetscReal      drdv;
-        const PetscInt side = f->memp[e] < 0 ? 0 : Side(f, e, 2 * j + 2, j, &contact, &drdv), q = 2 * f->memp[e];
-        if (!side) continue;
-        for (PetscInt c = 0; c < m; c++) Y[n2 + f->memp[e] + c * m] = f->DUV[q + c * 2 * nt] + side * drdv * f->DUV[q + 1 + c * 2 * nt];
-      }
-    }
+    if (nt) PetscCall(Commit(f, j, k));
   }
   PetscFunctionReturn(0);
 }
@@ -671,6 +867,40 @@ static PetscInt Steps(JRHBM h, PetscReal w, PetscInt steps)
   return f->smooth ? PetscMax(ns, (PetscInt)PetscCeilReal(2 * PETSC_PI * f->wmax / (0.5 * w))) : ns;
 }
 
+/* The kept modes split at frequency w (h->monofast): fast where K_ii / Mm_ii > (monofast H w)^2 and the mode's own
+   damping makes it decay by e within a period (Cv_ii / (2 Mm_ii) >= w / (2 pi): its transients die out, it follows
+   the slow ones), condensed quasi-statically (QuasiStatic); slow and marched otherwise (an undamped fast mode keeps
+   its exponent, which switching might pump); none fast when monofast is 0 or no mode would be slow.
+   f->isl, f->ifa, f->nsl, f->nfa, the room f->cap of the held slips' fast shapes, and *mt becomes 2 nsl + the tracked slips. */
+static PetscErrorCode FastModes(JRHBM h, PetscReal w, PetscInt *mt)
+{
+  struct _JRMonodromy *f  = h->mono;
+  const PetscInt       nk = f->nk, nt = *mt - 2 * nk;
+  const PetscReal      wc = h->monofast * h->H * w;
+
+  PetscFunctionBeginUser;
+  f->nsl = f->nfa = 0;
+  for (PetscInt i = 0; i < nk; i++) {
+    if (h->monofast > 0 && f->K[i + i * nk] > wc * wc * f->Mm[i + i * nk] && f->Cv[i + i * nk] / (2 * f->Mm[i + i * nk]) >= w / (2 * PETSC_PI)) f->ifa[f->nfa++] = i;
+    else f->isl[f->nsl++] = i;
+  }
+  if (!f->nsl || !f->nfa) {
+    f->nsl = nk;
+    f->nfa = 0;
+    for (PetscInt i = 0; i < nk; i++) f->isl[i] = i;
+  }
+  if (f->nfa && (!f->Ts || nt > f->cap)) {
+    PetscCall(PetscFree2(f->Ts, f->Tws));
+    PetscCall(PetscFree(f->CB));
+    f->cap = nt;
+    PetscCall(PetscMalloc2((JR_MONO_SLOTS + 1) * nk * nk + 1, &f->Ts, (JR_MONO_SLOTS + 1) * nk * nt + 1, &f->Tws));
+    PetscCall(PetscMalloc1(2 * nt * (2 * nk + nt) + 1, &f->CB));
+  }
+  *mt   = 2 * f->nsl + nt;
+  f->mt = *mt;
+  PetscFunctionReturn(0);
+}
+
 /* The largest-first Floquet exponents out (2 m: real parts, then imaginary parts) of the solution x (solve space) at
    frequency w, by the monodromy matrix marched on this rank alone (MonodromySetUp() first) */
 static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, PetscInt steps, PetscReal *out)
@@ -679,7 +909,7 @@ static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, P
   const PetscInt       m  = f->m, nk = f->nk;
   const PetscInt       ns = Steps(h, w, steps);
   const PetscReal      dt = 2 * PETSC_PI / w / ns, T = ns * dt;
-  PetscReal           *Y  = f->Y;
+  PetscReal           *Y  = f->Y, *Cv;
   PetscBLASInt         bm, info, one = 1;
   PetscInt             mt;
 
@@ -691,14 +921,17 @@ static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, P
     PetscCall(PetscMalloc3(f->ne * (2 * ns + 1) + 1, &f->u, f->ne * (2 * ns + 1) + 1, &f->v, f->ne * (ns + 1) + 1, &f->wn));
     PetscCall(PetscMalloc1((2 * ns + 1) * 2 * h->H + 1, &f->trig));
   }
-  { /* G = -Mm^-1 [K, Cm + (gamma / w) Kg] at this frequency */
-    PetscReal *Cv = f->Y0;
-    for (PetscInt i = 0; i < nk * nk; i++) Cv[i] = f->C[i] + h->gamma / w * f->Kg[i];
-    PetscCall(JRGemm("N", "N", nk, nk, nk, -1.0, f->Mi, nk, f->K, nk, 0.0, f->G, nk));
-    PetscCall(JRGemm("N", "N", nk, nk, nk, -1.0, f->Mi, nk, Cv, nk, 0.0, f->G + nk * nk, nk));
-  }
+  Cv = f->smooth ? f->Y0 : f->Cv; /* Cm + (gamma / w) Kg at this frequency */
+  for (PetscInt i = 0; i < nk * nk; i++) Cv[i] = f->C[i] + h->gamma / w * f->Kg[i];
   PointMotion(h, w, x);
   mt = f->smooth ? m : Classify(f);
+  f->nsl = nk;
+  f->nfa = 0;
+  if (!f->smooth) PetscCall(FastModes(h, w, &mt));
+  f->n2r = 2 * f->nsl;
+  /* G = -Mm^-1 [K, Cv] where every mode is marched (its stiffness block for RK4 only: the step maps take Mm^-1 Kp) */
+  if (f->smooth) PetscCall(JRGemm("N", "N", nk, nk, nk, -1.0, f->Mi, nk, f->K, nk, 0.0, f->G, nk));
+  if (!f->nfa) PetscCall(JRGemm("N", "N", nk, nk, nk, -1.0, f->Mi, nk, Cv, nk, 0.0, f->G + nk * nk, nk));
   PetscCall(PetscArrayzero(Y, mt * mt));
   for (PetscInt i = 0; i < mt; i++) Y[i + i * mt] = 1.0;
   if (f->smooth) PetscCall(MarchRK4(h, dt));
@@ -715,7 +948,11 @@ static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, P
     out[i]              = mod > 0 ? PetscLogReal(mod) / T : PETSC_NINFINITY;
     out[m + i]          = PetscAtan2Real(f->wi[i], f->wr[i]) / T;
   }
-  for (PetscInt e = 0, i = mt; e < f->ne && !f->smooth; e++)
+  for (PetscInt i = mt; i < mt + 2 * f->nfa; i++) { /* the fast modes: condensed, not marched */
+    out[i]     = PETSC_NINFINITY;
+    out[m + i] = 0.0;
+  }
+  for (PetscInt e = 0, i = mt + 2 * f->nfa; e < f->ne && !f->smooth; e++)
     if (f->cls[e] != JR_MONO_TRACK) {
       out[i]     = f->cls[e] == JR_MONO_HOLD ? 0.0 : PETSC_NINFINITY;
       out[m + i] = 0.0;
@@ -815,5 +1052,19 @@ PetscErrorCode JRHBMFloquetTimePoints(JRHBM h, PetscInt np, const PetscReal omeg
   PetscCall(PetscFree(out));
   PetscCall(PetscFree(mine));
   PetscCall(PetscLogEventEnd(JR_HBMFloquetTime, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMSetFloquetFast - the kept modes whose own frequency (sqrt(K_ii / Mm_ii)) exceeds ratio x H w are condensed
+  quasi-statically in the monodromy matrix of JRHBMFloquetTime (their inertia and damping forces dropped, the slow
+  modes' mass and damping projected on the static shapes): their exponents are reported as -inf, the others'
+  change by about (H w / (ratio w_fast))^2. ratio 0 (the default) marches every mode. Logically collective.
+*/
+PetscErrorCode JRHBMSetFloquetFast(JRHBM h, PetscReal ratio)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(ratio == 0 || ratio >= 2, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "the fast modes' ratio %g: give 0 (none) or at least 2", (double)ratio);
+  h->monofast = ratio;
   PetscFunctionReturn(0);
 }

@@ -60,6 +60,7 @@ PetscErrorCode JRContCreate(MPI_Comm comm, JRCont *cont)
   c->stabdiss  = PETSC_TRUE;
   c->stabtime  = PETSC_TRUE;
   c->stabsteps = 64;
+  c->stabfast  = 20;
   PetscCall(PetscMalloc1(1, &c->levels));
   c->levels[0] = 1.0;
   PetscCall(PetscStrncpy(c->out, "out/frf", sizeof(c->out)));
@@ -180,7 +181,7 @@ PetscErrorCode JRContSetLevels(JRCont c, PetscInt n, const PetscReal F[])
   -frf_omega_min/-frf_omega_max [rad/s] or -frf_fmin/-frf_fmax [Hz], -frf_output_file BASE (BASE.h5, BASE.csv,
   BASE.png), -frf_plot, -frf_normalize (plot amplitude / force); -frf_stability 0|1 (Hill's method at every point,
   folds and branch points), -frf_stability_select vector|imag, -frf_stability_tol, -frf_stability_dense_max, -frf_stability_dissipative,
-  -frf_stability_time, -frf_stability_time_steps.
+  -frf_stability_time, -frf_stability_time_steps, -frf_stability_time_fast.
 */
 PetscErrorCode JRContSetFromOptions(JRCont c)
 {
@@ -223,6 +224,7 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
   PetscCall(PetscOptionsBool("-frf_stability_dissipative", "Points whose elements make the response incrementally dissipative (jenkins; jenkins_nv stuck or separated over the cycle) are stable without an eigenproblem; 0: Hill's method everywhere", "JRContStability", c->stabdiss, &c->stabdiss, NULL));
   PetscCall(PetscOptionsBool("-frf_stability_time", "Points with friction elements changing state: Floquet exponents of the monodromy matrix marched over one period; 0: Hill's method, whose flags there indicate", "JRHBMFloquetTime", c->stabtime, &c->stabtime, NULL));
   PetscCall(PetscOptionsInt("-frf_stability_time_steps", "Least steps per period of the monodromy matrix (and at least -hbm_samples; with a cubic spring also dt w_max <= 0.5)", "JRHBMFloquetTime", c->stabsteps, &c->stabsteps, NULL));
+  PetscCall(PetscOptionsReal("-frf_stability_time_fast", "Kept modes above this many times H w condensed quasi-statically in the monodromy matrix (their inertia dropped); 0: every mode marched", "JRHBMSetFloquetFast", c->stabfast, &c->stabfast, NULL));
   PetscCall(PetscOptionsInt("-frf_stability_dense_max", "Largest nm (2H+1) solved by LAPACK's QZ; above it SLEPc's PEP (prefix hbm_hill_, strip selection)", "JRHBMFloquet", c->stabdense, &c->stabdense, NULL));
   PetscOptionsEnd();
   c->secant = pred == 0 ? PETSC_TRUE : PETSC_FALSE;
@@ -244,6 +246,7 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
   PetscCheck(c->ptol > 0 && c->ptol < 0.1, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_peak_tol %g: between 0 and 0.1", (double)c->ptol);
   PetscCheck(c->stabtol >= 0 && c->stabtol < 1, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_stability_tol %g: between 0 and 1 (relative to the frequency)", (double)c->stabtol);
   PetscCheck(c->stabsteps >= 4 && c->stabsteps <= 1000000, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_stability_time_steps %" PetscInt_FMT ": give 4 to 1e6 steps per period", c->stabsteps);
+  PetscCheck(c->stabfast == 0 || c->stabfast >= 2, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_stability_time_fast %g: give 0 (every mode marched) or at least 2", (double)c->stabfast);
   PetscCheck(c->stabdense >= 0, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_stability_dense_max %" PetscInt_FMT ": not negative", c->stabdense);
   PetscCheck(c->step0 >= 0 && c->stepmin >= 0 && c->stepmax >= 0, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_step, -cont_step_min, -cont_step_max must be positive");
   PetscFunctionReturn(0);
