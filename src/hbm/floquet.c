@@ -51,7 +51,9 @@ struct _JRMonodromy {
   PetscReal     *th;                  /* the share of the step in state ka (ne) */
   PetscInt      *cls, *memp, mt;      /* per point: each element's class (JR_MONO_TRACK, _HOLD, _FORGET) and its slip's
                                          row among the tracked ones (-1: not tracked); the state's size 2 nk + tracked */
-  PetscReal *SL, *SW;                 /* the kept step maps: n2 x n2 and n2 x ne each, n2 = 2 nk */
+  PetscReal *SL, *SW;                 /* the kept step maps: n2 x n2 and n2 x ne each, n2 = 2 nk; SW's columns those of the
+                                         held slips of stuck elements only (the others' are 0) */
+  PetscInt  *ncol, *cols;             /* per kept map: those columns' number and their slips (JR_MONO_SLOTS + 1, x ne) */
   PetscReal *XL, *XW, *T1, *T2;       /* the step map's work (n2 x n2, n2 x ne, n2 x max(n2, ne) x 2), the march's (n2 x m) */
   PetscReal *trig;                    /* sin, cos of h w t at the half steps ((2 ns + 1) x 2 H) */
   PetscReal *PS;                      /* the exponential's work (5 n2 x n2: four for the polynomial, L's LU) */
@@ -105,6 +107,7 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscCall(PetscFree(f->trig));
   PetscCall(PetscFree4(f->ka, f->kb, f->kend, f->th));
   PetscCall(PetscFree2(f->cls, f->memp));
+  PetscCall(PetscFree2(f->ncol, f->cols));
   PetscCall(PetscFree3(f->PS, f->piv, f->RT));
   PetscCall(PetscFree5(f->isl, f->ifa, f->Mm, f->Cv, f->QW));
   PetscCall(PetscFree2(f->Ts, f->Tws));
@@ -272,6 +275,7 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
     PetscCall(PetscMalloc4(n2 * n2 + 1, &f->XL, n2 * ne + 1, &f->XW, 2 * n2 * mx + 1, &f->T1, n2 * f->m + 1, &f->T2));
     PetscCall(PetscMalloc4(ne + 1, &f->ka, ne + 1, &f->kb, ne + 1, &f->kend, ne + 1, &f->th));
     PetscCall(PetscMalloc2(ne + 1, &f->cls, ne + 1, &f->memp));
+    PetscCall(PetscMalloc2(JR_MONO_SLOTS + 1, &f->ncol, (JR_MONO_SLOTS + 1) * ne + 1, &f->cols));
     PetscCall(PetscMalloc3(5 * n2 * n2 + 1, &f->PS, n2 + 1, &f->piv, 2 * ne * nk + 1, &f->RT));
     PetscCall(PetscMalloc5(nk + 1, &f->isl, nk + 1, &f->ifa, nk * nk + 1, &f->Mm, nk * nk + 1, &f->Cv, 9 * nk * nk + 4 * nk * ne + 1, &f->QW));
     for (PetscInt j = 0; j < nk; j++)
@@ -690,7 +694,8 @@ static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, const PetscReal *Bw, P
    column block by Horner's rule, squared along. Into slot k. */
 static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt k)
 {
-  const PetscInt nk = f->nk, ne = f->ne, n2 = f->n2r, m2 = 2 * nk, nt = f->mt - n2;
+  const PetscInt nk = f->nk, ne = f->ne, n2 = f->n2r, m2 = 2 * nk;
+  PetscInt       nt = f->mt - n2;
   PetscReal     *SL = f->SL + k * m2 * m2, *SW = f->SW + k * m2 * ne, *tw = f->T1 + m2 * m2, *LU = f->PS + 4 * m2 * m2;
   PetscReal     *Bw = f->QW + 7 * nk * nk + 2 * nk * ne, wmax = f->wmax, dt;
   PetscInt       sq;
@@ -722,6 +727,18 @@ static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt
       for (PetscInt i = 0; i < nsl; i++) f->XL[nsl + i + c * n2] = -dt * X[i + c * nsl];
     for (PetscInt c = 0; c < nt; c++)
       for (PetscInt i = 0; i < nsl; i++) f->XW[nsl + i + c * n2] = dt * X[i + (n2 + c) * nsl];
+  }
+  { /* XW's nonzero columns (the held slips of stuck elements), compacted: nc of them from here */
+    PetscInt *col = f->cols + k * ne, nc = 0;
+    for (PetscInt c = 0; c < nt; c++) {
+      PetscBool nz = PETSC_FALSE;
+      for (PetscInt i = 0; i < n2 && !nz; i++) nz = (PetscBool)(f->XW[i + c * n2] != 0.0);
+      if (!nz) continue;
+      if (nc != c) PetscCall(PetscArraycpy(f->XW + nc * n2, f->XW + c * n2, n2));
+      col[nc++] = c;
+    }
+    f->ncol[k] = nc;
+    nt         = nc;
   }
   if (nt) { /* L's LU (XL = L dt), used where its pivots are not tiny */
     PetscBLASInt bn, info;
@@ -849,7 +866,12 @@ static PetscErrorCode MarchPatterns(JRHBM h, PetscReal dt)
     }
     /* [Q; P] <- SL [Q; P] + SW W */
     PetscCall(JRGemm("N", "N", n2, m, n2, 1.0, f->SL + k * m2 * m2, n2, Y, m, 0.0, f->T2, n2));
-    if (nt) PetscCall(JRGemm("N", "N", n2, m, nt, 1.0, f->SW + k * m2 * ne, n2, Y + n2, m, 1.0, f->T2, n2));
+    if (nt && f->ncol[k]) { /* SW's columns by the held slips' rows of Y, gathered */
+      const PetscInt nc = f->ncol[k], *col = f->cols + k * ne;
+      for (PetscInt c = 0; c < m; c++)
+        for (PetscInt q = 0; q < nc; q++) f->Y0[q + c * nc] = Y[n2 + col[q] + c * m];
+      PetscCall(JRGemm("N", "N", n2, m, nc, 1.0, f->SW + k * m2 * ne, n2, f->Y0, nc, 1.0, f->T2, n2));
+    }
     for (PetscInt c = 0; c < m; c++) PetscCall(PetscArraycpy(Y + c * m, f->T2 + c * n2, n2));
     /* the slips committed at step j + 1 */
     if (nt) PetscCall(Commit(f, j, k));
