@@ -64,9 +64,12 @@ struct _JRMonodromy {
   PetscInt  *isl, *ifa;               /* their indices among the kept modes */
   PetscReal *Mm, *Cv;                 /* nk x nk column-major: the modal mass, the damping at the point's frequency */
   PetscReal *QW;                      /* the condensation's work (9 nk x nk + 4 nk x ne) */
-  PetscReal *Ts, *Tws;                /* per kept map: the modes over the slow ones and the fast ones over the held slips,
-                                         T (nk x nsl, stride nk nk) and Kff^-1 Bw_f (nfa x nt, stride nk cap) */
-  PetscInt   cap;                     /* the tracked elements Tws has room for */
+  PetscReal *Ts, *KFs, *bws;          /* per kept map: the modes over the slow ones T (nk x nsl, stride nk nk), Kff's LU
+                                         (nfa x nfa, stride nk nk), the held slips' stiffness (Bw = [r_e kt], nt, stride cap) */
+  PetscBLASInt *pivs;                 /* per kept map: Kff's pivots (stride nk) */
+  PetscReal *Rfa, *bwt;               /* per point: the tracked elements' r over the fast modes (nfa x nt); the step's held
+                                         slips' stiffness (nt) */
+  PetscInt   cap;                     /* the tracked elements bws, Rfa, bwt have room for */
   PetscReal *RSt, *cf, *cfn, *Kp;     /* [R; S]^T (nk x l); each element's stiffness coefficients (3 ne: kt r r^T, r s^T,
                                          kn s s^T) in Kp = K + sum (...) (nk x nk), and the next step's; Kp is updated by the
                                          elements whose coefficients change (kvalid) */
@@ -110,7 +113,8 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscCall(PetscFree2(f->ncol, f->cols));
   PetscCall(PetscFree3(f->PS, f->piv, f->RT));
   PetscCall(PetscFree5(f->isl, f->ifa, f->Mm, f->Cv, f->QW));
-  PetscCall(PetscFree2(f->Ts, f->Tws));
+  PetscCall(PetscFree4(f->Ts, f->KFs, f->bws, f->pivs));
+  PetscCall(PetscFree2(f->Rfa, f->bwt));
   PetscCall(PetscFree4(f->RSt, f->Kp, f->Rg, f->rows));
   PetscCall(PetscFree(f->CB));
   PetscCall(PetscFree2(f->cf, f->cfn));
@@ -579,6 +583,7 @@ static PetscErrorCode StiffnessUpdate(struct _JRMonodromy *f, PetscReal *Bw)
       if (f->srow[e] >= 0 && contact) c[2] += wq * f->kn[e];
       if (side == 0) bw += wq * kt;
     }
+    if (f->memp[e] >= 0) f->bwt[f->memp[e]] = bw;
     if (bw != 0.0 && f->memp[e] >= 0)
       for (PetscInt i = 0; i < nk; i++) Bw[i + f->memp[e] * nk] = bw * f->RSt[i + e * nk];
   }
@@ -616,47 +621,39 @@ static PetscErrorCode StiffnessUpdate(struct _JRMonodromy *f, PetscReal *Bw)
 static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, const PetscReal *Bw, PetscInt k, PetscReal **X, PetscReal *wmax)
 {
   const PetscInt nk = f->nk, nsl = f->nsl, nfa = f->nfa, nt = f->mt - f->n2r;
-  PetscReal     *Kp = f->Kp, *T = f->Ts + k * nk * nk, *MT = f->QW + 2 * nk * nk, *Mr = MT + nk * nk, *KF = Mr + nk * nk, *RH = KF + nk * nk;
-  PetscReal     *Tw = f->Tws + k * nk * f->cap, norm = 0.0;
-  PetscBLASInt   bf, bs, brhs, info;
+  PetscReal     *Kp = f->Kp, *T = f->Ts + k * nk * nk, *MT = f->QW + 2 * nk * nk, *Mr = MT + nk * nk, *KF = f->KFs + k * nk * nk, *RH = Mr + 2 * nk * nk;
+  PetscReal      norm = 0.0;
+  PetscBLASInt   bf, bs, brhs, info, *piv = f->pivs + k * nk;
 
   PetscFunctionBeginUser;
   PetscCall(PetscBLASIntCast(nfa, &bf));
   PetscCall(PetscBLASIntCast(nsl, &bs));
-  /* Kff's LU; T's fast rows -Kff^-1 Kfs (in MT first) and T_w = Kff^-1 Bw_f */
+  /* Kff's LU (kept for the commits); T's fast rows -Kff^-1 Kfs (in MT first) */
   for (PetscInt b = 0; b < nfa; b++)
     for (PetscInt a = 0; a < nfa; a++) KF[a + b * nfa] = Kp[f->ifa[a] + f->ifa[b] * nk];
-  PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bf, &bf, KF, &bf, f->piv, &info));
+  PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bf, &bf, KF, &bf, piv, &info));
   PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the fast modes' stiffness is singular (LAPACK getrf info %d); -frf_stability_time_fast 0 marches every mode", (int)info);
   for (PetscInt b = 0; b < nsl; b++)
     for (PetscInt a = 0; a < nfa; a++) MT[a + b * nfa] = -Kp[f->ifa[a] + f->isl[b] * nk];
   PetscCall(PetscBLASIntCast(nsl, &brhs));
-  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bf, &brhs, KF, &bf, f->piv, MT, &bf, &info));
-  { /* T_w's columns of the held slips that are stuck over the step (the others' Bw is 0), solved in CB */
+  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bf, &brhs, KF, &bf, piv, MT, &bf, &info));
+  PetscCall(PetscArraycpy(f->bws + k * f->cap, f->bwt, nt));
+  { /* RH's last block Br = Bw_s - Ksf Kff^-1 Bw_f = Bw_s - Z^T Bw_f, Z = Kff^-T Ksf^T (nfa x nsl), by the columns
+       of the held slips of stuck elements (the others are 0) */
     PetscInt   nc = 0, *col = f->rows;
-    PetscReal *tc = f->CB;
+    PetscReal *Z = f->CB, *BF = Z + nfa * nsl, *BR = BF + nfa * nt;
+    for (PetscInt i = 0; i < nsl; i++)
+      for (PetscInt a = 0; a < nfa; a++) Z[a + i * nfa] = Kp[f->isl[i] + f->ifa[a] * nk];
+    PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("T", &bf, &brhs, KF, &bf, piv, Z, &bf, &info));
     for (PetscInt c = 0; c < nt; c++) {
-      PetscBool nz = PETSC_FALSE;
-      for (PetscInt i = 0; i < nk && !nz; i++) nz = (PetscBool)(Bw[i + c * nk] != 0.0);
-      if (!nz) continue;
-      for (PetscInt a = 0; a < nfa; a++) tc[a + nc * nfa] = Bw[f->ifa[a] + c * nk];
+      if (f->bwt[c] == 0.0) continue;
+      for (PetscInt a = 0; a < nfa; a++) BF[a + nc * nfa] = Bw[f->ifa[a] + c * nk];
+      for (PetscInt i = 0; i < nsl; i++) BR[i + nc * nsl] = Bw[f->isl[i] + c * nk];
       col[nc++] = c;
     }
-    PetscCall(PetscBLASIntCast(nc, &brhs));
-    if (nc) PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bf, &brhs, KF, &bf, f->piv, tc, &bf, &info));
-    PetscCall(PetscArrayzero(Tw, nfa * nt));
-    for (PetscInt q = 0; q < nc; q++) PetscCall(PetscArraycpy(Tw + col[q] * nfa, tc + q * nfa, nfa));
-    /* RH's last block Br = Bw_s - Ksf T_w (nsl x nt; 0 where Bw is), by the columns solved (Ksf in KS) */
-    {
-      PetscReal *KS = tc + nfa * nc, *BR = KS + nsl * nfa;
-      for (PetscInt a = 0; a < nfa; a++)
-        for (PetscInt i = 0; i < nsl; i++) KS[i + a * nsl] = Kp[f->isl[i] + f->ifa[a] * nk];
-      for (PetscInt q = 0; q < nc; q++)
-        for (PetscInt i = 0; i < nsl; i++) BR[i + q * nsl] = Bw[f->isl[i] + col[q] * nk];
-      PetscCall(JRGemm("N", "N", nsl, nc, nfa, -1.0, KS, nsl, tc, nfa, 1.0, BR, nsl));
-      PetscCall(PetscArrayzero(RH + 2 * nsl * nsl, nsl * nt));
-      for (PetscInt q = 0; q < nc; q++) PetscCall(PetscArraycpy(RH + (2 * nsl + col[q]) * nsl, BR + q * nsl, nsl));
-    }
+    PetscCall(JRGemm("T", "N", nsl, nc, nfa, -1.0, Z, nfa, BF, nfa, 1.0, BR, nsl));
+    PetscCall(PetscArrayzero(RH + 2 * nsl * nsl, nsl * nt));
+    for (PetscInt q = 0; q < nc; q++) PetscCall(PetscArraycpy(RH + (2 * nsl + col[q]) * nsl, BR + q * nsl, nsl));
   }
   PetscCall(PetscArrayzero(T, nk * nsl));
   for (PetscInt b = 0; b < nsl; b++) {
@@ -807,13 +804,19 @@ static PetscErrorCode Commit(struct _JRMonodromy *f, PetscInt j, PetscInt k)
   if (!nr) PetscFunctionReturn(0);
   for (PetscInt r = 0; r < nr; r++)
     for (PetscInt i = 0; i < nk; i++) f->Rg[r + i * nr] = f->RT[f->rows[r] + i * 2 * nt];
-  if (f->nfa) { /* DUV = (Rg T) Y_q + (Rg_f Kff^-1 Bw_f) Y_w */
+  if (f->nfa) { /* DUV = (Rg T) Y_q + (Rg_f Kff^-1 R_f diag(bw)) Y_w, Rg_f Kff^-1 = (Kff^-T Rg_f^T)^T */
     const PetscInt nsl = f->nsl, nfa = f->nfa;
-    PetscReal     *A = f->CB, *B = A + nr * nsl, *Rf = B + nr * nt;
+    PetscReal     *A = f->CB, *B = A + nr * nsl, *Rf = B + nr * nt, *bw = f->bws + k * f->cap;
+    PetscBLASInt   bf, br, info;
+    PetscCall(PetscBLASIntCast(nfa, &bf));
+    PetscCall(PetscBLASIntCast(nr, &br));
     PetscCall(JRGemm("N", "N", nr, nsl, nk, 1.0, f->Rg, nr, f->Ts + k * nk * nk, nk, 0.0, A, nr));
-    for (PetscInt a = 0; a < nfa; a++)
-      for (PetscInt r = 0; r < nr; r++) Rf[r + a * nr] = f->Rg[r + f->ifa[a] * nr];
-    PetscCall(JRGemm("N", "N", nr, nt, nfa, 1.0, Rf, nr, f->Tws + k * nk * f->cap, nfa, 0.0, B, nr));
+    for (PetscInt r = 0; r < nr; r++)
+      for (PetscInt a = 0; a < nfa; a++) Rf[a + r * nfa] = f->Rg[r + f->ifa[a] * nr];
+    PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("T", &bf, &br, f->KFs + k * nk * nk, &bf, f->pivs + k * nk, Rf, &bf, &info));
+    PetscCall(JRGemm("T", "N", nr, nt, nfa, 1.0, Rf, nfa, f->Rfa, nfa, 0.0, B, nr));
+    for (PetscInt c = 0; c < nt; c++)
+      for (PetscInt r = 0; r < nr; r++) B[r + c * nr] *= bw[c];
     PetscCall(JRGemm("N", "N", nr, m, f->nsl, 1.0, A, nr, Y, m, 0.0, f->DUV, nr));
     PetscCall(JRGemm("N", "N", nr, m, nt, 1.0, B, nr, Y + n2, m, 1.0, f->DUV, nr));
   } else PetscCall(JRGemm("N", "N", nr, m, nk, 1.0, f->Rg, nr, Y, m, 0.0, f->DUV, nr));
@@ -911,13 +914,18 @@ static PetscErrorCode FastModes(JRHBM h, PetscReal w, PetscInt *mt)
     f->nfa = 0;
     for (PetscInt i = 0; i < nk; i++) f->isl[i] = i;
   }
-  if (f->nfa && (!f->Ts || nt > f->cap)) {
-    PetscCall(PetscFree2(f->Ts, f->Tws));
+  if (!f->Ts || nt > f->cap) {
+    PetscCall(PetscFree4(f->Ts, f->KFs, f->bws, f->pivs));
+    PetscCall(PetscFree2(f->Rfa, f->bwt));
     PetscCall(PetscFree(f->CB));
     f->cap = nt;
-    PetscCall(PetscMalloc2((JR_MONO_SLOTS + 1) * nk * nk + 1, &f->Ts, (JR_MONO_SLOTS + 1) * nk * nt + 1, &f->Tws));
-    PetscCall(PetscMalloc1(2 * nt * (2 * nk + nt) + 1, &f->CB));
+    PetscCall(PetscMalloc4((JR_MONO_SLOTS + 1) * nk * nk + 1, &f->Ts, (JR_MONO_SLOTS + 1) * nk * nk + 1, &f->KFs, (JR_MONO_SLOTS + 1) * nt + 1, &f->bws, (JR_MONO_SLOTS + 1) * nk + 1, &f->pivs));
+    PetscCall(PetscMalloc2(nk * nt + 1, &f->Rfa, nt + 1, &f->bwt));
+    PetscCall(PetscMalloc1(2 * nt * (2 * nk + nt) + nk * nk + 1, &f->CB));
   }
+  for (PetscInt e = 0; e < f->ne; e++) /* the tracked elements' r over the fast modes */
+    if (f->memp[e] >= 0)
+      for (PetscInt a = 0; a < f->nfa; a++) f->Rfa[a + f->memp[e] * f->nfa] = f->RSt[f->ifa[a] + e * nk];
   *mt   = 2 * f->nsl + nt;
   f->mt = *mt;
   PetscFunctionReturn(0);
