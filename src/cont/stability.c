@@ -118,16 +118,18 @@ static PetscErrorCode Detect(JRCont c, JRContBranch *b)
    incremental dissipativity where it holds (stable, maxre NaN; -frf_stability_dissipative 0: never), by the
    monodromy matrix in time where friction elements change state (JRHBMFloquetTime; -frf_stability_time 0: Hill's
    method, whose flags there indicate rather than decide, counted and said), and by Hill's method (JRHBMFloquet) for
-   smooth elements. Does nothing without -frf_stability; a condensed model is analysed only when incrementally
-   dissipative at every point (else a note says so once). Collective. */
+   smooth elements. Does nothing without -frf_stability; a model condensed onto its joints is analysed in time on its
+   points' modal unknowns (JRHBMExpand), with a cubic spring only where incrementally dissipative at every point (else
+   a note says so once). Collective. */
 PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
 {
   JRContBranch      *b = &c->br[lev];
-  PetscBool          ok;
+  PetscBool          ok, okt;
   PetscInt           nun = 0, ncount[4] = {0, 0, 0, 0};
   PetscLogDouble     t0, t1;
   JRStabilityVerdict v = JR_STABILITY_HILL, *verdict;
   PetscBool         *intime, any = PETSC_FALSE;
+  PetscInt           nfast = 0;
 
   PetscFunctionBeginUser;
   PetscCall(JRContBranchStabilityFree(b));
@@ -139,12 +141,13 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   }
   if (!c->stab) PetscFunctionReturn(0);
   PetscCall(JRHBMHillSupported(c->hbm, &ok));
+  PetscCall(JRHBMFloquetTimeSupported(c->hbm, &okt));
   PetscCall(PetscTime(&t0));
-  for (PetscInt k = 0; k < b->np && !ok; k++) { /* condensed: only the certificate, which must then hold at every point */
+  for (PetscInt k = 0; k < b->np && !ok && !okt; k++) { /* condensed with smooth elements: only the certificate, which must then hold at every point */
     PetscCall(LoadPoint(c, b, k, a));
     PetscCall(JRHBMStabilityVerdict(c->hbm, a, c->stabdiss, &v));
     if (v != JR_STABILITY_DISSIPATIVE) {
-      if (lev == 0 && !c->quiet) PetscCall(PetscPrintf(c->comm, "stability: not computed, the model is condensed onto its joints and not incrementally dissipative at every point (-hbm_condense no keeps the modal unknowns); the CSV's stable column is -1\n"));
+      if (lev == 0 && !c->quiet) PetscCall(PetscPrintf(c->comm, "stability: not computed, the model is condensed onto its joints, has a cubic spring and is not incrementally dissipative at every point (-hbm_condense no keeps the modal unknowns); the CSV's stable column is -1\n"));
       PetscFunctionReturn(0);
     }
   }
@@ -154,7 +157,7 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   for (PetscInt k = 0; k < b->np; k++) {
     PetscCall(LoadPoint(c, b, k, a));
     PetscCall(JRHBMStabilityVerdict(c->hbm, a, c->stabdiss, &v));
-    if (v == JR_STABILITY_HILL_HYSTERETIC && c->stabtime) v = JR_STABILITY_TIME;
+    if (v == JR_STABILITY_HILL_HYSTERETIC && (c->stabtime || !ok)) v = JR_STABILITY_TIME; /* condensed: no Hill's method */
     verdict[k] = v;
     switch (v) {
     case JR_STABILITY_DISSIPATIVE:
@@ -164,14 +167,36 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
       break;
     case JR_STABILITY_TIME: /* below, the points shared out over the ranks */
       intime[k] = any = PETSC_TRUE;
-      PetscCall(JRHBMJacobianSign(c->hbm, b->omega[k], a, &b->detsign[k]));
+      b->detsign[k] = 0;
+      if (ok) PetscCall(JRHBMJacobianSign(c->hbm, b->omega[k], a, &b->detsign[k]));
       break;
     default:
       PetscCall(JRHBMFloquet(c->hbm, b->omega[k], a, c->stabsel, c->stabdense, NULL, NULL, NULL, &b->maxre[k], &b->detsign[k]));
     }
   }
-  if (any) PetscCall(JRHBMSetFloquetFast(c->hbm, c->stabfast));
-  if (any) PetscCall(JRHBMFloquetTimePoints(c->hbm, b->np, b->omega, b->x, c->n, intime, c->stabsteps, b->maxre));
+  if (any) {
+    PetscReal *X = b->x;
+    PetscInt   n = c->n;
+    PetscCall(JRHBMSetFloquetFast(c->hbm, c->stabfast));
+    if (!ok) { /* condensed onto the joints: the points' modal unknowns, expanded */
+      Vec am;
+      PetscCall(JRHBMGetSizes(c->hbm, NULL, NULL, &n));
+      PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &am));
+      PetscCall(PetscCalloc1(b->np * n + 1, &X));
+      for (PetscInt k = 0; k < b->np; k++) {
+        const PetscScalar *xa;
+        if (!intime[k]) continue;
+        PetscCall(LoadPoint(c, b, k, a));
+        PetscCall(JRHBMExpand(c->hbm, b->omega[k], a, am));
+        PetscCall(VecGetArrayRead(am, &xa));
+        PetscCall(PetscArraycpy(X + k * n, xa, n));
+        PetscCall(VecRestoreArrayRead(am, &xa));
+      }
+      PetscCall(VecDestroy(&am));
+    }
+    PetscCall(JRHBMFloquetTimePoints(c->hbm, b->np, b->omega, X, n, intime, c->stabsteps, b->maxre, &nfast));
+    if (X != b->x) PetscCall(PetscFree(X));
+  }
   for (PetscInt k = 0; k < b->np; k++) {
     b->stable[k] = verdict[k] == JR_STABILITY_DISSIPATIVE || b->maxre[k] < c->stabtol * b->omega[k] ? 1 : 0;
     ncount[verdict[k]]++;
@@ -183,8 +208,17 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   PetscCall(PetscTime(&t1));
   b->stab_seconds = t1 - t0;
   b->nhyst        = ncount[JR_STABILITY_HILL_HYSTERETIC];
-  if (!c->quiet) PetscCall(PetscPrintf(c->comm, "stability level %g unstable_points %" PetscInt_FMT " of %" PetscInt_FMT " folds %" PetscInt_FMT " branch_points %" PetscInt_FMT " seconds %.3g (curve %.3g) dissipative %" PetscInt_FMT " time %" PetscInt_FMT " hill %" PetscInt_FMT " hill_hysteretic %" PetscInt_FMT "\n", (double)b->F, nun, b->np, b->nfold, b->nbranch, (double)b->stab_seconds, (double)b->seconds, ncount[JR_STABILITY_DISSIPATIVE], ncount[JR_STABILITY_TIME], ncount[JR_STABILITY_HILL], ncount[JR_STABILITY_HILL_HYSTERETIC]));
+  if (!c->quiet) PetscCall(PetscPrintf(c->comm, "stability level %g unstable_points %" PetscInt_FMT " of %" PetscInt_FMT " folds %" PetscInt_FMT " branch_points %" PetscInt_FMT " seconds %.3g (curve %.3g) dissipative %" PetscInt_FMT " time %" PetscInt_FMT " hill %" PetscInt_FMT " hill_hysteretic %" PetscInt_FMT " fast_modes %" PetscInt_FMT "\n", (double)b->F, nun, b->np, b->nfold, b->nbranch, (double)b->stab_seconds, (double)b->seconds, ncount[JR_STABILITY_DISSIPATIVE], ncount[JR_STABILITY_TIME], ncount[JR_STABILITY_HILL], ncount[JR_STABILITY_HILL_HYSTERETIC], nfast));
   if (!c->quiet && b->nhyst) PetscCall(PetscPrintf(c->comm, "stability level %g: %" PetscInt_FMT " points by Hill's method with friction elements changing state: its periodic Jacobian misses the slip's memory, so these flags indicate and do not decide (docs/theory.md section 16); -frf_verify_unstable checks the unstable ones by time integration\n", (double)b->F, b->nhyst));
+  PetscFunctionReturn(0);
+}
+
+/* JRContGetStabilitySeconds - the wall time of the stability of every level [s] (0 where not computed) */
+PetscErrorCode JRContGetStabilitySeconds(JRCont c, PetscReal *seconds)
+{
+  PetscFunctionBeginUser;
+  *seconds = 0.0;
+  for (PetscInt l = 0; c->br && l < c->nlev; l++) *seconds += c->br[l].stab_seconds;
   PetscFunctionReturn(0);
 }
 

@@ -135,32 +135,38 @@ PetscErrorCode JRHBMStabilityVerdict(JRHBM h, Vec a, PetscBool certify, JRStabil
 
 /*
   JRHBMStabilityCheap - whether deciding the stability of every point (JRContStability) costs little next to the
-  curve: the model is incrementally dissipative at every point (every element jenkins: one LU per point, or a
-  condensed model, analysed only then), or its points with friction elements changing state have a monodromy
-  matrix of at most 64 states (2 kept modes + friction elements), or, with smooth elements only, Hill's problem has
-  at most 128 unknowns. size: that state's or problem's size (0 for the first). Collective.
+  curve: the model is incrementally dissipative at every point (every element jenkins: one LU per point), or it has
+  friction elements and no cubic spring and is not condensed onto its joints (the monodromy matrix in time, its fast
+  modes condensed: 1.3-2.2 times the curve's solve on the FE models of docs/performance.md; a condensed model's curve
+  is so cheap that the modal monodromy costs several times it), or with a cubic spring the monodromy matrix (RK4) has
+  at most 64 states (2 kept modes + friction elements), or, with smooth elements only, Hill's problem has at most
+  128 unknowns. size: the monodromy's state or Hill's problem's size (0 where it is cheap for any size). Collective.
 */
 PetscErrorCode JRHBMStabilityCheap(JRHBM h, PetscBool *cheap, PetscInt *size)
 {
-  PetscInt ne = 0, all, nk = 0;
+  PetscInt ne = 0, all, nk = 0, ncub = 0, anycub;
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMSetUp(h));
   PetscCall(ModelDissipative(h));
   *size  = 0;
   *cheap = PETSC_TRUE;
-  if (h->dissip == 2 || h->cond) PetscFunctionReturn(0);
-  if (!h->fric) {
+  if (h->dissip == 2) PetscFunctionReturn(0);
+  if (!h->fric && !h->cond) {
     *size  = 2 * h->nm * h->nc;
     *cheap = (PetscBool)(*size <= 128);
     PetscFunctionReturn(0);
   }
-  for (PetscInt t = 0; t < h->ngroups && (!h->repl || !h->rank); t++)
+  for (PetscInt t = 0; t < h->ngroups && (!h->repl || !h->rank); t++) {
     if (strcmp(h->g[t].c->type_name, JRCONTACTCUBIC)) ne += h->g[t].nloc;
+    else ncub += h->g[t].nloc;
+  }
+  PetscCall(MPIU_Allreduce(&ncub, &anycub, 1, MPIU_INT, MPI_SUM, h->comm));
+  if (!anycub && !h->cond) PetscFunctionReturn(0);
   PetscCall(MPIU_Allreduce(&ne, &all, 1, MPIU_INT, MPI_SUM, h->comm));
   for (PetscInt i = 0; i < h->nm; i++)
     if (!h->pin || h->pin[i] == 0.0) nk++;
   *size  = 2 * nk + all;
-  *cheap = (PetscBool)(*size <= 64);
+  *cheap = (PetscBool)(!h->cond && *size <= 64);
   PetscFunctionReturn(0);
 }

@@ -21,9 +21,18 @@
    the steps' ends, and the equations over a step are linear with constant coefficients: the step's map is the
    exponential of their matrix (a Taylor polynomial, dt w_max <= 1, w_max the stiffest mode with every element
    stuck), kept by the states' pattern, which mostly repeats over a period; a step where a state changes gets the
-   map of the two states weighted by their shares. With a cubic spring (MarchRK4) the march is RK4 (dt w_max <= 0.5)
-   with the states at every stage. At least the harmonic balance's samples per period either way.
+   map of the two states weighted by their shares. The pattern's stiffness is updated by the elements whose state
+   changes. Only the slips of elements that change state over the period are marched (Classify), and a slip is
+   committed only where it will be read: where its element sticks or reverses within the next step, and at the
+   period's end. With a cubic spring (MarchRK4) the march is RK4 (dt w_max <= 0.5) with the states at every stage.
+   At least the harmonic balance's samples per period either way.
 
+   Fast modes (JRHBMSetFloquetFast: the kept modes whose own frequency exceeds a multiple of H w and whose damping
+   makes them decay within a period; an FE model's interface correction vectors, 10^4-10^5 Hz beside a 100 Hz
+   resonance) are condensed quasi-statically for each step's pattern (QuasiStatic, Guyan's reduction with the
+   pattern's stiffness): their inertia is dropped, the slow modes carry the rest, and the map is the exponential of
+   the slow modes' equations, whose stiffest mode sets far fewer squarings. The exponents change by about
+   (w / w_fast)^2 (test_stability); the fast modes' own exponents are not computed.
    Every rank holds every element (gathered once); JRHBMFloquetTime marches one point on rank 0 and broadcasts,
    JRHBMFloquetTimePoints shares a level's points out over the ranks.
 */
@@ -1002,27 +1011,44 @@ static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, P
   PetscFunctionReturn(0);
 }
 
-/* The monodromy work of h, set up (collective); an error for a condensed model (JRHBMHillSupported()) */
+/* JRHBMFloquetTimeSupported - whether JRHBMFloquetTime() can run: the solve space is the modal one, or the model is
+   condensed onto its joints and has friction elements only (the points' modal unknowns then come from JRHBMExpand()).
+   Collective. */
+PetscErrorCode JRHBMFloquetTimeSupported(JRHBM h, PetscBool *ok)
+{
+  PetscInt cub = 0, any;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMHillSupported(h, ok));
+  if (*ok) PetscFunctionReturn(0);
+  for (PetscInt t = 0; t < h->ngroups; t++)
+    if (h->g[t].nloc && !strcmp(h->g[t].c->type_name, JRCONTACTCUBIC)) cub = 1;
+  PetscCall(MPIU_Allreduce(&cub, &any, 1, MPIU_INT, MPI_MAX, h->comm));
+  *ok = (PetscBool)!any;
+  PetscFunctionReturn(0);
+}
+
+/* The monodromy work of h, set up (collective); an error where JRHBMFloquetTimeSupported() says no */
 static PetscErrorCode FloquetBegin(JRHBM h, struct _JRMonodromy **f)
 {
   PetscBool ok;
 
   PetscFunctionBeginUser;
-  PetscCall(JRHBMHillSupported(h, &ok));
-  PetscCheck(ok, h->comm, PETSC_ERR_SUP, "Floquet exponents in time need the modal unknowns: this model is condensed onto its joints (-hbm_condense no keeps the modes)");
+  PetscCall(JRHBMFloquetTimeSupported(h, &ok));
+  PetscCheck(ok, h->comm, PETSC_ERR_SUP, "Floquet exponents in time need the modal unknowns, or friction elements only: this model is condensed onto its joints and has a cubic spring (-hbm_condense no keeps the modes)");
   PetscCall(MonodromySetUp(h));
   *f = h->mono;
   PetscFunctionReturn(0);
 }
 
 /*
-  JRHBMFloquetTime - the Floquet exponents of the solution a (solve space, modal) at frequency w from the monodromy
+  JRHBMFloquetTime - the Floquet exponents of the solution a (the modal unknowns, JRHBMExpand() of a condensed model's) at frequency w from the monodromy
   matrix of the variational equations marched over one period (collective; rank 0 marches and broadcasts).
 
   Input: steps, the least steps per period (more if the stiffest mode or the harmonic balance's samples ask).
   Output: nexp = 2 nk + ne (nk the modes other than rigid-body ones, ne the friction elements: their slips); re, im (room for
   nexp each, may be NULL): the exponents, largest real part first [1/s] (a zero multiplier, a slip that a slipping
-  element forgets, gives -inf); maxre: the largest real part; nsteps: the steps per period taken (may be NULL).
+  element forgets, gives -inf, and so does a fast mode condensed by JRHBMSetFloquetFast); maxre: the largest real part; nsteps: the steps per period taken (may be NULL).
   An error for a condensed model (JRHBMHillSupported()).
 */
 PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt steps, PetscInt *nexp, PetscReal re[], PetscReal im[], PetscReal *maxre, PetscInt *nsteps)
@@ -1057,13 +1083,14 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt steps, Pet
 /*
   JRHBMFloquetTimePoints - the largest real part of the Floquet exponents in time (JRHBMFloquetTime) of the points k
   with pick[k] among np solutions X (np x n, the solve space, the same on every rank) at frequencies omega; the points
-  shared out over the ranks, each marched by one (collective). maxre[k] of the others is left as it is.
+  shared out over the ranks, each marched by one (collective). maxre[k] of the others is left as it is. nfast (may be
+  NULL): the most kept modes condensed at a point (JRHBMSetFloquetFast).
 */
-PetscErrorCode JRHBMFloquetTimePoints(JRHBM h, PetscInt np, const PetscReal omega[], const PetscScalar X[], PetscInt n, const PetscBool pick[], PetscInt steps, PetscReal maxre[])
+PetscErrorCode JRHBMFloquetTimePoints(JRHBM h, PetscInt np, const PetscReal omega[], const PetscScalar X[], PetscInt n, const PetscBool pick[], PetscInt steps, PetscReal maxre[], PetscInt *nfast)
 {
   struct _JRMonodromy *f;
   PetscReal           *out, *mine;
-  PetscInt             q = 0;
+  PetscInt             q = 0, nf = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(JR_HBMFloquetTime, 0, 0, 0, 0));
@@ -1075,8 +1102,10 @@ PetscErrorCode JRHBMFloquetTimePoints(JRHBM h, PetscInt np, const PetscReal omeg
     if (q++ % h->size != h->rank) continue;
     PetscCall(FloquetLocal(h, omega[k], X + k * n, steps, out));
     mine[k] = f->m ? out[0] : 0.0;
+    nf      = PetscMax(nf, f->nfa);
   }
   if (h->size > 1) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, mine, (PetscMPIInt)np, MPIU_REAL, MPIU_SUM, h->comm));
+  if (nfast) PetscCall(MPIU_Allreduce(&nf, nfast, 1, MPIU_INT, MPI_MAX, h->comm));
   for (PetscInt k = 0; k < np; k++)
     if (pick[k]) maxre[k] = mine[k];
   PetscCall(PetscFree(out));

@@ -50,8 +50,9 @@ static PetscErrorCode StickFE(JRModel model, const JRElements *el, PetscInt nf, 
 
 
 /* Curves of one model: a JRCont on hbm (options -cont_*, -frf_*), written to base (if not empty); seconds: the
-   continuation's wall time (every level); elem (may be NULL): its part in the contact elements (JRHBMGetElementTime) */
-static PetscErrorCode Curves(MPI_Comm comm, JRPost post, JRHBM hbm, const char base[], JRCont *cont, PetscReal *seconds, PetscReal *elem)
+   continuation's wall time (every level, the peaks, not the stability), stab: the stability's; elem (may be NULL): the
+   contact elements' part (JRHBMGetElementTime) */
+static PetscErrorCode Curves(MPI_Comm comm, JRPost post, JRHBM hbm, const char base[], JRCont *cont, PetscReal *seconds, PetscReal *stab, PetscReal *elem)
 {
   PetscLogDouble t0, t1, e0, e1;
 
@@ -67,7 +68,8 @@ static PetscErrorCode Curves(MPI_Comm comm, JRPost post, JRHBM hbm, const char b
   PetscCall(PetscTime(&t1));
   PetscCall(PetscLogStagePop());
   PetscCall(JRHBMGetElementTime(hbm, &e1, NULL, NULL));
-  *seconds = t1 - t0;
+  PetscCall(JRContGetStabilitySeconds(*cont, stab));
+  *seconds = t1 - t0 - *stab;
   if (elem) *elem = e1 - e0;
   PetscCall(PetscLogStagePush(JR_StagePost));
   PetscCall(JRPostWriteCurves(post, *cont));
@@ -424,7 +426,8 @@ static PetscErrorCode ViewBasis(FRFRun *r)
 /* 6. the curves: of the one model, or of both (-task compare) with their comparison */
 static PetscErrorCode Solve(FRFRun *r)
 {
-  MPI_Comm comm = r->comm;
+  MPI_Comm  comm = r->comm;
+  PetscReal sn, sr;
 
   PetscFunctionBeginUser;
   if (r->nlmodes) {
@@ -437,19 +440,19 @@ static PetscErrorCode Solve(FRFRun *r)
     PetscCall(PetscSNPrintf(bn, sizeof(bn), "%s%s", r->base, r->base[0] ? "_n2n" : ""));
     PetscCall(PetscSNPrintf(br, sizeof(br), "%s%s", r->base, r->base[0] ? "_rom" : ""));
     PetscCall(PetscPrintf(comm, "compare: node-to-node model\n"));
-    PetscCall(Curves(comm, r->post, r->hbm, bn, &r->cont, &r->tn, &r->en));
-    PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) node-to-node %.4g s\n", (double)r->tn));
+    PetscCall(Curves(comm, r->post, r->hbm, bn, &r->cont, &r->tn, &sn, &r->en));
+    PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) node-to-node %.4g s, stability %.4g s\n", (double)r->tn, (double)sn));
     PetscCall(PetscPrintf(comm, "compare: reduced model\n"));
-    PetscCall(Curves(comm, r->post, r->hbmr, br, &r->contr, &r->tr, &r->er));
-    PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) reduced %.4g s\n", (double)r->tr));
+    PetscCall(Curves(comm, r->post, r->hbmr, br, &r->contr, &r->tr, &sr, &r->er));
+    PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) reduced %.4g s, stability %.4g s\n", (double)r->tr, (double)sr));
     {
       const JRCompareTimes t = {r->tn, r->tr, r->en, r->er, r->setn, r->setr, r->tred};
       PetscCall(JRPostCompareReport(r->post, r->cont, r->contr, &r->el, &r->elr, &t));
     }
     r->contc = r->cont;
   } else {
-    PetscCall(Curves(comm, r->post, r->hbmc, r->base[0] ? r->base : NULL, r->isrom ? &r->contr : &r->cont, &r->tn, NULL));
-    PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) %.4g s\n", (double)r->tn));
+    PetscCall(Curves(comm, r->post, r->hbmc, r->base[0] ? r->base : NULL, r->isrom ? &r->contr : &r->cont, &r->tn, &sn, NULL));
+    PetscCall(PetscPrintf(comm, "frf: solve (HBM + continuation, every level) %.4g s, stability %.4g s\n", (double)r->tn, (double)sn));
     r->contc = r->isrom ? r->contr : r->cont;
   }
   PetscFunctionReturn(0);

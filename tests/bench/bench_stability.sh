@@ -14,12 +14,12 @@ solve() { # np stab args... -> "solve_seconds stability_seconds curve_seconds"
     awk '/JR 6 solve:/{t=$5} /^stability level/{for(i=1;i<=NF;i++){if($i=="seconds")s+=$(i+1); if($i=="(curve")c+=$(i+1)}} END{printf "%s %.4g %.4g\n", t, s, c}'
 }
 median() { sort -g | awk '{a[NR]=$1} END{print a[int((NR+1)/2)]}'; }
-echo "== stability: solve stage [s], off and on, median of 3 interleaved runs =="
+echo "== stability: solve stage [s], off and on, median of 3 interleaved runs (runs/lap3_n2n.opts: one each, about 1 min of set-up per run) =="
 printf "%-44s %-5s %10s %10s %7s %12s %12s\n" case ranks off on ratio stability curve
-while IFS='|' read -r name np args; do
+while IFS='|' read -r name np reps args; do
   : > /tmp/jr_bench_off.$$
   : > /tmp/jr_bench_on.$$
-  for r in 1 2 3; do
+  for r in $(seq "$reps"); do
     solve "$np" 0 $args | awk '{print $1}' >> /tmp/jr_bench_off.$$
     solve "$np" 1 $args >> /tmp/jr_bench_on.$$
   done
@@ -29,12 +29,13 @@ while IFS='|' read -r name np args; do
   cu=$(awk '{print $3}' /tmp/jr_bench_on.$$ | median)
   printf "%-44s %-5s %10.4g %10.4g %7.2f %12.4g %12.4g\n" "$name" "$np" "$off" "$on" "$(awk -v a=$on -v b=$off 'BEGIN{print a/b}')" "$st" "$cu"
 done <<EOF
-runs/chain_frf.opts|1|-options_file runs/chain_frf.opts
-runs/chain_frf.opts|2|-options_file runs/chain_frf.opts
-runs/duffing_frf.opts|1|-options_file runs/duffing_frf.opts
-runs/oscillator_frf.opts|1|-options_file runs/oscillator_frf.opts
-runs/default.opts (BRB)|2|-options_file runs/default.opts
-lap1 8 mm, 132 jenkins_nv, 30 modes|1|$lap1
-lap1 8 mm, 132 jenkins_nv, 30 modes|2|$lap1
+runs/chain_frf.opts|1|3|-options_file runs/chain_frf.opts
+runs/chain_frf.opts|2|3|-options_file runs/chain_frf.opts
+runs/duffing_frf.opts|1|3|-options_file runs/duffing_frf.opts
+runs/oscillator_frf.opts|1|3|-options_file runs/oscillator_frf.opts
+runs/default.opts (BRB)|2|3|-options_file runs/default.opts
+lap1 8 mm, 132 jenkins_nv, 30 modes|1|3|$lap1
+lap1 8 mm, 132 jenkins_nv, 30 modes|2|3|$lap1
+runs/lap3_n2n.opts, 506 jenkins_nv, 88 modes|2|1|-options_file runs/lap3_n2n.opts
 EOF
 rm -f /tmp/jr_bench_off.$$ /tmp/jr_bench_on.$$
