@@ -369,3 +369,79 @@ PetscErrorCode JRContChordError(JRCont c, JRContBranch *b, Vec a, PetscReal w, P
   *err = PetscAbsReal(Am - Ac) / PetscMax(PetscMax(Am, Ac), PETSC_MIN_REAL);
   PetscFunctionReturn(0);
 }
+
+/* JRContPlaneScale - the scaling W of the planes of JRContPlaneBegin for curve b: the peaks' (amplitudes by the
+   curve's largest, frequency by the range) */
+PetscErrorCode JRContPlaneScale(JRCont c, JRContBranch *b)
+{
+  PetscFunctionBeginUser;
+  Weights(c, b, c->pw);
+  PetscFunctionReturn(0);
+}
+
+/* JRContPlaneBegin - the family of planes <x - x_k0, d>_W = s across the curve b from its point k0 (s = 0) to its point
+   k1 (s = *S), d = x_k1 - x_k0, W set by JRContPlaneScale */
+PetscErrorCode JRContPlaneBegin(JRCont c, JRContBranch *b, PetscInt k0, PetscInt k1, PetscReal *S)
+{
+  PeakWork *pw = c->pw;
+
+  PetscFunctionBeginUser;
+  PointX(c, b, k0, pw->x0);
+  PointX(c, b, k1, pw->xm);
+  for (PetscInt i = 0; i <= c->n; i++) pw->d[i] = pw->xm[i] - pw->x0[i];
+  *S = PlaneCoordinate(pw, pw->xm);
+  PetscFunctionReturn(0);
+}
+
+/* JRContPlaneCoordinate - s of the point x = (a, w) (n + 1) in the family of JRContPlaneBegin */
+PetscReal JRContPlaneCoordinate(JRCont c, const PetscReal *x)
+{
+  return PlaneCoordinate(c->pw, x);
+}
+
+/* JRContPlanePoint - the curve's point on the plane s of the family (JRContPlaneBegin) by Newton from the guess x (n + 1;
+   the point on return, its unknowns also in *a, the plane work's vector, valid until the next solve); *ok when found.
+   Collective. */
+PetscErrorCode JRContPlanePoint(JRCont c, PetscReal s, PetscReal *x, Vec *a, PetscInt *its, PetscBool *ok)
+{
+  PeakWork *pw = c->pw;
+  PetscReal tol, res, w;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMGetResidualTolerance(c->hbm, &tol));
+  PetscCall(SolveOnPlane(c, pw, s, 1e-3 * tol, x, &res, its, ok));
+  PetscCall(Load(pw, x, &w));
+  *a = pw->a;
+  PetscFunctionReturn(0);
+}
+
+/* JRContTangentSign - at the solution (a, w) (a not the plane work's vector, or it), the sign of dw/ds along the curve
+   in the direction of the family's normal d (JRContPlaneBegin): the tangent is t = (-J^-1 R_w, 1) up to its
+   orientation, which <t, d>_W > 0 fixes, so the sign is that of <(-J^-1 R_w, 1), d>_W; 0 where J is singular.
+   With sign(det J) it gives the sign of the bordered Jacobian's determinant, which folds do not change. Collective. */
+PetscErrorCode JRContTangentSign(JRCont c, PetscReal w, Vec a, PetscInt *sign)
+{
+  PeakWork          *pw = c->pw;
+  const PetscInt     n  = pw->n;
+  const PetscScalar *j, *rw;
+  PetscReal          q = 0;
+  PetscBool          singular;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMComputeJacobian(c->hbm, w, a, pw->J, pw->Rw));
+  PetscCall(MatDenseGetArrayRead(pw->J, &j));
+  PetscCall(VecGetArrayRead(pw->Rw, &rw));
+  for (PetscInt i = 0; i < n * n; i++) pw->B[i] = j[i];
+  for (PetscInt i = 0; i < n; i++) pw->dx[i] = -rw[i];
+  PetscCall(VecRestoreArrayRead(pw->Rw, &rw));
+  PetscCall(MatDenseRestoreArrayRead(pw->J, &j));
+  PetscCall(JRDenseSolve(n, pw->B, n, pw->lu, pw->piv, pw->dx, &singular));
+  if (singular) {
+    *sign = 0;
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt i = 0; i < n; i++) q += pw->W[i] * pw->dx[i] * pw->d[i];
+  q += pw->W[n] * pw->d[n];
+  *sign = q > 0 ? 1 : q < 0 ? -1 : 0;
+  PetscFunctionReturn(0);
+}

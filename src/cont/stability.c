@@ -1,14 +1,15 @@
 /*
    Stability of every point of a level's curve by Hill's method (JRHBMFloquet, src/hbm/hill.c), and the folds and
-   branch points along it (docs/theory.md, section 15), after the level is traced and its peaks inserted.
+   branch points along it (docs/theory.md, section 16), after the level is traced and its peaks inserted.
 
-   fold:   the frequency is extreme at a point (consecutive steps change direction in w); located at the vertex of the
-           parabola w(s) through that point and its neighbours, s the scaled arclength (chord lengths in the unknowns
-           over their largest norm and in w over the range).
-   branch: the determinant of the bordered Jacobian, sign(det J) sign(dw/ds), changes sign and keeps its new sign for
-           two points (kind simple); or the stability changes, for two points, with no fold and no real exponent
-           crossing near: a complex pair crossing the imaginary axis (kind pair). Located where the largest real part
-           crosses zero, by linear interpolation (the midpoint if it does not).
+   fold:   the frequency is extreme at a point (consecutive steps change direction in w); located by golden-section
+           search for the extreme frequency along the curve between the point's neighbours (LocateFold).
+   branch: the determinant of the bordered Jacobian, sign(det J) sign(dw/ds) with dw/ds of the tangent at the point,
+           changes sign and keeps its new sign for two points (kind simple); or the stability changes, for two
+           points, with no change of det J between them: a complex pair crossing the imaginary axis (kind pair).
+           Located by bisection along the curve between the two points (LocateBranch).
+   Both to -cont_locate_tol in frequency, by harmonic-balance solves on planes across the curve (src/cont/peak.c),
+   so that they do not depend on where the continuation put its points.
 */
 #include <jointrom/private/contimpl.h>
 
@@ -57,27 +58,191 @@ static PetscReal FoldFrequency(JRCont c, JRContBranch *b, PetscInt k, PetscReal 
   return w[0] + d1 * (ss - s[0]) + d2 * (ss - s[0]) * (ss - s[1]);
 }
 
-/* Where the largest real part crosses zero between points k and k + 1 (linear in w), else their midpoint */
-static PetscReal CrossingFrequency(JRContBranch *b, PetscInt k)
+/* Point (w, a)'s stability decided as JRContStability decides the curve's points (*stable 1 or 0) and the sign of
+   det(dR/da) (0 when not computed); hill: Hill's method runs for this model. Collective. */
+static PetscErrorCode PointStability(JRCont c, PetscReal w, Vec a, PetscBool hill, PetscInt *stable, PetscInt *detsign)
 {
-  const PetscReal r0 = b->maxre[k], r1 = b->maxre[k + 1], w0 = b->omega[k], w1 = b->omega[k + 1];
+  JRStabilityVerdict v;
+  PetscReal          maxre = NAN;
 
-  if (r0 * r1 < 0) return w0 + (w1 - w0) * r0 / (r0 - r1);
-  return 0.5 * (w0 + w1);
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMStabilityVerdict(c->hbm, a, c->stabdiss, &v));
+  if (v == JR_STABILITY_HILL_HYSTERETIC && c->stabtime) v = JR_STABILITY_TIME;
+  *detsign = 0;
+  switch (v) {
+  case JR_STABILITY_DISSIPATIVE:
+    if (hill) PetscCall(JRHBMJacobianSign(c->hbm, w, a, detsign));
+    break;
+  case JR_STABILITY_TIME:
+    PetscCall(JRHBMJacobianSign(c->hbm, w, a, detsign));
+    PetscCall(JRHBMFloquetTime(c->hbm, w, a, c->stabsteps, NULL, NULL, NULL, &maxre, NULL));
+    break;
+  default:
+    PetscCall(JRHBMFloquet(c->hbm, w, a, c->stabsel, c->stabdense, NULL, NULL, NULL, &maxre, detsign));
+  }
+  *stable = v == JR_STABILITY_DISSIPATIVE || maxre < c->stabtol * w ? 1 : 0;
+  PetscFunctionReturn(0);
 }
 
-/* Folds and branch points of curve b into b->wfold, b->wbranch (the same on every rank: the data are) */
-static PetscErrorCode Detect(JRCont c, JRContBranch *b)
+/* The fold at the extreme point k (0 < k < np - 1): the extreme frequency along the curve between points k - 1 and
+   k + 1, by golden-section search on the planes across the curve between them (JRContPlaneBegin), until the bound of
+   a concave function through the bracket is below -cont_locate_tol of the frequency; where a solve fails, the vertex
+   of the parabola through the three points (FoldFrequency) if it is further out than the best point found */
+static PetscErrorCode LocateFold(JRCont c, JRContBranch *b, PetscInt k, PetscReal xs, PetscReal *wf, PetscInt *nits)
+{
+  const PetscInt  n = c->n, m = n + 1;
+  const PetscReal sg = b->omega[k] > b->omega[k - 1] ? 1.0 : -1.0; /* +1: a largest frequency */
+  PetscReal      *X, *xl, *xm, *xh, *xt, sl = 0, sm, sh, fl, fm, fh, wp;
+  PetscBool       done = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(4 * m, &X));
+  xl = X;
+  xm = X + m;
+  xh = X + 2 * m;
+  xt = X + 3 * m;
+  for (PetscInt i = 0; i < n; i++) {
+    xl[i] = b->x[(k - 1) * n + i];
+    xm[i] = b->x[k * n + i];
+    xh[i] = b->x[(k + 1) * n + i];
+  }
+  xl[n] = b->omega[k - 1];
+  xm[n] = b->omega[k];
+  xh[n] = b->omega[k + 1];
+  PetscCall(JRContPlaneBegin(c, b, k - 1, k + 1, &sh));
+  sm = JRContPlaneCoordinate(c, xm);
+  fl = sg * xl[n];
+  fm = sg * xm[n];
+  fh = sg * xh[n];
+  for (PetscInt it = 0; it < 100 && sm > sl && sm < sh; it++) {
+    const PetscReal bound = PetscMax((fm - fl) * (sh - sm) / (sm - sl), (fm - fh) * (sm - sl) / (sh - sm));
+    const PetscBool right = (sh - sm) > (sm - sl) ? PETSC_TRUE : PETSC_FALSE;
+    PetscReal       st, f, ft;
+    PetscInt        its;
+    PetscBool       ok;
+    Vec             a;
+    if (bound <= c->ltol * PetscAbsReal(fm)) {
+      done = PETSC_TRUE;
+      break;
+    }
+    st = right ? sm + 0.381966011250105 * (sh - sm) : sm - 0.381966011250105 * (sm - sl);
+    f  = right ? (st - sm) / (sh - sm) : (st - sl) / (sm - sl);
+    for (PetscInt i = 0; i <= n; i++) xt[i] = right ? (1 - f) * xm[i] + f * xh[i] : (1 - f) * xl[i] + f * xm[i];
+    PetscCall(JRContPlanePoint(c, st, xt, &a, &its, &ok));
+    *nits += its;
+    if (!ok) break;
+    ft = sg * xt[n];
+    if (ft > fm) { /* the new middle */
+      PetscReal *t = right ? xl : xh;
+      if (right) {
+        sl = sm;
+        fl = fm;
+        xl = xm;
+      } else {
+        sh = sm;
+        fh = fm;
+        xh = xm;
+      }
+      xm = xt;
+      xt = t;
+      sm = st;
+      fm = ft;
+    } else if (right) {
+      PetscReal *t = xh;
+      xh           = xt;
+      xt           = t;
+      sh           = st;
+      fh           = ft;
+    } else {
+      PetscReal *t = xl;
+      xl           = xt;
+      xt           = t;
+      sl           = st;
+      fl           = ft;
+    }
+  }
+  *wf = sg * fm;
+  if (!done) {
+    wp = FoldFrequency(c, b, k, xs);
+    if (sg * wp > fm) *wf = wp;
+  }
+  PetscCall(PetscFree(X));
+  PetscFunctionReturn(0);
+}
+
+/* The branch point between points k and k + 1, where q changes from ql to qh (the stability for kind pair, the sign of
+   the bordered Jacobian's determinant sign(det J) sign(dw/ds) for kind simple): bisection on the planes across the
+   curve between the two points (JRContPlaneBegin) until the bracket spans less than -cont_locate_tol of the
+   frequency; its middle. A failed solve, or a point with neither value, ends it with the bracket so far. For kind pair,
+   *real when det J changes sign at one of its points: a real exponent crosses there, and it is no branch point. */
+static PetscErrorCode LocateBranch(JRCont c, JRContBranch *b, PetscInt k, PetscBool simple, PetscInt ql, PetscInt qh, PetscBool hill, PetscReal *wb, PetscBool *real, PetscInt *nits)
+{
+  const PetscInt n = c->n, m = n + 1;
+  PetscReal     *X, *xl, *xh, *xt, sl = 0, sh;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(3 * m, &X));
+  xl = X;
+  xh = X + m;
+  xt = X + 2 * m;
+  for (PetscInt i = 0; i < n; i++) {
+    xl[i] = b->x[k * n + i];
+    xh[i] = b->x[(k + 1) * n + i];
+  }
+  xl[n] = b->omega[k];
+  xh[n] = b->omega[k + 1];
+  PetscCall(JRContPlaneBegin(c, b, k, k + 1, &sh));
+  for (PetscInt it = 0; it < 200; it++) {
+    const PetscReal st = 0.5 * (sl + sh);
+    PetscInt        its, q = 0, ds, o;
+    PetscBool       ok;
+    Vec             a;
+    if (PetscAbsReal(xh[n] - xl[n]) <= c->ltol * PetscMax(PetscAbsReal(xl[n]), PetscAbsReal(xh[n])) || !(st > sl && st < sh)) break;
+    for (PetscInt i = 0; i <= n; i++) xt[i] = 0.5 * (xl[i] + xh[i]);
+    PetscCall(JRContPlanePoint(c, st, xt, &a, &its, &ok));
+    *nits += its;
+    if (!ok) break;
+    if (simple) {
+      PetscCall(JRHBMJacobianSign(c->hbm, xt[n], a, &ds));
+      PetscCall(JRContTangentSign(c, xt[n], a, &o));
+      q = ds * o;
+    } else {
+      PetscCall(PointStability(c, xt[n], a, hill, &q, &ds));
+      if (ds != b->detsign[k]) { /* det J changes in the bracket: a real exponent crosses (a fold), not a pair */
+        *real = PETSC_TRUE;
+        break;
+      }
+    }
+    if (q == ql) {
+      PetscReal *t = xl;
+      xl           = xt;
+      xt           = t;
+      sl           = st;
+    } else if (q == qh) {
+      PetscReal *t = xh;
+      xh           = xt;
+      xt           = t;
+      sh           = st;
+    } else break;
+  }
+  *wb = 0.5 * (xl[n] + xh[n]);
+  PetscCall(PetscFree(X));
+  PetscFunctionReturn(0);
+}
+
+/* Folds and branch points of curve b into b->wfold, b->wbranch, each located by solves along the curve (LocateFold,
+   LocateBranch) so that they do not depend on where the continuation put its points; a: work vector of the solve
+   space; hill: Hill's method runs for this model. Collective; the same on every rank (the data are). */
+static PetscErrorCode Detect(JRCont c, JRContBranch *b, Vec a, PetscBool hill)
 {
   const PetscInt np = b->np;
   PetscReal      xs = 0.0;
-  PetscBool     *fold;
-  PetscInt      *sig;
+  PetscInt      *sig, nits = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PetscFree2(b->wfold, b->wbranch));
   PetscCall(PetscMalloc2(np, &b->wfold, np, &b->wbranch));
-  PetscCall(PetscCalloc2(np, &fold, np, &sig));
+  PetscCall(PetscCalloc1(np, &sig));
   b->nfold = b->nbranch = 0;
   for (PetscInt k = 0; k < np; k++) {
     PetscReal q = 0.0;
@@ -85,31 +250,38 @@ static PetscErrorCode Detect(JRCont c, JRContBranch *b)
     xs = PetscMax(xs, PetscSqrtReal(q));
   }
   if (xs == 0.0) xs = 1.0;
+  PetscCall(JRContPlaneScale(c, b));
   for (PetscInt k = 1; k < np - 1; k++)
     if ((b->omega[k] - b->omega[k - 1]) * (b->omega[k + 1] - b->omega[k]) < 0) {
-      fold[k]              = PETSC_TRUE;
-      b->wfold[b->nfold++] = FoldFrequency(c, b, k, xs);
+      PetscCall(LocateFold(c, b, k, xs, &b->wfold[b->nfold++], &nits));
     }
-  /* sigma_k = sign(det J) sign(dw) at point k (dw: the step to the next point): the sign of the bordered Jacobian's
-     determinant. A change held for two points on each side is a branch point; single-point blips beside folds, where
-     the two factors flip at neighbouring points, are not. */
-  for (PetscInt k = 0; k < np; k++) {
-    const PetscReal dw = k < np - 1 ? b->omega[k + 1] - b->omega[k] : b->omega[k] - b->omega[k - 1];
-    sig[k]             = b->detsign[k] * (dw > 0 ? 1 : dw < 0 ? -1 : 0);
+  /* sigma_k = sign(det J) sign(dw/ds) at point k, dw/ds of the tangent there oriented along the curve (JRContTangentSign,
+     the chord from the point before to the point after giving the direction): the sign of the bordered Jacobian's
+     determinant, which a fold leaves as it is (both factors change there) and a simple branch point changes. A change
+     held for two points on each side is a branch point. */
+  for (PetscInt k = 0; k < np && np > 1; k++) {
+    PetscInt  o;
+    PetscReal S;
+    if (!b->detsign[k]) continue;
+    PetscCall(JRContPlaneBegin(c, b, PetscMax(k - 1, 0), PetscMin(k + 1, np - 1), &S));
+    PetscCall(LoadPoint(c, b, k, a));
+    PetscCall(JRContTangentSign(c, b->omega[k], a, &o));
+    sig[k] = b->detsign[k] * o;
   }
   for (PetscInt k = 1; k + 2 < np; k++) {
     const PetscBool simple = (PetscBool)(sig[k] && sig[k - 1] == sig[k] && sig[k + 1] == sig[k + 2] && sig[k + 1] == -sig[k]);
-    PetscBool       pair   = (PetscBool)(b->stable[k - 1] == b->stable[k] && b->stable[k + 1] == b->stable[k + 2] && b->stable[k] != b->stable[k + 1]);
-    for (PetscInt j = k - 1; j <= k + 2 && pair; j++)
-      if (fold[j] || (j < k + 2 && b->detsign[j] != b->detsign[j + 1])) pair = PETSC_FALSE; /* a fold or a real exponent explains it */
+    const PetscBool pair   = (PetscBool)(!simple && b->stable[k - 1] == b->stable[k] && b->stable[k + 1] == b->stable[k + 2] && b->stable[k] != b->stable[k + 1] && b->detsign[k] == b->detsign[k + 1]);
+    PetscBool       real   = PETSC_FALSE;
     if (!simple && !pair) continue;
-    b->wbranch[b->nbranch] = CrossingFrequency(b, k);
+    PetscCall(LocateBranch(c, b, k, simple, simple ? sig[k] : b->stable[k], simple ? sig[k + 1] : b->stable[k + 1], hill, &b->wbranch[b->nbranch], &real, &nits));
+    if (real) continue;
     if (!c->quiet) PetscCall(PetscPrintf(c->comm, "branch level %g freq_hz %.8g kind %s\n", (double)b->F, (double)(b->wbranch[b->nbranch] / (2 * PETSC_PI)), simple ? "simple" : "pair"));
     b->nbranch++;
   }
   if (!c->quiet)
     for (PetscInt f = 0; f < b->nfold; f++) PetscCall(PetscPrintf(c->comm, "fold level %g freq_hz %.8g\n", (double)b->F, (double)(b->wfold[f] / (2 * PETSC_PI))));
-  PetscCall(PetscFree2(fold, sig));
+  (void)nits; /* the Newton iterations spent locating them */
+  PetscCall(PetscFree(sig));
   PetscFunctionReturn(0);
 }
 
@@ -204,7 +376,7 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   }
   PetscCall(PetscFree(verdict));
   PetscCall(PetscFree(intime));
-  PetscCall(Detect(c, b));
+  PetscCall(Detect(c, b, a, ok));
   PetscCall(PetscTime(&t1));
   b->stab_seconds = t1 - t0;
   b->nhyst        = ncount[JR_STABILITY_HILL_HYSTERETIC];

@@ -54,6 +54,7 @@ struct _p_JRCont {
   PetscBool         partial;                                    /* -cont_allow_partial: an incomplete curve is not an error */
   PetscReal         itol;                                       /* -cont_interp_tol: linear interpolation error between points */
   PetscReal         ptol;                                       /* -cont_peak_tol: the peaks' relative amplitude tolerance */
+  PetscReal         ltol;                                       /* -cont_locate_tol: the folds' and branch points' relative frequency tolerance */
   PetscInt          maxpts, target, monitor, nlev, npoints;
   PetscInt          n, nmod, nout; /* n: the solve space; nmod: modal; nout: outputs */
   PetscReal        *levels;
@@ -85,6 +86,11 @@ PETSC_INTERN PetscErrorCode JRContRefinePeaks(JRCont, JRContBranch *);
 PETSC_INTERN PetscErrorCode JRContChordError(JRCont, JRContBranch *, Vec, PetscReal, PetscReal, PetscReal, PetscReal *, PetscInt *);
 PETSC_INTERN PetscErrorCode JRContPlaneWorkCreate(JRCont);
 PETSC_INTERN PetscErrorCode JRContPlaneWorkDestroy(JRCont);
+PETSC_INTERN PetscErrorCode JRContPlaneScale(JRCont, JRContBranch *);
+PETSC_INTERN PetscErrorCode JRContPlaneBegin(JRCont, JRContBranch *, PetscInt, PetscInt, PetscReal *);
+PETSC_INTERN PetscReal      JRContPlaneCoordinate(JRCont, const PetscReal *);
+PETSC_INTERN PetscErrorCode JRContPlanePoint(JRCont, PetscReal, PetscReal *, Vec *, PetscInt *, PetscBool *);
+PETSC_INTERN PetscErrorCode JRContTangentSign(JRCont, PetscReal, Vec, PetscInt *);
 PETSC_INTERN PetscErrorCode JRContMonitor(JRCont, PetscInt, JRContBranch *);
 /* src/cont/stability.c */
 PETSC_INTERN PetscErrorCode JRContStability(JRCont, PetscInt, Vec);

@@ -331,6 +331,15 @@ static PetscErrorCode LandOnEnd(JRCont c, PetscInt lev, JRContBranch *b, Vec a, 
   PetscFunctionReturn(0);
 }
 
+/* A step rounded to the nearest of the steps 2^(j/8) (j integer): the factors below are continuous functions of the
+   points, whose round-off (which differs with the number of ranks) the step control would otherwise feed back into
+   the next point from step to step and grow until the curves' points part; rounded, the steps are the same unless a
+   factor sits on the boundary between two of them */
+static PetscReal RoundStep(PetscReal ds)
+{
+  return ds > 0 ? PetscPowReal(2.0, round(8.0 * PetscLog2Real(ds)) / 8.0) : ds;
+}
+
 /* The next step from the last point's Newton iterations against the target, and the turn of the response curve as
    plotted (frequency over the range, decades of amplitude at the first output) against 5 degrees per step, so that
    peaks and folds get points where the curve bends (the full tangent also turns with invisible harmonics and modes,
@@ -352,7 +361,7 @@ static PetscReal NextStep(JRCont c, JRContBranch *b, PetscInt its, PetscReal err
       fa                  = (5.0 * PETSC_PI / 180.0) / PetscMax(ang, 1e-3);
     }
   }
-  ds *= PetscMax(0.5, PetscMin(2.0, PetscMin(fn, fa)));
+  ds = RoundStep(ds * PetscMax(0.5, PetscMin(2.0, PetscMin(fn, fa))));
   return PetscMax(dsmin, PetscMin(dsmax, ds));
 }
 
@@ -383,7 +392,7 @@ static PetscErrorCode Retry(JRCont c, PetscInt lev, JRContBranch *b, PetscReal w
 {
   PetscFunctionBeginUser;
   b->retries++;
-  *ds *= factor;
+  *ds = RoundStep(*ds * factor);
   *stop = *ds < dsmin ? PETSC_TRUE : PETSC_FALSE;
   if (c->monitor && (!*stop || c->monitor > 1)) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: %s after %.6g Hz, retrying with step %.3g\n", lev + 1, (double)b->F, what, (double)(wk / (2 * PETSC_PI)), (double)*ds));
   if (*stop) {
