@@ -67,15 +67,25 @@ static PetscErrorCode PointStability(JRCont c, PetscReal w, Vec a, PetscBool hil
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMStabilityVerdict(c->hbm, a, c->stabdiss, &v));
-  if (v == JR_STABILITY_HILL_HYSTERETIC && c->stabtime) v = JR_STABILITY_TIME;
+  if (v == JR_STABILITY_HILL_HYSTERETIC && (c->stabtime || !hill)) v = JR_STABILITY_TIME; /* condensed: no Hill's method */
   *detsign = 0;
   switch (v) {
   case JR_STABILITY_DISSIPATIVE:
     if (hill) PetscCall(JRHBMJacobianSign(c->hbm, w, a, detsign));
     break;
   case JR_STABILITY_TIME:
-    PetscCall(JRHBMJacobianSign(c->hbm, w, a, detsign));
-    PetscCall(JRHBMFloquetTime(c->hbm, w, a, c->stabsteps, NULL, NULL, NULL, &maxre, NULL));
+    if (hill) {
+      PetscCall(JRHBMJacobianSign(c->hbm, w, a, detsign));
+      PetscCall(JRHBMFloquetTime(c->hbm, w, a, c->stabsteps, NULL, NULL, NULL, &maxre, NULL));
+    } else { /* condensed onto the joints: on the point's modal unknowns */
+      Vec      am;
+      PetscInt nmod;
+      PetscCall(JRHBMGetSizes(c->hbm, NULL, NULL, &nmod));
+      PetscCall(VecCreateSeq(PETSC_COMM_SELF, nmod, &am));
+      PetscCall(JRHBMExpand(c->hbm, w, a, am));
+      PetscCall(JRHBMFloquetTime(c->hbm, w, am, c->stabsteps, NULL, NULL, NULL, &maxre, NULL));
+      PetscCall(VecDestroy(&am));
+    }
     break;
   default:
     PetscCall(JRHBMFloquet(c->hbm, w, a, c->stabsel, c->stabdense, NULL, NULL, NULL, &maxre, detsign));
@@ -314,6 +324,7 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   if (!c->stab) PetscFunctionReturn(0);
   PetscCall(JRHBMHillSupported(c->hbm, &ok));
   PetscCall(JRHBMFloquetTimeSupported(c->hbm, &okt));
+  PetscCall(JRHBMSetFloquetFast(c->hbm, c->stabfast));
   PetscCall(PetscTime(&t0));
   for (PetscInt k = 0; k < b->np && !ok && !okt; k++) { /* condensed with smooth elements: only the certificate, which must then hold at every point */
     PetscCall(LoadPoint(c, b, k, a));
@@ -349,7 +360,6 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   if (any) {
     PetscReal *X = b->x;
     PetscInt   n = c->n;
-    PetscCall(JRHBMSetFloquetFast(c->hbm, c->stabfast));
     if (!ok) { /* condensed onto the joints: the points' modal unknowns, expanded */
       Vec am;
       PetscCall(JRHBMGetSizes(c->hbm, NULL, NULL, &n));

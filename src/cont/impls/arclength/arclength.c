@@ -392,7 +392,7 @@ static PetscErrorCode Retry(JRCont c, PetscInt lev, JRContBranch *b, PetscReal w
 {
   PetscFunctionBeginUser;
   b->retries++;
-  *ds = RoundStep(*ds * factor);
+  *ds = RoundStep(*ds * factor) < dsmin && *ds * factor >= dsmin ? dsmin : RoundStep(*ds * factor); /* the least step is still tried */
   *stop = *ds < dsmin ? PETSC_TRUE : PETSC_FALSE;
   if (c->monitor && (!*stop || c->monitor > 1)) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: %s after %.6g Hz, retrying with step %.3g\n", lev + 1, (double)b->F, what, (double)(wk / (2 * PETSC_PI)), (double)*ds));
   if (*stop) {
