@@ -418,8 +418,9 @@ PetscErrorCode JRContPlanePoint(JRCont c, PetscReal s, PetscReal *x, Vec *a, Pet
 /* JRContTangentSign - at the solution (a, w) (a not the plane work's vector, or it), the sign of dw/ds along the curve
    in the direction of the family's normal d (JRContPlaneBegin): the tangent is t = (-J^-1 R_w, 1) up to its
    orientation, which <t, d>_W > 0 fixes, so the sign is that of <(-J^-1 R_w, 1), d>_W; 0 where J is singular.
-   With sign(det J) it gives the sign of the bordered Jacobian's determinant, which folds do not change. Collective. */
-PetscErrorCode JRContTangentSign(JRCont c, PetscReal w, Vec a, PetscInt *sign)
+   With sign(det J) it gives the sign of the bordered Jacobian's determinant, which folds do not change; detsign (may
+   be NULL): sign(det J), from the same LU (0 where singular). Collective. */
+PetscErrorCode JRContTangentSign(JRCont c, PetscReal w, Vec a, PetscInt *sign, PetscInt *detsign)
 {
   PeakWork          *pw = c->pw;
   const PetscInt     n  = pw->n;
@@ -436,6 +437,14 @@ PetscErrorCode JRContTangentSign(JRCont c, PetscReal w, Vec a, PetscInt *sign)
   PetscCall(VecRestoreArrayRead(pw->Rw, &rw));
   PetscCall(MatDenseRestoreArrayRead(pw->J, &j));
   PetscCall(JRDenseSolve(n, pw->B, n, pw->lu, pw->piv, pw->dx, &singular));
+  if (detsign) {
+    PetscInt ds = singular ? 0 : 1;
+    for (PetscInt i = 0; i < n && ds; i++) {
+      if (pw->lu[i + i * n] < 0) ds = -ds;
+      if (pw->piv[i] != i + 1) ds = -ds;
+    }
+    *detsign = ds;
+  }
   if (singular) {
     *sign = 0;
     PetscFunctionReturn(0);

@@ -183,7 +183,7 @@ static PetscErrorCode LocateFold(JRCont c, JRContBranch *b, PetscInt k, PetscRea
 /* The branch point between points k and k + 1, where q changes from ql to qh (the stability for kind pair, the sign of
    the bordered Jacobian's determinant sign(det J) sign(dw/ds) for kind simple): bisection on the planes across the
    curve between the two points (JRContPlaneBegin) until the bracket spans less than -cont_locate_tol of the
-   frequency; its middle. A failed solve, or a point with neither value, ends it with the bracket so far. For kind pair,
+   frequency (-cont_locate_pair_tol for kind pair); its middle. A failed solve, or a point with neither value, ends it with the bracket so far. For kind pair,
    *real when det J changes sign at one of its points: a real exponent crosses there, and it is no branch point. */
 static PetscErrorCode LocateBranch(JRCont c, JRContBranch *b, PetscInt k, PetscBool simple, PetscInt ql, PetscInt qh, PetscBool hill, PetscReal *wb, PetscBool *real, PetscInt *nits)
 {
@@ -207,14 +207,13 @@ static PetscErrorCode LocateBranch(JRCont c, JRContBranch *b, PetscInt k, PetscB
     PetscInt        its, q = 0, ds, o;
     PetscBool       ok;
     Vec             a;
-    if (PetscAbsReal(xh[n] - xl[n]) <= c->ltol * PetscMax(PetscAbsReal(xl[n]), PetscAbsReal(xh[n])) || !(st > sl && st < sh)) break;
+    if (PetscAbsReal(xh[n] - xl[n]) <= (simple ? c->ltol : c->ptolb) * PetscMax(PetscAbsReal(xl[n]), PetscAbsReal(xh[n])) || !(st > sl && st < sh)) break;
     for (PetscInt i = 0; i <= n; i++) xt[i] = 0.5 * (xl[i] + xh[i]);
     PetscCall(JRContPlanePoint(c, st, xt, &a, &its, &ok));
     *nits += its;
     if (!ok) break;
     if (simple) {
-      PetscCall(JRHBMJacobianSign(c->hbm, xt[n], a, &ds));
-      PetscCall(JRContTangentSign(c, xt[n], a, &o));
+      PetscCall(JRContTangentSign(c, xt[n], a, &o, &ds));
       q = ds * o;
     } else {
       PetscCall(PointStability(c, xt[n], a, hill, &q, &ds));
@@ -269,13 +268,12 @@ static PetscErrorCode Detect(JRCont c, JRContBranch *b, Vec a, PetscBool hill)
      the chord from the point before to the point after giving the direction): the sign of the bordered Jacobian's
      determinant, which a fold leaves as it is (both factors change there) and a simple branch point changes. A change
      held for two points on each side is a branch point. */
-  for (PetscInt k = 0; k < np && np > 1; k++) {
+  for (PetscInt k = 0; k < np && np > 1 && hill; k++) { /* sign(det J) from the tangent's LU: b->detsign */
     PetscInt  o;
     PetscReal S;
-    if (!b->detsign[k]) continue;
     PetscCall(JRContPlaneBegin(c, b, PetscMax(k - 1, 0), PetscMin(k + 1, np - 1), &S));
     PetscCall(LoadPoint(c, b, k, a));
-    PetscCall(JRContTangentSign(c, b->omega[k], a, &o));
+    PetscCall(JRContTangentSign(c, b->omega[k], a, &o, &b->detsign[k]));
     sig[k] = b->detsign[k] * o;
   }
   for (PetscInt k = 1; k + 2 < np; k++) {
@@ -285,7 +283,7 @@ static PetscErrorCode Detect(JRCont c, JRContBranch *b, Vec a, PetscBool hill)
     if (!simple && !pair) continue;
     PetscCall(LocateBranch(c, b, k, simple, simple ? sig[k] : b->stable[k], simple ? sig[k + 1] : b->stable[k + 1], hill, &b->wbranch[b->nbranch], &real, &nits));
     if (real) continue;
-    if (!c->quiet) PetscCall(PetscPrintf(c->comm, "branch level %g freq_hz %.8g kind %s\n", (double)b->F, (double)(b->wbranch[b->nbranch] / (2 * PETSC_PI)), simple ? "simple" : "pair"));
+    if (!c->quiet) PetscCall(PetscPrintf(c->comm, simple ? "branch level %g freq_hz %.8g kind simple\n" : "branch level %g freq_hz %.6g kind pair\n", (double)b->F, (double)(b->wbranch[b->nbranch] / (2 * PETSC_PI)))); /* a pair to -cont_locate_pair_tol */
     b->nbranch++;
   }
   if (!c->quiet)
@@ -343,15 +341,13 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
     if (v == JR_STABILITY_HILL_HYSTERETIC && (c->stabtime || !ok)) v = JR_STABILITY_TIME; /* condensed: no Hill's method */
     verdict[k] = v;
     switch (v) {
-    case JR_STABILITY_DISSIPATIVE:
+    case JR_STABILITY_DISSIPATIVE: /* sign(det J) with the tangent's (Detect) */
       b->maxre[k]   = NAN;
       b->detsign[k] = 0;
-      if (ok) PetscCall(JRHBMJacobianSign(c->hbm, b->omega[k], a, &b->detsign[k]));
       break;
-    case JR_STABILITY_TIME: /* below, the points shared out over the ranks */
+    case JR_STABILITY_TIME: /* below, the points shared out over the ranks; sign(det J) as above */
       intime[k] = any = PETSC_TRUE;
       b->detsign[k] = 0;
-      if (ok) PetscCall(JRHBMJacobianSign(c->hbm, b->omega[k], a, &b->detsign[k]));
       break;
     default:
       PetscCall(JRHBMFloquet(c->hbm, b->omega[k], a, c->stabsel, c->stabdense, NULL, NULL, NULL, &b->maxre[k], &b->detsign[k]));

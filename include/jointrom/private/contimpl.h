@@ -55,6 +55,7 @@ struct _p_JRCont {
   PetscReal         itol;                                       /* -cont_interp_tol: linear interpolation error between points */
   PetscReal         ptol;                                       /* -cont_peak_tol: the peaks' relative amplitude tolerance */
   PetscReal         ltol;                                       /* -cont_locate_tol: the folds' and branch points' relative frequency tolerance */
+  PetscReal         ptolb;                                      /* -cont_locate_pair_tol: the same for branch points of kind pair */
   PetscInt          maxpts, target, monitor, nlev, npoints;
   PetscInt          n, nmod, nout; /* n: the solve space; nmod: modal; nout: outputs */
   PetscReal        *levels;
@@ -90,7 +91,7 @@ PETSC_INTERN PetscErrorCode JRContPlaneScale(JRCont, JRContBranch *);
 PETSC_INTERN PetscErrorCode JRContPlaneBegin(JRCont, JRContBranch *, PetscInt, PetscInt, PetscReal *);
 PETSC_INTERN PetscReal      JRContPlaneCoordinate(JRCont, const PetscReal *);
 PETSC_INTERN PetscErrorCode JRContPlanePoint(JRCont, PetscReal, PetscReal *, Vec *, PetscInt *, PetscBool *);
-PETSC_INTERN PetscErrorCode JRContTangentSign(JRCont, PetscReal, Vec, PetscInt *);
+PETSC_INTERN PetscErrorCode JRContTangentSign(JRCont, PetscReal, Vec, PetscInt *, PetscInt *);
 PETSC_INTERN PetscErrorCode JRContMonitor(JRCont, PetscInt, JRContBranch *);
 /* src/cont/stability.c */
 PETSC_INTERN PetscErrorCode JRContStability(JRCont, PetscInt, Vec);

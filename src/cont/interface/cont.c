@@ -54,6 +54,7 @@ PetscErrorCode JRContCreate(MPI_Comm comm, JRCont *cont)
   c->itol    = 0.008;
   c->ptol    = 1e-10;
   c->ltol    = 1e-8;
+  c->ptolb   = 1e-5;
   c->stab      = PETSC_FALSE;
   c->stabsel   = JR_HILL_SELECT_VECTOR;
   c->stabtol   = 1e-6;
@@ -211,6 +212,7 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
   PetscCall(PetscOptionsReal("-cont_interp_tol", "Largest relative error of linear interpolation between consecutive points of a curve (its step control); 0: no control", "JRContSolve", c->itol, &c->itol, NULL));
   PetscCall(PetscOptionsReal("-cont_peak_tol", "Relative amplitude tolerance of the peaks, found by harmonic-balance solves along the curve", "JRContSolve", c->ptol, &c->ptol, NULL));
   PetscCall(PetscOptionsReal("-cont_locate_tol", "Relative frequency tolerance of the folds and branch points (-frf_stability), located by harmonic-balance solves along the curve", "JRContStability", c->ltol, &c->ltol, NULL));
+  PetscCall(PetscOptionsReal("-cont_locate_pair_tol", "The same for branch points of kind pair (bisection on the stability, a monodromy matrix per step; the exponents' own error moves them more)", "JRContStability", c->ptolb, &c->ptolb, NULL));
   PetscCall(PetscOptionsInt("-cont_monitor", "Progress: 0 none, 1 every 25th point and each level, 2 every point", "JRContSetFromOptions", c->monitor, &c->monitor, NULL));
   PetscCall(PetscOptionsRealArray("-frf_force", "Excitation levels F [N]: f(t) = F sin(w t) at -frf_dof", "JRContSetLevels", lv, &nl, &fl));
   PetscCall(PetscOptionsReal("-frf_omega_min", "Lowest frequency [rad/s]", "JRContSetRange", wmin, &wmin, &f1));
@@ -247,6 +249,7 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
   PetscCheck(c->itol >= 0 && c->itol < 1, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_interp_tol %g: between 0 (no control) and 1", (double)c->itol);
   PetscCheck(c->ptol > 0 && c->ptol < 0.1, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_peak_tol %g: between 0 and 0.1", (double)c->ptol);
   PetscCheck(c->ltol > 0 && c->ltol < 0.1, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_locate_tol %g: between 0 and 0.1", (double)c->ltol);
+  PetscCheck(c->ptolb > 0 && c->ptolb < 0.1, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-cont_locate_pair_tol %g: between 0 and 0.1", (double)c->ptolb);
   PetscCheck(c->stabtol >= 0 && c->stabtol < 1, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_stability_tol %g: between 0 and 1 (relative to the frequency)", (double)c->stabtol);
   PetscCheck(c->stabsteps >= 4 && c->stabsteps <= 1000000, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_stability_time_steps %" PetscInt_FMT ": give 4 to 1e6 steps per period", c->stabsteps);
   PetscCheck(c->stabfast == 0 || c->stabfast >= 2, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "-frf_stability_time_fast %g: give 0 (every mode marched) or at least 2", (double)c->stabfast);
