@@ -43,7 +43,7 @@ PETSC_EXTERN PetscErrorCode JRContGetLevel(JRCont, PetscInt, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRContGetPeakStates(JRCont, PetscInt, const JRContactState **);
 PETSC_EXTERN PetscErrorCode JRContGetDamping(JRCont, PetscInt, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRContGetLevelStats(JRCont, PetscInt, PetscReal *, PetscInt *, PetscInt *);
-PETSC_EXTERN PetscErrorCode JRContGetStabilitySeconds(JRCont, PetscReal *);
+PETSC_EXTERN PetscErrorCode JRContGetStabilitySeconds(JRCont, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRContGetStability(JRCont, PetscInt, const PetscInt **, const PetscReal **, PetscInt *, const PetscReal **, PetscInt *, const PetscReal **);
 PETSC_EXTERN PetscErrorCode JRContDestroy(JRCont *);
 

@@ -306,7 +306,7 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   JRContBranch      *b = &c->br[lev];
   PetscBool          ok, okt;
   PetscInt           nun = 0, ncount[4] = {0, 0, 0, 0};
-  PetscLogDouble     t0, t1;
+  PetscLogDouble     t0, t1, e0, e1;
   JRStabilityVerdict v = JR_STABILITY_HILL, *verdict;
   PetscBool         *intime, any = PETSC_FALSE;
   PetscInt           nfast = 0;
@@ -324,6 +324,7 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   PetscCall(JRHBMFloquetTimeSupported(c->hbm, &okt));
   PetscCall(JRHBMSetFloquetFast(c->hbm, c->stabfast));
   PetscCall(PetscTime(&t0));
+  PetscCall(JRHBMGetElementTime(c->hbm, &e0, NULL, NULL));
   for (PetscInt k = 0; k < b->np && !ok && !okt; k++) { /* condensed with smooth elements: only the certificate, which must then hold at every point */
     PetscCall(LoadPoint(c, b, k, a));
     PetscCall(JRHBMStabilityVerdict(c->hbm, a, c->stabdiss, &v));
@@ -384,19 +385,26 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   PetscCall(PetscFree(intime));
   PetscCall(Detect(c, b, a, ok));
   PetscCall(PetscTime(&t1));
+  PetscCall(JRHBMGetElementTime(c->hbm, &e1, NULL, NULL));
   b->stab_seconds = t1 - t0;
+  b->stab_elem    = e1 - e0;
   b->nhyst        = ncount[JR_STABILITY_HILL_HYSTERETIC];
   if (!c->quiet) PetscCall(PetscPrintf(c->comm, "stability level %g unstable_points %" PetscInt_FMT " of %" PetscInt_FMT " folds %" PetscInt_FMT " branch_points %" PetscInt_FMT " seconds %.3g (curve %.3g) dissipative %" PetscInt_FMT " time %" PetscInt_FMT " hill %" PetscInt_FMT " hill_hysteretic %" PetscInt_FMT " fast_modes %" PetscInt_FMT "\n", (double)b->F, nun, b->np, b->nfold, b->nbranch, (double)b->stab_seconds, (double)b->seconds, ncount[JR_STABILITY_DISSIPATIVE], ncount[JR_STABILITY_TIME], ncount[JR_STABILITY_HILL], ncount[JR_STABILITY_HILL_HYSTERETIC], nfast));
   if (!c->quiet && b->nhyst) PetscCall(PetscPrintf(c->comm, "stability level %g: %" PetscInt_FMT " points by Hill's method with friction elements changing state: its periodic Jacobian misses the slip's memory, so these flags indicate and do not decide (docs/theory.md section 16); -frf_verify_unstable checks the unstable ones by time integration\n", (double)b->F, b->nhyst));
   PetscFunctionReturn(0);
 }
 
-/* JRContGetStabilitySeconds - the wall time of the stability of every level [s] (0 where not computed) */
-PetscErrorCode JRContGetStabilitySeconds(JRCont c, PetscReal *seconds)
+/* JRContGetStabilitySeconds - the wall time of the stability of every level [s] (0 where not computed) and its part
+   in the contact elements (JRHBMGetElementTime; elem may be NULL) */
+PetscErrorCode JRContGetStabilitySeconds(JRCont c, PetscReal *seconds, PetscReal *elem)
 {
   PetscFunctionBeginUser;
   *seconds = 0.0;
-  for (PetscInt l = 0; c->br && l < c->nlev; l++) *seconds += c->br[l].stab_seconds;
+  if (elem) *elem = 0.0;
+  for (PetscInt l = 0; c->br && l < c->nlev; l++) {
+    *seconds += c->br[l].stab_seconds;
+    if (elem) *elem += c->br[l].stab_elem;
+  }
   PetscFunctionReturn(0);
 }
 

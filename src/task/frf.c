@@ -55,6 +55,7 @@ static PetscErrorCode StickFE(JRModel model, const JRElements *el, PetscInt nf, 
 static PetscErrorCode Curves(MPI_Comm comm, JRPost post, JRHBM hbm, const char base[], JRCont *cont, PetscReal *seconds, PetscReal *stab, PetscReal *elem)
 {
   PetscLogDouble t0, t1, e0, e1;
+  PetscReal      se;
 
   PetscFunctionBeginUser;
   PetscCall(JRContCreate(comm, cont));
@@ -68,9 +69,9 @@ static PetscErrorCode Curves(MPI_Comm comm, JRPost post, JRHBM hbm, const char b
   PetscCall(PetscTime(&t1));
   PetscCall(PetscLogStagePop());
   PetscCall(JRHBMGetElementTime(hbm, &e1, NULL, NULL));
-  PetscCall(JRContGetStabilitySeconds(*cont, stab));
+  PetscCall(JRContGetStabilitySeconds(*cont, stab, &se));
   *seconds = t1 - t0 - *stab;
-  if (elem) *elem = e1 - e0;
+  if (elem) *elem = e1 - e0 - se;
   PetscCall(PetscLogStagePush(JR_StagePost));
   PetscCall(JRPostWriteCurves(post, *cont));
   PetscCall(PetscLogStagePop());

@@ -28,6 +28,7 @@ typedef struct {
   PetscReal      *maxre;        /* the largest real part of the kept Floquet exponents [1/s] */
   PetscInt       *detsign;      /* the sign of det(dR/da) */
   PetscReal       stab_seconds; /* their wall time */
+  PetscReal       stab_elem;    /* its part in the contact elements (JRHBMGetElementTime) */
   PetscInt        nhyst;        /* points decided by Hill's method with friction elements changing state */
   PetscInt        nfold, nbranch;
   PetscReal      *wfold, *wbranch; /* the folds' and branch points' frequencies [rad/s] */
