@@ -215,19 +215,17 @@ static void PointX(JRCont c, JRContBranch *b, PetscInt k, PetscReal *x)
   x[c->n] = b->omega[k];
 }
 
-/* Response o's peak: golden-section search along the curve between the neighbours of its largest point (which it
-   inserts into the curve); (*w, *A) the peak */
-static PetscErrorCode RefineOne(JRCont c, JRContBranch *b, PeakWork *pw, PetscInt o, PetscReal *wp, PetscReal *Ap)
+/* Response o's local maximum at point k: golden-section search along the curve between k's neighbours (the maximum
+   found is inserted into the curve); (*w, *A) that maximum */
+static PetscErrorCode RefineAt(JRCont c, JRContBranch *b, PeakWork *pw, PetscInt o, PetscInt k, PetscReal *wp, PetscReal *Ap)
 {
   const PetscInt n = c->n, m = n + 1;
-  PetscInt       k = 0, total = 0;
+  PetscInt       total = 0;
   PetscReal     *X, *xl, *xm, *xh, *xt, sl, sm, sh, s1, Al, Am, Ah, res = 0, resm, tol;
   PetscBool      moved = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMGetResidualTolerance(c->hbm, &tol));
-  for (PetscInt i = 1; i < b->np; i++)
-    if (b->amp[i * c->nout + o] > b->amp[k * c->nout + o]) k = i;
   *wp = b->omega[k];
   *Ap = b->amp[k * c->nout + o];
   if (k == 0 || k == b->np - 1) PetscFunctionReturn(0); /* the largest at an end of the range: the curve's maximum there */
@@ -308,6 +306,36 @@ static PetscErrorCode RefineOne(JRCont c, JRContBranch *b, PeakWork *pw, PetscIn
     *Ap = Am;
   }
   PetscCall(PetscFree(X));
+  PetscFunctionReturn(0);
+}
+
+/* Response o's peak: the largest of its local maxima refined (RefineAt), every point that is a local maximum of the
+   computed ones within 5% of the largest a candidate (on a folded or multi-peaked curve the largest point need not
+   lie beside the largest maximum), the last first so that the insertions leave the others' indices */
+static PetscErrorCode RefineOne(JRCont c, JRContBranch *b, PeakWork *pw, PetscInt o, PetscReal *wp, PetscReal *Ap)
+{
+  const PetscInt  no = c->nout;
+  PetscReal       amax = b->amp[o];
+  PetscInt        k    = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 1; i < b->np; i++)
+    if (b->amp[i * no + o] > amax) {
+      amax = b->amp[i * no + o];
+      k    = i;
+    }
+  *wp = b->omega[k];
+  *Ap = amax;
+  for (PetscInt i = b->np - 2; i >= 1; i--) {
+    const PetscReal ai = b->amp[i * no + o];
+    PetscReal       w = 0.0, A = 0.0;
+    if (!(ai >= 0.95 * amax && ai >= b->amp[(i - 1) * no + o] && ai >= b->amp[(i + 1) * no + o])) continue;
+    PetscCall(RefineAt(c, b, pw, o, i, &w, &A));
+    if (A > *Ap) {
+      *wp = w;
+      *Ap = A;
+    }
+  }
   PetscFunctionReturn(0);
 }
 
