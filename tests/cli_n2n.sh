@@ -95,6 +95,14 @@ s1=$(echo "$o" | grep '^stability level 0.01 ')
 st=$(field "$s1" time); so=$(echo "$s1" | awk '{for(i=1;i<NF;i++) if($i=="of") print $(i+1)}'); sd=$(field "$s1" dissipative)
 check "[ '$sn' = 0 ] && [ '$sl' = 2 ] && [ -n '$st' ] && [ '$st' -gt 0 ] && [ \$(( st + sd )) = '$so' ]" "jenkins_nv lap1 without -frf_stability: stability computed by default ($sl levels; at 10 mN $st of $so points by the monodromy matrix in time, $sd certified)"
 
+# the monodromy in time with the fast modes condensed, on the Brake-Reuss beam (jenkins elements: incremental
+# dissipativity proves every point stable; here the certificate is switched off, -frf_stability_dissipative 0, so the
+# monodromy decides): no point unstable at any of the five levels, with modes condensed
+o=$(mpiexec -n 2 $J -options_file runs/default.opts -frf_stability_dissipative 0 -frf_output_file '' -frf_plot 0 -cont_monitor 0 2>&1)
+su=$(echo "$o" | awk '/^stability level/{u += $5; n += $7; t += $(NF-6); if ($NF > f) f = $NF} END{printf "%d %d %d %d", u, n, t, f}')
+read su sn stm sf <<< "$su"
+check "[ '$sn' -gt 300 ] && [ '$su' = 0 ] && [ '$stm' = '$sn' ] && [ '$sf' -gt 0 ]" "BRB (jenkins) with the certificate off: every one of $sn points decided by the monodromy in time ($stm), up to $sf fast modes condensed, $su unstable (incremental dissipativity: none)"
+
 # 7. first reduction: every element its own joint reproduces the node-to-node
 #    model exactly; six strips run; bad region definitions are refused
 r=$($J $brb -frf_force $lev -frf_fmin 128 -frf_fmax 138 -rom_joints each -frf_output_file '' 2>&1 | grep '^peak level')
