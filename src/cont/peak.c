@@ -215,95 +215,105 @@ static void PointX(JRCont c, JRContBranch *b, PetscInt k, PetscReal *x)
   x[c->n] = b->omega[k];
 }
 
+/* JRContGoldenTrial - the bound of a concave function through the bracket g (its maximum's excess over the middle:
+   the stopping test) and the next trial: its coordinate *st, the golden section of the larger side (*right: the high
+   side), and its guess in g->xt (n + 1), linear between the bracket's points */
+PetscReal JRContGoldenTrial(JRContGolden *g, PetscInt n, PetscReal *st, PetscBool *right)
+{
+  const PetscReal sl = g->s[0], sm = g->s[1], sh = g->s[2], fl = g->f[0], fm = g->f[1], fh = g->f[2];
+  PetscReal       f;
+
+  *right = (sh - sm) > (sm - sl) ? PETSC_TRUE : PETSC_FALSE;
+  *st    = *right ? sm + 0.381966011250105 * (sh - sm) : sm - 0.381966011250105 * (sm - sl);
+  f      = *right ? (*st - sm) / (sh - sm) : (*st - sl) / (sm - sl);
+  for (PetscInt i = 0; i <= n; i++) g->xt[i] = *right ? (1 - f) * g->x[1][i] + f * g->x[2][i] : (1 - f) * g->x[0][i] + f * g->x[1][i];
+  return PetscMax((fm - fl) * (sh - sm) / (sm - sl), (fm - fh) * (sm - sl) / (sh - sm));
+}
+
+/* JRContGoldenUpdate - the bracket g after the trial (st, ft) whose unknowns are in g->xt: the new middle where it is
+   higher (PETSC_TRUE), the old middle becoming the end on the trial's side; else the new end on that side */
+PetscBool JRContGoldenUpdate(JRContGolden *g, PetscReal st, PetscReal ft, PetscBool right)
+{
+  const PetscInt j = ft > g->f[1] ? (right ? 0 : 2) : (right ? 2 : 0);
+  PetscReal     *t = g->x[j];
+
+  if (ft > g->f[1]) {
+    g->s[j] = g->s[1];
+    g->f[j] = g->f[1];
+    g->x[j] = g->x[1];
+    g->x[1] = g->xt;
+    g->s[1] = st;
+    g->f[1] = ft;
+    g->xt   = t;
+    return PETSC_TRUE;
+  }
+  g->x[j] = g->xt;
+  g->s[j] = st;
+  g->f[j] = ft;
+  g->xt   = t;
+  return PETSC_FALSE;
+}
+
 /* Response o's local maximum at point k: golden-section search along the curve between k's neighbours (the maximum
-   found is inserted into the curve); (*w, *A) that maximum */
-static PetscErrorCode RefineAt(JRCont c, JRContBranch *b, PeakWork *pw, PetscInt o, PetscInt k, PetscReal *wp, PetscReal *Ap)
+   found is inserted into the curve at *ins, else *ins = -1); (*w, *A) that maximum. Not searched where the bound of a
+   concave function through k and its neighbours does not exceed best (a larger maximum is already known). */
+static PetscErrorCode RefineAt(JRCont c, JRContBranch *b, PeakWork *pw, PetscInt o, PetscInt k, PetscReal best, PetscReal *wp, PetscReal *Ap, PetscInt *ins)
 {
   const PetscInt n = c->n, m = n + 1;
   PetscInt       total = 0;
-  PetscReal     *X, *xl, *xm, *xh, *xt, sl, sm, sh, s1, Al, Am, Ah, res = 0, resm, tol;
+  PetscReal     *X, s1, res = 0, resm, tol;
   PetscBool      moved = PETSC_FALSE;
+  JRContGolden   g;
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMGetResidualTolerance(c->hbm, &tol));
-  *wp = b->omega[k];
-  *Ap = b->amp[k * c->nout + o];
+  *wp  = b->omega[k];
+  *Ap  = b->amp[k * c->nout + o];
+  *ins = -1;
   if (k == 0 || k == b->np - 1) PetscFunctionReturn(0); /* the largest at an end of the range: the curve's maximum there */
   PetscCall(PetscMalloc1(4 * m, &X));
-  xl = X;
-  xm = X + m;
-  xh = X + 2 * m;
-  xt = X + 3 * m;
+  for (PetscInt j = 0; j < 3; j++) g.x[j] = X + j * m;
+  g.xt = X + 3 * m;
   PointX(c, b, k - 1, pw->x0);
-  PointX(c, b, k + 1, xh);
-  for (PetscInt i = 0; i <= n; i++) pw->d[i] = xh[i] - pw->x0[i];
-  PointX(c, b, k - 1, xl);
-  PointX(c, b, k, xm);
-  sl   = 0;
-  sm   = PlaneCoordinate(pw, xm);
-  sh   = PlaneCoordinate(pw, xh);
-  s1   = sm;
-  Al   = b->amp[(k - 1) * c->nout + o];
-  Am   = b->amp[k * c->nout + o];
-  Ah   = b->amp[(k + 1) * c->nout + o];
+  PointX(c, b, k + 1, g.x[2]);
+  for (PetscInt i = 0; i <= n; i++) pw->d[i] = g.x[2][i] - pw->x0[i];
+  PointX(c, b, k - 1, g.x[0]);
+  PointX(c, b, k, g.x[1]);
+  for (PetscInt j = 0; j < 3; j++) {
+    g.s[j] = j ? PlaneCoordinate(pw, g.x[j]) : 0;
+    g.f[j] = b->amp[(k - 1 + j) * c->nout + o];
+  }
+  s1   = g.s[1];
   resm = b->res[k];
-  if (!(sm > sl && sm < sh)) { /* the curve doubles back between the neighbours: keep the computed point */
+  if (!(g.s[1] > g.s[0] && g.s[1] < g.s[2])) { /* the curve doubles back between the neighbours: keep the computed point */
     PetscCall(PetscFree(X));
     PetscFunctionReturn(0);
   }
   for (PetscInt it = 0; it < 80; it++) {
-    const PetscReal bound = PetscMax((Am - Al) * (sh - sm) / (sm - sl), (Am - Ah) * (sm - sl) / (sh - sm));
-    PetscReal       st, At, wt, f;
+    PetscReal       st, At, wt;
     PetscInt        its = 0;
-    PetscBool       ok, right = (sh - sm) > (sm - sl) ? PETSC_TRUE : PETSC_FALSE;
-    if (bound <= c->ptol * Am) break;
-    st = right ? sm + 0.381966011250105 * (sh - sm) : sm - 0.381966011250105 * (sm - sl);
-    f  = right ? (st - sm) / (sh - sm) : (st - sl) / (sm - sl); /* the guess: linear between the bracket's points */
-    for (PetscInt i = 0; i <= n; i++) xt[i] = right ? (1 - f) * xm[i] + f * xh[i] : (1 - f) * xl[i] + f * xm[i];
-    PetscCall(SolveOnPlane(c, pw, st, 1e-3 * tol, xt, &res, &its, &ok));
+    PetscBool       ok, right;
+    const PetscReal bound = JRContGoldenTrial(&g, n, &st, &right);
+    if (bound <= c->ptol * g.f[1] || (!it && g.f[1] + bound <= best)) break;
+    PetscCall(SolveOnPlane(c, pw, st, 1e-3 * tol, g.xt, &res, &its, &ok));
     total += its;
     if (!ok) break; /* no solution on this plane: the best so far stands */
-    PetscCall(Load(pw, xt, &wt));
+    PetscCall(Load(pw, g.xt, &wt));
     PetscCall(JRContOutputAmplitude(c, wt, pw->a, o, &At));
-    if (At > Am) { /* the new middle */
-      PetscReal *t = right ? xl : xh;
-      if (right) {
-        sl = sm;
-        Al = Am;
-      } else {
-        sh = sm;
-        Ah = Am;
-      }
-      if (right) xl = xm;
-      else xh = xm;
-      xm    = xt;
-      xt    = t;
-      sm    = st;
-      Am    = At;
+    if (JRContGoldenUpdate(&g, st, At, right)) {
       resm  = res;
       moved = PETSC_TRUE;
-    } else if (right) {
-      PetscReal *t = xh;
-      xh           = xt;
-      xt           = t;
-      sh           = st;
-      Ah           = At;
-    } else {
-      PetscReal *t = xl;
-      xl           = xt;
-      xt           = t;
-      sl           = st;
-      Al           = At;
     }
   }
   b->refine_its += total;
   if (moved) { /* the peak as a point of the curve, between k - 1 and k or k and k + 1 */
     PetscReal w;
-    PetscCall(Load(pw, xm, &w));
+    PetscCall(Load(pw, g.x[1], &w));
     PetscCall(JRContBranchAdd(c, b, w, pw->a, total, 0.0, resm));
-    PetscCall(MoveLast(c, b, sm < s1 ? k : k + 1));
+    *ins = g.s[1] < s1 ? k : k + 1;
+    PetscCall(MoveLast(c, b, *ins));
     *wp = w;
-    *Ap = Am;
+    *Ap = g.f[1];
   }
   PetscCall(PetscFree(X));
   PetscFunctionReturn(0);
@@ -311,12 +321,12 @@ static PetscErrorCode RefineAt(JRCont c, JRContBranch *b, PeakWork *pw, PetscInt
 
 /* Response o's peak: the largest of its local maxima refined (RefineAt), every point that is a local maximum of the
    computed ones within 5% of the largest a candidate (on a folded or multi-peaked curve the largest point need not
-   lie beside the largest maximum), the last first so that the insertions leave the others' indices */
+   lie beside the largest maximum), the highest first and the others only where they may exceed the best so far */
 static PetscErrorCode RefineOne(JRCont c, JRContBranch *b, PeakWork *pw, PetscInt o, PetscReal *wp, PetscReal *Ap)
 {
-  const PetscInt  no = c->nout;
-  PetscReal       amax = b->amp[o];
-  PetscInt        k    = 0;
+  const PetscInt no = c->nout;
+  PetscReal      amax = b->amp[o];
+  PetscInt       k = 0, nc = 0, *cand;
 
   PetscFunctionBeginUser;
   for (PetscInt i = 1; i < b->np; i++)
@@ -326,16 +336,28 @@ static PetscErrorCode RefineOne(JRCont c, JRContBranch *b, PeakWork *pw, PetscIn
     }
   *wp = b->omega[k];
   *Ap = amax;
-  for (PetscInt i = b->np - 2; i >= 1; i--) {
+  PetscCall(PetscMalloc1(b->np + 1, &cand));
+  for (PetscInt i = 1; i + 1 < b->np; i++) {
     const PetscReal ai = b->amp[i * no + o];
-    PetscReal       w = 0.0, A = 0.0;
-    if (!(ai >= 0.95 * amax && ai >= b->amp[(i - 1) * no + o] && ai >= b->amp[(i + 1) * no + o])) continue;
-    PetscCall(RefineAt(c, b, pw, o, i, &w, &A));
+    if (ai >= 0.95 * amax && ai >= b->amp[(i - 1) * no + o] && ai >= b->amp[(i + 1) * no + o]) cand[nc++] = i;
+  }
+  for (PetscInt q = 0; q < nc; q++) { /* the highest candidate left first */
+    PetscInt  j = q, ins = -1, t;
+    PetscReal w = 0.0, A = 0.0;
+    for (PetscInt r = q + 1; r < nc; r++)
+      if (b->amp[cand[r] * no + o] > b->amp[cand[j] * no + o]) j = r;
+    t       = cand[q];
+    cand[q] = cand[j];
+    cand[j] = t;
+    PetscCall(RefineAt(c, b, pw, o, cand[q], q ? *Ap : -PETSC_MAX_REAL, &w, &A, &ins));
     if (A > *Ap) {
       *wp = w;
       *Ap = A;
     }
+    for (PetscInt r = q + 1; r < nc && ins >= 0; r++) /* the inserted point moves the later ones */
+      if (cand[r] >= ins) cand[r]++;
   }
+  PetscCall(PetscFree(cand));
   PetscFunctionReturn(0);
 }
 

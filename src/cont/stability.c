@@ -102,79 +102,41 @@ static PetscErrorCode LocateFold(JRCont c, JRContBranch *b, PetscInt k, PetscRea
 {
   const PetscInt  n = c->n, m = n + 1;
   const PetscReal sg = b->omega[k] > b->omega[k - 1] ? 1.0 : -1.0; /* +1: a largest frequency */
-  PetscReal      *X, *xl, *xm, *xh, *xt, sl = 0, sm, sh, fl, fm, fh, wp;
+  PetscReal      *X, wp, sh;
   PetscBool       done = PETSC_FALSE;
+  JRContGolden    g;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(4 * m, &X));
-  xl = X;
-  xm = X + m;
-  xh = X + 2 * m;
-  xt = X + 3 * m;
-  for (PetscInt i = 0; i < n; i++) {
-    xl[i] = b->x[(k - 1) * n + i];
-    xm[i] = b->x[k * n + i];
-    xh[i] = b->x[(k + 1) * n + i];
+  for (PetscInt j = 0; j < 3; j++) {
+    g.x[j] = X + j * m;
+    for (PetscInt i = 0; i < n; i++) g.x[j][i] = b->x[(k - 1 + j) * n + i];
+    g.x[j][n] = b->omega[k - 1 + j];
+    g.f[j]    = sg * g.x[j][n];
   }
-  xl[n] = b->omega[k - 1];
-  xm[n] = b->omega[k];
-  xh[n] = b->omega[k + 1];
+  g.xt = X + 3 * m;
   PetscCall(JRContPlaneBegin(c, b, k - 1, k + 1, &sh));
-  sm = JRContPlaneCoordinate(c, xm);
-  fl = sg * xl[n];
-  fm = sg * xm[n];
-  fh = sg * xh[n];
-  for (PetscInt it = 0; it < 100 && sm > sl && sm < sh; it++) {
-    const PetscReal bound = PetscMax((fm - fl) * (sh - sm) / (sm - sl), (fm - fh) * (sm - sl) / (sh - sm));
-    const PetscBool right = (sh - sm) > (sm - sl) ? PETSC_TRUE : PETSC_FALSE;
-    PetscReal       st, f, ft;
-    PetscInt        its;
-    PetscBool       ok;
-    Vec             a;
-    if (bound <= c->ltol * PetscAbsReal(fm)) {
+  g.s[0] = 0;
+  g.s[1] = JRContPlaneCoordinate(c, g.x[1]);
+  g.s[2] = sh;
+  for (PetscInt it = 0; it < 100 && g.s[1] > g.s[0] && g.s[1] < g.s[2]; it++) {
+    PetscReal st;
+    PetscInt  its;
+    PetscBool ok, right;
+    Vec       a;
+    if (JRContGoldenTrial(&g, n, &st, &right) <= c->ltol * PetscAbsReal(g.f[1])) {
       done = PETSC_TRUE;
       break;
     }
-    st = right ? sm + 0.381966011250105 * (sh - sm) : sm - 0.381966011250105 * (sm - sl);
-    f  = right ? (st - sm) / (sh - sm) : (st - sl) / (sm - sl);
-    for (PetscInt i = 0; i <= n; i++) xt[i] = right ? (1 - f) * xm[i] + f * xh[i] : (1 - f) * xl[i] + f * xm[i];
-    PetscCall(JRContPlanePoint(c, st, xt, &a, &its, &ok));
+    PetscCall(JRContPlanePoint(c, st, g.xt, &a, &its, &ok));
     *nits += its;
     if (!ok) break;
-    ft = sg * xt[n];
-    if (ft > fm) { /* the new middle */
-      PetscReal *t = right ? xl : xh;
-      if (right) {
-        sl = sm;
-        fl = fm;
-        xl = xm;
-      } else {
-        sh = sm;
-        fh = fm;
-        xh = xm;
-      }
-      xm = xt;
-      xt = t;
-      sm = st;
-      fm = ft;
-    } else if (right) {
-      PetscReal *t = xh;
-      xh           = xt;
-      xt           = t;
-      sh           = st;
-      fh           = ft;
-    } else {
-      PetscReal *t = xl;
-      xl           = xt;
-      xt           = t;
-      sl           = st;
-      fl           = ft;
-    }
+    (void)JRContGoldenUpdate(&g, st, sg * g.xt[n], right);
   }
-  *wf = sg * fm;
+  *wf = sg * g.f[1];
   if (!done) {
     wp = FoldFrequency(c, b, k, xs);
-    if (sg * wp > fm) *wf = wp;
+    if (sg * wp > g.f[1]) *wf = wp;
   }
   PetscCall(PetscFree(X));
   PetscFunctionReturn(0);

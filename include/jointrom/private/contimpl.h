@@ -91,6 +91,14 @@ PETSC_INTERN PetscErrorCode JRContPlaneWorkDestroy(JRCont);
 PETSC_INTERN PetscErrorCode JRContPlaneScale(JRCont, JRContBranch *);
 PETSC_INTERN PetscErrorCode JRContPlaneBegin(JRCont, JRContBranch *, PetscInt, PetscInt, PetscReal *);
 PETSC_INTERN PetscReal      JRContPlaneCoordinate(JRCont, const PetscReal *);
+/* a golden-section bracket along the curve for a maximum (peaks, folds): the plane coordinates s, values f and unknowns
+   x (n + 1: a, w) of its low, middle and high points, and the trial's work vector xt */
+typedef struct {
+  PetscReal  s[3], f[3];
+  PetscReal *x[3], *xt;
+} JRContGolden;
+PETSC_INTERN PetscReal JRContGoldenTrial(JRContGolden *, PetscInt, PetscReal *, PetscBool *);
+PETSC_INTERN PetscBool JRContGoldenUpdate(JRContGolden *, PetscReal, PetscReal, PetscBool);
 PETSC_INTERN PetscErrorCode JRContPlanePoint(JRCont, PetscReal, PetscReal *, Vec *, PetscInt *, PetscBool *);
 PETSC_INTERN PetscErrorCode JRContTangentSign(JRCont, PetscReal, Vec, PetscInt *, PetscInt *);
 PETSC_INTERN PetscErrorCode JRContMonitor(JRCont, PetscInt, JRContBranch *);
