@@ -137,7 +137,7 @@ PetscErrorCode JRHBMStabilityVerdict(JRHBM h, Vec a, PetscBool certify, JRStabil
   JRHBMStabilityCheap - whether deciding the stability of every point (JRContStability) costs little next to the
   curve: the model is incrementally dissipative at every point (every element jenkins: one LU per point), or it has
   friction elements and no cubic spring and is not condensed onto its joints (the monodromy matrix in time, its fast
-  modes condensed: 1.3-2.0 times the curve's solve on the FE models of docs/performance.md; a condensed model's curve
+  modes condensed: 1.3-1.9 times the curve's solve on the FE models of docs/performance.md; a condensed model's curve
   is so cheap that the modal monodromy costs several times it), or with a cubic spring the monodromy matrix (RK4) has
   at most 64 states (2 kept modes + friction elements), or, with smooth elements only, Hill's problem has at most
   128 unknowns. size: the monodromy's state or Hill's problem's size (0 where it is cheap for any size). Collective.
