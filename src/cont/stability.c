@@ -77,14 +77,9 @@ static PetscErrorCode PointStability(JRCont c, PetscReal w, Vec a, PetscBool hil
     if (hill) {
       PetscCall(JRHBMJacobianSign(c->hbm, w, a, detsign));
       PetscCall(JRHBMFloquetTime(c->hbm, w, a, c->stabsteps, NULL, NULL, NULL, &maxre, NULL));
-    } else { /* condensed onto the joints: on the point's modal unknowns */
-      Vec      am;
-      PetscInt nmod;
-      PetscCall(JRHBMGetSizes(c->hbm, NULL, NULL, &nmod));
-      PetscCall(VecCreateSeq(PETSC_COMM_SELF, nmod, &am));
-      PetscCall(JRHBMExpand(c->hbm, w, a, am));
-      PetscCall(JRHBMFloquetTime(c->hbm, w, am, c->stabsteps, NULL, NULL, NULL, &maxre, NULL));
-      PetscCall(VecDestroy(&am));
+    } else { /* condensed onto the joints: on the point's modal unknowns (c->amod) */
+      PetscCall(JRHBMExpand(c->hbm, w, a, c->amod));
+      PetscCall(JRHBMFloquetTime(c->hbm, w, c->amod, c->stabsteps, NULL, NULL, NULL, &maxre, NULL));
     }
     break;
   default:
@@ -319,21 +314,18 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   if (any) {
     PetscReal *X = b->x;
     PetscInt   n = c->n;
-    if (!ok) { /* condensed onto the joints: the points' modal unknowns, expanded */
-      Vec am;
-      PetscCall(JRHBMGetSizes(c->hbm, NULL, NULL, &n));
-      PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &am));
+    if (!ok) { /* condensed onto the joints: the points' modal unknowns, expanded (in c->amod) */
+      n = c->nmod;
       PetscCall(PetscCalloc1(b->np * n + 1, &X));
       for (PetscInt k = 0; k < b->np; k++) {
         const PetscScalar *xa;
         if (!intime[k]) continue;
         PetscCall(LoadPoint(c, b, k, a));
-        PetscCall(JRHBMExpand(c->hbm, b->omega[k], a, am));
-        PetscCall(VecGetArrayRead(am, &xa));
+        PetscCall(JRHBMExpand(c->hbm, b->omega[k], a, c->amod));
+        PetscCall(VecGetArrayRead(c->amod, &xa));
         PetscCall(PetscArraycpy(X + k * n, xa, n));
-        PetscCall(VecRestoreArrayRead(am, &xa));
+        PetscCall(VecRestoreArrayRead(c->amod, &xa));
       }
-      PetscCall(VecDestroy(&am));
     }
     PetscCall(JRHBMFloquetTimePoints(c->hbm, b->np, b->omega, X, n, intime, c->stabsteps, b->maxre, &nfast));
     if (X != b->x) PetscCall(PetscFree(X));

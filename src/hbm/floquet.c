@@ -63,7 +63,7 @@ struct _JRMonodromy {
   PetscReal *SL, *SW;                 /* the kept step maps: n2 x n2 and n2 x ne each, n2 = 2 nk; SW's columns those of the
                                          held slips of stuck elements only (the others' are 0) */
   PetscInt  *ncol, *cols;             /* per kept map: those columns' number and their slips (JR_MONO_SLOTS + 1, x ne) */
-  PetscReal *XL, *XW, *T1, *T2;       /* the step map's work (n2 x n2, n2 x ne, n2 x max(n2, ne) x 2), the march's (n2 x m) */
+  PetscReal *XL, *XW, *T1, *T2;       /* the step map's work (n2 x n2, n2 x ne, n2 x ne), the march's (n2 x m) */
   PetscReal *trig;                    /* sin, cos of h w t at the half steps ((2 ns + 1) x 2 H) */
   PetscReal *PS;                      /* the exponential's work (5 n2 x n2: four for the polynomial, L's LU) */
   PetscBLASInt *piv;                  /* L's pivots (n2) */
@@ -283,9 +283,9 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
   for (PetscInt e = 0; e < ne; e++)
     if (f->type[e] == 2) f->smooth = PETSC_TRUE;
   if (!f->smooth) {
-    const PetscInt n2 = 2 * nk, mx = PetscMax(n2, ne);
+    const PetscInt n2 = 2 * nk;
     PetscCall(PetscMalloc4(ne + 1, &f->key, JR_MONO_SLOTS * ne + 1, &f->slotkey, (JR_MONO_SLOTS + 1) * n2 * n2 + 1, &f->SL, (JR_MONO_SLOTS + 1) * n2 * ne + 1, &f->SW));
-    PetscCall(PetscMalloc4(n2 * n2 + 1, &f->XL, n2 * ne + 1, &f->XW, 2 * n2 * mx + 1, &f->T1, n2 * f->m + 1, &f->T2));
+    PetscCall(PetscMalloc4(n2 * n2 + 1, &f->XL, n2 * ne + 1, &f->XW, n2 * ne + 1, &f->T1, n2 * f->m + 1, &f->T2));
     PetscCall(PetscMalloc4(ne + 1, &f->ka, ne + 1, &f->kb, ne + 1, &f->kend, ne + 1, &f->th));
     PetscCall(PetscMalloc2(ne + 1, &f->cls, ne + 1, &f->memp));
     PetscCall(PetscMalloc2(JR_MONO_SLOTS + 1, &f->ncol, (JR_MONO_SLOTS + 1) * ne + 1, &f->cols));
@@ -702,7 +702,7 @@ static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt
 {
   const PetscInt nk = f->nk, ne = f->ne, n2 = f->n2r, m2 = 2 * nk;
   PetscInt       nt = f->mt - n2;
-  PetscReal     *SL = f->SL + k * m2 * m2, *SW = f->SW + k * m2 * ne, *tw = f->T1 + m2 * m2, *LU = f->PS + 4 * m2 * m2;
+  PetscReal     *SL = f->SL + k * m2 * m2, *SW = f->SW + k * m2 * ne, *tw = f->T1, *LU = f->PS + 4 * m2 * m2;
   PetscReal     *Bw = f->QW + 7 * nk * nk + 2 * nk * ne, wmax = f->wmax, dt;
   PetscInt       sq;
   PetscBool      direct = PETSC_FALSE;
