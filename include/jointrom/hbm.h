@@ -64,6 +64,8 @@ PETSC_EXTERN PetscErrorCode JRHBMStuckMode(JRHBM, PetscInt, PetscReal *, PetscRe
 PETSC_EXTERN PetscErrorCode JRHBMStuckSpringEnergy(JRHBM, const PetscReal[], PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMStuckModeBalance(JRHBM, PetscInt, PetscReal *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMSetModes(JRHBM, JRHBM);
+PETSC_EXTERN PetscErrorCode JRHBMGetModes(JRHBM, JRModes *);
+PETSC_EXTERN PetscErrorCode JRHBMEnrichBasis(JRHBM, PetscInt, Vec[], PetscReal, PetscReal *, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMSetBasis(JRHBM, JRHBMBasis);
 PETSC_EXTERN PetscErrorCode JRHBMSetJointMotion(JRHBM, JRJointMotion);
 PETSC_EXTERN PetscErrorCode JRHBMSetOptionsPrefix(JRHBM, const char[]);

@@ -752,3 +752,89 @@ PetscErrorCode JRHBMStuckModeBalance(JRHBM h, PetscInt k, PetscReal *omega, Pets
   PetscFunctionReturn(0);
 }
 
+
+/*
+  JRHBMEnrichBasis - the modal basis of a node-to-node model enriched for the solutions a[ns] (e.g. the peaks of its
+  curves): each solution's contact forces, harmonic by harmonic, less the stuck springs that the basis already holds
+  (none in a free basis), are FE loads whose static responses outside the basis are added where they deform the
+  interface by more than tol times the springs' own stretch (JRModesEnrich). h must then be set up again on its
+  modes (JRHBMSetModes on a new JRHBM). lmax: the largest such deformation ratio before; nadd: the vectors added.
+  Collective.
+*/
+PetscErrorCode JRHBMEnrichBasis(JRHBM h, PetscInt ns, Vec a[], PetscReal tol, PetscReal *lmax, PetscInt *nadd)
+{
+  const JRElements *el;
+  const PetscInt    nc = h->nc, nm = h->nm, np = ns * nc;
+  PetscInt          nloc = 0;
+  Vec              *F;
+  PetscReal        *Dt, *Dn, *D, *Dall;
+
+  PetscFunctionBeginUser;
+  *lmax = 0.0;
+  *nadd = 0;
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(JRHBMGetElements(h, &el));
+  if (!ns || h->physical || h->cond || !el || el->members || !el->vdof_a) PetscFunctionReturn(0);
+  for (PetscInt t = 0; t < h->ngroups; t++) nloc += h->g[t].split ? h->g[t].nloc : 0;
+  PetscCall(VecDuplicateVecs(h->modes->phi[0], np, &F));
+  for (PetscInt p = 0; p < np; p++) PetscCall(VecZeroEntries(F[p]));
+  PetscCall(PetscCalloc4(PetscMax(nloc * np, 1), &Dt, PetscMax(nloc * np, 1), &Dn, np * np, &D, np * np, &Dall));
+  h->cache_ok = PETSC_FALSE;
+  for (PetscInt s = 0; s < ns; s++) {
+    const PetscScalar *x;
+    PetscInt           off = 0;
+    PetscCall(VecGetArrayRead(a[s], &x));
+    for (PetscInt t = 0; t < h->ngroups; t++) {
+      JRHBMGroup *g = &h->g[t];
+      if (!g->split || !g->nloc) continue;
+      PetscCall(JRGemm("N", "N", g->nloc, nc, nm, 1.0, g->R, g->nloc, x, nm, 0.0, g->U, g->nloc));
+      if (g->normal) PetscCall(JRGemm("N", "N", g->nloc, nc, nm, 1.0, g->S, g->nloc, x, nm, 0.0, g->V, g->nloc));
+      PetscCall(JRContactEvaluate(g->c, g->U, g->V, g->F, g->normal ? g->N : NULL, NULL, NULL, NULL, NULL));
+      for (PetscInt e = 0; e < g->nloc; e++) {
+        const PetscInt   ei = g->eidx[e];
+        const PetscReal  kst = h->basis != JR_HBM_BASIS_FREE ? g->pt[e] : 0.0, ksn = h->basis != JR_HBM_BASIS_FREE ? g->pn[e] : 0.0;
+        const PetscReal *td = el->tdir + 3 * ei, *nd = el->ndir + 3 * ei;
+        for (PetscInt c = 0; c < nc; c++) {
+          const PetscReal ft = g->F[e + c * g->nloc] - kst * g->U[e + c * g->nloc];
+          const PetscReal fn = g->normal ? g->N[e + c * g->nloc] - (c ? 0.0 : g->nstatic[e]) - ksn * g->V[e + c * g->nloc] : 0.0;
+          const PetscInt  p  = s * nc + c;
+          PetscInt        idx[6];
+          PetscScalar     val[6];
+          Dt[off + e + p * nloc] = ft / PetscSqrtReal(g->kt[e]);
+          if (g->normal) Dn[off + e + p * nloc] = fn / PetscSqrtReal(g->kn[e]);
+          for (PetscInt k = 0; k < 3; k++) {
+            idx[k]     = el->vdof_a[3 * ei + k];
+            idx[3 + k] = el->vdof_b[3 * ei + k];
+            val[k]     = ft * td[k] + fn * nd[k];
+            val[3 + k] = -val[k];
+          }
+          PetscCall(VecSetValues(F[p], 6, idx, val, ADD_VALUES));
+        }
+      }
+      off += g->nloc;
+    }
+    PetscCall(VecRestoreArrayRead(a[s], &x));
+  }
+  for (PetscInt p = 0; p < np; p++) {
+    PetscCall(VecAssemblyBegin(F[p]));
+    PetscCall(VecAssemblyEnd(F[p]));
+  }
+  if (nloc) {
+    PetscCall(JRGemm("T", "N", np, np, nloc, 1.0, Dt, nloc, Dt, nloc, 0.0, D, np));
+    PetscCall(JRGemm("T", "N", np, np, nloc, 1.0, Dn, nloc, Dn, nloc, 1.0, D, np));
+  }
+  PetscCall(MPIU_Allreduce(D, Dall, np * np, MPIU_REAL, MPIU_SUM, h->comm));
+  PetscCall(JRModesEnrich(h->modes, np, F, Dall, tol, lmax, nadd));
+  PetscCall(PetscFree4(Dt, Dn, D, Dall));
+  PetscCall(VecDestroyVecs(np, &F));
+  PetscFunctionReturn(0);
+}
+
+/* The modes of h's basis (NULL in physical coordinates); not a new reference */
+PetscErrorCode JRHBMGetModes(JRHBM h, JRModes *md)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  *md = h->physical ? NULL : h->modes;
+  PetscFunctionReturn(0);
+}

@@ -248,7 +248,6 @@ static PetscErrorCode StaticCorrection(JRModes md, PetscInt nq, Vec Q[], Vec MQ[
   PetscLogDouble t0, t1;
   Interface      c;
   KSP            ksp;
-  Mat            A;
   Vec            b;
   PetscReal     *BQ, *S, *lam, *work, *w;
   PetscScalar   *d;
@@ -265,7 +264,9 @@ static PetscErrorCode StaticCorrection(JRModes md, PetscInt nq, Vec Q[], Vec MQ[
   PetscCall(PetscMalloc3(nr * PetscMax(nq, 1), &BQ, nr * nr, &S, nr, &lam));
   PetscCall(PetscMalloc3(8 * nr, &work, nr, &w, PetscMax(nq, 1), &d));
   for (PetscInt q = 0; q < nq; q++) PetscCall(InterfaceRows(md, &c, Q[q], BQ + q * nr));
-  PetscCall(StaticSolver(md, &ksp, &A, &sigma));
+  if (!md->sksp) PetscCall(StaticSolver(md, &md->sksp, &md->sA, &md->ssigma)); /* kept for -modes_adapt (JRModesEnrich) */
+  ksp   = md->sksp;
+  sigma = md->ssigma;
   if (modes) { /* Q = md's modes, A-orthogonal */
     PetscCall(PetscMalloc1(PetscMax(nq, 1), &qa));
     for (PetscInt q = 0; q < nq; q++) qa[q] = md->lambda[q] - sigma;
@@ -293,8 +294,7 @@ static PetscErrorCode StaticCorrection(JRModes md, PetscInt nq, Vec Q[], Vec MQ[
   for (PetscInt k = 1; k <= nr; k *= 2) PetscCall(PetscInfo(NULL, "Interface residual flexibility x stiffness: pattern %" PetscInt_FMT " of %" PetscInt_FMT ": %g\n", k, nr, (double)lam[nr - k]));
   *ns = n;
   PetscCall(PetscInfo(NULL, "Interface residual flexibility x stiffness: %" PetscInt_FMT " patterns, largest %g, %" PetscInt_FMT " kept, next %g\n", nr, (double)md->rho0, n, (double)md->rho));
-  PetscCall(KSPDestroy(&ksp));
-  PetscCall(MatDestroy(&A));
+  if (!md->adapt) PetscCall(JRModesEnrichEnd(md));
   PetscCall(PetscFree3(BQ, S, lam));
   PetscCall(PetscFree3(work, w, d));
   PetscCall(InterfaceDestroy(&c));
@@ -372,6 +372,41 @@ static PetscErrorCode AppendOrthonormal(Mat M, Vec v, Vec Q[], Vec MQ[], PetscIn
   PetscFunctionReturn(0);
 }
 
+/* The Ritz vectors of (K + Ks, M) in the span of the M-orthonormal Q[nq] replace md's modes, eigenvalues ascending (Mv:
+   a work vector, d room for nq) */
+static PetscErrorCode Ritz(JRModes md, PetscInt nq, Vec Q[], Vec Mv, PetscScalar d[])
+{
+  PetscReal   *A, *lam, *work;
+  PetscBLASInt bn, lwork, info;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc3(nq * nq, &A, nq, &lam, 8 * nq, &work));
+  for (PetscInt j = 0; j < nq; j++) {
+    PetscCall(MatMult(md->K, Q[j], Mv));
+    PetscCall(VecMDot(Mv, nq, Q, d));
+    for (PetscInt i = 0; i < nq; i++) A[i + j * nq] = PetscRealPart(d[i]);
+  }
+  for (PetscInt j = 0; j < nq; j++)
+    for (PetscInt i = 0; i < j; i++) A[i + j * nq] = A[j + i * nq] = 0.5 * (A[i + j * nq] + A[j + i * nq]);
+  PetscCall(PetscBLASIntCast(nq, &bn));
+  PetscCall(PetscBLASIntCast(8 * nq, &lwork));
+  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &bn, A, &bn, lam, work, &lwork, &info));
+  PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed: info %d", (int)info);
+  if (md->phi) PetscCall(VecDestroyVecs(md->nm, &md->phi));
+  PetscCall(PetscFree(md->lambda));
+  PetscCall(VecDuplicateVecs(Q[0], nq, &md->phi));
+  PetscCall(PetscMalloc1(nq, &md->lambda));
+  for (PetscInt i = 0; i < nq; i++) {
+    PetscCall(VecZeroEntries(md->phi[i]));
+    for (PetscInt j = 0; j < nq; j++) d[j] = A[j + i * nq];
+    PetscCall(VecMAXPY(md->phi[i], nq, d, Q));
+    md->lambda[i] = PetscAbsReal(lam[i]) <= 1e-10 * PetscAbsReal(lam[nq - 1]) ? 0.0 : lam[i];
+  }
+  md->nm = nq;
+  PetscCall(PetscFree3(A, lam, work));
+  PetscFunctionReturn(0);
+}
+
 /*
   JRModesMix - the mixed basis (after JRModesSetMixed and JRModesSolve): md's stuck modes (operators K + Ks, M), the nf
   lowest elastic free-interface modes of (K, M) (the free structure, rigid basis rb[nrb]) and, with interface rows
@@ -389,8 +424,6 @@ PetscErrorCode JRModesMix(JRModes md, Mat K, PetscInt nf, PetscInt nrb, Vec rb[]
   PetscInt      nq = 0, ncand, ns = 0;
   Vec           *Q, *MQ, *cand, *G = NULL, Mv;
   PetscScalar  *d;
-  PetscReal    *A, *lam, *work;
-  PetscBLASInt  bn, lwork, info;
 
   PetscFunctionBeginUser;
   PetscCheck(md->mixed, md->comm, PETSC_ERR_ARG_WRONGSTATE, "JRModesSetMixed() first");
@@ -420,32 +453,8 @@ PetscErrorCode JRModesMix(JRModes md, Mat K, PetscInt nf, PetscInt nrb, Vec rb[]
     md->nsadded = ns;
     if (ns) PetscCall(VecDestroyVecs(ns, &G));
   }
-  /* Ritz: A = Q^T (K + Ks) Q, eigenvectors ascending */
-  PetscCall(PetscMalloc3(nq * nq, &A, nq, &lam, 8 * nq, &work));
-  for (PetscInt j = 0; j < nq; j++) {
-    PetscCall(MatMult(md->K, Q[j], Mv));
-    PetscCall(VecMDot(Mv, nq, Q, d));
-    for (PetscInt i = 0; i < nq; i++) A[i + j * nq] = PetscRealPart(d[i]);
-  }
-  for (PetscInt j = 0; j < nq; j++)
-    for (PetscInt i = 0; i < j; i++) A[i + j * nq] = A[j + i * nq] = 0.5 * (A[i + j * nq] + A[j + i * nq]);
-  PetscCall(PetscBLASIntCast(nq, &bn));
-  PetscCall(PetscBLASIntCast(8 * nq, &lwork));
-  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &bn, A, &bn, lam, work, &lwork, &info));
-  PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed: info %d", (int)info);
-  PetscCall(VecDestroyVecs(md->nm, &md->phi));
-  PetscCall(PetscFree(md->lambda));
-  PetscCall(VecDuplicateVecs(Q[0], nq, &md->phi));
-  PetscCall(PetscMalloc1(nq, &md->lambda));
-  for (PetscInt i = 0; i < nq; i++) {
-    PetscCall(VecZeroEntries(md->phi[i]));
-    for (PetscInt j = 0; j < nq; j++) d[j] = A[j + i * nq];
-    PetscCall(VecMAXPY(md->phi[i], nq, d, Q));
-    md->lambda[i] = PetscAbsReal(lam[i]) <= 1e-10 * PetscAbsReal(lam[nq - 1]) ? 0.0 : lam[i];
-  }
-  md->nm = nq;
+  PetscCall(Ritz(md, nq, Q, Mv, d));
   PetscCall(PetscInfo(NULL, "Mixed basis: %" PetscInt_FMT " stuck + %" PetscInt_FMT " free modes + %" PetscInt_FMT " static correction vectors -> %" PetscInt_FMT " Ritz vectors\n", md->nev, nf, ns, nq));
-  PetscCall(PetscFree3(A, lam, work));
   PetscCall(PetscFree(d));
   PetscCall(VecDestroy(&Mv));
   for (PetscInt i = 0; i < nq; i++) {
@@ -460,3 +469,137 @@ PetscErrorCode JRModesMix(JRModes md, Mat K, PetscInt nf, PetscInt nrb, Vec rb[]
 }
 
 /* One more reference to md: a holder (a JRHBM sharing another's modes) releases it with JRModesDestroy */
+
+/*
+  JRModesEnrich - the basis enriched for given loads (a mixed basis, after JRModesMix): F[np] are FE load vectors (e.g.
+  the contact forces' deviation from the stuck springs at computed solutions, one per harmonic) and D (np x np,
+  col-major) their Gram matrix in the compliance of the contact springs (sum_e f_i f_j / k_e). Their static responses
+  outside the basis, g = (A^-1 - Phi (Phi^T A Phi)^-1 Phi^T) f with A = K - sigma M (the residual flexibility, as the
+  basis check's), give the generalized eigenproblem (F^T G) v = lam D v: lam is the deformation that a combination of
+  the loads causes beyond the basis, in units of the springs' own stretch under it (the basis check's measure, for
+  these loads only). The combinations with lam > tol have their responses added, then the Ritz vectors of (K + Ks, M)
+  replace the modes. lmax: the largest lam (before); nadd: the vectors added. Saved again (-modes_save or the default
+  file) if anything was added. The factorisation of A is kept for the next call (JRModesEnrichEnd frees it). Collective.
+*/
+PetscErrorCode JRModesEnrich(JRModes md, PetscInt np, Vec F[], const PetscReal D[], PetscReal tol, PetscReal *lmax, PetscInt *nadd)
+{
+  KSP           ksp;
+  Vec          *G, *Q, *MQ, Mv, h;
+  PetscScalar  *d;
+  PetscReal    *Gm, *Dm, *sd, *ev, *T, *work, sigma, dmax = 0.0;
+  PetscBLASInt  bn, bk, lwork, info;
+  PetscInt      nk = 0, nq = 0, n0;
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBeginUser;
+  *lmax = 0.0;
+  *nadd = 0;
+  if (!np || !md->nm) PetscFunctionReturn(0);
+  PetscCall(PetscTime(&t0));
+  PetscCall(PetscLogEventBegin(JR_ModesStatic, 0, 0, 0, 0));
+  if (!md->sksp) PetscCall(StaticSolver(md, &md->sksp, &md->sA, &md->ssigma)); /* kept for the next rounds */
+  ksp   = md->sksp;
+  sigma = md->ssigma;
+  PetscCall(VecDuplicateVecs(md->phi[0], np, &G));
+  PetscCall(PetscMalloc1(PetscMax(md->nm, np) + np, &d));
+  for (PetscInt j = 0; j < np; j++) { /* g_j = A^-1 f_j - sum_q phi_q (phi_q^T f_j) / (lam_q - sigma) */
+    PetscCall(KSPSolve(ksp, F[j], G[j]));
+    PetscCall(VecMDot(F[j], md->nm, md->phi, d));
+    for (PetscInt q = 0; q < md->nm; q++) d[q] = -d[q] / (md->lambda[q] - sigma);
+    PetscCall(VecMAXPY(G[j], md->nm, d, md->phi));
+  }
+  /* (F^T G) v = lam D v, D's null space dropped: D = U S U^T, T = U_k S_k^-1/2, eig of T^T (F^T G) T */
+  PetscCall(PetscMalloc6(np * np, &Gm, np * np, &Dm, np, &sd, np, &ev, np * np, &T, 8 * np, &work));
+  for (PetscInt j = 0; j < np; j++) {
+    PetscCall(VecMDot(G[j], np, F, d));
+    for (PetscInt i = 0; i < np; i++) Gm[i + j * np] = PetscRealPart(d[i]);
+  }
+  for (PetscInt j = 0; j < np; j++)
+    for (PetscInt i = 0; i < j; i++) Gm[i + j * np] = Gm[j + i * np] = 0.5 * (Gm[i + j * np] + Gm[j + i * np]);
+  PetscCall(PetscArraycpy(Dm, D, np * np));
+  PetscCall(PetscBLASIntCast(np, &bn));
+  PetscCall(PetscBLASIntCast(8 * np, &lwork));
+  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &bn, Dm, &bn, sd, work, &lwork, &info));
+  PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed: info %d", (int)info);
+  for (PetscInt k = 0; k < np; k++) dmax = PetscMax(dmax, sd[k]);
+  for (PetscInt k = 0; k < np; k++) {
+    if (!(sd[k] > 1e-12 * dmax)) continue;
+    for (PetscInt i = 0; i < np; i++) T[i + nk * np] = Dm[i + k * np] / PetscSqrtReal(sd[k]);
+    nk++;
+  }
+  if (nk) {
+    PetscReal *GT, *H;
+    PetscCall(PetscMalloc2(np * nk, &GT, nk * nk, &H));
+    for (PetscInt j = 0; j < nk; j++)
+      for (PetscInt i = 0; i < np; i++) {
+        PetscReal s = 0.0;
+        for (PetscInt l = 0; l < np; l++) s += Gm[i + l * np] * T[l + j * np];
+        GT[i + j * np] = s;
+      }
+    for (PetscInt j = 0; j < nk; j++)
+      for (PetscInt i = 0; i < nk; i++) {
+        PetscReal s = 0.0;
+        for (PetscInt l = 0; l < np; l++) s += T[l + i * np] * GT[l + j * np];
+        H[i + j * nk] = s;
+      }
+    PetscCall(PetscBLASIntCast(nk, &bk));
+    PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &bk, H, &bk, ev, work, &lwork, &info));
+    PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed: info %d", (int)info);
+    *lmax = PetscMax(ev[nk - 1], 0.0);
+    /* the combinations above tol, largest first: v = T w, their responses G v appended to the modes */
+    n0 = md->nm;
+    PetscCall(PetscMalloc2(n0 + nk, &Q, n0 + nk, &MQ));
+    PetscCall(VecDuplicate(md->phi[0], &Mv));
+    PetscCall(VecDuplicate(md->phi[0], &h));
+    for (PetscInt q = 0; q < n0; q++) {
+      PetscCall(VecDuplicate(md->phi[q], &Q[q]));
+      PetscCall(VecCopy(md->phi[q], Q[q]));
+      PetscCall(VecDuplicate(md->phi[q], &MQ[q]));
+      PetscCall(MatMult(md->M, md->phi[q], MQ[q]));
+    }
+    nq = n0;
+    for (PetscInt k = nk - 1; k >= 0 && ev[k] > tol; k--) {
+      for (PetscInt i = 0; i < np; i++) {
+        PetscReal s = 0.0;
+        for (PetscInt l = 0; l < nk; l++) s += T[i + l * np] * H[l + k * nk];
+        d[i] = s;
+      }
+      PetscCall(VecZeroEntries(h));
+      PetscCall(VecMAXPY(h, np, d, G));
+      PetscCall(AppendOrthonormal(md->M, h, Q, MQ, &nq, Mv, d));
+    }
+    *nadd = nq - n0;
+    if (*nadd) {
+      PetscScalar *dq;
+      PetscCall(PetscMalloc1(nq, &dq));
+      PetscCall(Ritz(md, nq, Q, Mv, dq));
+      PetscCall(PetscFree(dq));
+      md->nadapt += *nadd;
+    }
+    for (PetscInt q = 0; q < nq; q++) {
+      PetscCall(VecDestroy(&Q[q]));
+      PetscCall(VecDestroy(&MQ[q]));
+    }
+    PetscCall(PetscFree2(Q, MQ));
+    PetscCall(VecDestroy(&Mv));
+    PetscCall(VecDestroy(&h));
+    PetscCall(PetscFree2(GT, H));
+  }
+  PetscCall(PetscFree6(Gm, Dm, sd, ev, T, work));
+  PetscCall(PetscFree(d));
+  PetscCall(VecDestroyVecs(np, &G));
+  PetscCall(PetscLogEventEnd(JR_ModesStatic, 0, 0, 0, 0));
+  PetscCall(PetscTime(&t1));
+  md->tadapt += t1 - t0;
+  if (*nadd && md->save_mixed[0]) PetscCall(JRModesSave(md, md->save_mixed));
+  PetscFunctionReturn(0);
+}
+
+/* JRModesEnrichEnd - frees the factorisation that JRModesEnrich keeps between rounds */
+PetscErrorCode JRModesEnrichEnd(JRModes md)
+{
+  PetscFunctionBeginUser;
+  PetscCall(KSPDestroy(&md->sksp));
+  PetscCall(MatDestroy(&md->sA));
+  PetscFunctionReturn(0);
+}

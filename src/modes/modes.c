@@ -33,6 +33,8 @@ PetscErrorCode JRModesCreate(MPI_Comm comm, JRModes *modes)
   md->static_tol  = 0.02;
   md->check       = PETSC_TRUE;
   md->check_tol   = 0.05;
+  md->adapt       = 12;
+  md->adapt_tol   = 5e-4;
   md->rho0        = -1.0;
   md->rho         = -1.0;
   *modes          = md;
@@ -122,13 +124,29 @@ PetscErrorCode JRModesSetFromOptions(JRModes md)
   PetscCall(PetscOptionsReal("-static_tol", "-modes_static -1: keep the interface patterns whose residual flexibility times contact stiffness is at least this [-]", "JRModesMix", md->static_tol, &md->static_tol, NULL));
   PetscCall(PetscOptionsBool("-check", "Basis check of an FE model with contact pairs: the largest residual flexibility times contact stiffness of an interface pattern outside the basis", "JRModesCheckBasis", md->check, &md->check, NULL));
   PetscCall(PetscOptionsReal("-check_tol", "Warn when the basis check exceeds this [-]", "JRModesCheckBasis", md->check_tol, &md->check_tol, NULL));
+  PetscCall(PetscOptionsInt("-adapt", "FE models with contact pairs: at most this many rounds of solving the curves and adding the static responses of their peaks' contact forces outside the basis (0: none)", "JRModesEnrich", md->adapt, &md->adapt, NULL));
+  PetscCall(PetscOptionsReal("-adapt_tol", "-modes_adapt: add the peaks' contact-force patterns whose deformation outside the basis exceeds this many times the springs' own stretch [-]", "JRModesEnrich", md->adapt_tol, &md->adapt_tol, NULL));
   PetscOptionsEnd();
+  PetscCheck(md->adapt >= 0, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_adapt %" PetscInt_FMT ": a number of rounds, 0 or more", md->adapt);
+  PetscCheck(md->adapt_tol > 0 && !PetscIsInfOrNanReal(md->adapt_tol), md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_adapt_tol %g: must be positive", (double)md->adapt_tol);
   PetscCheck(md->nstatic >= -1, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_static %" PetscInt_FMT ": a number of vectors, or -1 for those above -modes_static_tol", md->nstatic);
   PetscCheck(md->nstatic_max >= 0, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_static_max %" PetscInt_FMT ": must be non-negative", md->nstatic_max);
   PetscCheck(md->static_tol > 0 && !PetscIsInfOrNanReal(md->static_tol), md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_static_tol %g: must be positive", (double)md->static_tol);
   PetscCheck(md->check_tol > 0 && !PetscIsInfOrNanReal(md->check_tol), md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_check_tol %g: must be positive", (double)md->check_tol);
   PetscCheck(md->nev >= 1, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_nev %" PetscInt_FMT ": at least one mode", md->nev);
   if (md->load[0]) PetscCall(JRFileCheckHDF5(md->comm, "-modes_load", md->load, "/jointrom_modes", "write one with -modes_save"));
+  PetscFunctionReturn(0);
+}
+
+/* The adaptation of the basis to computed solutions (-modes_adapt rounds, -modes_adapt_tol), the vectors it added and
+   their seconds (JRModesEnrich); any may be NULL */
+PetscErrorCode JRModesGetAdapt(JRModes md, PetscInt *rounds, PetscReal *tol, PetscInt *nadd, PetscLogDouble *t)
+{
+  PetscFunctionBeginUser;
+  if (rounds) *rounds = md->adapt;
+  if (tol) *tol = md->adapt_tol;
+  if (nadd) *nadd = md->nadapt;
+  if (t) *t = md->tadapt;
   PetscFunctionReturn(0);
 }
 
@@ -417,6 +435,7 @@ PetscErrorCode JRModesDestroy(JRModes *modes)
   *modes = NULL;
   if (--md->refct > 0) PetscFunctionReturn(0);
   PetscCall(ClearModes(md));
+  PetscCall(JRModesEnrichEnd(md));
   if (md->rb) PetscCall(VecDestroyVecs(md->nrb, &md->rb));
   PetscCall(PetscFree3(md->irdof, md->ircoef, md->irk));
   PetscCall(EPSDestroy(&md->eps));

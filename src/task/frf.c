@@ -101,6 +101,8 @@ typedef struct {
   char               base[PETSC_MAX_PATH_LEN];
   const char        *romsave, *romload;
   PetscReal          tmodel, tn, tr, en, er, setn, setr, tred;
+  PetscInt           adapt_rounds, adapt_added; /* -modes_adapt: rounds made, vectors added */
+  PetscReal          adapt_lmax, adapt_dw, adapt_da, adapt_s; /* the last round's peak_load_deformation and peak moves; seconds */
 } FRFRun;
 
 static const char *const Dirs[] = {"x", "y", "z"};
@@ -332,6 +334,109 @@ static PetscErrorCode SetUpInterface(FRFRun *r)
   PetscFunctionReturn(0);
 }
 
+/* A node-to-node model's harmonic balance on the modes of another (r->hbm's, e.g. enriched), replacing it */
+static PetscErrorCode ReplaceHBM(FRFRun *r)
+{
+  JRHBM h;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMCreate(r->comm, &h));
+  PetscCall(JRHBMSetBasis(h, JR_HBM_BASIS_MIXED));
+  PetscCall(JRHBMSetFromOptions(h));
+  PetscCall(JRHBMSetExcitationDof(h, r->fdof, r->nout, r->odof));
+  PetscCall(JRHBMSetOutputPoints(h, r->nout, r->oat, r->dir));
+  PetscCall(JRHBMSetModel(h, r->model));
+  PetscCall(JRHBMSetElements(h, &r->el));
+  PetscCall(JRHBMSetModes(h, r->hbm));
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(JRHBMDestroy(&r->hbm));
+  r->hbm = h;
+  PetscFunctionReturn(0);
+}
+
+/*
+  -modes_adapt N: the node-to-node basis adapted to the curves' peaks, round by round: every level solved (no output,
+  no stability), the peaks' contact forces' static responses outside the basis added where they deform the interface
+  by more than -modes_adapt_tol times the springs' stretch (JRHBMEnrichBasis), the harmonic balance set up again on
+  the enriched modes; until a round adds nothing or N rounds are spent. Not needed when the basis check already bounds
+  every interface pattern's deformation by the tolerance. Each round prints how far the peaks moved.
+*/
+static PetscErrorCode AdaptBasis(FRFRun *r)
+{
+  MPI_Comm       comm = r->comm;
+  JRModes        md;
+  PetscInt       rounds, nl = 0, nadd = 1, nm;
+  PetscReal      tol, rho, *wp = NULL, *ap = NULL;
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBeginUser;
+  if (!r->n2n || r->loaded || !r->hbm || r->nlmodes) PetscFunctionReturn(0);
+  PetscCall(JRHBMGetModes(r->hbm, &md));
+  if (!md) PetscFunctionReturn(0);
+  PetscCall(JRModesGetAdapt(md, &rounds, &tol, NULL, NULL));
+  PetscCall(JRHBMGetBasisCheck(r->hbm, &rho, NULL, NULL, NULL, NULL));
+  if (!rounds || (rho >= 0 && rho <= tol)) {
+    PetscCall(JRModesEnrichEnd(md));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscTime(&t0));
+  r->adapt_lmax = -1;
+  for (PetscInt k = 0; k <= rounds && nadd; k++) {
+    JRCont         c;
+    Vec            v, *a;
+    PetscReal      lmax = 0.0, dw = 0.0, da = 0.0;
+    PetscLogDouble s0, s1, s2;
+    PetscCall(PetscTime(&s0));
+    PetscCall(JRContCreate(comm, &c));
+    PetscCall(JRContSetHBM(c, r->hbm));
+    PetscCall(JRContSetFromOptions(c));
+    PetscCall(JRContSetQuiet(c, PETSC_TRUE));
+    PetscCall(JRContSetStability(c, PETSC_FALSE));
+    PetscCall(JRContSolve(c));
+    PetscCall(PetscTime(&s1));
+    PetscCall(JRContGetNumLevels(c, &nl));
+    if (!wp) PetscCall(PetscCalloc2(nl, &wp, nl, &ap));
+    PetscCall(JRHBMCreateVecs(r->hbm, &v, NULL));
+    PetscCall(VecDuplicateVecs(v, nl, &a));
+    for (PetscInt l = 0; l < nl; l++) {
+      PetscReal w, amp;
+      PetscCall(JRContGetPeakSolution(c, l, a[l]));
+      PetscCall(JRContGetPeak(c, l, &w, &amp));
+      if (k) {
+        dw = PetscMax(dw, PetscAbsReal(w / wp[l] - 1));
+        da = PetscMax(da, PetscAbsReal(amp / ap[l] - 1));
+      }
+      wp[l] = w;
+      ap[l] = amp;
+    }
+    PetscCall(JRHBMGetSizes(r->hbm, &nm, NULL, NULL));
+    nadd = 0;
+    if (k < rounds) PetscCall(JRHBMEnrichBasis(r->hbm, nl, a, tol, &lmax, &nadd));
+    PetscCall(PetscTime(&s2));
+    if (k) {
+      r->adapt_dw = dw;
+      r->adapt_da = da;
+      PetscCall(PetscPrintf(comm, "basis adapt: round %" PetscInt_FMT " modes %" PetscInt_FMT " peaks moved %.2e in frequency %.2e in amplitude (the largest over the levels, since the round before)\n", k, nm, (double)dw, (double)da));
+    }
+    if (k < rounds) {
+      r->adapt_lmax = lmax;
+      r->adapt_rounds = k + 1;
+      PetscCall(PetscPrintf(comm, "basis adapt: round %" PetscInt_FMT " peak_load_deformation %.3g tol %g added %" PetscInt_FMT " (curves %.3g s, responses %.3g s)\n", k + 1, (double)lmax, (double)tol, nadd, (double)(s1 - s0), (double)(s2 - s1)));
+    }
+    PetscCall(VecDestroyVecs(nl, &a));
+    PetscCall(VecDestroy(&v));
+    PetscCall(JRContDestroy(&c));
+    if (nadd) PetscCall(ReplaceHBM(r));
+  }
+  PetscCall(PetscFree2(wp, ap));
+  PetscCall(JRHBMGetModes(r->hbm, &md));
+  PetscCall(JRModesEnrichEnd(md));
+  PetscCall(JRModesGetAdapt(md, NULL, NULL, &r->adapt_added, NULL));
+  PetscCall(PetscTime(&t1));
+  r->adapt_s = t1 - t0;
+  PetscFunctionReturn(0);
+}
+
 /* 3. the modes and the harmonic balance of the node-to-node (or matrices) model: its modes serve the reduced model too;
    5. the reduction and the reduced model's harmonic balance */
 static PetscErrorCode SetUpModels(FRFRun *r)
@@ -362,6 +467,7 @@ static PetscErrorCode SetUpModels(FRFRun *r)
     PetscCall(PetscTime(&t1));
     PetscCall(PetscLogStagePop());
     r->setn = t1 - t0;
+    PetscCall(AdaptBasis(r));
   }
   PetscCall(PetscLogStagePush(JR_StageReduce));
   if (r->isrom && !r->loaded) { /* the reduction, from the joints of the node-to-node elements */
@@ -393,7 +499,14 @@ static PetscErrorCode ViewBasisCheck(FRFRun *r)
   PetscCall(JRHBMGetBasisCheck(r->hbmc, &rho, &rho0, &tol, &ns, &t));
   if (rho < 0) PetscFunctionReturn(0);
   PetscCall(PetscPrintf(comm, "basis check: rho %.3g rho_modes %.3g static_vectors %" PetscInt_FMT " seconds %.3g (rho: the largest interface residual flexibility x contact stiffness outside the basis; rho_modes: the same without the static correction vectors)\n", (double)rho, (double)rho0, ns, (double)t));
-  if (rho > tol) PetscCall(PetscPrintf(comm, "WARNING basis check %.3g > -modes_check_tol %g: the basis misses the interface's local compliance and the peaks may move with a larger basis; raise -modes_static_max or lower -modes_static_tol\n", (double)rho, (double)tol));
+  if (r->adapt_rounds) {
+    JRModes   md;
+    PetscReal atol;
+    PetscCall(JRHBMGetModes(r->hbmc, &md));
+    PetscCall(JRModesGetAdapt(md, NULL, &atol, NULL, NULL));
+    PetscCall(PetscPrintf(comm, "basis adapt: %" PetscInt_FMT " vectors added in %" PetscInt_FMT " rounds (%.3g s); peak_load_deformation %.3g tol %g (the peaks' contact forces deform the interface outside the basis by this times the springs' stretch); last round's peak moves %.2e in frequency, %.2e in amplitude\n", r->adapt_added, r->adapt_rounds, (double)r->adapt_s, (double)r->adapt_lmax, (double)atol, (double)r->adapt_dw, (double)r->adapt_da));
+    if (r->adapt_lmax > atol) PetscCall(PetscPrintf(comm, "WARNING basis adapt: the peaks' contact forces still deform the interface outside the basis by %.3g > -modes_adapt_tol %g after %" PetscInt_FMT " rounds: the peaks may move with a larger basis; raise -modes_adapt\n", (double)r->adapt_lmax, (double)atol, r->adapt_rounds));
+  } else if (rho > tol) PetscCall(PetscPrintf(comm, "WARNING basis check %.3g > -modes_check_tol %g: the basis misses the interface's local compliance and the peaks may move with a larger basis; -modes_adapt adapts it to the peaks, or raise -modes_static_max\n", (double)rho, (double)tol));
   PetscFunctionReturn(0);
 }
 

@@ -77,6 +77,14 @@ struct _p_JRModes {
   PetscInt   nsadded;    /* static correction vectors added */
   PetscReal  rho0, rho;  /* the check: largest residual flexibility x stiffness outside the basis, before and after the static correction (-1: not computed) */
   PetscLogDouble tstatic; /* seconds spent on the static correction and the check */
+  /* the basis adapted to computed solutions (JRModesEnrich) */
+  PetscInt   adapt;      /* -modes_adapt: at most this many rounds (the caller's loop) */
+  PetscReal  adapt_tol;  /* -modes_adapt_tol: the loads' deformation outside the basis, in units of the springs' stretch */
+  PetscInt   nadapt;     /* vectors added */
+  PetscLogDouble tadapt; /* their seconds */
+  KSP        sksp;       /* the static solver of A = K - ssigma M, kept between rounds (JRModesEnrichEnd frees it) */
+  Mat        sA;
+  PetscReal  ssigma;
 };
 /* src/modes/: the saved modes read back (io.c), the default shift of the eigensolver and the static solves (modes.c) */
 PETSC_INTERN PetscErrorCode JRModesLoad_Private(JRModes, const char[]);

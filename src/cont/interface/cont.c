@@ -491,6 +491,15 @@ PetscErrorCode JRContSetQuiet(JRCont c, PetscBool quiet)
   PetscFunctionReturn(0);
 }
 
+/* JRContSetStability - decide the stability of every point (JRContStability) or not, whatever the options say */
+PetscErrorCode JRContSetStability(JRCont c, PetscBool stab)
+{
+  PetscFunctionBeginUser;
+  c->stab    = stab;
+  c->stabset = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode JRContGetNumLevels(JRCont c, PetscInt *n)
 {
   PetscFunctionBeginUser;
@@ -519,6 +528,19 @@ PetscErrorCode JRContGetPeak(JRCont c, PetscInt lev, PetscReal *w, PetscReal *am
   PetscCheck(c->br && lev >= 0 && lev < c->nlev, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "No level %" PetscInt_FMT, lev);
   *w   = c->br[lev].wpeak;
   *amp = c->br[lev].apeak;
+  PetscFunctionReturn(0);
+}
+
+/* The solution at level lev's peak, in the modal unknowns (a: JRHBMCreateVecs's size when not condensed) */
+PetscErrorCode JRContGetPeakSolution(JRCont c, PetscInt lev, Vec a)
+{
+  PetscInt n;
+
+  PetscFunctionBeginUser;
+  PetscCheck(c->br && lev >= 0 && lev < c->nlev && c->br[lev].np, c->comm, PETSC_ERR_ARG_OUTOFRANGE, "No level %" PetscInt_FMT, lev);
+  PetscCall(VecGetSize(a, &n));
+  PetscCheck(n == c->nmod, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "JRContGetPeakSolution: a vector of %" PetscInt_FMT " modal unknowns, not %" PetscInt_FMT, c->nmod, n);
+  PetscCall(PointUnknowns(c, &c->br[lev], c->br[lev].kpeak, a));
   PetscFunctionReturn(0);
 }
 
