@@ -10,7 +10,10 @@
    - the basis check: the largest residual flexibility x stiffness outside the basis, 0 (round-off) with every pattern,
      and equal, without any, to the largest eigenvalue of W^1/2 B^T P K^+ P^T B W^1/2 (P = I - Phi Phi^T M, the
      interface's residual flexibility in units of the contact springs) formed here column by column with LU of the
-     supported structure, and with 4 vectors equal to its fifth eigenvalue.
+     supported structure, and with 4 vectors equal to its fifth eigenvalue;
+   - the basis enriched for a load (JRModesEnrich, -modes_adapt): the load's deformation outside the basis equals its
+     Rayleigh quotient on that residual flexibility, its static response (LU) then lies in the basis, and the same load
+     again adds nothing.
 */
 #include "jrtest_gmsh.h"
 #include <petscksp.h>
@@ -160,6 +163,23 @@ static PetscErrorCode Supported(Lap *L, Mat *Kc)
   PetscFunctionReturn(0);
 }
 
+/* b = B W^1/2 w: the interface load w (in units of the contact springs), self-equilibrated */
+static PetscErrorCode InterfaceLoad(Lap *L, const PetscReal w[], Vec b)
+{
+  PetscInt     lo, hi;
+  PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(b));
+  PetscCall(VecGetOwnershipRange(b, &lo, &hi));
+  PetscCall(VecGetArray(b, &a));
+  for (PetscInt r = 0; r < L->nrow; r++)
+    for (PetscInt k = 0; k < 6; k++)
+      if (L->dof[6 * r + k] >= lo && L->dof[6 * r + k] < hi) a[L->dof[6 * r + k] - lo] += PetscSqrtReal(L->k[r]) * w[r] * L->coef[6 * r + k];
+  PetscCall(VecRestoreArray(b, &a));
+  PetscFunctionReturn(0);
+}
+
 /* x = P K^+ P^T B W^1/2 w by the supported K (Supported), P = I - Phi Phi^T M for the modes of md
    (NULL: the rigid-body modes R): the static response to the interface load w balanced by the modes' inertia, minus
    the modes' share */
@@ -167,7 +187,7 @@ static PetscErrorCode StaticResponse(Lap *L, KSP ksp, const PetscReal w[], JRMod
 {
   Vec          b, *phi = L->rb, Mphi;
   PetscInt     lo, hi, nm = L->nrb;
-  PetscScalar *a, d;
+  PetscScalar  d;
 
   PetscFunctionBeginUser;
   if (md) {
@@ -176,13 +196,8 @@ static PetscErrorCode StaticResponse(Lap *L, KSP ksp, const PetscReal w[], JRMod
   }
   PetscCall(VecDuplicate(x, &b));
   PetscCall(VecDuplicate(x, &Mphi));
-  PetscCall(VecZeroEntries(b));
+  PetscCall(InterfaceLoad(L, w, b));
   PetscCall(VecGetOwnershipRange(b, &lo, &hi));
-  PetscCall(VecGetArray(b, &a));
-  for (PetscInt r = 0; r < L->nrow; r++)
-    for (PetscInt k = 0; k < 6; k++)
-      if (L->dof[6 * r + k] >= lo && L->dof[6 * r + k] < hi) a[L->dof[6 * r + k] - lo] += PetscSqrtReal(L->k[r]) * w[r] * L->coef[6 * r + k];
-  PetscCall(VecRestoreArray(b, &a));
   for (PetscInt i = 0; i < nm; i++) { /* balanced by the modes' inertia */
     PetscCall(VecDot(b, phi[i], &d));
     PetscCall(MatMult(L->M, phi[i], Mphi));
@@ -262,7 +277,7 @@ int main(int argc, char **argv)
   PC               pc;
   Mat              Kc;
   Vec              x;
-  PetscReal       *w, e0, eall, rho4, l5 = 0, orth, rho, rho0, rhoall, lmax = 0, worst = 0, stuckerr = 0, lower = 0;
+  PetscReal       *w, *w2, ww = 0, rq = 0, e0, eall, rho4, l5 = 0, orth, rho, rho0, rhoall, lmax = 0, worst = 0, stuckerr = 0, lower = 0;
   PetscInt         n0, n4, nall, nref, nsall;
   const PetscReal *l0, *l4, *lall, *lref;
   PetscRandom      rnd;
@@ -288,7 +303,7 @@ int main(int argc, char **argv)
   PetscCall(JRModesGetBasisCheck(m0, &rho, &rho0, NULL, NULL, NULL));
   PetscCall(JRModesGetBasisCheck(mall, &rhoall, NULL, NULL, &nsall, &t));
   /* a random interface load's static response */
-  PetscCall(PetscMalloc1(L.nrow, &w));
+  PetscCall(PetscMalloc2(L.nrow, &w, L.nrow, &w2));
   PetscCall(PetscRandomCreate(PETSC_COMM_SELF, &rnd));
   PetscCall(PetscRandomSetSeed(rnd, 7));
   PetscCall(PetscRandomSeed(rnd));
@@ -359,7 +374,46 @@ int main(int argc, char **argv)
   PetscCall(JRModesGetBasisCheck(m4, &rho4, NULL, NULL, NULL, NULL));
   CHECK(PetscAbsReal(rho4 / l5 - 1) < 1e-4 && rho4 < rho0, "basis check with 4 static correction vectors %.6g = the fifth largest eigenvalue %.6g (1e-4), below %.6g", (double)rho4, (double)l5, (double)rho0);
   CHECK(rhoall < 1e-7 * rho0, "basis check with every pattern: %.1e (round-off; %.3g without)", (double)rhoall, (double)rho0);
-  PetscCall(PetscFree(w));
+  { /* the basis enriched for one load f (JRModesEnrich): its ratio is f^T (K^+ - Phi (Phi^T Ks Phi)^-1 Phi^T) f / |w|^2
+       (the energy of its static response outside the basis; K^+ f by LU above, Phi^T Ks Phi formed here), and its
+       static response (LU) then lies in the basis */
+    Vec          F, Kphi, *phi;
+    PetscReal    lam1, lam2, e1, e1before, orth1;
+    PetscInt     nadd1, nadd2, nm0, nm1;
+    PetscScalar  fx, pf, pk;
+    for (PetscInt r = 0; r < L.nrow; r++) {
+      PetscCall(PetscRandomGetValueReal(rnd, &w2[r]));
+      ww += w2[r] * w2[r];
+    }
+    PetscCall(VecDuplicate(x, &F));
+    PetscCall(VecDuplicate(x, &Kphi));
+    PetscCall(InterfaceLoad(&L, w2, F));
+    PetscCall(StaticResponse(&L, ksp, w2, NULL, x));
+    PetscCall(ProjectionError(m0, L.M, x, &e1before));
+    PetscCall(VecDot(F, x, &fx));
+    rq = PetscRealPart(fx);
+    PetscCall(JRModesGetNumber(m0, &nm0));
+    PetscCall(JRModesGetVecs(m0, &phi));
+    for (PetscInt q = 0; q < nm0; q++) {
+      PetscCall(MatMult(L.Ks, phi[q], Kphi));
+      PetscCall(VecDot(phi[q], Kphi, &pk));
+      PetscCall(VecDot(phi[q], F, &pf));
+      if (PetscRealPart(pk) > 1e-8 * PetscRealPart(pk + 1.0)) rq -= PetscRealPart(pf * pf / pk);
+    }
+    rq /= ww;
+    PetscCall(VecDestroy(&Kphi));
+    PetscCall(JRModesEnrich(m0, 1, &F, &ww, 1e-6 * rq, &lam1, &nadd1));
+    PetscCall(JRModesGetNumber(m0, &nm1));
+    CHECK(PetscAbsReal(lam1 / rq - 1) < 1e-4 && nadd1 == 1 && nm1 == nm0 + 1, "basis enriched for a random interface load: its deformation outside the basis %.6g = f^T (K^+ - Phi (Phi^T Ks Phi)^-1 Phi^T) f / |w|^2 by LU %.6g (1e-4); %" PetscInt_FMT " -> %" PetscInt_FMT " vectors", (double)lam1, (double)rq, nm0, nm1);
+    PetscCall(ProjectionError(m0, L.M, x, &e1));
+    PetscCall(Orthonormality(m0, L.M, &orth1));
+    CHECK(e1 < 1e-7 && e1before > 1e-3 && orth1 < 1e-10, "the load's static response (LU, independent) lies in the enriched basis: projection error %.1e (< 1e-7; %.2g before), max |Phi^T M Phi - I| = %.1e", (double)e1, (double)e1before, (double)orth1);
+    PetscCall(JRModesEnrich(m0, 1, &F, &ww, 1e-6 * rq, &lam2, &nadd2));
+    CHECK(lam2 < 1e-8 * lam1 && nadd2 == 0, "the same load again: deformation outside the basis %.1e (round-off; %.3g before), nothing added", (double)lam2, (double)lam1);
+    PetscCall(JRModesEnrichEnd(m0));
+    PetscCall(VecDestroy(&F));
+  }
+  PetscCall(PetscFree2(w, w2));
   PetscCall(PetscRandomDestroy(&rnd));
   PetscCall(VecDestroy(&x));
   PetscCall(KSPDestroy(&ksp));

@@ -31,7 +31,7 @@ PETSC_EXTERN PetscErrorCode JRModesCheckBasis(JRModes);
 PETSC_EXTERN PetscErrorCode JRModesGetBasisCheck(JRModes, PetscReal *, PetscReal *, PetscReal *, PetscInt *, PetscLogDouble *);
 PETSC_EXTERN PetscErrorCode JRModesEnrich(JRModes, PetscInt, Vec[], const PetscReal[], PetscReal, PetscReal *, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRModesEnrichEnd(JRModes);
-PETSC_EXTERN PetscErrorCode JRModesGetAdapt(JRModes, PetscInt *, PetscReal *, PetscInt *, PetscLogDouble *);
+PETSC_EXTERN PetscErrorCode JRModesGetAdapt(JRModes, PetscInt *, PetscReal *, PetscReal *, PetscInt *, PetscLogDouble *);
 PETSC_EXTERN PetscErrorCode JRModesReference(JRModes);
 PETSC_EXTERN PetscErrorCode JRModesDestroy(JRModes *);
 

@@ -35,6 +35,7 @@ PetscErrorCode JRModesCreate(MPI_Comm comm, JRModes *modes)
   md->check_tol   = 0.05;
   md->adapt       = 12;
   md->adapt_tol   = 5e-4;
+  md->adapt_move  = 2e-3;
   md->rho0        = -1.0;
   md->rho         = -1.0;
   *modes          = md;
@@ -126,7 +127,9 @@ PetscErrorCode JRModesSetFromOptions(JRModes md)
   PetscCall(PetscOptionsReal("-check_tol", "Warn when the basis check exceeds this [-]", "JRModesCheckBasis", md->check_tol, &md->check_tol, NULL));
   PetscCall(PetscOptionsInt("-adapt", "FE models with contact pairs: at most this many rounds of solving the curves and adding the static responses of their peaks' contact forces outside the basis (0: none)", "JRModesEnrich", md->adapt, &md->adapt, NULL));
   PetscCall(PetscOptionsReal("-adapt_tol", "-modes_adapt: add the peaks' contact-force patterns whose deformation outside the basis exceeds this many times the springs' own stretch [-]", "JRModesEnrich", md->adapt_tol, &md->adapt_tol, NULL));
+  PetscCall(PetscOptionsReal("-adapt_move", "-modes_adapt: also stop once a round moved every peak by less than this in amplitude and a twentieth of it in frequency (relative), the deformation below 100 times -modes_adapt_tol", "JRModesEnrich", md->adapt_move, &md->adapt_move, NULL));
   PetscOptionsEnd();
+  PetscCheck(md->adapt_move > 0 && !PetscIsInfOrNanReal(md->adapt_move), md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_adapt_move %g: must be positive", (double)md->adapt_move);
   PetscCheck(md->adapt >= 0, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_adapt %" PetscInt_FMT ": a number of rounds, 0 or more", md->adapt);
   PetscCheck(md->adapt_tol > 0 && !PetscIsInfOrNanReal(md->adapt_tol), md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_adapt_tol %g: must be positive", (double)md->adapt_tol);
   PetscCheck(md->nstatic >= -1, md->comm, PETSC_ERR_ARG_OUTOFRANGE, "-modes_static %" PetscInt_FMT ": a number of vectors, or -1 for those above -modes_static_tol", md->nstatic);
@@ -138,13 +141,14 @@ PetscErrorCode JRModesSetFromOptions(JRModes md)
   PetscFunctionReturn(0);
 }
 
-/* The adaptation of the basis to computed solutions (-modes_adapt rounds, -modes_adapt_tol), the vectors it added and
+/* The adaptation of the basis to computed solutions (-modes_adapt rounds, -modes_adapt_tol, -modes_adapt_move), the vectors it added and
    their seconds (JRModesEnrich); any may be NULL */
-PetscErrorCode JRModesGetAdapt(JRModes md, PetscInt *rounds, PetscReal *tol, PetscInt *nadd, PetscLogDouble *t)
+PetscErrorCode JRModesGetAdapt(JRModes md, PetscInt *rounds, PetscReal *tol, PetscReal *move, PetscInt *nadd, PetscLogDouble *t)
 {
   PetscFunctionBeginUser;
   if (rounds) *rounds = md->adapt;
   if (tol) *tol = md->adapt_tol;
+  if (move) *move = md->adapt_move;
   if (nadd) *nadd = md->nadapt;
   if (t) *t = md->tadapt;
   PetscFunctionReturn(0);

@@ -102,6 +102,7 @@ typedef struct {
   const char        *romsave, *romload;
   PetscReal          tmodel, tn, tr, en, er, setn, setr, tred;
   PetscInt           adapt_rounds, adapt_added; /* -modes_adapt: rounds made, vectors added */
+  PetscBool          adapt_conv;                /* its last round added nothing */
   PetscReal          adapt_lmax, adapt_dw, adapt_da, adapt_s; /* the last round's peak_load_deformation and peak moves; seconds */
 } FRFRun;
 
@@ -354,54 +355,86 @@ static PetscErrorCode ReplaceHBM(FRFRun *r)
   PetscFunctionReturn(0);
 }
 
+/* The peak of level F's curve (quiet, no stability) over [wlo, whi] (0, 0: the whole range) on r->hbm: its frequency,
+   amplitude and solution (a: the modal unknowns); *ok false if the curve did not complete */
+static PetscErrorCode LevelPeak(FRFRun *r, PetscReal F, PetscReal wlo, PetscReal whi, PetscReal *w, PetscReal *amp, Vec a, PetscBool *ok)
+{
+  JRCont    c;
+  PetscReal mis;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRContCreate(r->comm, &c));
+  PetscCall(JRContSetHBM(c, r->hbm));
+  PetscCall(JRContSetFromOptions(c));
+  PetscCall(JRContSetQuiet(c, PETSC_TRUE));
+  PetscCall(JRContSetStability(c, PETSC_FALSE));
+  PetscCall(JRContSetLevels(c, 1, &F));
+  if (whi > wlo) PetscCall(JRContSetRange(c, wlo, whi));
+  PetscCall(JRContSolve(c));
+  PetscCall(JRContGetLevelComplete(c, 0, ok, &mis));
+  PetscCall(JRContGetPeak(c, 0, w, amp));
+  PetscCall(JRContGetPeakSolution(c, 0, a));
+  PetscCall(JRContDestroy(&c));
+  PetscFunctionReturn(0);
+}
+
 /*
-  -modes_adapt N: the node-to-node basis adapted to the curves' peaks, round by round: every level solved (no output,
-  no stability), the peaks' contact forces' static responses outside the basis added where they deform the interface
-  by more than -modes_adapt_tol times the springs' stretch (JRHBMEnrichBasis), the harmonic balance set up again on
-  the enriched modes; until a round adds nothing or N rounds are spent. Not needed when the basis check already bounds
-  every interface pattern's deformation by the tolerance. Each round prints how far the peaks moved.
+  -modes_adapt N: the node-to-node basis adapted to the curves' peaks, round by round: every level's peak found (the
+  first round over the whole range, then within 4% of the last peak, the whole range again if the peak lies at the
+  window's edge), the peaks' contact forces' static responses outside the basis added where they deform the interface
+  by more than -modes_adapt_tol times the springs' stretch (JRHBMEnrichBasis), the harmonic balance set up again on the
+  enriched modes. It stops when a round adds nothing, when the peaks moved by less than -modes_adapt_move in amplitude
+  (and a twentieth of it in frequency) with their deformation ratio below 100 times the tolerance, or after N rounds.
+  Not made when the basis check passes (rho <= -modes_check_tol: every interface pattern's deformation outside the
+  basis is below that many times the springs' stretch) or is not made (-modes_check 0).
 */
 static PetscErrorCode AdaptBasis(FRFRun *r)
 {
   MPI_Comm       comm = r->comm;
   JRModes        md;
   PetscInt       rounds, nl = 0, nadd = 1, nm;
-  PetscReal      tol, rho, *wp = NULL, *ap = NULL;
+  PetscReal      tol, mtol, rho, ctol, *wp, *ap, *lv, W0, W1, lmax = -1.0, dw = 0.0, da = 0.0;
   PetscLogDouble t0, t1;
+  Vec            v, *a;
+  PetscBool      small;
 
   PetscFunctionBeginUser;
   if (!r->n2n || r->loaded || !r->hbm || r->nlmodes) PetscFunctionReturn(0);
   PetscCall(JRHBMGetModes(r->hbm, &md));
   if (!md) PetscFunctionReturn(0);
-  PetscCall(JRModesGetAdapt(md, &rounds, &tol, NULL, NULL));
-  PetscCall(JRHBMGetBasisCheck(r->hbm, &rho, NULL, NULL, NULL, NULL));
-  if (!rounds || (rho >= 0 && rho <= tol)) {
+  PetscCall(JRModesGetAdapt(md, &rounds, &tol, &mtol, NULL, NULL));
+  PetscCall(JRHBMGetBasisCheck(r->hbm, &rho, NULL, &ctol, NULL, NULL));
+  if (!rounds || rho <= ctol) { /* rho < 0: no check */
     PetscCall(JRModesEnrichEnd(md));
     PetscFunctionReturn(0);
   }
   PetscCall(PetscTime(&t0));
-  r->adapt_lmax = -1;
-  for (PetscInt k = 0; k <= rounds && nadd; k++) {
-    JRCont         c;
-    Vec            v, *a;
-    PetscReal      lmax = 0.0, dw = 0.0, da = 0.0;
-    PetscLogDouble s0, s1, s2;
-    PetscCall(PetscTime(&s0));
+  {
+    JRCont c;
     PetscCall(JRContCreate(comm, &c));
     PetscCall(JRContSetHBM(c, r->hbm));
     PetscCall(JRContSetFromOptions(c));
-    PetscCall(JRContSetQuiet(c, PETSC_TRUE));
-    PetscCall(JRContSetStability(c, PETSC_FALSE));
-    PetscCall(JRContSolve(c));
-    PetscCall(PetscTime(&s1));
     PetscCall(JRContGetNumLevels(c, &nl));
-    if (!wp) PetscCall(PetscCalloc2(nl, &wp, nl, &ap));
+    PetscCall(JRContGetRange(c, &W0, &W1));
+    PetscCall(PetscMalloc3(nl, &wp, nl, &ap, nl, &lv));
+    for (PetscInt l = 0; l < nl; l++) PetscCall(JRContGetLevel(c, l, &lv[l]));
+    PetscCall(JRContDestroy(&c));
+  }
+  for (PetscInt k = 0; k <= rounds; k++) {
+    PetscLogDouble s0, s1, s2;
+    PetscCall(PetscTime(&s0));
     PetscCall(JRHBMCreateVecs(r->hbm, &v, NULL));
     PetscCall(VecDuplicateVecs(v, nl, &a));
+    dw = da = 0.0;
     for (PetscInt l = 0; l < nl; l++) {
-      PetscReal w, amp;
-      PetscCall(JRContGetPeakSolution(c, l, a[l]));
-      PetscCall(JRContGetPeak(c, l, &w, &amp));
+      PetscReal w, amp, lo = 0.0, hi = 0.0;
+      PetscBool ok;
+      if (k) {
+        lo = PetscMax(W0, 0.96 * wp[l]);
+        hi = PetscMin(W1, 1.04 * wp[l]);
+      }
+      PetscCall(LevelPeak(r, lv[l], lo, hi, &w, &amp, a[l], &ok));
+      if (k && (!ok || (lo > W0 && w < lo * (1 + 1e-3)) || (hi < W1 && w > hi * (1 - 1e-3)))) PetscCall(LevelPeak(r, lv[l], 0.0, 0.0, &w, &amp, a[l], &ok));
       if (k) {
         dw = PetscMax(dw, PetscAbsReal(w / wp[l] - 1));
         da = PetscMax(da, PetscAbsReal(amp / ap[l] - 1));
@@ -409,29 +442,28 @@ static PetscErrorCode AdaptBasis(FRFRun *r)
       wp[l] = w;
       ap[l] = amp;
     }
+    PetscCall(PetscTime(&s1));
     PetscCall(JRHBMGetSizes(r->hbm, &nm, NULL, NULL));
-    nadd = 0;
-    if (k < rounds) PetscCall(JRHBMEnrichBasis(r->hbm, nl, a, tol, &lmax, &nadd));
+    nadd  = 0;
+    small = (PetscBool)(k && da < mtol && dw < mtol / 20); /* then only what exceeds 100 tol */
+    if (k < rounds) PetscCall(JRHBMEnrichBasis(r->hbm, nl, a, small ? 100 * tol : tol, &lmax, &nadd));
     PetscCall(PetscTime(&s2));
-    if (k) {
-      r->adapt_dw = dw;
-      r->adapt_da = da;
-      PetscCall(PetscPrintf(comm, "basis adapt: round %" PetscInt_FMT " modes %" PetscInt_FMT " peaks moved %.2e in frequency %.2e in amplitude (the largest over the levels, since the round before)\n", k, nm, (double)dw, (double)da));
-    }
-    if (k < rounds) {
-      r->adapt_lmax = lmax;
-      r->adapt_rounds = k + 1;
-      PetscCall(PetscPrintf(comm, "basis adapt: round %" PetscInt_FMT " peak_load_deformation %.3g tol %g added %" PetscInt_FMT " (curves %.3g s, responses %.3g s)\n", k + 1, (double)lmax, (double)tol, nadd, (double)(s1 - s0), (double)(s2 - s1)));
-    }
     PetscCall(VecDestroyVecs(nl, &a));
     PetscCall(VecDestroy(&v));
-    PetscCall(JRContDestroy(&c));
-    if (nadd) PetscCall(ReplaceHBM(r));
+    if (k) PetscCall(PetscPrintf(comm, "basis adapt: round %" PetscInt_FMT " modes %" PetscInt_FMT " peaks moved %.2e in frequency %.2e in amplitude since the round before (the largest over the levels)\n", k, nm, (double)dw, (double)da));
+    if (k < rounds) PetscCall(PetscPrintf(comm, "basis adapt: round %" PetscInt_FMT " modes %" PetscInt_FMT " peak_load_deformation %.3g tol %g added %" PetscInt_FMT " (peaks %.3g s, responses %.3g s)\n", k + 1, nm, (double)lmax, (double)(small ? 100 * tol : tol), nadd, (double)(s1 - s0), (double)(s2 - s1)));
+    r->adapt_rounds = k + 1;
+    r->adapt_lmax   = lmax;
+    r->adapt_dw     = dw;
+    r->adapt_da     = da;
+    r->adapt_conv   = (PetscBool)(k < rounds && !nadd);
+    if (!nadd) break;
+    PetscCall(ReplaceHBM(r));
   }
-  PetscCall(PetscFree2(wp, ap));
+  PetscCall(PetscFree3(wp, ap, lv));
   PetscCall(JRHBMGetModes(r->hbm, &md));
   PetscCall(JRModesEnrichEnd(md));
-  PetscCall(JRModesGetAdapt(md, NULL, NULL, &r->adapt_added, NULL));
+  PetscCall(JRModesGetAdapt(md, NULL, NULL, NULL, &r->adapt_added, NULL));
   PetscCall(PetscTime(&t1));
   r->adapt_s = t1 - t0;
   PetscFunctionReturn(0);
@@ -500,12 +532,8 @@ static PetscErrorCode ViewBasisCheck(FRFRun *r)
   if (rho < 0) PetscFunctionReturn(0);
   PetscCall(PetscPrintf(comm, "basis check: rho %.3g rho_modes %.3g static_vectors %" PetscInt_FMT " seconds %.3g (rho: the largest interface residual flexibility x contact stiffness outside the basis; rho_modes: the same without the static correction vectors)\n", (double)rho, (double)rho0, ns, (double)t));
   if (r->adapt_rounds) {
-    JRModes   md;
-    PetscReal atol;
-    PetscCall(JRHBMGetModes(r->hbmc, &md));
-    PetscCall(JRModesGetAdapt(md, NULL, &atol, NULL, NULL));
-    PetscCall(PetscPrintf(comm, "basis adapt: %" PetscInt_FMT " vectors added in %" PetscInt_FMT " rounds (%.3g s); peak_load_deformation %.3g tol %g (the peaks' contact forces deform the interface outside the basis by this times the springs' stretch); last round's peak moves %.2e in frequency, %.2e in amplitude\n", r->adapt_added, r->adapt_rounds, (double)r->adapt_s, (double)r->adapt_lmax, (double)atol, (double)r->adapt_dw, (double)r->adapt_da));
-    if (r->adapt_lmax > atol) PetscCall(PetscPrintf(comm, "WARNING basis adapt: the peaks' contact forces still deform the interface outside the basis by %.3g > -modes_adapt_tol %g after %" PetscInt_FMT " rounds: the peaks may move with a larger basis; raise -modes_adapt\n", (double)r->adapt_lmax, (double)atol, r->adapt_rounds));
+    PetscCall(PetscPrintf(comm, "basis adapt: %" PetscInt_FMT " vectors added in %" PetscInt_FMT " rounds (%.3g s); the peaks' contact forces deform the interface outside the basis by %.3g times the springs' stretch, the last round moved the peaks by %.2e in frequency and %.2e in amplitude\n", r->adapt_added, r->adapt_rounds, (double)r->adapt_s, (double)r->adapt_lmax, (double)r->adapt_dw, (double)r->adapt_da));
+    if (!r->adapt_conv) PetscCall(PetscPrintf(comm, "WARNING basis adapt: not converged after %" PetscInt_FMT " rounds (-modes_adapt): the peaks may still move with a larger basis\n", r->adapt_rounds));
   } else if (rho > tol) PetscCall(PetscPrintf(comm, "WARNING basis check %.3g > -modes_check_tol %g: the basis misses the interface's local compliance and the peaks may move with a larger basis; -modes_adapt adapts it to the peaks, or raise -modes_static_max\n", (double)rho, (double)tol));
   PetscFunctionReturn(0);
 }

@@ -80,6 +80,7 @@ struct _p_JRModes {
   /* the basis adapted to computed solutions (JRModesEnrich) */
   PetscInt   adapt;      /* -modes_adapt: at most this many rounds (the caller's loop) */
   PetscReal  adapt_tol;  /* -modes_adapt_tol: the loads' deformation outside the basis, in units of the springs' stretch */
+  PetscReal  adapt_move; /* -modes_adapt_move: the peaks' move between rounds below which the rounds may stop */
   PetscInt   nadapt;     /* vectors added */
   PetscLogDouble tadapt; /* their seconds */
   KSP        sksp;       /* the static solver of A = K - ssigma M, kept between rounds (JRModesEnrichEnd frees it) */

@@ -488,6 +488,7 @@ PetscErrorCode JRContSetQuiet(JRCont c, PetscBool quiet)
 {
   PetscFunctionBeginUser;
   c->quiet = quiet;
+  if (quiet) c->monitor = 0; /* nor the retries */
   PetscFunctionReturn(0);
 }
 
