@@ -757,7 +757,8 @@ PetscErrorCode JRHBMStuckModeBalance(JRHBM h, PetscInt k, PetscReal *omega, Pets
   JRHBMEnrichBasis - the modal basis of a node-to-node model enriched for the solutions a[ns] (e.g. the peaks of its
   curves): each solution's contact forces, harmonic by harmonic, less the stuck springs that the basis already holds
   (none in a free basis), are FE loads whose static responses outside the basis are added where they deform the
-  interface by more than tol times the springs' own stretch (JRModesEnrich). h must then be set up again on its
+  interface by more than tol times the springs' own stretch (JRModesEnrich); a deviation below 1e-3 of the
+  solution's dynamic contact forces (in the springs' compliance) does not count. h must then be set up again on its
   modes (JRHBMSetModes on a new JRHBM). lmax: the largest such deformation ratio before; nadd: the vectors added.
   Collective.
 */
@@ -767,7 +768,7 @@ PetscErrorCode JRHBMEnrichBasis(JRHBM h, PetscInt ns, Vec a[], PetscReal tol, Pe
   const PetscInt    nc = h->nc, nm = h->nm, np = ns * nc;
   PetscInt          nloc = 0;
   Vec              *F;
-  PetscReal        *Dt, *Dn, *D, *Dall;
+  PetscReal        *Dt, *Dn, *D, *Dall, *T; /* T: each solution's dynamic contact forces in the springs' compliance */
 
   PetscFunctionBeginUser;
   *lmax = 0.0;
@@ -779,6 +780,7 @@ PetscErrorCode JRHBMEnrichBasis(JRHBM h, PetscInt ns, Vec a[], PetscReal tol, Pe
   PetscCall(VecDuplicateVecs(h->modes->phi[0], np, &F));
   for (PetscInt p = 0; p < np; p++) PetscCall(VecZeroEntries(F[p]));
   PetscCall(PetscCalloc4(PetscMax(nloc * np, 1), &Dt, PetscMax(nloc * np, 1), &Dn, np * np, &D, np * np, &Dall));
+  PetscCall(PetscCalloc1(ns, &T));
   h->cache_ok = PETSC_FALSE;
   for (PetscInt s = 0; s < ns; s++) {
     const PetscScalar *x;
@@ -800,8 +802,10 @@ PetscErrorCode JRHBMEnrichBasis(JRHBM h, PetscInt ns, Vec a[], PetscReal tol, Pe
           const PetscInt  p  = s * nc + c;
           PetscInt        idx[6];
           PetscScalar     val[6];
+          const PetscReal nt = g->F[e + c * g->nloc], nn = g->normal ? g->N[e + c * g->nloc] - (c ? 0.0 : g->nstatic[e]) : 0.0;
           Dt[off + e + p * nloc] = ft / PetscSqrtReal(g->kt[e]);
           if (g->normal) Dn[off + e + p * nloc] = fn / PetscSqrtReal(g->kn[e]);
+          T[s] += nt * nt / g->kt[e] + (g->normal ? nn * nn / g->kn[e] : 0.0);
           for (PetscInt k = 0; k < 3; k++) {
             idx[k]     = el->vdof_a[3 * ei + k];
             idx[3 + k] = el->vdof_b[3 * ei + k];
@@ -824,8 +828,11 @@ PetscErrorCode JRHBMEnrichBasis(JRHBM h, PetscInt ns, Vec a[], PetscReal tol, Pe
     PetscCall(JRGemm("T", "N", np, np, nloc, 1.0, Dn, nloc, Dn, nloc, 1.0, D, np));
   }
   PetscCall(MPIU_Allreduce(D, Dall, np * np, MPIU_REAL, MPIU_SUM, h->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, T, ns, MPIU_REAL, MPIU_SUM, h->comm));
+  for (PetscInt p = 0; p < np; p++) Dall[p + p * np] += 1e-6 * T[p / nc]; /* a floor: deviations below 1e-3 of the forces do not count */
   PetscCall(JRModesEnrich(h->modes, np, F, Dall, tol, lmax, nadd));
   PetscCall(PetscFree4(Dt, Dn, D, Dall));
+  PetscCall(PetscFree(T));
   PetscCall(VecDestroyVecs(np, &F));
   PetscFunctionReturn(0);
 }

@@ -385,14 +385,15 @@ static PetscErrorCode LevelPeak(FRFRun *r, PetscReal F, PetscReal wlo, PetscReal
   by more than -modes_adapt_tol times the springs' stretch (JRHBMEnrichBasis), the harmonic balance set up again on the
   enriched modes. It stops when a round adds nothing, when the peaks moved by less than -modes_adapt_move in amplitude
   (and a twentieth of it in frequency) with their deformation ratio below 100 times the tolerance, or after N rounds.
-  Not made when the basis check passes (rho <= -modes_check_tol: every interface pattern's deformation outside the
-  basis is below that many times the springs' stretch) or is not made (-modes_check 0).
+  Made for the mixed basis (the default) where the basis check warns: not when it passes (rho <= -modes_check_tol:
+  every interface pattern's deformation outside the basis is below that many times the springs' stretch), is not made
+  (-modes_check 0), or the basis is the free or stuck one asked for (-hbm_basis).
 */
 static PetscErrorCode AdaptBasis(FRFRun *r)
 {
   MPI_Comm       comm = r->comm;
   JRModes        md;
-  PetscInt       rounds, nl = 0, nadd = 1, nm;
+  PetscInt       rounds, nl = 0, nadd = 1, nm, basis;
   PetscReal      tol, mtol, rho, ctol, *wp, *ap, *lv, W0, W1, lmax = -1.0, dw = 0.0, da = 0.0;
   PetscLogDouble t0, t1;
   Vec            v, *a;
@@ -404,7 +405,8 @@ static PetscErrorCode AdaptBasis(FRFRun *r)
   if (!md) PetscFunctionReturn(0);
   PetscCall(JRModesGetAdapt(md, &rounds, &tol, &mtol, NULL, NULL));
   PetscCall(JRHBMGetBasisCheck(r->hbm, &rho, NULL, &ctol, NULL, NULL));
-  if (!rounds || rho <= ctol) { /* rho < 0: no check */
+  PetscCall(JRHBMGetBasis(r->hbm, &basis));
+  if (!rounds || rho <= ctol || basis != JR_HBM_BASIS_MIXED) { /* rho < 0: no check; -hbm_basis free or stuck: as asked */
     PetscCall(JRModesEnrichEnd(md));
     PetscFunctionReturn(0);
   }
