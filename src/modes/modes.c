@@ -141,12 +141,12 @@ PetscErrorCode JRModesSetFromOptions(JRModes md)
   PetscFunctionReturn(0);
 }
 
-/* The adaptation of the basis to computed solutions (-modes_adapt rounds, -modes_adapt_tol, -modes_adapt_move), the vectors it added and
-   their seconds (JRModesEnrich); any may be NULL */
+/* The adaptation of the basis to computed solutions (-modes_adapt rounds, 0 for a basis read with -modes_load,
+   -modes_adapt_tol, -modes_adapt_move), the vectors it added and their seconds (JRModesEnrich); any may be NULL */
 PetscErrorCode JRModesGetAdapt(JRModes md, PetscInt *rounds, PetscReal *tol, PetscReal *move, PetscInt *nadd, PetscLogDouble *t)
 {
   PetscFunctionBeginUser;
-  if (rounds) *rounds = md->adapt;
+  if (rounds) *rounds = md->load[0] ? 0 : md->adapt; /* a basis read (-modes_load) is used as read */
   if (tol) *tol = md->adapt_tol;
   if (move) *move = md->adapt_move;
   if (nadd) *nadd = md->nadapt;
