@@ -134,7 +134,8 @@ states() { echo "$1" | awk '/^frf summary/{t++} $1 ~ /^[0-9.e+-]+$/ && $(NF-5) =
 o=$(mpiexec -n 2 $J -task compare $nv -frf_force 0.01,0.5,2 -rom_joints each -frf_output_file "$tmp/nv" 2>&1)
 read f a <<< "$(worst "$o")"
 nl=$(echo "$o" | grep -c '^compare level')
-check "[ '$nl' = 3 ] && lt '$f' 1e-9 && lt '$a' 1e-8" "jenkins_nv lap1, -rom_joints each: reduced = node-to-node at 3 levels (0.01, 0.5, 2 N), worst peak frequency error $f, amplitude error $a"
+# (the frequency of a maximum is set only to about the square root of the amplitude's round-off: 1e-8, the amplitude 1e-8)
+check "[ '$nl' = 3 ] && lt '$f' 1e-8 && lt '$a' 1e-8" "jenkins_nv lap1, -rom_joints each: reduced = node-to-node at 3 levels (0.01, 0.5, 2 N), worst peak frequency error $f, amplitude error $a"
 cs=$(echo "$o" | grep '^contact level 1 ')
 st=$(states "$o"); sn=$(echo "$st" | tr ' ' '\n' | sed -n 's/^1://p' | tr '\n' ' '); sr=$(echo "$st" | tr ' ' '\n' | sed -n 's/^2://p' | tr '\n' ' '); sr=${sr% }; sn=${sn% }
 # the pairs closed at rest (preload CSV) that open within the cycle at 0.5 N (contact map), row by row: one per pair
