@@ -400,13 +400,13 @@ static PetscErrorCode AdaptBasis(FRFRun *r)
   PetscBool      small;
 
   PetscFunctionBeginUser;
-  if (!r->n2n || r->loaded || !r->hbm || r->nlmodes) PetscFunctionReturn(0);
+  if (!r->n2n || r->loaded || !r->hbm) PetscFunctionReturn(0);
   PetscCall(JRHBMGetModes(r->hbm, &md));
   if (!md) PetscFunctionReturn(0);
   PetscCall(JRModesGetAdapt(md, &rounds, &tol, &mtol, NULL, NULL));
   PetscCall(JRHBMGetBasisCheck(r->hbm, &rho, NULL, &ctol, NULL, NULL));
   PetscCall(JRHBMGetBasis(r->hbm, &basis));
-  if (!rounds || rho <= ctol || basis != JR_HBM_BASIS_MIXED) { /* rho < 0: no check; -hbm_basis free or stuck: as asked */
+  if (!rounds || rho <= ctol || basis != JR_HBM_BASIS_MIXED || r->nlmodes) { /* rho < 0: no check; -hbm_basis free or stuck: as asked; no curves for -task nlmodes */
     PetscCall(JRModesEnrichEnd(md));
     PetscFunctionReturn(0);
   }
@@ -512,6 +512,11 @@ static PetscErrorCode SetUpModels(FRFRun *r)
   if (r->isrom) {
     if (r->loaded) PetscCall(JRReduceSetExcitation(r->red, r->fdof, r->nout, r->odof));
     PetscCall(JRReduceCreateHBM(r->red, r->model, r->hbm, r->loaded, &r->elr, &r->hbmr, &r->setr));
+    if (r->loaded) { /* its own modes: no adaptation, so no factorisation kept for it */
+      JRModes md;
+      PetscCall(JRHBMGetModes(r->hbmr, &md));
+      if (md) PetscCall(JRModesEnrichEnd(md));
+    }
     PetscCall(JRHBMSetOutputPoints(r->hbmr, r->nout, r->oat, r->dir));
     PetscCall(JRReduceSave(r->red, r->model, &r->elr));
   }
