@@ -6,10 +6,12 @@
 # resonance on the node-to-node one; a saved reduced model reproduces the run that saved it (also without the preload);
 # the same two with jenkins_nv elements (normal load following the normal motion) on the coarse single-bolt lap (lap1,
 # 132 pairs), at levels where pairs stick, slip and separate: every element its own joint reproduces node-to-node and
-# its contact states to round-off, a saved second reduction the run that saved it (on the same modes: to round-off); bad
-# regions and files; on the jenkins_nv laps, the joints' linear motion field (-rom_joint_motion linear) between the
+# its contact states to round-off and what each element dissipates at the peaks (compare joints), a saved second
+# reduction the run that saved it (on the same modes: to round-off), the joints from the slip onsets within 0.1% and
+# 2% of node-to-node from microslip through separation; bad regions and files; on the jenkins_nv laps, the joints' linear motion field (-rom_joint_motion linear) between the
 # mean's and node-to-node's, and carrying lap1's bending; with the stuck-mode coordinates (-rom_joint_motion mode) the
-# mode of interest kept exactly. Runs of one model after the first read its preload and modes (-preload_load,
+# mode of interest kept exactly; with the members' residual springs kept (-rom_joint_residual) the stuck model
+# node-to-node's. Runs of one model after the first read its preload and modes (-preload_load,
 # -modes_load: the same basis, as -task compare's two models share it). The slower end-to-end checks (one-member joints
 # with the linear field, mode-shape weights vs the plain average, 6 x 4, 7, 10 elements, save and load of the other
 # joint motions, 1 vs 2 ranks, condensation of the first reduction, the auto partition and the stiffness correction's
@@ -136,6 +138,12 @@ read f a <<< "$(worst "$o")"
 nl=$(echo "$o" | grep -c '^compare level')
 # (the frequency of a maximum is set only to about the square root of the amplitude's round-off: 1e-8, the amplitude 1e-8)
 check "[ '$nl' = 3 ] && lt '$f' 1e-8 && lt '$a' 1e-8" "jenkins_nv lap1, -rom_joints each: reduced = node-to-node at 3 levels (0.01, 0.5, 2 N), worst peak frequency error $f, amplitude error $a"
+# where each model dissipates at its peaks, joint by joint (compare joints lines, BASE_compare_joints.csv): every
+# element its own joint dissipates what its node-to-node element does, and the node-to-node shares sum to 1
+cj=$(echo "$o" | grep '^compare joints level'); dj=$(echo "$cj" | awk '{d = $8 / $6 - 1; if (d < 0) d = -d; if (d > m) m = d; n++} END{printf "%d %.2e", n, m}')
+cjs=$(awk -F, 'NR > 1 {s[$1] += $6; r++} END{for (l in s) {d = s[l] - 1; if (d < 0) d = -d; if (d > m) m = d}; printf "%d %.2e", r, m}' "$tmp/nv_compare_joints.csv" 2>/dev/null)
+read nj dm <<< "$dj"; read nr sm <<< "$cjs"
+check "[ '$nj' = 3 ] && lt '$dm' 1e-6 && lt 0 \$(field \"\$(echo \"\$cj\" | sed -n 2p)\" n2n_J) && [ '$nr' = \$((3 * 132)) ] && lt '$sm' 1e-6" "jenkins_nv lap1, -rom_joints each: every joint dissipates at the peaks what its node-to-node element does (3 levels, worst $dm); the CSV's $nr rows, shares summing to 1 (to $sm)"
 cs=$(echo "$o" | grep '^contact level 1 ')
 st=$(states "$o"); sn=$(echo "$st" | tr ' ' '\n' | sed -n 's/^1://p' | tr '\n' ' '); sr=$(echo "$st" | tr ' ' '\n' | sed -n 's/^2://p' | tr '\n' ' '); sr=${sr% }; sn=${sn% }
 # the pairs closed at rest (preload CSV) that open within the cycle at 0.5 N (contact map), row by row: one per pair
@@ -153,6 +161,13 @@ r1=$(field "$(echo "$osv" | grep '^basis check')" rho)
 se=$(echo "$osv" | grep -m1 '^rom stiffness_energy'); sj=$(echo "$osv" | grep -m1 '^rom stiffness_joints')
 check "[ -n '$se' ] && awk -v a='$(field "$se" members_share)' -v b='$(field "$se" joints_share)' 'BEGIN{d = a - b; if (d < 0) d = -d; exit !(d < 1e-6 * a)}' && { [ -z '$sj' ] || [ '$(field "$sj" joints)' = none ]; }" "jenkins_nv lap1, 4 zone joints, -rom_joint_motion mode: joints' share of the stuck mode's strain energy = members' ($(field "$se" joints_share)); the correction's warning names no joint (${sj:-no warning})"
 check "[ -n '$r1' ] && [ -n '$r0' ] && awk -v a='$r0' -v b='$r1' -v c='$rm0' 'BEGIN{exit !(a <= b * (1 + 1e-6) && b <= c)}'" "jenkins_nv lap1, basis check of the read mixed basis $r1 between the computing run's $r0 (after the static vectors, estimated) and $rm0 (without them)"
+# joints from the slip onsets in the stuck mode (-rom_joints onset: bands of equal ratio of the modal amplitude at which
+# each member in contact starts to slip, per bolt side, and each side's open pairs a joint of their own), the
+# first reduction on the mode's field: within 0.1% and 2% of node-to-node from microslip (0.01 N) through
+# separation (2 N) on the basis of the each-joint run (4 zone joints on the same field: 1.8% and 28%)
+oo=$(mpiexec -n 2 $J -task compare $nv $nvl -frf_force 0.01,0.5,2 -rom_joints onset -rom_joint_motion mode -frf_output_file '' 2>&1)
+read f a <<< "$(worst "$oo")"; nj=$(field "$(echo "$oo" | grep '^rom partition joints')" joints)
+check "lt '$f' 1e-3 && lt '$a' 0.02 && [ -n '$nj' ] && [ '$nj' -gt 4 ] && echo \"\$oo\" | grep -q 'open pairs'" "jenkins_nv lap1, -rom_joints onset ($nj joints), first reduction on the mode's field: worst peak frequency error $f, amplitude error $a at 0.01, 0.5, 2 N"
 o=$(mpiexec -n 2 $J -task frf $nv -modes_load $tmp/nv_modes.h5 -modes_check 0 -frf_force 0.01,0.5,2 -rom_load "$tmp/nvrom.h5" -frf_output_file "$tmp/nvld" 2>&1)
 pk=$(paste <(echo "$osv" | grep '^peak level') <(echo "$o" | grep '^peak level') | awk '{for (i = 5; i <= 7; i += 2) {e = $(i+9) / $i - 1; if (e < 0) e = -e; if (e > m) m = e} n++} END{printf "%d %.2e", n, m}')
 cv=$(awk -F, 'NR == FNR {a[FNR] = $0; n1 = FNR; next} {n2 = FNR; if (FNR > 1) {split(a[FNR], x, ","); for (i = 4; i <= 6; i++) {d = $i - x[i]; s = x[i] < 0 ? -x[i] : x[i]; d = (d < 0 ? -d : d) / (s > 0 ? s : 1); if (d > m) m = d}}} END{printf "%d %d %.2e", n1, n2, m}' "$tmp/nvsv.csv" "$tmp/nvld.csv" 2>/dev/null)
@@ -168,6 +183,9 @@ expect_error "element in no region" "lies in no box" $J -task frf $brb -frf_forc
 expect_error "rings without auto" "-rom_auto_rings needs -rom_joints auto" $J -task frf $brb -frf_force 1 -rom_joints zones -rom_auto_rings 3 -frf_output_file ''
 expect_error "no rings" "-rom_auto_rings 0: 1 to 8 rings per bolt" $J -task frf $brb -frf_force 1 -rom_joints auto -rom_auto_rings 0 -frf_output_file ''
 expect_error "empty joint" "holds no element: an empty joint" $J -task frf $brb -frf_force 1 -rom_joints boxes -rom_boxes 0,0.36,-1,1,0.36001,1,-1,1,5,6,-1,1 -frf_output_file ''
+expect_error "onset bands without onset" "-rom_onset_bands needs -rom_joints onset" $J -task frf $brb -frf_force 1 -rom_joints zones -rom_onset_bands 3 -frf_output_file ''
+expect_error "no onset bands" "-rom_onset_bands 0: 1 to 16 bands" $J -task frf $brb -frf_force 1 -rom_joints onset -rom_onset_bands 0 -frf_output_file ''
+expect_error "onset fraction" "-rom_onset_upto 1.5: a fraction in (0, 1]" $J -task frf $brb -frf_force 1 -rom_joints onset -rom_onset_upto 1.5 -frf_output_file ''
 expect_error "compare without joints" "-task compare needs a reduced model" $J -task compare $brb -frf_force 1 -frf_output_file ''
 # jenkins_nv with open pairs (lap3, zones, first reduction): a joint moves with the average of its members in
 # contact at rest, whose springs it carries; then by Cauchy-Schwarz (k sum u_e^2 >= K (mean u)^2) the reduced
@@ -176,6 +194,12 @@ o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 
 l3="-preload_load $tmp/l3_preload.h5 -modes_load $tmp/l3_modes.h5" # the runs of lap3 below: this run's preload and modes
 c=$(echo "$o" | grep '^rom stiffness_correction'); fb=$(field "$c" rom_before_hz); fn=$(field "$c" n2n_hz)
 check "[ -n '$fb' ] && awk -v b='$fb' -v n='$fn' 'BEGIN{exit !(b <= n * (1 + 1e-9))}'" "jenkins_nv lap3, 12 zone joints over the pairs in contact at rest: reduced stuck mode $fb Hz <= node-to-node $fn Hz"
+# -rom_joint_residual: the members' springs on their motion outside the joint's field stay in the structure, so
+# the reduced model stuck is node-to-node's stuck (the mean field's residuals sum to 0 over a joint's members, and
+# lap3's springs are equal): the same stuck mode without any correction
+o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 $l3 -rom_elements 0 -rom_joint_motion mean -rom_joint_residual -frf_force 0.001 -cont_max_points 10 -cont_allow_partial -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
+c=$(echo "$o" | grep '^rom stiffness_correction'); fr=$(field "$c" rom_before_hz)
+check "[ -n '$fr' ] && close '$fr' '$fn' 1e-9 && close \$(field \"\$c\" stiffness_correction) 1 1e-9" "jenkins_nv lap3, 12 zone joints, mean field with -rom_joint_residual: reduced stuck mode $fr Hz = node-to-node $fn Hz (mean alone: $fb Hz), no correction"
 # the stiffness correction's warning names the joints responsible (lap3, coarse, mean motion). Every element its own
 # joint: each holds its member's spring on its member's motion, so the factor is 1 to round-off and nothing is
 # named. The interface cut into its 41 columns of pairs (2.5 mm apart) except at the lap's end x = 0.35 m, where the 5

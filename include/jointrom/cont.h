@@ -26,6 +26,7 @@ PETSC_EXTERN PetscErrorCode JRContCreate(MPI_Comm, JRCont *);
 PETSC_EXTERN PetscErrorCode JRContSetType(JRCont, JRContType);
 PETSC_EXTERN PetscErrorCode JRContGetType(JRCont, JRContType *);
 PETSC_EXTERN PetscErrorCode JRContSetHBM(JRCont, JRHBM);
+PETSC_EXTERN PetscErrorCode JRContGetHBM(JRCont, JRHBM *);
 PETSC_EXTERN PetscErrorCode JRContSetFromOptions(JRCont);
 PETSC_EXTERN PetscErrorCode JRContSetStepBounds(JRCont, PetscReal, PetscReal);
 PETSC_EXTERN PetscErrorCode JRContSetRange(JRCont, PetscReal, PetscReal);

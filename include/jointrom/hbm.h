@@ -54,6 +54,7 @@ PETSC_EXTERN PetscErrorCode JRHBMResponse(JRHBM, Vec, PetscReal[], PetscReal[], 
 PETSC_EXTERN PetscErrorCode JRHBMEnergy(JRHBM, PetscReal, Vec, PetscReal *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMContactStates(JRHBM, Vec, PetscInt[4]);
 PETSC_EXTERN PetscErrorCode JRHBMElementStates(JRHBM, Vec, JRContactState[]);
+PETSC_EXTERN PetscErrorCode JRHBMElementDissipation(JRHBM, Vec, PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMKineticEnergy(JRHBM, PetscReal, Vec, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMSetExcitationDof(JRHBM, PetscInt, PetscInt, const PetscInt[]);
 PETSC_EXTERN PetscErrorCode JRHBMSetOutputPoints(JRHBM, PetscInt, const PetscReal[], PetscInt);
@@ -68,6 +69,7 @@ PETSC_EXTERN PetscErrorCode JRHBMGetModes(JRHBM, JRModes *);
 PETSC_EXTERN PetscErrorCode JRHBMEnrichBasis(JRHBM, PetscInt, Vec[], PetscReal, PetscReal *, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMSetBasis(JRHBM, JRHBMBasis);
 PETSC_EXTERN PetscErrorCode JRHBMSetJointMotion(JRHBM, JRJointMotion);
+PETSC_EXTERN PetscErrorCode JRHBMSetJointResidual(JRHBM, PetscBool);
 PETSC_EXTERN PetscErrorCode JRHBMSetOptionsPrefix(JRHBM, const char[]);
 PETSC_EXTERN PetscErrorCode JRHBMGetOptionsPrefix(JRHBM, const char **);
 PETSC_EXTERN PetscErrorCode JRHBMSetModesFile(JRHBM, const char[]);

@@ -17,6 +17,7 @@ PETSC_EXTERN PetscErrorCode JRPostCreate(MPI_Comm, JRPost *);
 PETSC_EXTERN PetscErrorCode JRPostSetOutput(JRPost, const char[], PetscBool);
 PETSC_EXTERN PetscErrorCode JRPostWriteContactMaps(JRPost, JRModel, JRCont, const JRElements *, const PetscInt[]);
 PETSC_EXTERN PetscErrorCode JRPostCompareReport(JRPost, JRCont, JRCont, const JRElements *, const JRElements *, const JRCompareTimes *);
+PETSC_EXTERN PetscErrorCode JRPostCompareJoints(JRPost, JRCont, JRCont, const JRElements *, const JRElements *);
 PETSC_EXTERN PetscErrorCode JRPostCompareBackbones(JRPost, JRNLModes, JRNLModes);
 PETSC_EXTERN PetscErrorCode JRPostModesTable(JRPost, JRModes);
 PETSC_EXTERN PetscErrorCode JRPostWriteModes(JRPost, JRModel, JRModes, PetscInt);

@@ -26,6 +26,7 @@ typedef struct {
   PetscReal wstiff;  /* -rom_fit_stiffness_weight */
   PetscInt  npass;   /* -rom_fit_normal_passes */
   PetscInt  jmotion; /* -rom_joint_motion: 0 mean, 1 linear, 2 mode */
+  PetscBool resid;   /* -rom_joint_residual: the members' stuck springs kept on their motion outside the joints' fields */
   PetscBool search;  /* -rom_fit_search */
 } JRROMFit;
 PETSC_EXTERN PetscErrorCode JRROMFitSetFromOptions(MPI_Comm, JRROMFit *);

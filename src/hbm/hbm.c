@@ -308,6 +308,19 @@ PetscErrorCode JRHBMSetJointMotion(JRHBM h, JRJointMotion jm)
   PetscFunctionReturn(0);
 }
 
+/* A reduced model in a stuck or mixed basis: keep each member's stuck springs on its motion outside its joint's field
+   (its residual r_e - p_e, p_e the field's row at the member), linear, as part of the structure's stiffness (damped by
+   gamma with it), and cancel only those on the field's motion, which the joint's elements replace
+   (-rom_joint_residual). With a field that is an orthogonal projection of the members' motions for their springs,
+   the reduced model stuck is node-to-node's stuck */
+PetscErrorCode JRHBMSetJointResidual(JRHBM h, PetscBool on)
+{
+  PetscFunctionBeginUser;
+  h->jresid      = on;
+  h->setupcalled = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
 /*
   JRHBMSetOptionsPrefix - a prefix put before "hbm_" on the options of the nested solvers (the SNES of a point and
   the continuation's bordered SNES): JRReduce gives its reduced models "rom_", so that -rom_hbm_snes_* tunes them and

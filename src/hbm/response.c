@@ -103,6 +103,42 @@ PetscErrorCode JRHBMEnergy(JRHBM h, PetscReal w, Vec a, PetscReal *Win, PetscRea
   PetscFunctionReturn(0);
 }
 
+/*
+  JRHBMElementDissipation - the energy each element dissipates per cycle [J] at the solution a (the work of its
+  tangential force through its tangential motion and of its normal load through its normal motion), for every element
+  of the model (its numbering), on every rank (collective)
+*/
+PetscErrorCode JRHBMElementDissipation(JRHBM h, Vec a, PetscReal E[])
+{
+  const JRElements  *el;
+  const PetscScalar *x;
+  const PetscInt     nm = h->nm, nc = h->nc;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMGetElements(h, &el));
+  PetscCall(PetscArrayzero(E, el->n));
+  PetscCall(VecGetArrayRead(a, &x));
+  h->cache_ok = PETSC_FALSE;
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    JRHBMGroup *g = &h->g[t];
+    if (!g->nloc) continue;
+    PetscCall(JRGemm("N", "N", g->nloc, nc, nm, 1.0, g->R, g->nloc, x, nm, 0.0, g->U, g->nloc));
+    if (g->normal) PetscCall(JRGemm("N", "N", g->nloc, nc, nm, 1.0, g->S, g->nloc, x, nm, 0.0, g->V, g->nloc));
+    PetscCall(JRContactEvaluate(g->c, g->U, g->V, g->F, g->normal ? g->N : NULL, NULL, NULL, NULL, NULL));
+    for (PetscInt e = 0; e < g->nloc; e++) {
+      PetscReal w = 0;
+      for (PetscInt hh = 1; 2 * hh < nc; hh++) {
+        w += PETSC_PI * hh * (g->U[(2 * hh - 1) * g->nloc + e] * g->F[2 * hh * g->nloc + e] - g->U[2 * hh * g->nloc + e] * g->F[(2 * hh - 1) * g->nloc + e]);
+        if (g->normal) w += PETSC_PI * hh * (g->V[(2 * hh - 1) * g->nloc + e] * g->N[2 * hh * g->nloc + e] - g->V[2 * hh * g->nloc + e] * g->N[(2 * hh - 1) * g->nloc + e]);
+      }
+      E[g->eidx[e]] = w;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(a, &x));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, E, (PetscMPIInt)el->n, MPIU_REAL, MPIU_SUM, h->ecomm));
+  PetscFunctionReturn(0);
+}
+
 /* Every local element's contact state over the cycle at the solution a, in g->state */
 static PetscErrorCode EvaluateStates(JRHBM h, Vec a)
 {

@@ -101,6 +101,83 @@ PetscErrorCode JRPostWriteContactMaps(JRPost post, JRModel model, JRCont cont, c
   PetscFunctionReturn(0);
 }
 
+/* The energy dissipated per cycle at a level's peak by each joint: in *E (nj per level, on every rank) from the
+   elements of cont's model, each counted in its joint (joint[]) */
+static PetscErrorCode JointDissipation(JRCont c, PetscInt nlev, PetscInt nj, const PetscInt joint[], PetscReal E[])
+{
+  JRHBM             h;
+  const JRElements *el;
+  Vec               a;
+  PetscReal        *e;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRContGetHBM(c, &h));
+  PetscCall(JRHBMGetElements(h, &el));
+  PetscCall(JRHBMCreateVecs(h, &a, NULL));
+  PetscCall(PetscMalloc1(el->n, &e));
+  PetscCall(PetscArrayzero(E, nlev * nj));
+  for (PetscInt l = 0; l < nlev; l++) {
+    PetscCall(JRContGetPeakSolution(c, l, a));
+    PetscCall(JRHBMElementDissipation(h, a, e));
+    for (PetscInt k = 0; k < el->n; k++) E[l * nj + joint[k]] += e[k];
+  }
+  PetscCall(PetscFree(e));
+  PetscCall(VecDestroy(&a));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRPostCompareJoints - -task compare: where the two models dissipate at each level's peak, joint by joint (cn the
+  node-to-node curves, its elements counted in the joints of elj, the reduction's members; cr the reduced model's, in
+  its own joints): "compare joints level <F> n2n_J <E> rom_J <E> worst_joint <j> n2n_share <s> rom_share <s>" (the
+  joint whose share of its model's friction dissipation differs most) and BASE_compare_joints.csv, every joint's
+  energy per cycle [J] and share at every level
+*/
+PetscErrorCode JRPostCompareJoints(JRPost post, JRCont cn, JRCont cr, const JRElements *elj, const JRElements *elr)
+{
+  MPI_Comm  comm = post->comm;
+  PetscInt  nlev, nj = elj->njoints;
+  PetscReal *En, *Er;
+  FILE     *fp = NULL;
+  char      csv[PETSC_MAX_PATH_LEN + 32], tmp[PETSC_MAX_PATH_LEN + 48];
+
+  PetscFunctionBeginUser;
+  PetscCheck(elj->joint && elr->joint && elr->njoints == nj, comm, PETSC_ERR_ARG_WRONG, "Both models' elements need the same joints");
+  PetscCall(JRContGetNumLevels(cn, &nlev));
+  PetscCall(PetscMalloc2(nlev * nj, &En, nlev * nj, &Er));
+  PetscCall(JointDissipation(cn, nlev, nj, elj->joint, En));
+  PetscCall(JointDissipation(cr, nlev, nj, elr->joint, Er));
+  if (post->base[0]) {
+    PetscCall(PetscSNPrintf(csv, sizeof(csv), "%s_compare_joints.csv", post->base));
+    PetscCall(JRFileOpenTemp(comm, csv, &fp, tmp, sizeof(tmp)));
+    if (fp) fprintf(fp, "level,F_N,joint,n2n_dissipation_J,rom_dissipation_J,n2n_share,rom_share\n");
+  }
+  for (PetscInt l = 0; l < nlev; l++) {
+    PetscReal F, tn = 0, tr = 0, worst = -1;
+    PetscInt  jw = 0;
+    PetscCall(JRContGetLevel(cn, l, &F));
+    for (PetscInt j = 0; j < nj; j++) {
+      tn += En[l * nj + j];
+      tr += Er[l * nj + j];
+    }
+    for (PetscInt j = 0; j < nj; j++) {
+      const PetscReal sn = tn > 0 ? En[l * nj + j] / tn : 0, sr = tr > 0 ? Er[l * nj + j] / tr : 0;
+      if (PetscAbsReal(sr - sn) > worst) {
+        worst = PetscAbsReal(sr - sn);
+        jw    = j;
+      }
+      if (fp) fprintf(fp, "%" PetscInt_FMT ",%.9g,%" PetscInt_FMT ",%.9e,%.9e,%.6e,%.6e\n", l, (double)F, j, (double)En[l * nj + j], (double)Er[l * nj + j], (double)sn, (double)sr);
+    }
+    PetscCall(PetscPrintf(comm, "compare joints level %g n2n_J %.6e rom_J %.6e worst_joint %" PetscInt_FMT " n2n_share %.4f rom_share %.4f\n", (double)F, (double)tn, (double)tr, jw, (double)(tn > 0 ? En[l * nj + jw] / tn : 0), (double)(tr > 0 ? Er[l * nj + jw] / tr : 0)));
+  }
+  if (post->base[0]) {
+    PetscCall(JRFileCommit(comm, &fp, tmp, csv));
+    PetscCall(PetscPrintf(comm, "compare: wrote %s\n", csv));
+  }
+  PetscCall(PetscFree2(En, Er));
+  PetscFunctionReturn(0);
+}
+
 /* -task compare: per level the peaks of both models (cn node-to-node, cr reduced) and their errors, the wall times,
    BASE_compare.csv and .png */
 PetscErrorCode JRPostCompareReport(JRPost post, JRCont cn, JRCont cr, const JRElements *eln, const JRElements *elr, const JRCompareTimes *t)

@@ -156,10 +156,33 @@ PetscErrorCode JRJointAverage(JRHBM h, const JRElements *el, PetscInt nloc, cons
   PetscFunctionReturn(0);
 }
 
+/* K += a sum over the members eidx[0..nloc) in contact at rest of kt x x^T + kn y y^T, x and y their rows in R and S
+   (nloc x nm, column-major; kn for jenkins_nv only) */
+static PetscErrorCode StuckSprings(const JRElements *mem, PetscInt nloc, const PetscInt eidx[], PetscInt nm, PetscReal a, const PetscReal R[], const PetscReal S[], PetscReal K[])
+{
+  PetscReal *W;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(nloc * nm, &W));
+  for (PetscInt q = 0; q < 2; q++) {
+    const PetscReal *X = q ? S : R;
+    for (PetscInt i = 0; i < nm; i++)
+      for (PetscInt e = 0; e < nloc; e++) {
+        const PetscInt  k  = eidx[e];
+        const PetscBool nv = (PetscBool)!strcmp(mem->typename[mem->type[k]], JRCONTACTJENKINSNV);
+        W[e + i * nloc]    = (mem->n0[k] > 0 ? (q ? (nv ? mem->kn[k] : 0.0) : mem->kt[k]) : 0.0) * X[e + i * nloc];
+      }
+    PetscCall(JRGemm("T", "N", nm, nm, nloc, a, X, nloc, W, nloc, 1.0, K, nm));
+  }
+  PetscCall(PetscFree(W));
+  PetscFunctionReturn(0);
+}
+
 /* Second reduction: the joints' fields (JointFields, nj x JR_FIELD_WIDTH(2, nm), tangential then normal, on every
    rank) from their members' rows, the members split across the ranks (lin: the reduced elements have positions, so
    the linear field of -rom_joint_motion linear is wanted; else the mean); and, in a stuck basis, Kc += this rank's
-   members' stuck springs on their own rows (the springs the basis holds, which the reduced elements replace) */
+   members' stuck springs on their own rows (the springs the basis holds, which the reduced elements replace), less,
+   with h->jresid, those on their residual motion r_e - p_e outside their joint's field (which the basis keeps) */
 PetscErrorCode JRJointRows(JRHBM h, const JRElements *mem, PetscBool lin, PetscReal field[], PetscReal Kc[])
 {
   const PetscInt nm = h->nm;
@@ -180,24 +203,21 @@ PetscErrorCode JRJointRows(JRHBM h, const JRElements *mem, PetscBool lin, PetscR
   else PetscCall(PetscArrayzero(S, nloc * nm));
   PetscCall(JointCoordinates(h, mem, nloc, eidx, lin, &P));
   PetscCall(JointFields(h, mem, nloc, eidx, R, S, P, field));
+  if (Kc && nloc) PetscCall(StuckSprings(mem, nloc, eidx, nm, 1.0, R, S, Kc));
+  if (Kc && nloc && h->jresid) { /* less the springs on the residual rows r_e - p_e, which the basis keeps */
+    PetscReal *Rr, *Sr;
+    PetscCall(PetscMalloc2(nloc * nm, &Rr, nloc * nm, &Sr));
+    for (PetscInt e = 0; e < nloc; e++)
+      for (PetscInt q = 0; q < 2; q++) FieldAt(field + mem->joint[eidx[e]] * JR_FIELD_WIDTH(2, nm), nm, q, P ? P + JR_NF * e : NULL, (q ? Sr : Rr) + e, nloc);
+    for (PetscInt i = 0; i < nloc * nm; i++) {
+      Rr[i] = R[i] - Rr[i];
+      Sr[i] = S[i] - Sr[i];
+    }
+    PetscCall(StuckSprings(mem, nloc, eidx, nm, -1.0, Rr, Sr, Kc));
+    PetscCall(PetscFree2(Rr, Sr));
+  }
   PetscCall(PetscFree(P));
   for (PetscInt j = 0; j < mem->njoints; j++) PetscCheck(field[j * JR_FIELD_WIDTH(2, nm)] > 0, h->comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no member element", j);
-  if (Kc && nloc) {
-    PetscReal *W;
-    PetscCall(PetscMalloc1(nloc * nm, &W));
-    for (PetscInt q = 0; q < 2; q++) {
-      const PetscReal *X = q ? S : R;
-      for (PetscInt i = 0; i < nm; i++)
-        for (PetscInt e = 0; e < nloc; e++) {
-          const PetscInt  k  = eidx[e];
-          const PetscBool nv = (PetscBool)!strcmp(mem->typename[mem->type[k]], JRCONTACTJENKINSNV);
-          W[e + i * nloc]    = mem->n0[k] > 0 ? (q ? (nv ? mem->kn[k] : 0.0) : mem->kt[k]) : 0.0;
-          W[e + i * nloc] *= X[e + i * nloc];
-        }
-      PetscCall(JRGemm("T", "N", nm, nm, nloc, 1.0, X, nloc, W, nloc, 1.0, Kc, nm));
-    }
-    PetscCall(PetscFree(W));
-  }
   PetscCall(PetscFree3(eidx, R, S));
   PetscFunctionReturn(0);
 }

@@ -521,6 +521,7 @@ PetscErrorCode JRROMFitSetFromOptions(MPI_Comm comm, JRROMFit *f)
   f->wstiff  = 1e4;
   f->npass   = 0;
   f->jmotion = 0;
+  f->resid   = PETSC_FALSE;
   f->search  = PETSC_TRUE;
   PetscOptionsBegin(comm, "rom_", "Second reduction: m elements per joint fitted to its hysteresis loops (prefix rom_)", "JRROMReduce");
   PetscCall(PetscOptionsRealArray("-fit_fractions", "Loop amplitudes: the slip displacements below which these fractions of the joint's slip force lie (microslip to gross slip)", "JRROMReduce", fr, &nfr, &frset));
@@ -537,6 +538,7 @@ PetscErrorCode JRROMFitSetFromOptions(MPI_Comm comm, JRROMFit *f)
     const char *jm[] = {"mean", "linear", "mode"};
     PetscCall(PetscOptionsEList("-joint_motion", "How a joint's members move: mean (4.4), linear (a field over their positions: each fitted element is spread over three points of its members' spread) or mode (a field over their motions in the stuck mode of interest: each fitted element sits at its members' motion)", "JRROMReduce", jm, 3, jm[f->jmotion], &f->jmotion, NULL));
   }
+  PetscCall(PetscOptionsBool("-joint_residual", "Keep each member's stuck springs, linear, on its motion outside its joint's field (the residual of the field's fit); the joints' elements replace only those on the field's motion, so the reduced model stuck is node-to-node stuck", "JRROMReduce", f->resid, &f->resid, NULL));
   PetscCall(PetscOptionsBool("-fit_search", "Choose the slip displacements among a grid over the members' range (best non-negative least squares of the forces); else those of the log-width groups of members", "JRROMReduce", f->search, &f->search, NULL));
   PetscOptionsEnd();
   PetscCheck(f->wgross >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_gross_weight %g: the weight must be non-negative", (double)f->wgross);
@@ -641,7 +643,9 @@ static PetscErrorCode SortMembers(FitCtx *ctx)
     jn[j]++;
   }
   for (PetscInt j = 0; j < nj; j++) {
-    PetscCheck(jn[j] > 0, ctx->comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no member in contact at rest: nothing to fit (change the regions)", j);
+    PetscInt nopen = 0; /* mode, jenkins_nv: a joint of open pairs alone gets their gap elements (OpenMembers) */
+    for (PetscInt e = 0; !jn[j] && ctx->modef && ctx->nv && e < nn->n; e++) nopen += (nn->joint[e] == j && !(nn->n0[e] > 0) && nn->kn[e] > 0);
+    PetscCheck(jn[j] > 0 || nopen > 0, ctx->comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no member in contact at rest: nothing to fit (change the regions; with jenkins_nv and -rom_joint_motion mode a joint of open pairs alone gets gap elements)", j);
     qsort(ctx->md + joff[j], (size_t)jn[j], sizeof(MemberDelta), JRFitCompareDelta);
   }
   PetscFunctionReturn(0);
@@ -766,7 +770,8 @@ static PetscErrorCode ReducePass(FitCtx *ctx, PetscReal nvout[], PetscReal *nvma
   }
   PetscCall(SortMembers(ctx));
   PetscCall(FitAllocate(ctx));
-  for (PetscInt j = 0; j < ctx->nj; j++) PetscCall(JRFitJoint(ctx, j));
+  for (PetscInt j = 0; j < ctx->nj; j++)
+    if (ctx->jn[j]) PetscCall(JRFitJoint(ctx, j));
   if (ctx->amod && ctx->fit->wtotal > 0 && (!ctx->nv || ctx->modef)) PetscCall(FitCoupled(ctx));
   for (PetscInt j = 0; j < ctx->nj; j++) {
     PetscCall(JRFitJointElements(ctx, j));

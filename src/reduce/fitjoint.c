@@ -315,6 +315,11 @@ PetscErrorCode JRFitJointElements(FitCtx *ctx, PetscInt j)
   PetscInt         mj = 0;
 
   PetscFunctionBeginUser;
+  if (!ctx->jn[j]) { /* open pairs alone: their gap elements */
+    ctx->nel[j] = 0;
+    PetscCall(OpenMembers(ctx, j));
+    PetscFunctionReturn(0);
+  }
   for (PetscInt i = 0; i < m0; i++)
     if (x[m0 + i] > 1e-9) {
       x[mj]          = x[i];
@@ -393,6 +398,10 @@ PetscErrorCode JRFitJointReport(FitCtx *ctx, PetscInt j)
   PetscReal        *Fr;
 
   PetscFunctionBeginUser;
+  if (!ctx->jn[j]) {
+    PetscCall(JRFitSay(ctx->quiet, ctx->comm, "rom joint %" PetscInt_FMT " members 0 elements %" PetscInt_FMT " (open pairs alone: gap elements)\n", j, mj));
+    PetscFunctionReturn(0);
+  }
   PetscCall(JRFitSay(ctx->quiet, ctx->comm, "rom joint %" PetscInt_FMT " members %" PetscInt_FMT " elements %" PetscInt_FMT " amplitudes_m %.4e %.4e %.4e loop_residual %.3e start %.3e tao_its %" PetscInt_FMT, j, ctx->jn[j], mj, (double)t->amp[0], (double)t->amp[1], (double)t->amp[2], (double)f->rms, (double)f->rms0, f->its));
   if (ctx->nv) PetscCall(JRFitSay(ctx->quiet, ctx->comm, " normal_residual %.3e start %.3e tao_its %" PetscInt_FMT, (double)f->nrms, (double)f->nrms0, f->nits));
   PetscCall(JRFitSay(ctx->quiet, ctx->comm, "\n"));

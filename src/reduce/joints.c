@@ -24,12 +24,21 @@
              bolt's load into k equal parts (the innermost ring carries the first 1/k of it; the outermost also holds
              every member beyond, gaps included); each ring is cut at the bolt's axis into its two sides: 2k joints
              per bolt. The inner half of the rings are the high-load joints.
+    onset    from the normal load at rest and the stuck mode of interest: every member in contact starts to slip at
+             the modal amplitude a_e = mu n0_e / (kt |u_e|) (u_e its tangential motion in that mode); -rom_onset_bands
+             k bands (default 6) of equal ratio divide the onsets from the first to the one by which the fraction
+             -rom_onset_upto (0.9) of the interface's slip force mu n0 slips (later onsets join the last band; the
+             same bands over the whole interface), and each band is split by nearest bolt and side as in auto; the
+             open members (n0 <= 0) of each bolt side are a joint of their own (their field fitted to their own
+             motion: tied to the closed members' field, the gaps could not breathe and close as they do). Empty
+             joints are dropped. The joints are set once the modes are known (JRReduceSetUp), each a region that
+             slips at about one level, so that a slip front does not cross the inside of a joint.
   and -rom_split_width splits every strip-type region at mid-width. Each region must hold elements (else an error
   naming it); its members move with the average of their relative motions (4.4).
 */
-const char *const JRReduceJointKinds[] = {"none", "each", "strips", "bolts", "between", "sides", "zones", "boxes", "auto"};
+const char *const JRReduceJointKinds[] = {"none", "each", "strips", "bolts", "between", "sides", "zones", "boxes", "auto", "onset"};
 /* what a region of each kind is, in the joints' report: the regions between the cuts along the beam axis */
-static const char *const RegionWords[] = {"", "element", "strip", "bolt region", "span", "bolt side", "bolt side", "box", "ring"};
+static const char *const RegionWords[] = {"", "element", "strip", "bolt region", "span", "bolt side", "bolt side", "box", "ring", "onset band"};
 
 /* -rom_joints boxes: element e in the one box that holds its pair's point; *nreg boxes, cnt[] their members */
 static PetscErrorCode AssignBoxes(JRReduce o, const JRPairs *P, JRElements *el, const PetscInt pair[], PetscInt *nreg, PetscInt **cnt)
@@ -131,6 +140,42 @@ static PetscErrorCode AssignAuto(JRReduce o, JRModel model, const JRPairs *P, JR
     PetscCheck((*cnt)[r] > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints auto: %s holds no element: an empty joint (fewer -rom_auto_rings)", o->ji[r].kind);
   }
   PetscCall(PetscFree5(bolt, ord, rad, ltot, bx));
+  PetscFunctionReturn(0);
+}
+
+/* Every element's nearest bolt (in the interface's plane; the bolts numbered in order of x) and side of its axis:
+   side[e] = 2 b + (0 on the -x side, 1 on the +x side); *nb the bolts */
+static PetscErrorCode BoltSides(JRReduce o, JRModel model, const JRPairs *P, const JRElements *el, const PetscInt pair[], PetscInt side[], PetscInt *nb)
+{
+  const JRBolts *B;
+  PetscInt      *bx;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetBolts(model, &B));
+  PetscCheck(B && B->n > 0, o->comm, PETSC_ERR_ARG_WRONG, "-rom_joints %s needs a model with bolts", JRReduceJointKinds[o->joints]);
+  PetscCall(PetscMalloc1(B->n, &bx));
+  for (PetscInt b = 0; b < B->n; b++) bx[b] = b;
+  for (PetscInt b = 1; b < B->n; b++)
+    for (PetscInt c = b; c > 0 && B->x[3 * bx[c]] < B->x[3 * bx[c - 1]]; c--) {
+      const PetscInt t = bx[c];
+      bx[c]            = bx[c - 1];
+      bx[c - 1]        = t;
+    }
+  for (PetscInt e = 0; e < el->n; e++) {
+    const PetscReal *x  = P->x + 3 * pair[e];
+    PetscInt         bb = 0;
+    PetscReal        dd = PETSC_MAX_REAL;
+    for (PetscInt b = 0; b < B->n; b++) {
+      const PetscReal *xb = B->x + 3 * bx[b], d = PetscSqr(x[0] - xb[0]) + PetscSqr(x[1] - xb[1]);
+      if (d < dd) {
+        dd = d;
+        bb = b;
+      }
+    }
+    side[e] = 2 * bb + (x[0] < B->x[3 * bx[bb]] ? 0 : 1);
+  }
+  *nb = B->n;
+  PetscCall(PetscFree(bx));
   PetscFunctionReturn(0);
 }
 
@@ -304,6 +349,11 @@ static PetscErrorCode AssignJoints(JRReduce o, JRModel model, const JRPairs *P, 
       o->ji[e].zone = -1;
       PetscCall(PetscStrncpy(o->ji[e].kind, RegionWords[1], sizeof(o->ji[e].kind)));
     }
+  } else if (o->joints == 9) { /* onset: one provisional joint; JRReduceSetUp sets them from the stuck mode */
+    nreg = 1;
+    for (PetscInt e = 0; e < el->n; e++) el->joint[e] = 0;
+    el->njoints = 1;
+    PetscFunctionReturn(0);
   } else if (o->joints == 7) PetscCall(AssignBoxes(o, P, el, pair, &nreg, &cnt));
   else if (o->joints == 8) PetscCall(AssignAuto(o, model, P, el, pair, &nreg, &cnt));
   else PetscCall(AssignCuts(o, model, P, el, pair, &nreg, &cnt));
@@ -327,7 +377,84 @@ PetscErrorCode JRReduceAssignJoints(JRReduce r, JRModel model, JRElements *el, c
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(JR_ReduceJoints, 0, 0, 0, 0));
   PetscCall(JRModelGetPairs(model, &P));
+  r->pair = pair;
   PetscCall(AssignJoints(r, model, P, el, pair));
   PetscCall(PetscLogEventEnd(JR_ReduceJoints, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRReduceAssignOnset - -rom_joints onset: the joints of el (the node-to-node elements) from their slip onsets in the
+  stuck mode of interest, u[e] each element's tangential motion in it (see the top of this file), then the report
+*/
+PetscErrorCode JRReduceAssignOnset(JRReduce o, JRModel model, JRElements *el, const PetscReal u[])
+{
+  MPI_Comm       comm = o->comm;
+  const JRPairs *P;
+  const PetscInt k = o->bands, n = el->n;
+  PetscInt      *side, *ord, nb = 0, nc = 0, nreg = 0;
+  PetscReal     *a, cap = 0, sum = 0, *x, a0, a1;
+
+  PetscFunctionBeginUser;
+  PetscCheck(o->pair, comm, PETSC_ERR_ORDER, "JRReduceAssignJoints() first");
+  PetscCall(JRModelGetPairs(model, &P));
+  PetscCall(PetscMalloc3(n, &side, n, &ord, n, &a));
+  PetscCall(BoltSides(o, model, P, el, o->pair, side, &nb));
+  for (PetscInt e = 0; e < n; e++) {
+    if (!(el->n0[e] > 0)) continue;
+    a[e] = PetscAbsReal(u[e]) > 0 ? el->mu[e] * el->n0[e] / (el->kt[e] * PetscAbsReal(u[e])) : PETSC_MAX_REAL;
+    cap += el->mu[e] * el->n0[e];
+    ord[nc++] = e;
+  }
+  PetscCheck(nc > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints onset: no member is in contact at rest");
+  for (PetscInt i = 1; i < nc; i++) /* by onset, then index (insertion sort: stable, the same on every rank) */
+    for (PetscInt c = i; c > 0 && a[ord[c]] < a[ord[c - 1]]; c--) {
+      const PetscInt t = ord[c];
+      ord[c]           = ord[c - 1];
+      ord[c - 1]       = t;
+    }
+  for (PetscInt e = 0; e < n; e++) el->joint[e] = -1;
+  a0 = a1 = a[ord[0]];
+  { /* bands of equal ratio from the first onset a0 to a1, by which the fraction upto of the slip force slips */
+    for (PetscInt i = 0; i < nc; i++) {
+      sum += el->mu[ord[i]] * el->n0[ord[i]];
+      a1 = a[ord[i]];
+      if (sum >= o->upto * cap * (1 - 1e-12)) break;
+    }
+    for (PetscInt i = 0; i < nc; i++) {
+      const PetscInt e = ord[i];
+      PetscInt       band = a1 > a0 ? (PetscInt)PetscFloorReal(k * PetscLogReal(a[e] / a0) / PetscLogReal(a1 / a0)) : 0;
+      band         = PetscMin(PetscMax(band, 0), k - 1);
+      el->joint[e] = side[e] * (k + 1) + band;
+    }
+  }
+  for (PetscInt e = 0; e < n; e++) /* open members: their bolt side's gap joint */
+    if (!(el->n0[e] > 0)) el->joint[e] = side[e] * (k + 1) + k;
+  { /* drop the empty joints, number the rest in order */
+    PetscInt *map;
+    PetscCall(PetscMalloc1(2 * nb * (k + 1), &map));
+    for (PetscInt r = 0; r < 2 * nb * (k + 1); r++) map[r] = -1;
+    for (PetscInt e = 0; e < n; e++) map[el->joint[e]] = 0;
+    for (PetscInt r = 0; r < 2 * nb * (k + 1); r++)
+      if (!map[r]) map[r] = nreg++;
+    PetscCall(PetscFree(o->ji));
+    PetscCall(PetscCalloc1(nreg, &o->ji));
+    for (PetscInt r = 0; r < 2 * nb * (k + 1); r++) {
+      if (map[r] < 0) continue;
+      o->ji[map[r]].zone = -1;
+      PetscCall(PetscSNPrintf(o->ji[map[r]].kind, sizeof(o->ji[map[r]].kind), "%s %" PetscInt_FMT " of %" PetscInt_FMT ", bolt %" PetscInt_FMT ", %s side", r % (k + 1) < k ? "onset band" : "open pairs", PetscMin(r % (k + 1) + 1, k), k, r / (2 * (k + 1)) + 1, (r / (k + 1)) % 2 ? "+x" : "-x"));
+    }
+    for (PetscInt e = 0; e < n; e++) el->joint[e] = map[el->joint[e]];
+    PetscCall(PetscFree(map));
+  }
+  el->njoints = nreg;
+  PetscCall(PetscPrintf(comm, "rom: onset partition: the members in contact start to slip at modal amplitudes %.4g to %.4g in the stuck mode; %" PetscInt_FMT " bands of equal ratio from %.4g to %.4g (%g of the slip force), and the open pairs, split by bolt side: %" PetscInt_FMT " joints\n", (double)a[ord[0]], (double)a[ord[nc - 1]], k, (double)a0, (double)a1, (double)o->upto, nreg));
+  PetscCall(PetscMalloc1(3 * n + 1, &x));
+  for (PetscInt e = 0; e < n; e++)
+    for (PetscInt c = 0; c < 3; c++) x[3 * e + c] = P->x[3 * o->pair[e] + c];
+  PetscCall(JointInfoSet(o, el, x));
+  PetscCall(PetscFree(x));
+  PetscCall(JointReport(o, el));
+  PetscCall(PetscFree3(side, ord, a));
   PetscFunctionReturn(0);
 }

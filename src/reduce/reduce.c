@@ -139,6 +139,7 @@ static PetscErrorCode ReducedHBM(JRReduce red, JRModel model, JRHBM hbm, PetscBo
   PetscCall(JRHBMSetExcitationDof(hr, red->fdof, red->nout, red->odof));
   PetscCall(JRHBMSetBasis(hr, JR_HBM_BASIS_MIXED));
   PetscCall(JRHBMSetJointMotion(hr, (JRJointMotion)red->fit.jmotion));
+  PetscCall(JRHBMSetJointResidual(hr, red->fit.resid));
   PetscCall(JRHBMSetOptionsPrefix(hr, "rom_"));
   PetscCall(JRHBMSetModel(hr, model));
   PetscCall(JRHBMSetElements(hr, elx));
@@ -274,6 +275,8 @@ PetscErrorCode JRReduceCreate(MPI_Comm comm, JRReduce *red)
   r->comm          = comm;
   r->zone_fraction = 0.5;
   r->rings         = 2;
+  r->bands         = 6;
+  r->upto          = 0.9;
   r->mode_weights  = PETSC_TRUE;
   r->corr_on       = PETSC_TRUE;
   r->nst           = 3;
@@ -301,7 +304,7 @@ PetscErrorCode JRReduceDestroy(JRReduce *red)
 
 /*
   JRReduceSetFromOptions - every option of the reduction, read and checked once: the joints (-rom_joints, -rom_strips,
-  -rom_boxes, -rom_zone_fraction, -rom_auto_rings, -rom_split_width), -rom_elements, -rom_mode_weights, -rom_fit_select (with
+  -rom_boxes, -rom_zone_fraction, -rom_auto_rings, -rom_onset_bands, -rom_onset_upto, -rom_split_width), -rom_elements, -rom_mode_weights, -rom_fit_select (with
   -rom_fit_select_total, -rom_fit_select_case), -rom_stiffness_correction, -rom_save, -rom_load, and the fit's
   (JRROMFitSetFromOptions: -rom_fit_*, -rom_joint_motion)
 */
@@ -309,18 +312,20 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
 {
   const char *sel[] = {"none", "first"};
   MPI_Comm    comm    = r->comm;
-  PetscBool   set, bset, st, sc, rset;
+  PetscBool   set, bset, st, sc, rset, bdset, uset;
   PetscInt    nst = 8, nsc = 8;
 
   PetscFunctionBeginUser;
   r->ncut = 64;
   r->nbox = 256;
   PetscOptionsBegin(comm, "rom_", "Reduced-order joints (prefix rom_)", "JRReduce");
-  PetscCall(PetscOptionsEList("-joints", "First reduction, the joints: none (node-to-node), each, strips (-rom_strips cuts), bolts, between, sides, zones (per bolt side and load), boxes (-rom_boxes), auto (rings of equal load around each bolt, -rom_auto_rings)", "JRReduceAssignJoints", JRReduceJointKinds, 9, JRReduceJointKinds[r->joints], &r->joints, NULL));
+  PetscCall(PetscOptionsEList("-joints", "First reduction, the joints: none (node-to-node), each, strips (-rom_strips cuts), bolts, between, sides, zones (per bolt side and load), boxes (-rom_boxes), auto (rings of equal load around each bolt, -rom_auto_rings), onset (bands of slip onset in the stuck mode of interest, per bolt side, -rom_onset_bands)", "JRReduceAssignJoints", JRReduceJointKinds, 10, JRReduceJointKinds[r->joints], &r->joints, NULL));
   PetscCall(PetscOptionsRealArray("-strips", "Cut positions along the beam axis x1,x2,... [m], increasing", "JRReduceAssignJoints", r->cut, &r->ncut, &set));
   PetscCall(PetscOptionsRealArray("-boxes", "Boxes x0,x1,y0,y1 per joint [m]", "JRReduceAssignJoints", r->box, &r->nbox, &bset));
   PetscCall(PetscOptionsReal("-zone_fraction", "-rom_joints zones: the high-load zone of a bolt side holds the members with n0 at least this fraction of the side's largest", "JRReduceAssignJoints", r->zone_fraction, &r->zone_fraction, NULL));
   PetscCall(PetscOptionsInt("-auto_rings", "-rom_joints auto: rings of equal load per bolt (each cut into the bolt's two sides)", "JRReduceAssignJoints", r->rings, &r->rings, &rset));
+  PetscCall(PetscOptionsInt("-onset_bands", "-rom_joints onset: bands of slip onset in the stuck mode of interest (each split by bolt side)", "JRReduceAssignJoints", r->bands, &r->bands, &bdset));
+  PetscCall(PetscOptionsReal("-onset_upto", "-rom_joints onset: the bands divide, in equal ratios, the slip onsets from the first to the one by which this fraction of the interface's slip force mu n0 slips (later onsets join the last band)", "JRReduceAssignJoints", r->upto, &r->upto, &uset));
   PetscCall(PetscOptionsBool("-split_width", "Split every strip at mid-width into two joints", "JRReduceAssignJoints", r->split_width, &r->split_width, NULL));
   PetscCall(PetscOptionsInt("-elements", "Second reduction: fit this many elements per joint to its hysteresis loops (0: the first reduction only)", "JRReduceSetUp", r->m, &r->m, NULL));
   PetscCall(PetscOptionsBool("-mode_weights", "Weight every member of a joint by its motion relative to the joint's in the stuck mode of interest (w^2 kt, |w| f; jenkins)", "JRReduceSetUp", r->mode_weights, &r->mode_weights, NULL));
@@ -338,6 +343,10 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
   PetscCheck(!set || r->joints == 2, comm, PETSC_ERR_ARG_INCOMP, "-rom_strips needs -rom_joints strips");
   PetscCheck(!bset || r->joints == 7, comm, PETSC_ERR_ARG_INCOMP, "-rom_boxes needs -rom_joints boxes");
   PetscCheck(!rset || r->joints == 8, comm, PETSC_ERR_ARG_INCOMP, "-rom_auto_rings needs -rom_joints auto");
+  PetscCheck(!bdset || r->joints == 9, comm, PETSC_ERR_ARG_INCOMP, "-rom_onset_bands needs -rom_joints onset");
+  PetscCheck(!uset || r->joints == 9, comm, PETSC_ERR_ARG_INCOMP, "-rom_onset_upto needs -rom_joints onset");
+  PetscCheck(r->upto > 0 && r->upto <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_onset_upto %g: a fraction in (0, 1]", (double)r->upto);
+  PetscCheck(r->bands >= 1 && r->bands <= 16, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_onset_bands %" PetscInt_FMT ": 1 to 16 bands", r->bands);
   PetscCheck(r->rings >= 1 && r->rings <= 8, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_auto_rings %" PetscInt_FMT ": 1 to 8 rings per bolt", r->rings);
   PetscCheck(!r->split_width || (r->joints >= 2 && r->joints <= 6), comm, PETSC_ERR_ARG_INCOMP, "-rom_split_width needs -rom_joints strips, bolts, between, sides or zones");
   PetscCheck(r->zone_fraction > 0 && r->zone_fraction < 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_zone_fraction %g: between 0 and 1", (double)r->zone_fraction);
@@ -427,6 +436,15 @@ PetscErrorCode JRReduceSetUp(JRReduce r, JRModel model, JRHBM hbm, JRElements *e
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(&cs, sizeof(cs)));
   PetscCall(PetscTime(&t0));
+  if (r->joints == 9) { /* onset: the joints from the members' slip onsets in the stuck mode of interest */
+    PetscInt  k = 0;
+    PetscReal ft = 0, *u;
+    PetscCall(TargetMode(r, hbm, &k, &ft));
+    PetscCall(PetscMalloc1(n, &u));
+    PetscCall(JRHBMStuckModeMotion(hbm, k, u, NULL));
+    PetscCall(JRReduceAssignOnset(r, model, elj, u));
+    PetscCall(PetscFree(u));
+  }
   if (!strcmp(elj->typename[0], JRCONTACTJENKINS) || jmotion == 2) {
     PetscInt  k = 0;
     PetscReal ft = 0, *u, *v, *cnt, *ua, umax = 0, smax = 0, om;

@@ -198,7 +198,7 @@ static PetscErrorCode SetFromOptions(FRFRun *r)
     PetscCall(JRReduceCreate(comm, &r->red));
     PetscCall(JRReduceSetFromOptions(r->red));
     PetscCall(JRReduceGetRequest(r->red, &r->joints, &r->romm, NULL, &r->romsave, &r->romload));
-    PetscCheck(r->help || !r->romm || r->joints || r->romload[0], comm, PETSC_ERR_ARG_INCOMP, "-rom_elements needs joints: -rom_joints strips|bolts|between|sides|zones|boxes|auto");
+    PetscCheck(r->help || !r->romm || r->joints || r->romload[0], comm, PETSC_ERR_ARG_INCOMP, "-rom_elements needs joints: -rom_joints strips|bolts|between|sides|zones|boxes|auto|onset");
     PetscCheck(r->help || !r->compare || r->joints || r->romload[0], comm, PETSC_ERR_ARG_WRONG, "-task compare needs a reduced model: joints (-rom_joints ..., optionally -rom_elements m) or -rom_load FILE");
     PetscCheck(!r->romsave[0] || (r->joints && r->romm > 0 && !(r->romload[0] && !r->compare)), comm, PETSC_ERR_ARG_INCOMP, "-rom_save saves a second-reduction model: it needs -rom_joints ... and -rom_elements m");
   }
@@ -597,6 +597,7 @@ static PetscErrorCode Solve(FRFRun *r)
     {
       const JRCompareTimes t = {r->tn, r->tr, r->en, r->er, r->setn, r->setr, r->tred};
       PetscCall(JRPostCompareReport(r->post, r->cont, r->contr, &r->el, &r->elr, &t));
+      if (r->elj.joint && r->elr.joint) PetscCall(JRPostCompareJoints(r->post, r->cont, r->contr, &r->elj, &r->elr));
     }
     r->contc = r->cont;
   } else {

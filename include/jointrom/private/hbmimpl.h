@@ -64,6 +64,7 @@ struct _p_JRHBM {
   PetscBool         basis_set;
   PetscReal        *Kg;           /* the structure's own stiffness in the basis (structural damping gamma Kg) */
   PetscReal        *Kc;           /* stuck basis: the stuck springs in Km of this rank's elements (or members), nm x nm */
+  PetscBool         jresid;       /* JRHBMSetJointResidual(): Kc leaves the members' springs on their residual motion */
   PetscBool         modes_shared; /* JRHBMSetModes(): the modes are another JRHBM's (a reference), not solved here */
   char              modes_file[PETSC_MAX_PATH_LEN]; /* JRHBMSetModesFile(): save the modes here unless -modes_load/-modes_save */
   PetscInt          fdof, nout, *outdof;

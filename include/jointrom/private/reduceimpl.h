@@ -16,8 +16,11 @@ struct _p_JRReduce {
   MPI_Comm  comm;
   PetscBool setfromoptions;
   /* first reduction: the joints (-rom_joints ...) */
-  PetscInt  joints; /* 0 none, 1 each, 2 strips, 3 bolts, 4 between, 5 sides, 6 zones, 7 boxes, 8 auto */
+  PetscInt  joints; /* 0 none, 1 each, 2 strips, 3 bolts, 4 between, 5 sides, 6 zones, 7 boxes, 8 auto, 9 onset */
   PetscInt  rings;  /* -rom_auto_rings */
+  PetscInt  bands;  /* -rom_onset_bands */
+  PetscReal upto;   /* -rom_onset_upto */
+  const PetscInt *pair; /* each element's pair (JRReduceAssignJoints' argument, kept for onset) */
   PetscInt  ncut, nbox;
   PetscReal cut[64], box[256], zone_fraction;
   PetscBool split_width;
@@ -47,6 +50,8 @@ struct _p_JRReduce {
 /* An element list of n elements of one type with joints (and the node-to-node arrays if nodes), no DOFs: the second
    reduction's elements (src/reduce/fit.c) and a loaded model's (src/reduce/io.c) */
 PETSC_INTERN PetscErrorCode JRROMElementsSetUp(JRElements *, PetscInt, const char[], PetscBool);
+/* -rom_joints onset: the joints from the members' slip onsets in the stuck mode (their tangential motion u[]) */
+PETSC_INTERN PetscErrorCode JRReduceAssignOnset(JRReduce, JRModel, JRElements *, const PetscReal[]);
 
 /* The fit's least-squares solvers (src/reduce/lsq.c), on PETSC_COMM_SELF.
    JRLSQSolve: r(x) -> min 1/2 |r|^2 with x >= lo by TAO (prefix rom_); fn(ctx, x, r, J) gives r and J (nr x nx,

@@ -105,6 +105,14 @@ PetscErrorCode JRContSetHBM(JRCont c, JRHBM hbm)
   PetscFunctionReturn(0);
 }
 
+/* The harmonic balance whose curves c follows */
+PetscErrorCode JRContGetHBM(JRCont c, JRHBM *hbm)
+{
+  PetscFunctionBeginUser;
+  *hbm = c->hbm;
+  PetscFunctionReturn(0);
+}
+
 /* Smallest and largest step: rad/s for natural, scaled arclength for arclength (-cont_step_min, -cont_step_max) */
 PetscErrorCode JRContSetStepBounds(JRCont c, PetscReal smin, PetscReal smax)
 {
