@@ -448,7 +448,7 @@ PetscErrorCode JRReduceAssignOnset(JRReduce o, JRModel model, JRElements *el, co
     PetscCall(PetscFree(map));
   }
   el->njoints = nreg;
-  PetscCall(PetscPrintf(comm, "rom: onset partition: the members in contact start to slip at modal amplitudes %.4g to %.4g in the stuck mode; %" PetscInt_FMT " bands of equal ratio from %.4g to %.4g (%g of the slip force), and the open pairs, split by bolt side: %" PetscInt_FMT " joints\n", (double)a[ord[0]], (double)a[ord[nc - 1]], k, (double)a0, (double)a1, (double)o->upto, nreg));
+  PetscCall(PetscPrintf(comm, "rom: onset partition: the first member in contact starts to slip at the modal amplitude %.4g in the stuck mode, %g of the slip force by %.4g; %" PetscInt_FMT " bands of equal ratio between, and the open pairs, split by bolt side: %" PetscInt_FMT " joints\n", (double)a0, (double)o->upto, (double)a1, k, nreg));
   PetscCall(PetscMalloc1(3 * n + 1, &x));
   for (PetscInt e = 0; e < n; e++)
     for (PetscInt c = 0; c < 3; c++) x[3 * e + c] = P->x[3 * o->pair[e] + c];
