@@ -109,11 +109,13 @@ static PetscErrorCode JointDissipation(JRCont c, PetscInt nlev, PetscInt nj, con
   const JRElements *el;
   Vec               a;
   PetscReal        *e;
+  PetscInt          n;
 
   PetscFunctionBeginUser;
   PetscCall(JRContGetHBM(c, &h));
   PetscCall(JRHBMGetElements(h, &el));
-  PetscCall(JRHBMCreateVecs(h, &a, NULL));
+  PetscCall(JRHBMGetSizes(h, NULL, NULL, &n));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &a)); /* the modal unknowns (a condensed model's too) */
   PetscCall(PetscMalloc1(el->n, &e));
   PetscCall(PetscArrayzero(E, nlev * nj));
   for (PetscInt l = 0; l < nlev; l++) {
