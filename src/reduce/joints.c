@@ -442,7 +442,10 @@ PetscErrorCode JRReduceAssignOnset(JRReduce o, JRModel model, JRElements *el, co
     for (PetscInt r = 0; r < 2 * nb * (k + 1); r++) {
       if (map[r] < 0) continue;
       o->ji[map[r]].zone = -1;
-      PetscCall(PetscSNPrintf(o->ji[map[r]].kind, sizeof(o->ji[map[r]].kind), "%s %" PetscInt_FMT " of %" PetscInt_FMT ", bolt %" PetscInt_FMT ", %s side", r % (k + 1) < k ? "onset band" : "open pairs", PetscMin(r % (k + 1) + 1, k), k, r / (2 * (k + 1)) + 1, (r / (k + 1)) % 2 ? "+x" : "-x"));
+      const PetscInt b = r / (2 * (k + 1)) + 1, band = r % (k + 1);
+      const char    *sd = (r / (k + 1)) % 2 ? "+x" : "-x";
+      if (band < k) PetscCall(PetscSNPrintf(o->ji[map[r]].kind, sizeof(o->ji[map[r]].kind), "onset band %" PetscInt_FMT " of %" PetscInt_FMT ", bolt %" PetscInt_FMT ", %s side", band + 1, k, b, sd));
+      else PetscCall(PetscSNPrintf(o->ji[map[r]].kind, sizeof(o->ji[map[r]].kind), "open pairs, bolt %" PetscInt_FMT ", %s side", b, sd));
     }
     for (PetscInt e = 0; e < n; e++) el->joint[e] = map[el->joint[e]];
     PetscCall(PetscFree(map));
