@@ -53,6 +53,26 @@ PetscErrorCode JRHBMResponse(JRHBM h, Vec a, PetscReal X[], PetscReal amp[], Pet
   PetscFunctionReturn(0);
 }
 
+/* The work per cycle of each of group g's elements at the modal unknowns x [J]: of its tangential force through its
+   tangential motion and of its normal load through its normal motion, in w[0..g->nloc) */
+static PetscErrorCode GroupWork(JRHBM h, JRHBMGroup *g, const PetscScalar *x, PetscReal w[])
+{
+  const PetscInt nm = h->nm, nc = h->nc, n = g->nloc;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRGemm("N", "N", n, nc, nm, 1.0, g->R, n, x, nm, 0.0, g->U, n));
+  if (g->normal) PetscCall(JRGemm("N", "N", n, nc, nm, 1.0, g->S, n, x, nm, 0.0, g->V, n));
+  PetscCall(JRContactEvaluate(g->c, g->U, g->V, g->F, g->normal ? g->N : NULL, NULL, NULL, NULL, NULL));
+  for (PetscInt e = 0; e < n; e++) {
+    w[e] = 0;
+    for (PetscInt hh = 1; 2 * hh < nc; hh++) {
+      w[e] += PETSC_PI * hh * (g->U[(2 * hh - 1) * n + e] * g->F[2 * hh * n + e] - g->U[2 * hh * n + e] * g->F[(2 * hh - 1) * n + e]);
+      if (g->normal) w[e] += PETSC_PI * hh * (g->V[(2 * hh - 1) * n + e] * g->N[2 * hh * n + e] - g->V[2 * hh * n + e] * g->N[(2 * hh - 1) * n + e]);
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 /*
   JRHBMEnergy - energy per cycle [J]: Win put in by the excitation, Edamp dissipated by the linear
   damping, Enl dissipated by the elements (integral of f du over a cycle, summed; collective).
@@ -81,15 +101,12 @@ PetscErrorCode JRHBMEnergy(JRHBM h, PetscReal w, Vec a, PetscReal *Win, PetscRea
   h->cache_ok = PETSC_FALSE;
   for (PetscInt t = 0; t < h->ngroups; t++) {
     JRHBMGroup *g = &h->g[t];
+    PetscReal  *w;
     if (!g->nloc) continue;
-    PetscCall(JRGemm("N", "N", g->nloc, nc, nm, 1.0, g->R, g->nloc, x, nm, 0.0, g->U, g->nloc));
-    if (g->normal) PetscCall(JRGemm("N", "N", g->nloc, nc, nm, 1.0, g->S, g->nloc, x, nm, 0.0, g->V, g->nloc));
-    PetscCall(JRContactEvaluate(g->c, g->U, g->V, g->F, g->normal ? g->N : NULL, NULL, NULL, NULL, NULL));
-    for (PetscInt e = 0; e < g->nloc; e++)
-      for (PetscInt hh = 1; 2 * hh < nc; hh++) {
-        enl += PETSC_PI * hh * (g->U[(2 * hh - 1) * g->nloc + e] * g->F[2 * hh * g->nloc + e] - g->U[2 * hh * g->nloc + e] * g->F[(2 * hh - 1) * g->nloc + e]);
-        if (g->normal) enl += PETSC_PI * hh * (g->V[(2 * hh - 1) * g->nloc + e] * g->N[2 * hh * g->nloc + e] - g->V[2 * hh * g->nloc + e] * g->N[(2 * hh - 1) * g->nloc + e]);
-      }
+    PetscCall(PetscMalloc1(g->nloc, &w));
+    PetscCall(GroupWork(h, g, x, w));
+    for (PetscInt e = 0; e < g->nloc; e++) enl += w[e];
+    PetscCall(PetscFree(w));
   }
   PetscCall(VecRestoreArrayRead(a, &x));
   if (h->repl) tot = enl;
@@ -112,7 +129,6 @@ PetscErrorCode JRHBMElementDissipation(JRHBM h, Vec a, PetscReal E[])
 {
   const JRElements  *el;
   const PetscScalar *x;
-  const PetscInt     nm = h->nm, nc = h->nc;
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMGetElements(h, &el));
@@ -121,18 +137,12 @@ PetscErrorCode JRHBMElementDissipation(JRHBM h, Vec a, PetscReal E[])
   h->cache_ok = PETSC_FALSE;
   for (PetscInt t = 0; t < h->ngroups; t++) {
     JRHBMGroup *g = &h->g[t];
+    PetscReal  *w;
     if (!g->nloc) continue;
-    PetscCall(JRGemm("N", "N", g->nloc, nc, nm, 1.0, g->R, g->nloc, x, nm, 0.0, g->U, g->nloc));
-    if (g->normal) PetscCall(JRGemm("N", "N", g->nloc, nc, nm, 1.0, g->S, g->nloc, x, nm, 0.0, g->V, g->nloc));
-    PetscCall(JRContactEvaluate(g->c, g->U, g->V, g->F, g->normal ? g->N : NULL, NULL, NULL, NULL, NULL));
-    for (PetscInt e = 0; e < g->nloc; e++) {
-      PetscReal w = 0;
-      for (PetscInt hh = 1; 2 * hh < nc; hh++) {
-        w += PETSC_PI * hh * (g->U[(2 * hh - 1) * g->nloc + e] * g->F[2 * hh * g->nloc + e] - g->U[2 * hh * g->nloc + e] * g->F[(2 * hh - 1) * g->nloc + e]);
-        if (g->normal) w += PETSC_PI * hh * (g->V[(2 * hh - 1) * g->nloc + e] * g->N[2 * hh * g->nloc + e] - g->V[2 * hh * g->nloc + e] * g->N[(2 * hh - 1) * g->nloc + e]);
-      }
-      E[g->eidx[e]] = w;
-    }
+    PetscCall(PetscMalloc1(g->nloc, &w));
+    PetscCall(GroupWork(h, g, x, w));
+    for (PetscInt e = 0; e < g->nloc; e++) E[g->eidx[e]] = w[e];
+    PetscCall(PetscFree(w));
   }
   PetscCall(VecRestoreArrayRead(a, &x));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, E, (PetscMPIInt)el->n, MPIU_REAL, MPIU_SUM, h->ecomm));

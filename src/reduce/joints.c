@@ -350,6 +350,10 @@ static PetscErrorCode AssignJoints(JRReduce o, JRModel model, const JRPairs *P, 
       PetscCall(PetscStrncpy(o->ji[e].kind, RegionWords[1], sizeof(o->ji[e].kind)));
     }
   } else if (o->joints == 9) { /* onset: one provisional joint; JRReduceSetUp sets them from the stuck mode */
+    PetscInt *side, nb;
+    PetscCall(PetscMalloc1(el->n, &side)); /* the bolts are needed: checked now, before the modes */
+    PetscCall(BoltSides(o, model, P, el, pair, side, &nb));
+    PetscCall(PetscFree(side));
     nreg = 1;
     for (PetscInt e = 0; e < el->n; e++) el->joint[e] = 0;
     el->njoints = 1;
