@@ -53,21 +53,31 @@ PetscErrorCode JRHBMResponse(JRHBM h, Vec a, PetscReal X[], PetscReal amp[], Pet
   PetscFunctionReturn(0);
 }
 
-/* The work per cycle of each of group g's elements at the modal unknowns x [J]: of its tangential force through its
-   tangential motion and of its normal load through its normal motion, in w[0..g->nloc) */
-static PetscErrorCode GroupWork(JRHBM h, JRHBMGroup *g, const PetscScalar *x, PetscReal w[])
+/* The work per cycle [J] at the modal unknowns x of this rank's elements (all of them if h->repl): of each one's
+   tangential force through its tangential motion and of its normal load through its normal motion; in E[] by the
+   model's element numbering if E is not NULL, and summed in *sum */
+static PetscErrorCode LocalWork(JRHBM h, const PetscScalar *x, PetscReal E[], PetscReal *sum)
 {
-  const PetscInt nm = h->nm, nc = h->nc, n = g->nloc;
+  const PetscInt nm = h->nm, nc = h->nc;
 
   PetscFunctionBeginUser;
-  PetscCall(JRGemm("N", "N", n, nc, nm, 1.0, g->R, n, x, nm, 0.0, g->U, n));
-  if (g->normal) PetscCall(JRGemm("N", "N", n, nc, nm, 1.0, g->S, n, x, nm, 0.0, g->V, n));
-  PetscCall(JRContactEvaluate(g->c, g->U, g->V, g->F, g->normal ? g->N : NULL, NULL, NULL, NULL, NULL));
-  for (PetscInt e = 0; e < n; e++) {
-    w[e] = 0;
-    for (PetscInt hh = 1; 2 * hh < nc; hh++) {
-      w[e] += PETSC_PI * hh * (g->U[(2 * hh - 1) * n + e] * g->F[2 * hh * n + e] - g->U[2 * hh * n + e] * g->F[(2 * hh - 1) * n + e]);
-      if (g->normal) w[e] += PETSC_PI * hh * (g->V[(2 * hh - 1) * n + e] * g->N[2 * hh * n + e] - g->V[2 * hh * n + e] * g->N[(2 * hh - 1) * n + e]);
+  *sum        = 0;
+  h->cache_ok = PETSC_FALSE;
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    JRHBMGroup    *g = &h->g[t];
+    const PetscInt n = g->nloc;
+    if (!n) continue;
+    PetscCall(JRGemm("N", "N", n, nc, nm, 1.0, g->R, n, x, nm, 0.0, g->U, n));
+    if (g->normal) PetscCall(JRGemm("N", "N", n, nc, nm, 1.0, g->S, n, x, nm, 0.0, g->V, n));
+    PetscCall(JRContactEvaluate(g->c, g->U, g->V, g->F, g->normal ? g->N : NULL, NULL, NULL, NULL, NULL));
+    for (PetscInt e = 0; e < n; e++) {
+      PetscReal w = 0;
+      for (PetscInt hh = 1; 2 * hh < nc; hh++) {
+        w += PETSC_PI * hh * (g->U[(2 * hh - 1) * n + e] * g->F[2 * hh * n + e] - g->U[2 * hh * n + e] * g->F[(2 * hh - 1) * n + e]);
+        if (g->normal) w += PETSC_PI * hh * (g->V[(2 * hh - 1) * n + e] * g->N[2 * hh * n + e] - g->V[2 * hh * n + e] * g->N[(2 * hh - 1) * n + e]);
+      }
+      if (E) E[g->eidx[e]] = w;
+      *sum += w;
     }
   }
   PetscFunctionReturn(0);
@@ -98,16 +108,7 @@ PetscErrorCode JRHBMEnergy(JRHBM h, PetscReal w, Vec a, PetscReal *Win, PetscRea
       }
   }
   /* elements: sum of the work of f through u (and of the normal load through v) */
-  h->cache_ok = PETSC_FALSE;
-  for (PetscInt t = 0; t < h->ngroups; t++) {
-    JRHBMGroup *g = &h->g[t];
-    PetscReal  *w;
-    if (!g->nloc) continue;
-    PetscCall(PetscMalloc1(g->nloc, &w));
-    PetscCall(GroupWork(h, g, x, w));
-    for (PetscInt e = 0; e < g->nloc; e++) enl += w[e];
-    PetscCall(PetscFree(w));
-  }
+  PetscCall(LocalWork(h, x, NULL, &enl));
   PetscCall(VecRestoreArrayRead(a, &x));
   if (h->repl) tot = enl;
   else {
@@ -129,21 +130,13 @@ PetscErrorCode JRHBMElementDissipation(JRHBM h, Vec a, PetscReal E[])
 {
   const JRElements  *el;
   const PetscScalar *x;
+  PetscReal          sum;
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMGetElements(h, &el));
   PetscCall(PetscArrayzero(E, el->n));
   PetscCall(VecGetArrayRead(a, &x));
-  h->cache_ok = PETSC_FALSE;
-  for (PetscInt t = 0; t < h->ngroups; t++) {
-    JRHBMGroup *g = &h->g[t];
-    PetscReal  *w;
-    if (!g->nloc) continue;
-    PetscCall(PetscMalloc1(g->nloc, &w));
-    PetscCall(GroupWork(h, g, x, w));
-    for (PetscInt e = 0; e < g->nloc; e++) E[g->eidx[e]] = w[e];
-    PetscCall(PetscFree(w));
-  }
+  PetscCall(LocalWork(h, x, E, &sum));
   PetscCall(VecRestoreArrayRead(a, &x));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, E, (PetscMPIInt)el->n, MPIU_REAL, MPIU_SUM, h->ecomm));
   PetscFunctionReturn(0);
