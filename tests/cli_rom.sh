@@ -136,11 +136,13 @@ states() { echo "$1" | awk '/^frf summary/{t++} $1 ~ /^[0-9.e+-]+$/ && $(NF-5) =
 o=$(mpiexec -n 2 $J -task compare $nv -frf_force 0.01,0.5,2 -rom_joints each -frf_output_file "$tmp/nv" 2>&1)
 read f a <<< "$(worst "$o")"
 nl=$(echo "$o" | grep -c '^compare level')
-# (the frequency of a maximum is set only to about the square root of the amplitude's round-off: 1e-8, the amplitude 1e-8)
-check "[ '$nl' = 3 ] && lt '$f' 1e-8 && lt '$a' 1e-8" "jenkins_nv lap1, -rom_joints each: reduced = node-to-node at 3 levels (0.01, 0.5, 2 N), worst peak frequency error $f, amplitude error $a"
+# (the frequency of a maximum is set only to about the square root of the amplitudes' relative difference, 1e-10,
+# times the peak's relative half-width, 1e-3: 1e-8, allowed 1e-7; the amplitude 1e-8)
+check "[ '$nl' = 3 ] && lt '$f' 1e-7 && lt '$a' 1e-8" "jenkins_nv lap1, -rom_joints each: reduced = node-to-node at 3 levels (0.01, 0.5, 2 N), worst peak frequency error $f, amplitude error $a"
 # where each model dissipates at its peaks, joint by joint (compare joints lines, BASE_compare_joints.csv): every
-# element its own joint dissipates what its node-to-node element does, and the node-to-node shares sum to 1
-cj=$(echo "$o" | grep '^compare joints level'); dj=$(echo "$cj" | awk '{d = $8 / $6 - 1; if (d < 0) d = -d; if (d > m) m = d; n++} END{printf "%d %.2e", n, m}')
+# element its own joint dissipates what its node-to-node element does, at its own peak and under the node-to-node
+# peak's motion (rom_at_n2n_peak_J: the same model on the same unknowns), and the node-to-node shares sum to 1
+cj=$(echo "$o" | grep '^compare joints level'); dj=$(echo "$cj" | awk '{d = $8 / $6 - 1; if (d < 0) d = -d; if (d > m) m = d; x = $16 / $6 - 1; if (x < 0) x = -x; if (x > m) m = x; n++} END{printf "%d %.2e", n, m}')
 cjs=$(awk -F, 'NR > 1 {s[$1] += $6; r++} END{for (l in s) {d = s[l] - 1; if (d < 0) d = -d; if (d > m) m = d}; printf "%d %.2e", r, m}' "$tmp/nv_compare_joints.csv" 2>/dev/null)
 read nj dm <<< "$dj"; read nr sm <<< "$cjs"
 check "[ '$nj' = 3 ] && lt '$dm' 1e-6 && lt 0 \$(field \"\$(echo \"\$cj\" | sed -n 2p)\" n2n_J) && [ '$nr' = \$((3 * 132)) ] && lt '$sm' 1e-6" "jenkins_nv lap1, -rom_joints each: every joint dissipates at the peaks what its node-to-node element does (3 levels, worst $dm); the CSV's $nr rows, shares summing to 1 (to $sm)"

@@ -101,18 +101,17 @@ PetscErrorCode JRPostWriteContactMaps(JRPost post, JRModel model, JRCont cont, c
   PetscFunctionReturn(0);
 }
 
-/* The energy dissipated per cycle at a level's peak by each joint: in *E (nj per level, on every rank) from the
-   elements of cont's model, each counted in its joint (joint[]) */
-static PetscErrorCode JointDissipation(JRCont c, PetscInt nlev, PetscInt nj, const PetscInt joint[], PetscReal E[])
+/* The energy dissipated per cycle by each joint of h's model at the peak of every level of c (c's model: h's, or
+   another on the same modal unknowns): in *E (nj per level, on every rank), each element counted in its joint
+   (joint[]) */
+static PetscErrorCode JointDissipation(JRHBM h, JRCont c, PetscInt nlev, PetscInt nj, const PetscInt joint[], PetscReal E[])
 {
-  JRHBM             h;
   const JRElements *el;
   Vec               a;
   PetscReal        *e;
   PetscInt          n;
 
   PetscFunctionBeginUser;
-  PetscCall(JRContGetHBM(c, &h));
   PetscCall(JRHBMGetElements(h, &el));
   PetscCall(JRHBMGetSizes(h, NULL, NULL, &n));
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &a)); /* the modal unknowns (a condensed model's too) */
@@ -139,7 +138,9 @@ PetscErrorCode JRPostCompareJoints(JRPost post, JRCont cn, JRCont cr, const JREl
 {
   MPI_Comm  comm = post->comm;
   PetscInt  nlev, nj = elj->njoints;
-  PetscReal *En, *Er;
+  PetscReal *En, *Er, *Ex = NULL;
+  JRHBM      hn, hr;
+  PetscInt   un, ur; /* the two models' unknowns */
   FILE     *fp = NULL;
   char      csv[PETSC_MAX_PATH_LEN + 32], tmp[PETSC_MAX_PATH_LEN + 48];
 
@@ -147,20 +148,30 @@ PetscErrorCode JRPostCompareJoints(JRPost post, JRCont cn, JRCont cr, const JREl
   PetscCheck(elj->joint && elr->joint && elr->njoints == nj, comm, PETSC_ERR_ARG_WRONG, "Both models' elements need the same joints");
   PetscCall(JRContGetNumLevels(cn, &nlev));
   PetscCall(PetscMalloc2(nlev * nj, &En, nlev * nj, &Er));
-  PetscCall(JointDissipation(cn, nlev, nj, elj->joint, En));
-  PetscCall(JointDissipation(cr, nlev, nj, elr->joint, Er));
+  PetscCall(JRContGetHBM(cn, &hn));
+  PetscCall(JRContGetHBM(cr, &hr));
+  PetscCall(JointDissipation(hn, cn, nlev, nj, elj->joint, En));
+  PetscCall(JointDissipation(hr, cr, nlev, nj, elr->joint, Er));
+  PetscCall(JRHBMGetSizes(hn, NULL, NULL, &un));
+  PetscCall(JRHBMGetSizes(hr, NULL, NULL, &ur));
+  if (un == ur) { /* the same modal unknowns (a reduced model on the node-to-node basis, not condensed): the reduced
+                     joints under the node-to-node peak's motion, where they should dissipate what its members do */
+    PetscCall(PetscMalloc1(nlev * nj, &Ex));
+    PetscCall(JointDissipation(hr, cn, nlev, nj, elr->joint, Ex));
+  }
   if (post->base[0]) {
     PetscCall(PetscSNPrintf(csv, sizeof(csv), "%s_compare_joints.csv", post->base));
     PetscCall(JRFileOpenTemp(comm, csv, &fp, tmp, sizeof(tmp)));
-    if (fp) fprintf(fp, "level,F_N,joint,n2n_dissipation_J,rom_dissipation_J,n2n_share,rom_share\n");
+    if (fp) fprintf(fp, "level,F_N,joint,n2n_dissipation_J,rom_dissipation_J,n2n_share,rom_share,rom_at_n2n_peak_J\n");
   }
   for (PetscInt l = 0; l < nlev; l++) {
-    PetscReal F, tn = 0, tr = 0, worst = -1;
+    PetscReal F, tn = 0, tr = 0, tx = 0, worst = -1;
     PetscInt  jw = 0;
     PetscCall(JRContGetLevel(cn, l, &F));
     for (PetscInt j = 0; j < nj; j++) {
       tn += En[l * nj + j];
       tr += Er[l * nj + j];
+      tx += Ex ? Ex[l * nj + j] : 0;
     }
     for (PetscInt j = 0; j < nj; j++) {
       const PetscReal sn = tn > 0 ? En[l * nj + j] / tn : 0, sr = tr > 0 ? Er[l * nj + j] / tr : 0;
@@ -168,15 +179,18 @@ PetscErrorCode JRPostCompareJoints(JRPost post, JRCont cn, JRCont cr, const JREl
         worst = PetscAbsReal(sr - sn);
         jw    = j;
       }
-      if (fp) fprintf(fp, "%" PetscInt_FMT ",%.9g,%" PetscInt_FMT ",%.9e,%.9e,%.6e,%.6e\n", l, (double)F, j, (double)En[l * nj + j], (double)Er[l * nj + j], (double)sn, (double)sr);
+      if (fp) fprintf(fp, "%" PetscInt_FMT ",%.9g,%" PetscInt_FMT ",%.9e,%.9e,%.6e,%.6e,%.9e\n", l, (double)F, j, (double)En[l * nj + j], (double)Er[l * nj + j], (double)sn, (double)sr, (double)(Ex ? Ex[l * nj + j] : NAN));
     }
-    PetscCall(PetscPrintf(comm, "compare joints level %g n2n_J %.6e rom_J %.6e worst_joint %" PetscInt_FMT " n2n_share %.4f rom_share %.4f\n", (double)F, (double)tn, (double)tr, jw, (double)(tn > 0 ? En[l * nj + jw] / tn : 0), (double)(tr > 0 ? Er[l * nj + jw] / tr : 0)));
+    PetscCall(PetscPrintf(comm, "compare joints level %g n2n_J %.6e rom_J %.6e worst_joint %" PetscInt_FMT " n2n_share %.4f rom_share %.4f", (double)F, (double)tn, (double)tr, jw, (double)(tn > 0 ? En[l * nj + jw] / tn : 0), (double)(tr > 0 ? Er[l * nj + jw] / tr : 0)));
+    if (Ex) PetscCall(PetscPrintf(comm, " rom_at_n2n_peak_J %.6e", (double)tx));
+    PetscCall(PetscPrintf(comm, "\n"));
   }
   if (post->base[0]) {
     PetscCall(JRFileCommit(comm, &fp, tmp, csv));
     PetscCall(PetscPrintf(comm, "compare: wrote %s\n", csv));
   }
   PetscCall(PetscFree2(En, Er));
+  PetscCall(PetscFree(Ex));
   PetscFunctionReturn(0);
 }
 

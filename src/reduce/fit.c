@@ -219,23 +219,26 @@ PetscErrorCode JRFitSpreadPoints(FitCtx *ctx, PetscInt j, PetscInt mj)
 
 /* -rom_joint_motion mode: where joint j's mj fitted elements take its field over the members' positions and stuck-mode
    motions (nn->phi: tangential phi_t, normal phi_n), and what they carry there. The fit saw the members weighted by
-   phi_t / its mean over the members in contact at rest (w^2 kt, |w| f): elements k, f moving with that mean. Element g,
-   which stands for a group of members (by slip force, as the fit's start), moves with psi_t, chosen so that its
-   spring becomes its group's total kt (|psi_t| = |mean| sqrt(k / sum kt), signed as the group's slip-force-weighted
-   mean phi_t), with k (mean / psi_t)^2 and f |mean / psi_t|: the same loops in the mode, and no stiffer than its
-   members in other motions; it sits at the group's kt-weighted centroid, and is split into two halves at psi_n =
-   m -/+ s, the kn-weighted mean and spread of the members' phi_n, with the members' total kn: the group's normal
-   stiffness (sum kn phi_n^2) and normal load change (sum kn phi_n) in the mode. For the elements from ctx->cnt on
-   (their springs k in ek): ep, JR_EP each (two points of 5 coordinates); er: mean / psi_t (k becomes k er^2, f
-   becomes f |er|); ekn: the group's total kn */
+   phi_t / its mean over the members in contact at rest (w^2 kt, |w| f): elements k, f moving with that mean. Element g
+   stands for a group of members (by slip force, as the fit's start) and takes the group's place in the field: its
+   kt-weighted centroid, psi_t its kt-weighted root mean square phi_t (signed as its slip-force-weighted mean), and, in
+   two halves, psi_n = m -/+ s, the kn-weighted mean and spread of the members' phi_n. So it moves as its members do
+   in every motion the field carries, not only in the mode (a point off the members' coordinates would take the
+   field's extrapolation there). In the mode it acts as the fitted element: k (mean / psi_t)^2, slip force
+   f |mean / psi_t|; standing for its group's members exactly it has their total kt. Normally it is the group: its
+   total kn (normal stiffness sum kn phi_n^2 and load change sum kn phi_n in the mode) and total normal load N at
+   rest, so it separates as its members do on average, with the friction coefficient that gives the fitted slip
+   force, f |mean / psi_t| / N. For the elements from ctx->cnt on (fitted k, f in ek, ef): ep, JR_EP each (two points
+   of 5 coordinates); er: mean / psi_t (k becomes k er^2); ekn, en0, emu: the group's total kn and N, the friction
+   coefficient */
 PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
 {
   const JRElements  *nn = ctx->nn;
   const MemberDelta *d  = ctx->md + ctx->joff[j];
   const PetscInt     nm = ctx->jn[j];
-  const PetscReal   *mf = ctx->mf, ftot = ctx->jf[j].t.ftot, *k = ctx->ek + ctx->cnt;
-  PetscReal         *ratio = ctx->er + ctx->cnt, *kn = ctx->ekn + ctx->cnt, *P = ctx->ep + JR_EP * ctx->cnt;
-  PetscReal          mean = 0, cnt = 0, umax = 0, c = 0, *acc; /* per group: sum f phi_t, sum kt, sum kt phi_t^2, sum kn, sum kn phi_n, sum kn phi_n^2, sum kt x (3) */
+  const PetscReal   *mf = ctx->mf, ftot = ctx->jf[j].t.ftot, *f = ctx->ef + ctx->cnt;
+  PetscReal         *ratio = ctx->er + ctx->cnt, *kn = ctx->ekn + ctx->cnt, *n0 = ctx->en0 + ctx->cnt, *mu = ctx->emu + ctx->cnt, *P = ctx->ep + JR_EP * ctx->cnt;
+  PetscReal          mean = 0, cnt = 0, umax = 0, c = 0, *acc; /* per group: sum f phi_t, sum kt, sum kt phi_t^2, sum kn, sum kn phi_n, sum kn phi_n^2, sum kt x (3), sum n0 */
 
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < nn->n; e++) { /* the mean the weights were taken over (as in JRTaskFRF) */
@@ -246,26 +249,31 @@ PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
     }
   }
   mean = cnt > 0 ? mean / cnt : 0;
-  PetscCall(PetscCalloc1(9 * mj, &acc));
+  PetscCall(PetscCalloc1(10 * mj, &acc));
   for (PetscInt i = 0; i < nm; i++, c += mf[d[i - 1].e]) {
     const PetscInt  e = d[i].e;
     const PetscInt  g = nm <= mj ? i : PetscMin(PetscMax((PetscInt)(mj * (c + 0.5 * mf[e]) / ftot), 0), mj - 1);
     const PetscReal pt = nn->phi[2 * e], pn = nn->phi[2 * e + 1];
-    acc[9 * g] += nn->mu[e] * nn->n0[e] * pt;
-    acc[9 * g + 1] += nn->kt[e];
-    acc[9 * g + 2] += nn->kt[e] * pt * pt;
-    acc[9 * g + 3] += nn->kn[e];
-    acc[9 * g + 4] += nn->kn[e] * pn;
-    acc[9 * g + 5] += nn->kn[e] * pn * pn;
-    for (PetscInt a = 0; a < 3; a++) acc[9 * g + 6 + a] += nn->kt[e] * nn->pos[3 * e + a];
+    acc[10 * g] += nn->mu[e] * nn->n0[e] * pt;
+    acc[10 * g + 1] += nn->kt[e];
+    acc[10 * g + 2] += nn->kt[e] * pt * pt;
+    acc[10 * g + 3] += nn->kn[e];
+    acc[10 * g + 4] += nn->kn[e] * pn;
+    acc[10 * g + 5] += nn->kn[e] * pn * pn;
+    for (PetscInt a = 0; a < 3; a++) acc[10 * g + 6 + a] += nn->kt[e] * nn->pos[3 * e + a];
+    acc[10 * g + 9] += PetscMax(nn->n0[e], 0);
   }
   for (PetscInt g = 0; g < mj; g++) {
-    const PetscReal *r = acc + 9 * g, m = r[3] > 0 ? r[4] / r[3] : 0, s = r[3] > 0 ? PetscSqrtReal(PetscMax(r[5] / r[3] - m * m, 0)) : 0;
-    PetscReal        psi = r[1] > 0 ? PetscAbsReal(mean) * PetscSqrtReal(k[g] / r[1]) : 0; /* so that k becomes sum kt */
+    const PetscReal *r = acc + 10 * g, m = r[3] > 0 ? r[4] / r[3] : 0, s = r[3] > 0 ? PetscSqrtReal(PetscMax(r[5] / r[3] - m * m, 0)) : 0;
+    PetscReal        psi = r[1] > 0 ? PetscSqrtReal(r[2] / r[1]) : 0;
     if (r[0] < 0) psi = -psi;
     if (!(PetscAbsReal(mean) > 1e-6 * umax) || !(PetscAbsReal(psi) > 1e-6 * umax)) psi = mean; /* no weights were used */
     ratio[g] = psi != 0 ? mean / psi : 1.0;
     kn[g]    = r[3];
+    if (r[9] > 0) { /* the group's normal load; the friction coefficient that gives the fitted slip force */
+      n0[g] = r[9] / PetscAbsReal(ratio[g]);
+      mu[g] = f[g] * PetscAbsReal(ratio[g]) / r[9];
+    }
     for (PetscInt h = 0; h < 2; h++) {
       for (PetscInt a = 0; a < 3; a++) P[JR_EP * g + 5 * h + a] = r[1] > 0 ? r[6 + a] / r[1] : 0;
       P[JR_EP * g + 5 * h + 3] = psi;
@@ -698,10 +706,16 @@ static PetscErrorCode LoopsCommit(FitCtx *ctx)
   if (!(ctx->base && ctx->base[0])) PetscFunctionReturn(0);
   PetscCall(JRFileCommit(ctx->comm, &ctx->fp, ctx->tmp, ctx->csv));
   if (ctx->plot) {
-    char      png[PETSC_MAX_PATH_LEN + 32], vars[2 * PETSC_MAX_PATH_LEN + 64];
+    char      png[PETSC_MAX_PATH_LEN + 32], vars[2 * PETSC_MAX_PATH_LEN + 256], js[192] = "";
     PetscBool made;
+    size_t    len;
+    for (PetscInt j = 0, k = 0; j < ctx->nj && k < 12; j++) { /* the first 12 joints with loops (members in contact) */
+      if (!ctx->jn[j]) continue;
+      PetscCall(PetscStrlen(js, &len));
+      PetscCall(PetscSNPrintf(js + len, sizeof(js) - len, "%s%" PetscInt_FMT, k++ ? " " : "", j));
+    }
     PetscCall(PetscSNPrintf(png, sizeof(png), "%s_rom_loops.png", ctx->base));
-    PetscCall(PetscSNPrintf(vars, sizeof(vars), "data='%s'; nj=%" PetscInt_FMT, ctx->csv, PetscMin(ctx->nj, 12)));
+    PetscCall(PetscSNPrintf(vars, sizeof(vars), "data='%s'; js='%s'", ctx->csv, js));
     PetscCall(JRPlot(ctx->comm, "plot_rom_loops.gp", png, vars, &made));
     PetscCall(PetscPrintf(ctx->comm, "rom: wrote %s%s%s\n", ctx->csv, made ? ", " : "", made ? png : ""));
   } else PetscCall(PetscPrintf(ctx->comm, "rom: wrote %s\n", ctx->csv));
