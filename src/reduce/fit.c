@@ -220,25 +220,27 @@ PetscErrorCode JRFitSpreadPoints(FitCtx *ctx, PetscInt j, PetscInt mj)
 /* -rom_joint_motion mode: where joint j's mj fitted elements take its field over the members' positions and stuck-mode
    motions (nn->phi: tangential phi_t, normal phi_n), and what they carry there. The fit saw the members weighted by
    phi_t / its mean over the members in contact at rest (w^2 kt, |w| f): elements k, f moving with that mean. Element g
-   stands for a group of members (by slip force, as the fit's start) and takes the group's place in the field: its
-   kt-weighted centroid, psi_t its kt-weighted root mean square phi_t (signed as its slip-force-weighted mean), and, in
-   two halves, psi_n = m -/+ s, the kn-weighted mean and spread of the members' phi_n. So it moves as its members do
-   in every motion the field carries, not only in the mode (a point off the members' coordinates would take the
-   field's extrapolation there). In the mode it acts as the fitted element: k (mean / psi_t)^2, slip force
-   f |mean / psi_t|; standing for its group's members exactly it has their total kt. Normally it is the group: its
-   total kn (normal stiffness sum kn phi_n^2 and load change sum kn phi_n in the mode) and total normal load N at
-   rest, so it separates as its members do on average, with the friction coefficient that gives the fitted slip
-   force, f |mean / psi_t| / N. For the elements from ctx->cnt on (fitted k, f in ek, ef): ep, JR_EP each (two points
-   of 5 coordinates); er: mean / psi_t (k becomes k er^2); ekn, en0, emu: the group's total kn and N, the friction
-   coefficient */
+   stands for the members whose stiffness it has: the elements in order of slip displacement f / k, the members in
+   order of theirs, each element takes the next share k of the members' stiffness w^2 kt (a member on a boundary
+   shared in proportion). It takes its group's place in the field: the group's kt-weighted centroid, psi_t its
+   kt-weighted root mean square phi_t (signed as its slip-force-weighted mean), and, in two halves, psi_n = m -/+ s,
+   the kn-weighted mean and spread of the members' phi_n. So it moves as its members do in every motion the field
+   carries, not only in the mode (a point off the members' coordinates would take the field's extrapolation there),
+   and has their stiffness there: in the mode it acts as the fitted element, k (mean / psi_t)^2 = the group's total kt,
+   slip force f |mean / psi_t|. Normally it is the group: its total kn (normal stiffness sum kn phi_n^2 and load change
+   sum kn phi_n in the mode) and normal load N at rest, so it separates as its members do on average, with the
+   friction coefficient that gives the fitted slip force, f |mean / psi_t| / N. For the elements from ctx->cnt on
+   (fitted k, f in ek, ef): ep, JR_EP each (two points of 5 coordinates); er: mean / psi_t (k becomes k er^2); ekn,
+   en0, emu: the group's total kn and N, the friction coefficient */
 PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
 {
   const JRElements  *nn = ctx->nn;
   const MemberDelta *d  = ctx->md + ctx->joff[j];
   const PetscInt     nm = ctx->jn[j];
-  const PetscReal   *mf = ctx->mf, ftot = ctx->jf[j].t.ftot, *f = ctx->ef + ctx->cnt;
+  const PetscReal   *mk = ctx->mk, *k = ctx->ek + ctx->cnt, *f = ctx->ef + ctx->cnt;
   PetscReal         *ratio = ctx->er + ctx->cnt, *kn = ctx->ekn + ctx->cnt, *n0 = ctx->en0 + ctx->cnt, *mu = ctx->emu + ctx->cnt, *P = ctx->ep + JR_EP * ctx->cnt;
-  PetscReal          mean = 0, cnt = 0, umax = 0, c = 0, *acc; /* per group: sum f phi_t, sum kt, sum kt phi_t^2, sum kn, sum kn phi_n, sum kn phi_n^2, sum kt x (3), sum n0 */
+  PetscReal          mean = 0, cnt = 0, umax = 0, ksum = 0, msum = 0, c0 = 0, *acc, *lo; /* per group: sum f phi_t, sum kt, sum kt phi_t^2, sum kn, sum kn phi_n, sum kn phi_n^2, sum kt x (3), sum n0 */
+  PetscInt          *ord;
 
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < nn->n; e++) { /* the mean the weights were taken over (as in JRTaskFRF) */
@@ -250,18 +252,37 @@ PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
   }
   mean = cnt > 0 ? mean / cnt : 0;
   PetscCall(PetscCalloc1(10 * mj, &acc));
-  for (PetscInt i = 0; i < nm; i++, c += mf[d[i - 1].e]) {
+  PetscCall(PetscMalloc2(mj + 1, &lo, mj, &ord));
+  for (PetscInt g = 0; g < mj; g++) ord[g] = g;
+  for (PetscInt a = 1; a < mj; a++) /* the elements by slip displacement (insertion sort: mj is small) */
+    for (PetscInt b = a; b > 0 && f[ord[b]] * k[ord[b - 1]] < f[ord[b - 1]] * k[ord[b]]; b--) {
+      const PetscInt t = ord[b];
+      ord[b]           = ord[b - 1];
+      ord[b - 1]       = t;
+    }
+  for (PetscInt g = 0; g < mj; g++) ksum += k[g];
+  for (PetscInt i = 0; i < nm; i++) msum += mk[d[i].e];
+  lo[0] = 0; /* element ord[a] takes the members' stiffness from lo[a] to lo[a + 1] (its share of theirs) */
+  for (PetscInt a = 0; a < mj; a++) lo[a + 1] = lo[a] + (ksum > 0 ? k[ord[a]] / ksum : 1.0 / mj) * msum;
+  lo[mj] = msum;
+  for (PetscInt i = 0, a = 0; i < nm; i++) {
     const PetscInt  e = d[i].e;
-    const PetscInt  g = nm <= mj ? i : PetscMin(PetscMax((PetscInt)(mj * (c + 0.5 * mf[e]) / ftot), 0), mj - 1);
-    const PetscReal pt = nn->phi[2 * e], pn = nn->phi[2 * e + 1];
-    acc[10 * g] += nn->mu[e] * nn->n0[e] * pt;
-    acc[10 * g + 1] += nn->kt[e];
-    acc[10 * g + 2] += nn->kt[e] * pt * pt;
-    acc[10 * g + 3] += nn->kn[e];
-    acc[10 * g + 4] += nn->kn[e] * pn;
-    acc[10 * g + 5] += nn->kn[e] * pn * pn;
-    for (PetscInt a = 0; a < 3; a++) acc[10 * g + 6 + a] += nn->kt[e] * nn->pos[3 * e + a];
-    acc[10 * g + 9] += PetscMax(nn->n0[e], 0);
+    const PetscReal pt = nn->phi[2 * e], pn = nn->phi[2 * e + 1], c1 = c0 + mk[e]; /* the member's stiffness from c0 to c1 */
+    while (a < mj - 1 && lo[a + 1] <= c0) a++;
+    for (PetscInt b = a; b < mj && lo[b] < c1; b++) { /* the member's share in element ord[b] */
+      const PetscReal fr = mk[e] > 0 ? (PetscMin(c1, lo[b + 1]) - PetscMax(c0, lo[b])) / mk[e] : (b == a ? 1.0 : 0.0);
+      PetscReal      *r  = acc + 10 * ord[b];
+      if (!(fr > 0)) continue;
+      r[0] += fr * nn->mu[e] * nn->n0[e] * pt;
+      r[1] += fr * nn->kt[e];
+      r[2] += fr * nn->kt[e] * pt * pt;
+      r[3] += fr * nn->kn[e];
+      r[4] += fr * nn->kn[e] * pn;
+      r[5] += fr * nn->kn[e] * pn * pn;
+      for (PetscInt x = 0; x < 3; x++) r[6 + x] += fr * nn->kt[e] * nn->pos[3 * e + x];
+      r[9] += fr * PetscMax(nn->n0[e], 0);
+    }
+    c0 = c1;
   }
   for (PetscInt g = 0; g < mj; g++) {
     const PetscReal *r = acc + 10 * g, m = r[3] > 0 ? r[4] / r[3] : 0, s = r[3] > 0 ? PetscSqrtReal(PetscMax(r[5] / r[3] - m * m, 0)) : 0;
@@ -281,6 +302,7 @@ PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
     }
   }
   PetscCall(PetscFree(acc));
+  PetscCall(PetscFree2(lo, ord));
   PetscFunctionReturn(0);
 }
 
