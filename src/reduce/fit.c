@@ -222,16 +222,18 @@ PetscErrorCode JRFitSpreadPoints(FitCtx *ctx, PetscInt j, PetscInt mj)
    phi_t / its mean over the members in contact at rest (w^2 kt, |w| f): elements k, f moving with that mean. Element g
    stands for the members whose stiffness it has: the elements in order of slip displacement f / k, the members in
    order of theirs, each element takes the next share k of the members' stiffness w^2 kt (a member on a boundary
-   shared in proportion). It takes its group's place in the field: the group's kt-weighted centroid, psi_t its
-   kt-weighted root mean square phi_t (signed as its slip-force-weighted mean), and, in two halves, psi_n = m -/+ s,
-   the kn-weighted mean and spread of the members' phi_n. So it moves as its members do in every motion the field
-   carries, not only in the mode (a point off the members' coordinates would take the field's extrapolation there),
-   and has their stiffness there: in the mode it acts as the fitted element, k (mean / psi_t)^2 = the group's total kt,
-   slip force f |mean / psi_t|. Normally it is the group: its total kn (normal stiffness sum kn phi_n^2 and load change
-   sum kn phi_n in the mode) and normal load N at rest, so it separates as its members do on average, with the
-   friction coefficient that gives the fitted slip force, f |mean / psi_t| / N. For the elements from ctx->cnt on
-   (fitted k, f in ek, ef): ep, JR_EP each (two points of 5 coordinates); er: mean / psi_t (k becomes k er^2); ekn,
-   en0, emu: the group's total kn and N, the friction coefficient */
+   shared in proportion). It takes its group's place in the field, in two halves at the group's kt-weighted centroid
+   and at its kt-weighted mean -/+ spread of phi_t and kn-weighted mean -/+ spread of phi_n (paired as they covary;
+   jenkins: one point at the root mean square phi_t, rms). So it moves as its members do in every motion the field
+   carries (a point off the members' coordinates would take the field's extrapolation there), and its springs
+   k (mean / rms)^2 (the group's total kt) have the group's first and second moments: the stuck mode loads it as its
+   members. Each half's slip force is in proportion to its |phi_t| (PartShare), so both slip at the same modal
+   amplitude: in the mode the fitted element, slip force f |mean / rms|. Normally it is the group: its total kn
+   (normal stiffness sum kn phi_n^2 and load change sum kn phi_n in the mode) and normal load N at rest, so it
+   separates as its members do on average, with the friction coefficient that gives the fitted slip force,
+   f |mean / rms| / N. For the elements from ctx->cnt on (fitted k, f in ek, ef): ep, JR_EP each (two points of 5
+   coordinates); er: mean / rms (k becomes k er^2); ekn, en0, emu: the group's total kn and N, the friction
+   coefficient */
 PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
 {
   const JRElements  *nn = ctx->nn;
@@ -251,7 +253,7 @@ PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
     }
   }
   mean = cnt > 0 ? mean / cnt : 0;
-  PetscCall(PetscCalloc1(10 * mj, &acc));
+  PetscCall(PetscCalloc1(12 * mj, &acc));
   PetscCall(PetscMalloc2(mj + 1, &lo, mj, &ord));
   for (PetscInt g = 0; g < mj; g++) ord[g] = g;
   for (PetscInt a = 1; a < mj; a++) /* the elements by slip displacement (insertion sort: mj is small) */
@@ -271,7 +273,7 @@ PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
     while (a < mj - 1 && lo[a + 1] <= c0) a++;
     for (PetscInt b = a; b < mj && lo[b] < c1; b++) { /* the member's share in element ord[b] */
       const PetscReal fr = mk[e] > 0 ? (PetscMin(c1, lo[b + 1]) - PetscMax(c0, lo[b])) / mk[e] : (b == a ? 1.0 : 0.0);
-      PetscReal      *r  = acc + 10 * ord[b];
+      PetscReal      *r  = acc + 12 * ord[b];
       if (!(fr > 0)) continue;
       r[0] += fr * nn->mu[e] * nn->n0[e] * pt;
       r[1] += fr * nn->kt[e];
@@ -281,11 +283,15 @@ PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
       r[5] += fr * nn->kn[e] * pn * pn;
       for (PetscInt x = 0; x < 3; x++) r[6 + x] += fr * nn->kt[e] * nn->pos[3 * e + x];
       r[9] += fr * PetscMax(nn->n0[e], 0);
+      r[10] += fr * nn->kt[e] * pt;
+      r[11] += fr * nn->kt[e] * pt * pn;
     }
     c0 = c1;
   }
   for (PetscInt g = 0; g < mj; g++) {
-    const PetscReal *r = acc + 10 * g, m = r[3] > 0 ? r[4] / r[3] : 0, s = r[3] > 0 ? PetscSqrtReal(PetscMax(r[5] / r[3] - m * m, 0)) : 0;
+    const PetscReal *r = acc + 12 * g, m = r[3] > 0 ? r[4] / r[3] : 0, s = r[3] > 0 ? PetscSqrtReal(PetscMax(r[5] / r[3] - m * m, 0)) : 0;
+    const PetscReal  mt = r[1] > 0 ? r[10] / r[1] : 0, st = r[1] > 0 ? PetscSqrtReal(PetscMax(r[2] / r[1] - mt * mt, 0)) : 0;
+    const PetscReal  ctn = r[1] > 0 ? r[11] / r[1] - mt * (r[3] > 0 ? r[4] / r[3] : 0) : 0; /* the sign of phi_t's and phi_n's covariance */
     PetscReal        psi = r[1] > 0 ? PetscSqrtReal(r[2] / r[1]) : 0;
     if (r[0] < 0) psi = -psi;
     if (!(PetscAbsReal(mean) > 1e-6 * umax) || !(PetscAbsReal(psi) > 1e-6 * umax)) psi = mean; /* no weights were used */
@@ -295,10 +301,11 @@ PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
       n0[g] = r[9] / PetscAbsReal(ratio[g]);
       mu[g] = f[g] * PetscAbsReal(ratio[g]) / r[9];
     }
-    for (PetscInt h = 0; h < 2; h++) {
+    for (PetscInt h = 0; h < 2; h++) { /* two halves: phi_t and phi_n at their means -/+ spreads, paired as they covary */
+      const PetscReal sg = h ? 1.0 : -1.0;
       for (PetscInt a = 0; a < 3; a++) P[JR_EP * g + 5 * h + a] = r[1] > 0 ? r[6 + a] / r[1] : 0;
-      P[JR_EP * g + 5 * h + 3] = psi;
-      P[JR_EP * g + 5 * h + 4] = h ? m + s : m - s;
+      P[JR_EP * g + 5 * h + 3] = psi == mean || !ctx->nv ? psi : mt + sg * st;
+      P[JR_EP * g + 5 * h + 4] = m + (ctn < 0 ? -sg : sg) * s;
     }
   }
   PetscCall(PetscFree(acc));
@@ -744,6 +751,16 @@ static PetscErrorCode LoopsCommit(FitCtx *ctx)
   PetscFunctionReturn(0);
 }
 
+/* mode: part c of an element of nc parts at the tangential motions psi_c (ep), its slip force's share times nc,
+   |psi_c| / rms(psi): every part then slips at the same modal amplitude, as the fitted element */
+static PetscReal PartShare(const PetscReal P[], PetscInt nc, PetscInt c)
+{
+  PetscReal s = 0;
+  for (PetscInt i = 0; i < nc; i++) s += P[5 * i + 3] * P[5 * i + 3];
+  s = PetscSqrtReal(s / nc);
+  return s > 0 ? PetscAbsReal(P[5 * c + 3]) / s : 1.0;
+}
+
 /* The reduced elements, the first-reduction model as their members; linear: each a third at each of its points;
    mode (jenkins_nv): each a half at each of its two points */
 static PetscErrorCode AssembleElements(const FitCtx *ctx, JRElements *rom)
@@ -762,7 +779,7 @@ static PetscErrorCode AssembleElements(const FitCtx *ctx, JRElements *rom)
         const PetscReal q = ctx->modef ? ctx->er[e] : 1.0; /* mode: the element moved to psi_t */
         rom->kt[r]        = ctx->ek[e] * q * q / nc;
         rom->kn[r]        = ctx->ekn[e] / nc;
-        rom->mu[r]        = ctx->emu[e];
+        rom->mu[r]        = ctx->emu[e] * (ctx->modef ? PartShare(ctx->ep + JR_EP * e, nc, c) : 1.0);
         rom->n0[r]        = ctx->en0[e] * PetscAbsReal(q) / nc;
         rom->joint[r]     = j;
         for (PetscInt k = 0; rom->pos && k < 3; k++) rom->pos[3 * r + k] = ctx->ep[JR_EP * e + 5 * c + k];
