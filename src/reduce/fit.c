@@ -241,7 +241,7 @@ PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
   const PetscInt     nm = ctx->jn[j];
   const PetscReal   *mk = ctx->mk, *k = ctx->ek + ctx->cnt, *f = ctx->ef + ctx->cnt;
   PetscReal         *ratio = ctx->er + ctx->cnt, *kn = ctx->ekn + ctx->cnt, *n0 = ctx->en0 + ctx->cnt, *mu = ctx->emu + ctx->cnt, *P = ctx->ep + JR_EP * ctx->cnt;
-  PetscReal          mean = 0, cnt = 0, umax = 0, ksum = 0, msum = 0, c0 = 0, *acc, *lo; /* per group: sum f phi_t, sum kt, sum kt phi_t^2, sum kn, sum kn phi_n, sum kn phi_n^2, sum kt x (3), sum n0 */
+  PetscReal          mean = 0, cnt = 0, umax = 0, ksum = 0, msum = 0, c0 = 0, *acc, *lo; /* per group: sum f phi_t, sum kt, sum kt phi_t^2, sum kn, sum kn phi_n, sum kn phi_n^2, sum kt x (3), sum n0, sum kt phi_t, sum kt phi_t phi_n */
   PetscInt          *ord;
 
   PetscFunctionBeginUser;
@@ -762,7 +762,7 @@ static PetscReal PartShare(const PetscReal P[], PetscInt nc, PetscInt c)
 }
 
 /* The reduced elements, the first-reduction model as their members; linear: each a third at each of its points;
-   mode (jenkins_nv): each a half at each of its two points */
+   mode (jenkins_nv): each a half at each of its two points, slip forces in proportion to their tangential motion */
 static PetscErrorCode AssembleElements(const FitCtx *ctx, JRElements *rom)
 {
   const PetscInt nc = ctx->spread ? 3 : (ctx->modef && ctx->nv ? 2 : 1), cnt = ctx->cnt;
