@@ -34,6 +34,10 @@ o=$($J -options_file runs/chain_frf.opts -frf_output_file "$tmp/chain" -frf_plot
 r=$(echo "$o" | awk '/^frf summary/{f=1; next} f && $1 ~ /^[0-9.]+$/ {if ($10 > m) m = $10} END{print m + 0}')
 p1=$(echo "$o" | awk '/^peak level 1. /{print $5}')
 check "[ $rc = 0 ] && ! echo \"\$o\" | grep -q incomplete && awk -v r='$r' -v p='$p1' 'BEGIN{exit !(r <= 1e-8 && p > 206.5 && p < 207.5)}'" "chain_frf.opts: every curve complete (exit $rc), largest residual of every point $r (<= 1e-8), the 1 N peak at the stuck resonance: $p1 Hz"
+# a refined peak that is a computed point already (both responses peak at one kink at 200 N) is not added again:
+# no two rows of a level at the same frequency and amplitude to 1e-9
+tw=$(awk -F, 'NR > 1 && $1 == l {d = ($4 - f) / f; e = ($5 - a) / a; if (d < 0) d = -d; if (e < 0) e = -e; if (d < 1e-9 && e < 1e-9) n++} NR > 1 {l = $1; f = $4; a = $5} END{print n + 0}' "$tmp/chain.csv" 2>/dev/null)
+check "[ -s '$tmp/chain.csv' ] && [ '$tw' = 0 ]" "chain_frf.opts: no point of a curve written twice (twins: $tw)"
 # the printed peak is the curve's largest maximum whatever the points: at 200 N chain_frf's curve has two maxima
 # 0.14 Hz apart within 0.01% in amplitude, and the largest computed point lies beside one or the other with the step;
 # every local maximum of the points near the largest is refined, so the default step, -cont_step 0.007 and 0.013 and

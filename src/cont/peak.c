@@ -306,6 +306,9 @@ static PetscErrorCode RefineAt(JRCont c, JRContBranch *b, PeakWork *pw, PetscInt
     }
   }
   b->refine_its += total;
+  /* a gain within the tolerance is no new point: the maximum is point k itself (a kink of the curve, or a peak that
+     another response's refinement has inserted), and round-off alone would decide whether to add a twin */
+  if (moved && g.f[1] - *Ap <= c->ptol * *Ap) moved = PETSC_FALSE;
   if (moved) { /* the peak as a point of the curve, between k - 1 and k or k and k + 1 */
     PetscReal w;
     PetscCall(Load(pw, g.x[1], &w));
