@@ -153,6 +153,16 @@ so=$(awk -F, 'FNR == 1 {for (i = 1; i <= NF; i++) c[$i] = i; next} NR == FNR {cl
 check "[ -n '$cs' ] && [ \$(field '$cs' full_stick) -gt 0 ] && [ \$(field '$cs' stick_slip) -gt 0 ] && [ \$(field '$cs' separation_stick_slip) -gt 0 ] && [ '$so' -gt 0 ] && [ \$(echo '$sn' | wc -w) = 3 ] && [ '$sn' = '$sr' ]" "jenkins_nv lap1, 0.5 N: stick, slip and separation at the node-to-node peak ($cs; $so pairs closed at rest open within the cycle); every element its own joint, the same states at every level (full stick / stick-slip / separating / open): $sr"
 bc=$(echo "$o" | grep '^basis check'); r0=$(field "$bc" rho); rm0=$(field "$bc" rho_modes)
 nvl="-preload_load $tmp/nv_preload.h5 -modes_load $tmp/nv_modes.h5"
+# a reduced model condensed onto its joints (4 zone joints x 3, mean field: 8 joint rows) gets the stability of every
+# point by default, its fast modes condensed through the 8 rows (fast_rows); the fast block's LU at every step
+# (-frf_stability_time_lowrank no) flags every point the same
+for lr in auto no; do
+  ocz=$(mpiexec -n 2 $J -task frf $nv $nvl -frf_force 0.01,0.5 -rom_joints zones -rom_elements 3 -rom_joint_motion mean -frf_stability_time_lowrank $lr -frf_output_file "$tmp/cz_$lr" 2>&1)
+  [ $lr = auto ] && czl=$(echo "$ocz" | grep -c '^stability level.* fast_rows 8$') && czc=$(echo "$ocz" | grep -c 'condensed onto 8 joint motions')
+done
+czf=$(paste -d, "$tmp/cz_auto.csv" "$tmp/cz_no.csv" 2>/dev/null | awk -F, 'NR > 1 {n++; h = NF / 2; if ($h != $NF || $h < 0) d++} END{printf "%d %d", n, d}')
+read czn czd <<< "$czf"
+check "[ '$czc' = 1 ] && [ '$czl' = 2 ] && [ '${czn:-0}' -gt 100 ] && [ '$czd' = 0 ]" "jenkins_nv lap1, 4 zone joints x 3 condensed onto 8 joint motions: stability by default at both levels through the 8 rows ($czl levels); all $czn points flagged, as by the fast block's LU ($czd differ or unflagged)"
 osv=$(mpiexec -n 2 $J -task frf $nv $nvl -frf_force 0.01,0.5,2 -rom_joints zones -rom_elements 3 -rom_joint_motion mode -rom_save "$tmp/nvrom.h5" -frf_output_file "$tmp/nvsv" 2>&1)
 # the read basis's check, of the whole basis (its static vectors included): no more than the computing run's without
 # them (a larger span misses less), no less than that run's estimate after them (the next pattern's flexibility: a

@@ -754,6 +754,75 @@ int main(int argc, char **argv)
     CHECK(err[4] < 1e-2 * ref[0], "2-DOF, gamma 0.01, the default steps: condensed against marched differ by at most %.2e 1/s (< 1%% of %.3g 1/s)", err[4], ref[0]);
   }
 
+  /* ---- the fast modes condensed through the elements' distinct rows (Woodbury) = by the fast block's LU ----
+     a mass on a spring to ground and seven masses on stiff springs to it, six light (fast: above 20 H w, damped within
+     a period) and mass 4 heavier (slow); three jenkins elements from light mass 1 to ground and two from light mass 2
+     (two distinct rows), and two jenkins_nv elements on light mass 3 (tangential) and mass 4 (normal, preloaded,
+     slipping in contact and separating): four distinct rows for seven elements. At the points of the stick-slip
+     resonance every exponent whose multiplier exceeds 1e-6 (the smaller ones are at the monodromy matrix's round-off)
+     from -frf_stability_time_lowrank yes equals the LU's to round-off. */
+  {
+    const PetscInt n = 8;
+    const double   k0 = pow(2 * PETSC_PI * 10, 2), ks = 2e4;
+    double         K[64], M[64], err = 0, ref = 0;
+    PetscInt       npq = 0, nslip = 0, nd0 = -1, nd2 = -1;
+    Problem        p;
+    PetscInt       np, nn;
+    const PetscReal *om, *aa;
+    Vec            xv;
+    PetscScalar   *xa;
+    PetscCall(PetscArrayzero(K, 64));
+    PetscCall(PetscArrayzero(M, 64));
+    K[0] = k0;
+    M[0] = 1.0;
+    for (PetscInt i = 1; i < n; i++) {
+      K[0] += ks;
+      K[i + i * n] = ks;
+      K[i] = K[i * n] = -ks;
+      M[i + i * n] = i == 4 ? 0.05 : 5e-4 * (1.0 + 0.1 * i);
+    }
+    PetscCall(Options("-hbm_physical -hbm_gamma 0.01 -hbm_harmonics 3 -frf_force 1.0 -frf_fmin 6 -frf_fmax 14"));
+    PetscCall(ProblemCreate(n, K, M, NULL, 7, (El[]){{"jenkins", 1, -1, -1, -1, 4e3, 0, 0.3, 0.3}, {"jenkins", 1, -1, -1, -1, 3e3, 0, 0.3, 0.6}, {"jenkins", 1, -1, -1, -1, 2e3, 0, 0.3, 1.0}, {"jenkins", 2, -1, -1, -1, 3e3, 0, 0.3, 0.5}, {"jenkins", 2, -1, -1, -1, 1e3, 0, 0.3, 1.2}, {"jenkins_nv", 3, -1, 4, -1, 3e3, 2e3, 0.3, 0.1}, {"jenkins_nv", 3, -1, 4, -1, 2e3, 2e3, 0.3, 0.2}}, &p));
+    PetscCall(JRContSolve(p.cont));
+    PetscCall(JRContGetBranch(p.cont, 0, &np, &om, &aa, NULL));
+    PetscCall(JRHBMGetSolveSize(p.hbm, &nn, NULL));
+    PetscCall(JRHBMCreateVecs(p.hbm, &xv, NULL));
+    PetscCall(JRHBMSetFloquetFast(p.hbm, 20));
+    for (PetscInt q = 0; q < np; q += PetscMax(1, np / 30)) {
+      PetscInt  m0, m2, ndq;
+      PetscReal r0[64], r2[64], i0[64], i2[64], x0, x2;
+      PetscCall(VecGetArray(xv, &xa));
+      for (PetscInt i = 0; i < nn; i++) xa[i] = aa[q * nn + i];
+      PetscCall(VecRestoreArray(xv, &xa));
+      PetscCall(JRHBMSetFloquetLowRank(p.hbm, 0));
+      PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, &m0, r0, i0, &x0, NULL));
+      PetscCall(JRHBMGetFloquetLowRankRows(p.hbm, &ndq));
+      nd0 = PetscMax(nd0, ndq);
+      PetscCall(JRHBMSetFloquetLowRank(p.hbm, 2));
+      PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, &m2, r2, i2, &x2, NULL));
+      PetscCall(JRHBMGetFloquetLowRankRows(p.hbm, &ndq));
+      nd2 = PetscMax(nd2, ndq);
+      if (m0 != m2) err = PETSC_INFINITY;
+      else {
+        PetscInt fin = 0;
+        for (PetscInt i = 0; i < m0; i++) {
+          /* multipliers above 1e-6 (exp(re T)): the smaller ones are at the monodromy matrix's round-off */
+          const PetscReal T = 2 * PETSC_PI / om[q], lo = PetscLogReal(1e-6) / T;
+          const PetscBool c0 = (PetscBool)(r0[i] > lo), c2 = (PetscBool)(r2[i] > lo);
+          if (c0 != c2 && PetscAbsReal(r0[i] - r2[i]) > 1e-6 * PetscAbsReal(lo)) err = PETSC_INFINITY;
+          else if (c0 && c2) err = PetscMax(err, PetscMax(PetscAbsReal(r0[i] - r2[i]), PetscAbsReal(i0[i] - i2[i])));
+          if (c0) ref = PetscMax(ref, PetscAbsReal(r0[i]));
+          fin += r0[i] > PETSC_NINFINITY && r0[i] != 0.0; /* marched: the main mass's pair and the tracked slips */
+        }
+        nslip += fin > 2 * 1; /* more exponents than the main mass's pair: slips marched */
+      }
+      npq++;
+    }
+    PetscCall(VecDestroy(&xv));
+    PetscCall(ProblemDestroy(&p));
+    CHECK(nd0 == 0 && nd2 == 4 && nslip > 0 && err <= 1e-9 * ref, "8 DOFs, 7 light masses condensed, 7 elements on 4 distinct rows: at %" PetscInt_FMT " points (%" PetscInt_FMT " with slips marched) every exponent through the distinct rows (%" PetscInt_FMT " used) equals the fast block's LU's (%" PetscInt_FMT " rows) within %.2e 1/s (largest |real part| %.3g 1/s; <= 1e-9 of it)", npq, nslip, nd2, nd0, err, ref);
+  }
+
   /* ---- a symmetric 3-DOF system forced on its axis: symmetry-breaking branch points at H = 1 and 3 ---- */
   { /* the symmetric resonance, its peak at 10.74 Hz and not folded at 20 N, is unstable to antisymmetric motion over
        10.41-10.89 Hz; at 5 N it is stable throughout */

@@ -96,6 +96,8 @@ PETSC_EXTERN PetscErrorCode JRHBMHillSupported(JRHBM, PetscBool *);
 PETSC_EXTERN PetscErrorCode JRHBMFloquetTime(JRHBM, PetscReal, Vec, PetscInt, PetscInt *, PetscReal[], PetscReal[], PetscReal *, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMSetFloquetFast(JRHBM, PetscReal);
 PETSC_EXTERN PetscErrorCode JRHBMFloquetTimeSupported(JRHBM, PetscBool *);
+PETSC_EXTERN PetscErrorCode JRHBMSetFloquetLowRank(JRHBM, PetscInt);
+PETSC_EXTERN PetscErrorCode JRHBMGetFloquetLowRankRows(JRHBM, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMFloquetTimePoints(JRHBM, PetscInt, const PetscReal[], const PetscScalar[], PetscInt, const PetscBool[], PetscInt, PetscReal[], PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMJacobianSign(JRHBM, PetscReal, Vec, PetscInt *);
 /* What decides a point's stability (src/hbm/dissipative.c) */

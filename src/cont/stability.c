@@ -266,7 +266,7 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   PetscLogDouble     t0, t1, e0, e1;
   JRStabilityVerdict v = JR_STABILITY_HILL, *verdict;
   PetscBool         *intime, any = PETSC_FALSE;
-  PetscInt           nfast = 0;
+  PetscInt           nfast = 0, nrows = 0;
 
   PetscFunctionBeginUser;
   PetscCall(JRContBranchStabilityFree(b));
@@ -280,6 +280,7 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   PetscCall(JRHBMHillSupported(c->hbm, &ok));
   PetscCall(JRHBMFloquetTimeSupported(c->hbm, &okt));
   PetscCall(JRHBMSetFloquetFast(c->hbm, c->stabfast));
+  PetscCall(JRHBMSetFloquetLowRank(c->hbm, c->stablr));
   PetscCall(PetscTime(&t0));
   PetscCall(JRHBMGetElementTime(c->hbm, &e0, NULL, NULL));
   for (PetscInt k = 0; k < b->np && !ok && !okt; k++) { /* condensed with smooth elements: only the certificate, which must then hold at every point */
@@ -328,6 +329,7 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
       }
     }
     PetscCall(JRHBMFloquetTimePoints(c->hbm, b->np, b->omega, X, n, intime, c->stabsteps, b->maxre, &nfast));
+    PetscCall(JRHBMGetFloquetLowRankRows(c->hbm, &nrows));
     if (X != b->x) PetscCall(PetscFree(X));
   }
   for (PetscInt k = 0; k < b->np; k++) {
@@ -343,7 +345,7 @@ PetscErrorCode JRContStability(JRCont c, PetscInt lev, Vec a)
   b->stab_seconds = t1 - t0;
   b->stab_elem    = e1 - e0;
   b->nhyst        = ncount[JR_STABILITY_HILL_HYSTERETIC];
-  if (!c->quiet) PetscCall(PetscPrintf(c->comm, "stability level %g unstable_points %" PetscInt_FMT " of %" PetscInt_FMT " folds %" PetscInt_FMT " branch_points %" PetscInt_FMT " seconds %.3g (curve %.3g) dissipative %" PetscInt_FMT " time %" PetscInt_FMT " hill %" PetscInt_FMT " hill_hysteretic %" PetscInt_FMT " fast_modes %" PetscInt_FMT "\n", (double)b->F, nun, b->np, b->nfold, b->nbranch, (double)b->stab_seconds, (double)b->seconds, ncount[JR_STABILITY_DISSIPATIVE], ncount[JR_STABILITY_TIME], ncount[JR_STABILITY_HILL], ncount[JR_STABILITY_HILL_HYSTERETIC], nfast));
+  if (!c->quiet) PetscCall(PetscPrintf(c->comm, "stability level %g unstable_points %" PetscInt_FMT " of %" PetscInt_FMT " folds %" PetscInt_FMT " branch_points %" PetscInt_FMT " seconds %.3g (curve %.3g) dissipative %" PetscInt_FMT " time %" PetscInt_FMT " hill %" PetscInt_FMT " hill_hysteretic %" PetscInt_FMT " fast_modes %" PetscInt_FMT " fast_rows %" PetscInt_FMT "\n", (double)b->F, nun, b->np, b->nfold, b->nbranch, (double)b->stab_seconds, (double)b->seconds, ncount[JR_STABILITY_DISSIPATIVE], ncount[JR_STABILITY_TIME], ncount[JR_STABILITY_HILL], ncount[JR_STABILITY_HILL_HYSTERETIC], nfast, nrows));
   if (!c->quiet && b->nhyst) PetscCall(PetscPrintf(c->comm, "stability level %g: %" PetscInt_FMT " points by Hill's method with friction elements changing state: its periodic Jacobian misses the slip's memory, so these flags indicate and do not decide (docs/theory.md section 16); -frf_verify_unstable checks the unstable ones by time integration\n", (double)b->F, b->nhyst));
   PetscFunctionReturn(0);
 }

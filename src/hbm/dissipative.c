@@ -136,11 +136,12 @@ PetscErrorCode JRHBMStabilityVerdict(JRHBM h, Vec a, PetscBool certify, JRStabil
 /*
   JRHBMStabilityCheap - whether deciding the stability of every point (JRContStability) costs little next to the
   curve: the model is incrementally dissipative at every point (every element jenkins: one LU per point), or it has
-  friction elements and no cubic spring and is not condensed onto its joints (the monodromy matrix in time, its fast
-  modes condensed: 1.3-1.9 times the curve's solve on the FE models of docs/performance.md; a condensed model's curve
-  is so cheap that the modal monodromy costs several times it), or with a cubic spring the monodromy matrix (RK4) has
-  at most 64 states (2 kept modes + friction elements), or, with smooth elements only, Hill's problem has at most
-  128 unknowns. size: the monodromy's state or Hill's problem's size (0 where it is cheap for any size). Collective.
+  friction elements and no cubic spring (the monodromy matrix in time, its fast modes condensed: 1.3-1.9 times the
+  curve's solve on the FE models of docs/performance.md; on a model condensed onto its joints, whose curve is far
+  cheaper, through the joints' few distinct rows, at about that curve's cost again), or with a cubic spring the
+  monodromy matrix (RK4) has at most 64 states (2 kept modes + friction elements), or, with smooth elements only,
+  Hill's problem has at most 128 unknowns. size: the monodromy's state or Hill's problem's size (0 where it is cheap
+  for any size). Collective.
 */
 PetscErrorCode JRHBMStabilityCheap(JRHBM h, PetscBool *cheap, PetscInt *size)
 {
@@ -162,7 +163,7 @@ PetscErrorCode JRHBMStabilityCheap(JRHBM h, PetscBool *cheap, PetscInt *size)
     else ncub += h->g[t].nloc;
   }
   PetscCall(MPIU_Allreduce(&ncub, &anycub, 1, MPIU_INT, MPI_SUM, h->comm));
-  if (!anycub && !h->cond) PetscFunctionReturn(0);
+  if (!anycub) PetscFunctionReturn(0);
   PetscCall(MPIU_Allreduce(&ne, &all, 1, MPIU_INT, MPI_SUM, h->comm));
   for (PetscInt i = 0; i < h->nm; i++)
     if (!h->pin || h->pin[i] == 0.0) nk++;

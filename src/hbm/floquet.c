@@ -86,6 +86,17 @@ struct _JRMonodromy {
   PetscReal *CB, *Rg;                 /* the commits' work (2 cap x (2 nk + cap)), the committing rows (2 ne x nk) */
   PetscInt  *rows;                    /* the committing rows: u row (2 q) or v row (2 q + 1) of tracked slip q */
   PetscReal *sdr;                     /* each committing element's side x d(mu n / kt)/dv */
+  /* the fast modes condensed through the elements' distinct rows (LowRankPoint, LowRankStatic): where the rows [R; S]
+     are a few nd distinct ones Rd (elements sharing a joint's motion), Kp = Aref + Rd^T dD Rd with Aref the stiffness
+     with every element stuck in contact, and Kff^-1 follows from Aref_ff^-1 once per point by the Woodbury identity */
+  PetscInt   nd, *dr, *td;            /* distinct rows (0: too many), each of the l rows' distinct one, per point each
+                                         tracked row's (2 nt) */
+  PetscReal *Rd, *cref, *Aref;        /* nd x nk (row-major: row d at Rd + d nk); the reference coefficients (3 ne);
+                                         K + Rd^T Dref Rd (nk x nk) */
+  PetscBool  lowrank;                 /* this point uses them */
+  PetscInt   lrnsl, *lrkey;           /* the slow modes of the split LowRankPoint's pieces are for (-1: none yet) */
+  PetscReal *LR, *LW;                 /* per point: U, G, W, Rs, K0, KU, M0, Ma, Mb, Mc, C0, Ca, Cb, Cc; per step: work */
+  PetscBLASInt *lpiv;                 /* the per-step LU's pivots (nd) */
 };
 
 #define JR_MONO_SLOTS  16 /* step maps kept per point: a period's stick-slip patterns mostly repeat */
@@ -128,7 +139,71 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscCall(PetscFree(f->CB));
   PetscCall(PetscFree2(f->cf, f->cfn));
   PetscCall(PetscFree(f->sdr));
+  PetscCall(PetscFree4(f->dr, f->td, f->lpiv, f->lrkey));
+  PetscCall(PetscFree5(f->Rd, f->cref, f->Aref, f->LR, f->LW));
   PetscCall(PetscFree(h->mono));
+  PetscFunctionReturn(0);
+}
+
+/* The elements' distinct rows among the l rows of RSt (equal to 1e-12 of the larger), f->nd of them, or f->nd = 0 where
+   more than nk / 2 (the fast modes then condensed by Kff's LU per step); with them the reference stiffness Aref = K +
+   sum over the elements stuck in contact (kt r r^T + kn s s^T), symmetric where K is, else f->nd = 0 */
+static PetscErrorCode DistinctRows(struct _JRMonodromy *f)
+{
+  const PetscInt nk = f->nk, ne = f->ne, l = f->l;
+  PetscInt       nd = 0;
+  PetscReal     *Rd, kmax = 0.0, asym = 0.0;
+
+  PetscFunctionBeginUser;
+  f->nd = 0;
+  PetscCall(PetscMalloc4(l + 1, &f->dr, 2 * ne + 1, &f->td, nk + 1, &f->lpiv, nk + 1, &f->lrkey));
+  f->lrnsl = -1;
+  PetscCall(PetscMalloc1(nk * (nk / 2 + 1), &Rd));
+  for (PetscInt r = 0; r < l && nd <= nk / 2; r++) {
+    const PetscReal *a = f->RSt + r * nk;
+    PetscInt         d;
+    for (d = 0; d < nd; d++) {
+      const PetscReal *b = Rd + d * nk;
+      PetscReal        big = 0.0, diff = 0.0;
+      for (PetscInt i = 0; i < nk; i++) {
+        big  = PetscMax(big, PetscMax(PetscAbsReal(a[i]), PetscAbsReal(b[i])));
+        diff = PetscMax(diff, PetscAbsReal(a[i] - b[i]));
+      }
+      if (diff <= 1e-12 * big) break;
+    }
+    if (d == nd) {
+      if (nd == nk / 2) {
+        nd++;
+        break;
+      }
+      PetscCall(PetscArraycpy(Rd + nd * nk, a, nk));
+      nd++;
+    }
+    f->dr[r] = d;
+  }
+  for (PetscInt j = 0; j < nk; j++)
+    for (PetscInt i = 0; i < nk; i++) {
+      kmax = PetscMax(kmax, PetscAbsReal(f->K[i + j * nk]));
+      asym = PetscMax(asym, PetscAbsReal(f->K[i + j * nk] - f->K[j + i * nk]));
+    }
+  if (nd > nk / 2 || nd == 0 || asym > 1e-12 * kmax) {
+    PetscCall(PetscFree(Rd));
+    PetscFunctionReturn(0);
+  }
+  f->nd = nd;
+  PetscCall(PetscMalloc5(nd * nk, &f->Rd, 3 * ne + 1, &f->cref, nk * nk, &f->Aref, 10 * nk * nk + 16 * nk * nd + 8 * nd * nd + 1, &f->LR, 12 * nd * nd + 8 * nd * nk + 1, &f->LW));
+  PetscCall(PetscArraycpy(f->Rd, Rd, nd * nk));
+  PetscCall(PetscFree(Rd));
+  PetscCall(PetscArraycpy(f->Aref, f->K, nk * nk));
+  for (PetscInt e = 0; e < ne; e++) {
+    PetscReal      *c  = f->cref + 3 * e;
+    const PetscReal *r = f->Rd + f->dr[e] * nk, *sv = f->srow[e] >= 0 ? f->Rd + f->dr[f->srow[e]] * nk : NULL;
+    c[0] = f->kt[e];
+    c[1] = 0.0;
+    c[2] = sv ? f->kn[e] : 0.0;
+    for (PetscInt j = 0; j < nk; j++)
+      for (PetscInt i = 0; i < nk; i++) f->Aref[i + j * nk] += c[0] * r[i] * r[j] + (sv ? c[2] * sv[i] * sv[j] : 0.0);
+  }
   PetscFunctionReturn(0);
 }
 
@@ -277,7 +352,14 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
     const PetscInt m = f->m;
     PetscCall(PetscMalloc3(m * m, &f->Y, m * m, &f->Y0, m * m, &f->Ys));
     PetscCall(PetscMalloc3(PetscMax(PetscMax(f->l, 2 * ne), nk) * m + 1, &f->DUV, f->l * m + 1, &f->DFN, ne * m + 1, &f->Wc));
-    f->lwork = (PetscBLASInt)(4 * m + 4);
+    { /* geev's workspace: its optimal size for m (blocked Hessenberg reduction), at least the minimum 4 m + 4 */
+      PetscBLASInt bm, one = 1, info;
+      PetscReal    opt = 0.0, dummy = 0.0;
+      f->lwork = -1;
+      PetscCall(PetscBLASIntCast(m, &bm));
+      PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &bm, &dummy, &bm, &dummy, &dummy, &dummy, &one, &dummy, &one, &opt, &f->lwork, &info));
+      f->lwork = (PetscBLASInt)PetscMax(4 * m + 4, opt);
+    }
     PetscCall(PetscMalloc4(m * m, &f->ev, m, &f->wr, m, &f->wi, f->lwork, &f->work));
   }
   for (PetscInt e = 0; e < ne; e++)
@@ -298,6 +380,7 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
     PetscCall(PetscMalloc1(ne + 1, &f->sdr));
     for (PetscInt r = 0; r < f->l; r++)
       for (PetscInt i = 0; i < nk; i++) f->RSt[i + r * nk] = f->RS[r + i * f->l];
+    PetscCall(DistinctRows(f));
   }
   PetscCall(PetscFree(keep));
   PetscCall(PetscFree(Kc));
@@ -596,7 +679,9 @@ static PetscErrorCode StiffnessUpdate(struct _JRMonodromy *f, PetscReal *Bw)
     if (bw != 0.0 && f->memp[e] >= 0)
       for (PetscInt i = 0; i < nk; i++) Bw[i + f->memp[e] * nk] = bw * f->RSt[i + e * nk];
   }
-  if (!f->kvalid) { /* Kp = K + [R; S]^T V^T, V's columns a r + b s (row e) and c s (row srow[e]) */
+  if (f->lowrank && f->nfa) { /* LowRankStatic takes the coefficients, not Kp */
+    f->kvalid = PETSC_FALSE;
+  } else if (!f->kvalid) { /* Kp = K + [R; S]^T V^T, V's columns a r + b s (row e) and c s (row srow[e]) */
     PetscReal *V = f->DUV;
     for (PetscInt e = 0; e < ne; e++) {
       const PetscReal *c = f->cfn + 3 * e, *r = f->RSt + e * nk, *sv = f->srow[e] >= 0 ? f->RSt + f->srow[e] * nk : NULL;
@@ -690,6 +775,167 @@ static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, const PetscReal *Bw, P
   PetscFunctionReturn(0);
 }
 
+/* The rows x cols block (idx r, idx c) of the nk x nk column-major matrix A into B (column-major, nr rows) */
+static void Block(const PetscReal *A, PetscInt nk, const PetscInt *ir, PetscInt nr, const PetscInt *ic, PetscInt nc, PetscReal *B)
+{
+  for (PetscInt j = 0; j < nc; j++)
+    for (PetscInt i = 0; i < nr; i++) B[i + j * nr] = A[ir[i] + ic[j] * nk];
+}
+
+/* Per point, the fast modes' condensation through the distinct rows (f->lowrank): with A = Aref_ff (LU),
+   U = A^-1 Rf^T, G = Rf U, X0 = A^-1 Aref_fs, W = Rf X0, K0 = Aref_ss - Aref_sf X0, KU = Aref_sf U, and for B = Mm,
+   C and Kg the pieces of T^T B T for T's fast rows -X0 + U Y (LowRankStatic): B0 = Bss - Bsf X0 - X0^T Bfs +
+   X0^T Bff X0, Ba = Bsf U - X0^T Bff U, Bb = U^T Bfs - U^T Bff X0, Bc = U^T Bff U. They depend on the point only
+   through the split into slow and fast modes, and are kept while it stays; Cv's = C's + g Kg's (g = gamma / w).
+   f->lowrank off where A is singular. */
+static PetscErrorCode LowRankPoint(struct _JRMonodromy *f, PetscReal g)
+{
+  const PetscInt nk = f->nk, nd = f->nd, nsl = f->nsl, nfa = f->nfa, S = nsl * nsl + 2 * nsl * nd + nd * nd;
+  PetscReal     *U = f->LR, *G = U + nfa * nd, *W = G + nd * nd, *Rs = W + nd * nsl, *K0 = Rs + nd * nsl, *KU = K0 + nsl * nsl;
+  PetscReal     *B0 = KU + nsl * nd, *tmp = B0 + 4 * S;
+  PetscReal     *AF = tmp, *X0 = AF + nfa * nfa, *Rf = X0 + nfa * nsl, *Bsf = Rf + nd * nfa, *Bfs = Bsf + nsl * nfa, *Bff = Bfs + nfa * nsl, *BX = Bff + nfa * nfa, *BU = BX + nfa * nsl;
+  PetscBLASInt   bf, bn, info;
+  PetscBool      same = (PetscBool)(f->lrnsl == nsl);
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < nsl && same; i++) same = (PetscBool)(f->lrkey[i] == f->isl[i]);
+  if (!same) {
+    f->lrnsl = -1;
+    PetscCall(PetscBLASIntCast(nfa, &bf));
+    for (PetscInt d = 0; d < nd; d++) {
+      for (PetscInt i = 0; i < nsl; i++) Rs[d + i * nd] = f->Rd[d * nk + f->isl[i]];
+      for (PetscInt a = 0; a < nfa; a++) Rf[d + a * nd] = f->Rd[d * nk + f->ifa[a]];
+    }
+    Block(f->Aref, nk, f->ifa, nfa, f->ifa, nfa, AF);
+    PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bf, &bf, AF, &bf, f->piv, &info));
+    if (info) {
+      f->lowrank = PETSC_FALSE;
+      PetscFunctionReturn(0);
+    }
+    for (PetscInt d = 0; d < nd; d++)
+      for (PetscInt a = 0; a < nfa; a++) U[a + d * nfa] = Rf[d + a * nd];
+    PetscCall(PetscBLASIntCast(nd, &bn));
+    PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bf, &bn, AF, &bf, f->piv, U, &bf, &info));
+    Block(f->Aref, nk, f->ifa, nfa, f->isl, nsl, X0);
+    PetscCall(PetscBLASIntCast(nsl, &bn));
+    PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bf, &bn, AF, &bf, f->piv, X0, &bf, &info));
+    PetscCall(JRGemm("N", "N", nd, nd, nfa, 1.0, Rf, nd, U, nfa, 0.0, G, nd));
+    PetscCall(JRGemm("N", "N", nd, nsl, nfa, 1.0, Rf, nd, X0, nfa, 0.0, W, nd));
+    Block(f->Aref, nk, f->isl, nsl, f->isl, nsl, K0);
+    Block(f->Aref, nk, f->isl, nsl, f->ifa, nfa, Bsf);
+    PetscCall(JRGemm("N", "N", nsl, nsl, nfa, -1.0, Bsf, nsl, X0, nfa, 1.0, K0, nsl));
+    PetscCall(JRGemm("N", "N", nsl, nd, nfa, 1.0, Bsf, nsl, U, nfa, 0.0, KU, nsl));
+    for (PetscInt q = 0; q < 3; q++) { /* Mm, C, Kg */
+      const PetscReal *B = q == 0 ? f->Mm : q == 1 ? f->C : f->Kg;
+      PetscReal       *b0 = B0 + q * S, *ba = b0 + nsl * nsl, *bb = ba + nsl * nd, *bc = bb + nd * nsl;
+      Block(B, nk, f->isl, nsl, f->isl, nsl, b0);
+      Block(B, nk, f->isl, nsl, f->ifa, nfa, Bsf);
+      Block(B, nk, f->ifa, nfa, f->isl, nsl, Bfs);
+      Block(B, nk, f->ifa, nfa, f->ifa, nfa, Bff);
+      PetscCall(JRGemm("N", "N", nfa, nsl, nfa, 1.0, Bff, nfa, X0, nfa, 0.0, BX, nfa));
+      PetscCall(JRGemm("N", "N", nfa, nd, nfa, 1.0, Bff, nfa, U, nfa, 0.0, BU, nfa));
+      PetscCall(JRGemm("N", "N", nsl, nsl, nfa, -1.0, Bsf, nsl, X0, nfa, 1.0, b0, nsl));
+      PetscCall(JRGemm("T", "N", nsl, nsl, nfa, -1.0, X0, nfa, Bfs, nfa, 1.0, b0, nsl));
+      PetscCall(JRGemm("T", "N", nsl, nsl, nfa, 1.0, X0, nfa, BX, nfa, 1.0, b0, nsl));
+      PetscCall(JRGemm("N", "N", nsl, nd, nfa, 1.0, Bsf, nsl, U, nfa, 0.0, ba, nsl));
+      PetscCall(JRGemm("T", "N", nsl, nd, nfa, -1.0, X0, nfa, BU, nfa, 1.0, ba, nsl));
+      PetscCall(JRGemm("T", "N", nd, nsl, nfa, 1.0, U, nfa, Bfs, nfa, 0.0, bb, nd));
+      PetscCall(JRGemm("T", "N", nd, nsl, nfa, -1.0, U, nfa, BX, nfa, 1.0, bb, nd));
+      PetscCall(JRGemm("T", "N", nd, nd, nfa, 1.0, U, nfa, BU, nfa, 0.0, bc, nd));
+    }
+    f->lrnsl = nsl;
+    PetscCall(PetscArraycpy(f->lrkey, f->isl, nsl));
+  }
+  for (PetscInt i = 0; i < S; i++) B0[3 * S + i] = B0[S + i] + g * B0[2 * S + i]; /* Cv = C + (gamma / w) Kg */
+  for (PetscInt e = 0; e < f->ne; e++)
+    if (f->memp[e] >= 0) {
+      f->td[2 * f->memp[e]]     = f->dr[e];
+      f->td[2 * f->memp[e] + 1] = f->srow[e] >= 0 ? f->dr[f->srow[e]] : -1;
+    }
+  PetscFunctionReturn(0);
+}
+
+/* QuasiStatic through the distinct rows (LowRankPoint's pieces): the step's Kp = Aref + Rd^T dD Rd, dD from the
+   elements' coefficients less the reference ones; with P = I + dD G and Q1 = I - P^-1 dD G (Woodbury), T's fast rows
+   are -X0 + U Y with Y = P^-1 dD W - Q1 dD Rs, and Kr = K0 + KU Y + Rs^T dD (Rd T), Rd T = Rs - W + G Y, Mr and Cr
+   from their pieces, Br = (Rs^T (I - dD Hn) - KU Q1) E (E: the held slips' stiffness at their rows) with
+   Hn = Rd_f Kff^-1 Rd_f^T = G Q1. Slot k keeps Rd T and Hn for the commits. Out as QuasiStatic's. */
+static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscReal **X, PetscReal *wmax)
+{
+  const PetscInt nk = f->nk, nd = f->nd, nsl = f->nsl, nfa = f->nfa, nt = f->mt - f->n2r;
+  const PetscReal *U = f->LR, *G = U + nfa * nd, *W = G + nd * nd, *Rs = W + nd * nsl, *K0 = Rs + nd * nsl, *KU = K0 + nsl * nsl, *B0 = KU + nsl * nd;
+  PetscReal     *dD = f->LW, *DG = dD + nd * nd, *P = DG + nd * nd, *Q1 = P + nd * nd, *DH = Q1 + nd * nd, *Y = DH + nd * nd, *DW = Y + nd * nsl, *DR = DW + nd * nsl, *tmp = DR + nd * nsl, *Bm = tmp + nd * nsl;
+  PetscReal     *RT = f->Ts + k * nk * nk, *Hn = f->KFs + k * nk * nk, *Mr = f->QW + 3 * nk * nk, *RH = f->QW + 5 * nk * nk, norm = 0.0;
+  PetscBLASInt   bd, bs, brhs, info;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscBLASIntCast(nd, &bd));
+  PetscCall(PetscBLASIntCast(nsl, &bs));
+  PetscCall(PetscArraycpy(f->bws + k * f->cap, f->bwt, nt));
+  PetscCall(PetscArrayzero(dD, nd * nd));
+  for (PetscInt e = 0; e < f->ne; e++) {
+    const PetscReal *c = f->cfn + 3 * e, *o = f->cref + 3 * e;
+    const PetscInt   ir = f->dr[e];
+    dD[ir + ir * nd] += c[0] - o[0];
+    if (f->srow[e] >= 0) {
+      const PetscInt is = f->dr[f->srow[e]];
+      dD[ir + is * nd] += c[1] - o[1];
+      dD[is + is * nd] += c[2] - o[2];
+    }
+  }
+  PetscCall(JRGemm("N", "N", nd, nd, nd, 1.0, dD, nd, G, nd, 0.0, DG, nd));
+  PetscCall(PetscArraycpy(P, DG, nd * nd));
+  for (PetscInt i = 0; i < nd; i++) P[i + i * nd] += 1.0;
+  PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bd, &bd, P, &bd, f->lpiv, &info));
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the fast modes' stiffness is singular (LAPACK getrf info %d); -frf_stability_time_fast 0 marches every mode", (int)info);
+  PetscCall(PetscArraycpy(Q1, DG, nd * nd));
+  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bd, &bd, P, &bd, f->lpiv, Q1, &bd, &info));
+  for (PetscInt i = 0; i < nd * nd; i++) Q1[i] = -Q1[i];
+  for (PetscInt i = 0; i < nd; i++) Q1[i + i * nd] += 1.0;
+  PetscCall(JRGemm("N", "N", nd, nsl, nd, 1.0, dD, nd, W, nd, 0.0, Y, nd));
+  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bd, &bs, P, &bd, f->lpiv, Y, &bd, &info));
+  PetscCall(JRGemm("N", "N", nd, nsl, nd, 1.0, dD, nd, Rs, nd, 0.0, DR, nd));
+  PetscCall(JRGemm("N", "N", nd, nsl, nd, -1.0, Q1, nd, DR, nd, 1.0, Y, nd));
+  for (PetscInt i = 0; i < nd * nsl; i++) RT[i] = Rs[i] - W[i];
+  PetscCall(JRGemm("N", "N", nd, nsl, nd, 1.0, G, nd, Y, nd, 1.0, RT, nd));
+  PetscCall(JRGemm("N", "N", nd, nd, nd, 1.0, G, nd, Q1, nd, 0.0, Hn, nd));
+  /* RH = [Kr, Cr, Br] */
+  PetscCall(PetscArraycpy(RH, K0, nsl * nsl));
+  PetscCall(JRGemm("N", "N", nsl, nsl, nd, 1.0, KU, nsl, Y, nd, 1.0, RH, nsl));
+  PetscCall(JRGemm("N", "N", nd, nsl, nd, 1.0, dD, nd, RT, nd, 0.0, tmp, nd));
+  PetscCall(JRGemm("T", "N", nsl, nsl, nd, 1.0, Rs, nd, tmp, nd, 1.0, RH, nsl));
+  for (PetscInt q = 0; q < 2; q++) { /* Mr, then Cr: B0 + Ba Y + Y^T Bb + Y^T Bc Y (Mm's pieces, Cv's) */
+    const PetscReal *b0 = B0 + 3 * q * (nsl * nsl + 2 * nsl * nd + nd * nd), *ba = b0 + nsl * nsl, *bb = ba + nsl * nd, *bc = bb + nd * nsl;
+    PetscReal       *out = q ? RH + nsl * nsl : Mr;
+    PetscCall(PetscArraycpy(out, b0, nsl * nsl));
+    PetscCall(JRGemm("N", "N", nsl, nsl, nd, 1.0, ba, nsl, Y, nd, 1.0, out, nsl));
+    PetscCall(JRGemm("T", "N", nsl, nsl, nd, 1.0, Y, nd, bb, nd, 1.0, out, nsl));
+    PetscCall(JRGemm("N", "N", nd, nsl, nd, 1.0, bc, nd, Y, nd, 0.0, tmp, nd));
+    PetscCall(JRGemm("T", "N", nsl, nsl, nd, 1.0, Y, nd, tmp, nd, 1.0, out, nsl));
+  }
+  /* Bm = Rs^T (I - dD Hn) - KU Q1 (nsl x nd); Br's column c: the held slip's stiffness x Bm's column at its row */
+  PetscCall(JRGemm("N", "N", nd, nd, nd, -1.0, dD, nd, Hn, nd, 0.0, DH, nd));
+  for (PetscInt i = 0; i < nd; i++) DH[i + i * nd] += 1.0;
+  PetscCall(JRGemm("T", "N", nsl, nd, nd, 1.0, Rs, nd, DH, nd, 0.0, Bm, nsl));
+  PetscCall(JRGemm("N", "N", nsl, nd, nd, -1.0, KU, nsl, Q1, nd, 1.0, Bm, nsl));
+  PetscCall(PetscArrayzero(RH + 2 * nsl * nsl, nsl * nt));
+  for (PetscInt c = 0; c < nt; c++)
+    if (f->bwt[c] != 0.0)
+      for (PetscInt i = 0; i < nsl; i++) RH[i + (2 * nsl + c) * nsl] = f->bwt[c] * Bm[i + f->td[2 * c] * nsl];
+  PetscCall(PetscBLASIntCast(2 * nsl + nt, &brhs));
+  PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bs, &bs, Mr, &bs, f->piv, &info));
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the condensed modal mass is singular (LAPACK getrf info %d)", (int)info);
+  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bs, &brhs, Mr, &bs, f->piv, RH, &bs, &info));
+  for (PetscInt c = 0; c < nsl; c++) {
+    PetscReal cs = 0.0;
+    for (PetscInt i = 0; i < nsl; i++) cs += PetscAbsReal(RH[i + c * nsl]);
+    norm = PetscMax(norm, cs);
+  }
+  *X    = RH;
+  *wmax = PetscSqrtReal(norm);
+  PetscFunctionReturn(0);
+}
+
 /* The map of the state over a step of length dtstep with the elements' states of StepStates (f->ka, f->kb, f->th:
    stuck or slipping at either bound, in contact or not, each element's two states weighted by their shares): the
    variational equations are then linear with constant coefficients, Z' = A Z, A = [L, Aw; 0, 0] in the blocks (Q, P)
@@ -725,7 +971,8 @@ static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt
   } else { /* the slow modes with the fast ones condensed: [0, I; -Mr^-1 [Kr, Cr]] dt and [0; Mr^-1 Br] dt */
     const PetscInt nsl = f->nsl;
     PetscReal     *X = NULL;
-    PetscCall(QuasiStatic(f, Bw, k, &X, &wmax));
+    if (f->lowrank) PetscCall(LowRankStatic(f, k, &X, &wmax));
+    else PetscCall(QuasiStatic(f, Bw, k, &X, &wmax));
     sq = dtstep * wmax > JR_MONO_WDT ? (PetscInt)PetscCeilReal(PetscLog2Real(dtstep * wmax / JR_MONO_WDT)) : 0;
     dt = dtstep / (PetscReal)(1 << sq);
     for (PetscInt i = 0; i < nsl; i++) f->XL[i + (nsl + i) * n2] = dt;
@@ -813,7 +1060,18 @@ static PetscErrorCode Commit(struct _JRMonodromy *f, PetscInt j, PetscInt k)
   if (!nr) PetscFunctionReturn(0);
   for (PetscInt r = 0; r < nr; r++)
     for (PetscInt i = 0; i < nk; i++) f->Rg[r + i * nr] = f->RT[f->rows[r] + i * 2 * nt];
-  if (f->nfa) { /* DUV = (Rg T) Y_q + (Rg_f Kff^-1 R_f diag(bw)) Y_w, Rg_f Kff^-1 = (Kff^-T Rg_f^T)^T */
+  if (f->nfa && f->lowrank) { /* the same from slot k's Rd T and Hn = Rd_f Kff^-1 Rd_f^T at the rows' distinct ones */
+    const PetscInt   nsl = f->nsl, nd = f->nd;
+    const PetscReal *RTk = f->Ts + k * nk * nk, *Hk = f->KFs + k * nk * nk, *bw = f->bws + k * f->cap;
+    PetscReal       *A = f->CB, *B = A + nr * nsl;
+    for (PetscInt r = 0; r < nr; r++) {
+      const PetscInt d = f->td[f->rows[r]];
+      for (PetscInt i = 0; i < nsl; i++) A[r + i * nr] = RTk[d + i * nd];
+      for (PetscInt c = 0; c < nt; c++) B[r + c * nr] = Hk[d + f->td[2 * c] * nd] * bw[c];
+    }
+    PetscCall(JRGemm("N", "N", nr, m, nsl, 1.0, A, nr, Y, m, 0.0, f->DUV, nr));
+    PetscCall(JRGemm("N", "N", nr, m, nt, 1.0, B, nr, Y + n2, m, 1.0, f->DUV, nr));
+  } else if (f->nfa) { /* DUV = (Rg T) Y_q + (Rg_f Kff^-1 R_f diag(bw)) Y_w, Rg_f Kff^-1 = (Kff^-T Rg_f^T)^T */
     const PetscInt nsl = f->nsl, nfa = f->nfa;
     PetscReal     *A = f->CB, *B = A + nr * nsl, *Rf = B + nr * nt, *bw = f->bws + k * f->cap;
     PetscBLASInt   bf, br, info;
@@ -935,8 +1193,10 @@ static PetscErrorCode FastModes(JRHBM h, PetscReal w, PetscInt *mt)
   for (PetscInt e = 0; e < f->ne; e++) /* the tracked elements' r over the fast modes */
     if (f->memp[e] >= 0)
       for (PetscInt a = 0; a < f->nfa; a++) f->Rfa[a + f->memp[e] * f->nfa] = f->RSt[f->ifa[a] + e * nk];
-  *mt   = 2 * f->nsl + nt;
-  f->mt = *mt;
+  *mt        = 2 * f->nsl + nt;
+  f->mt      = *mt;
+  f->lowrank = (PetscBool)(f->nd && f->nfa && (h->monolr == 2 || (h->monolr == 1 && 2 * f->nd <= f->nfa)));
+  if (f->lowrank) PetscCall(LowRankPoint(f, h->gamma / w));
   PetscFunctionReturn(0);
 }
 
@@ -1067,9 +1327,11 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt steps, Pet
     PetscCall(VecGetArrayRead(a, &x));
     PetscCall(FloquetLocal(h, w, x, steps, out + 1));
     PetscCall(VecRestoreArrayRead(a, &x));
-    out[0] = m ? out[1] : 0.0;
+    out[0]    = m ? out[1] : 0.0;
+    h->monond = f->lowrank ? f->nd : 0;
   }
   if (h->size > 1) PetscCallMPI(MPI_Bcast(out, (PetscMPIInt)(1 + 2 * m), MPIU_REAL, 0, h->comm));
+  if (h->size > 1) PetscCallMPI(MPI_Bcast(&h->monond, 1, MPIU_INT, 0, h->comm));
   if (nexp) *nexp = m;
   if (nsteps) *nsteps = Steps(h, w, steps);
   *maxre = out[0];
@@ -1090,7 +1352,7 @@ PetscErrorCode JRHBMFloquetTimePoints(JRHBM h, PetscInt np, const PetscReal omeg
 {
   struct _JRMonodromy *f;
   PetscReal           *out, *mine;
-  PetscInt             q = 0, nf = 0;
+  PetscInt             q = 0, nf = 0, nr = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(JR_HBMFloquetTime, 0, 0, 0, 0));
@@ -1103,7 +1365,9 @@ PetscErrorCode JRHBMFloquetTimePoints(JRHBM h, PetscInt np, const PetscReal omeg
     PetscCall(FloquetLocal(h, omega[k], X + k * n, steps, out));
     mine[k] = f->m ? out[0] : 0.0;
     nf      = PetscMax(nf, f->nfa);
+    nr      = PetscMax(nr, f->lowrank ? f->nd : 0);
   }
+  PetscCall(MPIU_Allreduce(&nr, &h->monond, 1, MPIU_INT, MPI_MAX, h->comm));
   if (h->size > 1) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, mine, (PetscMPIInt)np, MPIU_REAL, MPIU_SUM, h->comm));
   if (nfast) PetscCall(MPIU_Allreduce(&nf, nfast, 1, MPIU_INT, MPI_MAX, h->comm));
   for (PetscInt k = 0; k < np; k++)
@@ -1111,6 +1375,31 @@ PetscErrorCode JRHBMFloquetTimePoints(JRHBM h, PetscInt np, const PetscReal omeg
   PetscCall(PetscFree(out));
   PetscCall(PetscFree(mine));
   PetscCall(PetscLogEventEnd(JR_HBMFloquetTime, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMGetFloquetLowRankRows - the distinct rows through which the last JRHBMFloquetTime() or JRHBMFloquetTimePoints()
+  condensed the fast modes (the most over the points; 0: by the fast block's LU, or none fast). Not collective.
+*/
+PetscErrorCode JRHBMGetFloquetLowRankRows(JRHBM h, PetscInt *nd)
+{
+  PetscFunctionBeginUser;
+  *nd = h->monond;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMSetFloquetLowRank - how JRHBMFloquetTime condenses the fast modes at each step's element states: 0 by the fast
+  block's LU (every step), 1 (the default) through the elements' distinct rows where at most half as many as the
+  fast modes (a reduced model's joints: the Woodbury identity from one LU per point), 2 through them wherever they
+  are at most half the kept modes. The same exponents to round-off. Logically collective.
+*/
+PetscErrorCode JRHBMSetFloquetLowRank(JRHBM h, PetscInt mode)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(mode >= 0 && mode <= 2, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "the fast modes' low-rank condensation %" PetscInt_FMT ": give 0, 1 or 2", mode);
+  h->monolr = mode;
   PetscFunctionReturn(0);
 }
 

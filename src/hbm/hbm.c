@@ -53,6 +53,7 @@ PetscErrorCode JRHBMCreate(MPI_Comm comm, JRHBM *hbm)
   h->jtype      = JR_HBM_JACOBIAN_ANALYTIC;
   h->nmodes_opt = -1;
   h->nfree      = -1;
+  h->monolr     = 1;
   PetscCallMPI(MPI_Comm_rank(comm, &h->rank));
   PetscCallMPI(MPI_Comm_size(comm, &h->size));
   *hbm = h;

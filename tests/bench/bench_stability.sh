@@ -36,6 +36,10 @@ runs/oscillator_frf.opts|1|3|-options_file runs/oscillator_frf.opts
 runs/default.opts (BRB)|2|3|-options_file runs/default.opts
 lap1 8 mm, 132 jenkins_nv, 30 modes|1|3|$lap1
 lap1 8 mm, 132 jenkins_nv, 30 modes|2|3|$lap1
+lap1 8 mm, 4 zone joints condensed (228 el.)|1|3|$lap1 -rom_joints zones -rom_joint_motion mean
+lap1 8 mm, 4 zone joints condensed (228 el.)|2|3|$lap1 -rom_joints zones -rom_joint_motion mean
+lap1 8 mm, 4 zone joints x 3 condensed|1|3|$lap1 -rom_joints zones -rom_joint_motion mean -rom_elements 3
+lap1 8 mm, 4 zone joints x 3 condensed|2|3|$lap1 -rom_joints zones -rom_joint_motion mean -rom_elements 3
 runs/lap3_n2n.opts, 506 jenkins_nv, 88 modes|2|1|-options_file runs/lap3_n2n.opts
 EOF
 rm -f /tmp/jr_bench_off.$$ /tmp/jr_bench_on.$$

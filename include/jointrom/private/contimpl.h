@@ -72,6 +72,7 @@ struct _p_JRCont {
   PetscInt          stabdense;  /* -frf_stability_dense_max */
   PetscBool         stabtime;   /* -frf_stability_time: friction elements changing state, Floquet exponents in time */
   PetscInt          stabsteps;  /* -frf_stability_time_steps: their least steps per period */
+  PetscInt          stablr;     /* -frf_stability_time_lowrank: 0 no, 1 auto, 2 yes (JRHBMSetFloquetLowRank) */
   PetscReal         stabfast;   /* -frf_stability_time_fast: modes above this x H w quasi-static there (0: none) */
   PetscBool         stabdiss;   /* -frf_stability_dissipative: the incremental-dissipativity certificate where it holds */
 };

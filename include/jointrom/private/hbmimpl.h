@@ -119,6 +119,8 @@ struct _p_JRHBM {
   PetscReal        *epsi, *ep, *ework; /* ework: n + n^2 + n */
   struct _JRHill   *hill;         /* JRHBMFloquet(): the work of Hill's method (src/hbm/hill.c) */
   struct _JRMonodromy *mono;      /* JRHBMFloquetTime(): the work of the time-domain Floquet exponents (src/hbm/floquet.c) */
+  PetscInt          monond;       /* the distinct rows the last monodromy condensed the fast modes through (0: none) */
+  PetscInt          monolr;       /* JRHBMSetFloquetLowRank(): the fast modes condensed through the distinct rows (0 no, 1 auto, 2 yes) */
   PetscReal         monofast;     /* JRHBMSetFloquetFast(): kept modes above monofast x H w quasi-static there (0: none) */
   PetscInt          dissip;       /* JRHBMStabilityVerdict(): 0 not yet known, 1 no certificate (smooth or other elements, or
                                      a linear part that is not dissipative), 2 every element jenkins, 3 jenkins and

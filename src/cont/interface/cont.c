@@ -63,6 +63,7 @@ PetscErrorCode JRContCreate(MPI_Comm comm, JRCont *cont)
   c->stabtime  = PETSC_TRUE;
   c->stabsteps = 64;
   c->stabfast  = 20;
+  c->stablr    = 1;
   PetscCall(PetscMalloc1(1, &c->levels));
   c->levels[0] = 1.0;
   PetscCall(PetscStrncpy(c->out, "out/frf", sizeof(c->out)));
@@ -237,6 +238,12 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
   PetscCall(PetscOptionsBool("-frf_stability_time", "Points with friction elements changing state: Floquet exponents of the monodromy matrix marched over one period; 0: Hill's method, whose flags there indicate", "JRHBMFloquetTime", c->stabtime, &c->stabtime, NULL));
   PetscCall(PetscOptionsInt("-frf_stability_time_steps", "Least steps per period of the monodromy matrix (and at least -hbm_samples; with a cubic spring also dt w_max <= 0.5)", "JRHBMFloquetTime", c->stabsteps, &c->stabsteps, NULL));
   PetscCall(PetscOptionsReal("-frf_stability_time_fast", "Kept modes above this many times H w condensed quasi-statically in the monodromy matrix (their inertia dropped); 0: every mode marched", "JRHBMSetFloquetFast", c->stabfast, &c->stabfast, NULL));
+  {
+    const char *const lr[] = {"no", "auto", "yes"};
+    PetscInt          v    = c->stablr;
+    PetscCall(PetscOptionsEList("-frf_stability_time_lowrank", "Fast modes condensed through the elements' distinct rows (Woodbury; reduced models' joints): auto where at most half as many as the fast modes, yes where at most half the kept modes, no: the fast block's LU at every step", "JRHBMSetFloquetLowRank", lr, 3, lr[v], &v, NULL));
+    c->stablr = v;
+  }
   PetscCall(PetscOptionsInt("-frf_stability_dense_max", "Largest nm (2H+1) solved by LAPACK's QZ; above it SLEPc's PEP (prefix hbm_hill_, strip selection)", "JRHBMFloquet", c->stabdense, &c->stabdense, NULL));
   PetscOptionsEnd();
   c->secant = pred == 0 ? PETSC_TRUE : PETSC_FALSE;
