@@ -170,34 +170,76 @@ static PetscErrorCode CaseAmplitudes(FitCtx *ctx)
   PetscFunctionReturn(0);
 }
 
-/* -rom_joint_motion linear: where joint j's mj fitted elements take its linear motion field. Element g stands for a
-   group of the joint's members (by slip force, as the fit's start); it is split into three equal parts at the points
-   c + sqrt(2) (s1 cos t e1 + s2 sin t e2), t = 0, 2 pi/3, 4 pi/3, where c is the group's stiffness-weighted centroid
-   and s_a^2, e_a the eigenpairs of its in-plane covariance: the three points have the group's centroid and second
-   moment, so the parts carry the joint's rotation with the members' stiffness (parallel axis theorem) and, moved
-   uniformly, act as the element itself. Into ep, JR_EP per element (three points; their positions only) */
-PetscErrorCode JRFitSpreadPoints(FitCtx *ctx, PetscInt j, PetscInt mj)
+/* The members' shares of joint j's mj fitted elements (ctx->cnt on: k, f in ek, ef): the elements in order of slip
+   displacement f / k, the members (d[], in order of theirs) by their weighted stiffness mk; each element takes the
+   next share k / sum k of the members' stiffness, a member on a boundary shared in proportion. Calls add(ctx, e, g,
+   fr, user) for member e's fraction fr in element g. */
+static PetscErrorCode MemberShares(FitCtx *ctx, PetscInt j, PetscInt mj, PetscErrorCode (*add)(FitCtx *, PetscInt, PetscInt, PetscReal, void *), void *user)
 {
-  const JRElements  *nn = ctx->nn;
   const MemberDelta *d  = ctx->md + ctx->joff[j];
   const PetscInt     nm = ctx->jn[j];
-  const PetscReal   *mk = ctx->mk, *mf = ctx->mf, ftot = ctx->jf[j].t.ftot;
-  PetscReal         *P  = ctx->ep + JR_EP * ctx->cnt;
-  PetscReal         *acc; /* per group: weight, sum w p (3), sum w p p^T (9) */
-  PetscReal          c = 0;
+  const PetscReal   *mk = ctx->mk, *k = ctx->ek + ctx->cnt, *f = ctx->ef + ctx->cnt;
+  PetscReal          ksum = 0, msum = 0, c0 = 0, *lo;
+  PetscInt          *ord;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(mj + 1, &lo, mj, &ord));
+  for (PetscInt g = 0; g < mj; g++) ord[g] = g;
+  for (PetscInt a = 1; a < mj; a++) /* the elements by slip displacement (insertion sort: mj is small) */
+    for (PetscInt b = a; b > 0 && f[ord[b]] * k[ord[b - 1]] < f[ord[b - 1]] * k[ord[b]]; b--) {
+      const PetscInt t = ord[b];
+      ord[b]           = ord[b - 1];
+      ord[b - 1]       = t;
+    }
+  for (PetscInt g = 0; g < mj; g++) ksum += k[g];
+  for (PetscInt i = 0; i < nm; i++) msum += mk[d[i].e];
+  lo[0] = 0; /* element ord[a] takes the members' stiffness from lo[a] to lo[a + 1] (its share of theirs) */
+  for (PetscInt a = 0; a < mj; a++) lo[a + 1] = lo[a] + (ksum > 0 ? k[ord[a]] / ksum : 1.0 / mj) * msum;
+  lo[mj] = msum;
+  for (PetscInt i = 0, a = 0; i < nm; i++) {
+    const PetscInt  e  = d[i].e;
+    const PetscReal c1 = c0 + mk[e]; /* the member's stiffness from c0 to c1 */
+    while (a < mj - 1 && lo[a + 1] <= c0) a++;
+    for (PetscInt b = a; b < mj && lo[b] < c1; b++) { /* the member's share in element ord[b] */
+      const PetscReal fr = mk[e] > 0 ? (PetscMin(c1, lo[b + 1]) - PetscMax(c0, lo[b])) / mk[e] : (b == a ? 1.0 : 0.0);
+      if (fr > 0) PetscCall(add(ctx, e, ord[b], fr, user));
+    }
+    c0 = c1;
+  }
+  PetscCall(PetscFree2(lo, ord));
+  PetscFunctionReturn(0);
+}
+
+/* SpreadPoints' sums per element: weight, sum w p (3), sum w p p^T (9) */
+static PetscErrorCode SpreadAdd(FitCtx *ctx, PetscInt e, PetscInt g, PetscReal fr, void *user)
+{
+  PetscReal       *acc = (PetscReal *)user + 13 * g;
+  const PetscReal *p = ctx->nn->pos + 3 * e, w = fr * ctx->mk[e];
+
+  PetscFunctionBeginUser;
+  acc[0] += w;
+  for (PetscInt a = 0; a < 3; a++) {
+    acc[1 + a] += w * p[a];
+    for (PetscInt b = 0; b < 3; b++) acc[4 + 3 * a + b] += w * p[a] * p[b];
+  }
+  PetscFunctionReturn(0);
+}
+
+/* -rom_joint_motion linear: where joint j's mj fitted elements take its linear motion field. Element g stands for the
+   members whose stiffness it has (MemberShares: in slip order, each element the next share of the members'
+   stiffness equal to its own); it is split into three equal parts at the points c + sqrt(2) (s1 cos t e1 + s2 sin t
+   e2), t = 0, 2 pi/3, 4 pi/3, where c is the group's stiffness-weighted centroid and s_a^2, e_a the eigenpairs of its
+   in-plane covariance: the three points have the group's centroid and second moment, so the parts carry the joint's
+   rotation with the members' stiffness (parallel axis theorem) and, moved uniformly, act as the element itself. Into
+   ep, JR_EP per element (three points; their positions only) */
+PetscErrorCode JRFitSpreadPoints(FitCtx *ctx, PetscInt j, PetscInt mj)
+{
+  PetscReal *P = ctx->ep + JR_EP * ctx->cnt;
+  PetscReal *acc; /* per element: weight, sum w p (3), sum w p p^T (9) */
 
   PetscFunctionBeginUser;
   PetscCall(PetscCalloc1(13 * mj, &acc));
-  for (PetscInt i = 0; i < nm; i++, c += mf[d[i - 1].e]) {
-    const PetscInt   e = d[i].e;
-    const PetscReal *p = nn->pos + 3 * e;
-    const PetscInt   g = nm <= mj ? i : PetscMin(PetscMax((PetscInt)(mj * (c + 0.5 * mf[e]) / ftot), 0), mj - 1);
-    acc[13 * g] += mk[e];
-    for (PetscInt a = 0; a < 3; a++) {
-      acc[13 * g + 1 + a] += mk[e] * p[a];
-      for (PetscInt b = 0; b < 3; b++) acc[13 * g + 4 + 3 * a + b] += mk[e] * p[a] * p[b];
-    }
-  }
+  PetscCall(MemberShares(ctx, j, mj, SpreadAdd, acc));
   for (PetscInt g = 0; g < mj; g++) {
     const PetscReal *r = acc + 13 * g;
     PetscReal        c[3] = {0, 0, 0}, C[9], lam[3], work[64];
@@ -214,6 +256,28 @@ PetscErrorCode JRFitSpreadPoints(FitCtx *ctx, PetscInt j, PetscInt mj)
     }
   }
   PetscCall(PetscFree(acc));
+  PetscFunctionReturn(0);
+}
+
+/* ModePoints' sums per element: sum f phi_t, sum kt, sum kt phi_t^2, sum kn, sum kn phi_n, sum kn phi_n^2, sum kt x (3),
+   sum n0, sum kt phi_t, sum kt phi_t phi_n */
+static PetscErrorCode ModeAdd(FitCtx *ctx, PetscInt e, PetscInt g, PetscReal fr, void *user)
+{
+  const JRElements *nn = ctx->nn;
+  const PetscReal   pt = nn->phi[2 * e], pn = nn->phi[2 * e + 1];
+  PetscReal        *r  = (PetscReal *)user + 12 * g;
+
+  PetscFunctionBeginUser;
+  r[0] += fr * nn->mu[e] * nn->n0[e] * pt;
+  r[1] += fr * nn->kt[e];
+  r[2] += fr * nn->kt[e] * pt * pt;
+  r[3] += fr * nn->kn[e];
+  r[4] += fr * nn->kn[e] * pn;
+  r[5] += fr * nn->kn[e] * pn * pn;
+  for (PetscInt x = 0; x < 3; x++) r[6 + x] += fr * nn->kt[e] * nn->pos[3 * e + x];
+  r[9] += fr * PetscMax(nn->n0[e], 0);
+  r[10] += fr * nn->kt[e] * pt;
+  r[11] += fr * nn->kt[e] * pt * pn;
   PetscFunctionReturn(0);
 }
 
@@ -236,13 +300,10 @@ PetscErrorCode JRFitSpreadPoints(FitCtx *ctx, PetscInt j, PetscInt mj)
    coefficient */
 PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
 {
-  const JRElements  *nn = ctx->nn;
-  const MemberDelta *d  = ctx->md + ctx->joff[j];
-  const PetscInt     nm = ctx->jn[j];
-  const PetscReal   *mk = ctx->mk, *k = ctx->ek + ctx->cnt, *f = ctx->ef + ctx->cnt;
-  PetscReal         *ratio = ctx->er + ctx->cnt, *kn = ctx->ekn + ctx->cnt, *n0 = ctx->en0 + ctx->cnt, *mu = ctx->emu + ctx->cnt, *P = ctx->ep + JR_EP * ctx->cnt;
-  PetscReal          mean = 0, cnt = 0, umax = 0, ksum = 0, msum = 0, c0 = 0, *acc, *lo; /* per group: sum f phi_t, sum kt, sum kt phi_t^2, sum kn, sum kn phi_n, sum kn phi_n^2, sum kt x (3), sum n0, sum kt phi_t, sum kt phi_t phi_n */
-  PetscInt          *ord;
+  const JRElements *nn = ctx->nn;
+  const PetscReal  *f  = ctx->ef + ctx->cnt;
+  PetscReal        *ratio = ctx->er + ctx->cnt, *kn = ctx->ekn + ctx->cnt, *n0 = ctx->en0 + ctx->cnt, *mu = ctx->emu + ctx->cnt, *P = ctx->ep + JR_EP * ctx->cnt;
+  PetscReal         mean = 0, cnt = 0, umax = 0, *acc; /* per element: ModeAdd's sums */
 
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < nn->n; e++) { /* the mean the weights were taken over (as in JRTaskFRF) */
@@ -254,40 +315,7 @@ PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
   }
   mean = cnt > 0 ? mean / cnt : 0;
   PetscCall(PetscCalloc1(12 * mj, &acc));
-  PetscCall(PetscMalloc2(mj + 1, &lo, mj, &ord));
-  for (PetscInt g = 0; g < mj; g++) ord[g] = g;
-  for (PetscInt a = 1; a < mj; a++) /* the elements by slip displacement (insertion sort: mj is small) */
-    for (PetscInt b = a; b > 0 && f[ord[b]] * k[ord[b - 1]] < f[ord[b - 1]] * k[ord[b]]; b--) {
-      const PetscInt t = ord[b];
-      ord[b]           = ord[b - 1];
-      ord[b - 1]       = t;
-    }
-  for (PetscInt g = 0; g < mj; g++) ksum += k[g];
-  for (PetscInt i = 0; i < nm; i++) msum += mk[d[i].e];
-  lo[0] = 0; /* element ord[a] takes the members' stiffness from lo[a] to lo[a + 1] (its share of theirs) */
-  for (PetscInt a = 0; a < mj; a++) lo[a + 1] = lo[a] + (ksum > 0 ? k[ord[a]] / ksum : 1.0 / mj) * msum;
-  lo[mj] = msum;
-  for (PetscInt i = 0, a = 0; i < nm; i++) {
-    const PetscInt  e = d[i].e;
-    const PetscReal pt = nn->phi[2 * e], pn = nn->phi[2 * e + 1], c1 = c0 + mk[e]; /* the member's stiffness from c0 to c1 */
-    while (a < mj - 1 && lo[a + 1] <= c0) a++;
-    for (PetscInt b = a; b < mj && lo[b] < c1; b++) { /* the member's share in element ord[b] */
-      const PetscReal fr = mk[e] > 0 ? (PetscMin(c1, lo[b + 1]) - PetscMax(c0, lo[b])) / mk[e] : (b == a ? 1.0 : 0.0);
-      PetscReal      *r  = acc + 12 * ord[b];
-      if (!(fr > 0)) continue;
-      r[0] += fr * nn->mu[e] * nn->n0[e] * pt;
-      r[1] += fr * nn->kt[e];
-      r[2] += fr * nn->kt[e] * pt * pt;
-      r[3] += fr * nn->kn[e];
-      r[4] += fr * nn->kn[e] * pn;
-      r[5] += fr * nn->kn[e] * pn * pn;
-      for (PetscInt x = 0; x < 3; x++) r[6 + x] += fr * nn->kt[e] * nn->pos[3 * e + x];
-      r[9] += fr * PetscMax(nn->n0[e], 0);
-      r[10] += fr * nn->kt[e] * pt;
-      r[11] += fr * nn->kt[e] * pt * pn;
-    }
-    c0 = c1;
-  }
+  PetscCall(MemberShares(ctx, j, mj, ModeAdd, acc));
   for (PetscInt g = 0; g < mj; g++) {
     const PetscReal *r = acc + 12 * g, m = r[3] > 0 ? r[4] / r[3] : 0, s = r[3] > 0 ? PetscSqrtReal(PetscMax(r[5] / r[3] - m * m, 0)) : 0;
     const PetscReal  mt = r[1] > 0 ? r[10] / r[1] : 0, st = r[1] > 0 ? PetscSqrtReal(PetscMax(r[2] / r[1] - mt * mt, 0)) : 0;
@@ -309,7 +337,6 @@ PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
     }
   }
   PetscCall(PetscFree(acc));
-  PetscCall(PetscFree2(lo, ord));
   PetscFunctionReturn(0);
 }
 
