@@ -706,6 +706,29 @@ static PetscErrorCode StiffnessUpdate(struct _JRMonodromy *f, PetscReal *Bw)
   PetscFunctionReturn(0);
 }
 
+/* The slow modes' equations after the condensation: RH = [Kr, Cr, Br] (nsl x (2 nsl + nt)) becomes Mr^-1 RH (Mr's LU
+   in place); wmax >= the stiffest slow mode, the square root of the 1-norm of Mr^-1 Kr */
+static PetscErrorCode SlowSolve(struct _JRMonodromy *f, PetscReal *Mr, PetscReal *RH, PetscReal *wmax)
+{
+  const PetscInt nsl = f->nsl, nt = f->mt - f->n2r;
+  PetscReal      norm = 0.0;
+  PetscBLASInt   bs, brhs, info;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscBLASIntCast(nsl, &bs));
+  PetscCall(PetscBLASIntCast(2 * nsl + nt, &brhs));
+  PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bs, &bs, Mr, &bs, f->piv, &info));
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the condensed modal mass is singular (LAPACK getrf info %d)", (int)info);
+  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bs, &brhs, Mr, &bs, f->piv, RH, &bs, &info));
+  for (PetscInt c = 0; c < nsl; c++) {
+    PetscReal cs = 0.0;
+    for (PetscInt i = 0; i < nsl; i++) cs += PetscAbsReal(RH[i + c * nsl]);
+    norm = PetscMax(norm, cs);
+  }
+  *wmax = PetscSqrtReal(norm);
+  PetscFunctionReturn(0);
+}
+
 /* The fast kept modes (f->ifa) condensed quasi-statically for the step's element states (f->Kp, the stiffness with
    them, StiffnessUpdate; Bw, the held slips' forces): the fast modes follow the slow ones and the
    held slips statically, q = T q_s + T_w w, T = [I; -Kff^-1 Kfs], T_w = [0; Kff^-1 Bw_f] (rows slow; fast), and the
@@ -716,7 +739,6 @@ static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, const PetscReal *Bw, P
 {
   const PetscInt nk = f->nk, nsl = f->nsl, nfa = f->nfa, nt = f->mt - f->n2r;
   PetscReal     *Kp = f->Kp, *T = f->Ts + k * nk * nk, *MT = f->QW + 2 * nk * nk, *Mr = MT + nk * nk, *KF = f->KFs + k * nk * nk, *RH = Mr + 2 * nk * nk;
-  PetscReal      norm = 0.0;
   PetscBLASInt   bf, bs, brhs, info, *piv = f->pivs + k * nk;
 
   PetscFunctionBeginUser;
@@ -761,17 +783,8 @@ static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, const PetscReal *Bw, P
   PetscCall(JRGemm("T", "N", nsl, nsl, nk, 1.0, T, nk, MT, nk, 0.0, RH + nsl * nsl, nsl));
   PetscCall(JRGemm("N", "N", nk, nsl, nk, 1.0, f->Mm, nk, T, nk, 0.0, MT, nk));
   PetscCall(JRGemm("T", "N", nsl, nsl, nk, 1.0, T, nk, MT, nk, 0.0, Mr, nsl));
-  PetscCall(PetscBLASIntCast(2 * nsl + nt, &brhs));
-  PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bs, &bs, Mr, &bs, f->piv, &info));
-  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the condensed modal mass is singular (LAPACK getrf info %d)", (int)info);
-  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bs, &brhs, Mr, &bs, f->piv, RH, &bs, &info));
-  for (PetscInt c = 0; c < nsl; c++) {
-    PetscReal cs = 0.0;
-    for (PetscInt i = 0; i < nsl; i++) cs += PetscAbsReal(RH[i + c * nsl]);
-    norm = PetscMax(norm, cs);
-  }
-  *X    = RH;
-  *wmax = PetscSqrtReal(norm);
+  PetscCall(SlowSolve(f, Mr, RH, wmax));
+  *X = RH;
   PetscFunctionReturn(0);
 }
 
@@ -865,8 +878,8 @@ static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscRea
   const PetscInt nk = f->nk, nd = f->nd, nsl = f->nsl, nfa = f->nfa, nt = f->mt - f->n2r;
   const PetscReal *U = f->LR, *G = U + nfa * nd, *W = G + nd * nd, *Rs = W + nd * nsl, *K0 = Rs + nd * nsl, *KU = K0 + nsl * nsl, *B0 = KU + nsl * nd;
   PetscReal     *dD = f->LW, *DG = dD + nd * nd, *P = DG + nd * nd, *Q1 = P + nd * nd, *DH = Q1 + nd * nd, *Y = DH + nd * nd, *DW = Y + nd * nsl, *DR = DW + nd * nsl, *tmp = DR + nd * nsl, *Bm = tmp + nd * nsl;
-  PetscReal     *RT = f->Ts + k * nk * nk, *Hn = f->KFs + k * nk * nk, *Mr = f->QW + 3 * nk * nk, *RH = f->QW + 5 * nk * nk, norm = 0.0;
-  PetscBLASInt   bd, bs, brhs, info;
+  PetscReal     *RT = f->Ts + k * nk * nk, *Hn = f->KFs + k * nk * nk, *Mr = f->QW + 3 * nk * nk, *RH = f->QW + 5 * nk * nk;
+  PetscBLASInt   bd, bs, info;
 
   PetscFunctionBeginUser;
   PetscCall(PetscBLASIntCast(nd, &bd));
@@ -922,17 +935,8 @@ static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscRea
   for (PetscInt c = 0; c < nt; c++)
     if (f->bwt[c] != 0.0)
       for (PetscInt i = 0; i < nsl; i++) RH[i + (2 * nsl + c) * nsl] = f->bwt[c] * Bm[i + f->td[2 * c] * nsl];
-  PetscCall(PetscBLASIntCast(2 * nsl + nt, &brhs));
-  PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bs, &bs, Mr, &bs, f->piv, &info));
-  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the condensed modal mass is singular (LAPACK getrf info %d)", (int)info);
-  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bs, &brhs, Mr, &bs, f->piv, RH, &bs, &info));
-  for (PetscInt c = 0; c < nsl; c++) {
-    PetscReal cs = 0.0;
-    for (PetscInt i = 0; i < nsl; i++) cs += PetscAbsReal(RH[i + c * nsl]);
-    norm = PetscMax(norm, cs);
-  }
-  *X    = RH;
-  *wmax = PetscSqrtReal(norm);
+  PetscCall(SlowSolve(f, Mr, RH, wmax));
+  *X = RH;
   PetscFunctionReturn(0);
 }
 
