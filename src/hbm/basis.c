@@ -266,7 +266,8 @@ PetscErrorCode JRHBMGroupDestroy(JRHBMGroup *g)
   PetscCall(PetscFree(g->Kc));
   PetscCall(PetscFree(g->R0));
   PetscCall(PetscFree(g->S0));
-  PetscCall(PetscFree2(g->qt, g->qn));
+  PetscCall(PetscFree2(g->qo, g->qw));
+  PetscCall(PetscFree2(g->Ct, g->Cn));
   PetscFunctionReturn(0);
 }
 

@@ -4,39 +4,31 @@
        Z_h(w) = Kg (1 + i gamma) - (h w)^2 Mm + i h w Cm   (the mean: Kg + pin),
    with Kg the structure's own stiffness (Km less the stuck springs that the stuck basis holds). When V^T Cm V is
    diagonal for the eigenvectors V of (Kg, Mm) (no viscous damping, or proportional), Z_h^-1 = V diag(1/z_k) V^T with
-   z_k = lam_k (1 + i gamma) - (h w)^2 + i h w c_k. Every element of a reduced model moves with one of the nq
-   condensed rows Q (its joint's), so with x = Q a the joints' motions and g(x) the elements' forces summed on those
-   rows, a = Z^-1 (F fm - Q^T g) and
+   z_k = lam_k (1 + i gamma) - (h w)^2 + i h w c_k. Every element of a reduced model moves with its joint: its rows are
+   combinations of a few rows of the joint (JointRowSpace: 2 for a joint's mean motion, about 6 for a field linear in
+   the members' positions), so with Q those nq rows, x = Q a the joints' motions and g(x) the elements' forces summed
+   on them (through each element's coefficients), a = Z^-1 (F fm - Q^T g) and
        r_h(x) = x_h + G_h g_h(x) - F xF_h,   G_h = Q Z_h^-1 Q^T (nq x nq),  xF_1 = Q Z_1^-1 fm,
    the modal equations with the modes eliminated exactly: nq (2H+1) unknowns instead of nm (2H+1).
 */
 #include <jointrom/private/hbmimpl.h>
 
-/* G_h, dG_h/dw, xF_h, dxF_h/dw (re, im; column-major, symmetric) and 1/z_k at frequency w, kept */
+/* G_h, dG_h/dw, xF_h, dxF_h/dw (re, im; column-major, symmetric) and 1/z_k at frequency w, kept: each block
+   (Q V) diag(d) (Q V)^T by BLAS (d = re, im of 1/z_k and of its derivative) */
 static PetscErrorCode CondBlocks(JRHBM h, PetscReal w)
 {
-  const PetscInt nq = h->nq, nm = h->nm, bs = 4 * nq * nq + 4 * nq, np = nq * (nq + 1) / 2 + nq;
-  PetscReal     *dr, *di, *o;
+  const PetscInt nq = h->nq, nm = h->nm, bs = 4 * nq * nq + 4 * nq;
+  PetscReal     *dr, *di, *W;
 
   PetscFunctionBeginUser;
   if (h->wq_ok && h->wq == w) PetscFunctionReturn(0);
-  if (!h->QQ) { /* once: the products of the joints' modal rows, pairs r <= c then each row with V^T fm */
-    PetscCall(PetscMalloc2(nm * np, &h->QQ, 2 * nm + 4 * np, &h->cb));
-    for (PetscInt k = 0; k < nm; k++) {
-      PetscReal *q = h->QQ + k * np;
-      for (PetscInt c = 0; c < nq; c++)
-        for (PetscInt r = 0; r <= c; r++) *q++ = h->QV[r * nm + k] * h->QV[c * nm + k];
-      for (PetscInt r = 0; r < nq; r++) *q++ = h->QV[r * nm + k] * h->VF[k];
-    }
-  }
+  if (!h->QQ) PetscCall(PetscMalloc2(nm * nq + 1, &h->QQ, 2 * nm, &h->cb));
+  W  = h->QQ; /* (Q V)^T scaled by d, nm x nq */
   dr = h->cb;
   di = dr + nm;
-  o  = di + nm; /* 4 x np: sums over the modes of the products times 1/z, d(1/z)/dw (re, im) */
   for (PetscInt hh = 1; hh <= h->H; hh++) {
-    PetscReal      *Gr = h->Gb + (hh - 1) * bs, *Gi = Gr + nq * nq, *dGr = Gi + nq * nq, *dGi = dGr + nq * nq;
-    PetscReal      *xFr = dGi + nq * nq, *xFi = xFr + nq, *dxFr = xFi + nq, *dxFi = dxFr + nq;
+    PetscReal      *Gr = h->Gb + (hh - 1) * bs, *xF = Gr + 4 * nq * nq;
     PetscReal      *ir = h->inv + 2 * (hh - 1) * nm, *ii = ir + nm;
-    PetscReal      *o0 = o, *o1 = o + np, *o2 = o + 2 * np, *o3 = o + 3 * np;
     const PetscReal s  = hh * w;
     for (PetscInt k = 0; k < nm; k++) {
       const PetscReal zr = h->lamv[k] - s * s, zi = h->gamma * h->lamv[k] + s * h->cv[k], den = zr * zr + zi * zi;
@@ -49,31 +41,20 @@ static PetscErrorCode CondBlocks(JRHBM h, PetscReal w)
       dr[k] = -(sr * dzr - si * dzi); /* d(1/z)/dw = -(1/z)^2 dz/dw */
       di[k] = -(sr * dzi + si * dzr);
     }
-    PetscCall(PetscArrayzero(o, 4 * np));
-    for (PetscInt k = 0; k < nm; k++) { /* mode by mode: the inner loop runs over independent sums (vectorised) */
-      const PetscReal *q = h->QQ + k * np, a = ir[k], b = ii[k], c = dr[k], d = di[k];
-      for (PetscInt p = 0; p < np; p++) {
-        o0[p] += q[p] * a;
-        o1[p] += q[p] * b;
-        o2[p] += q[p] * c;
-        o3[p] += q[p] * d;
+    for (PetscInt q = 0; q < 4; q++) { /* Gr, Gi, dGr, dGi; then xFr, xFi, dxFr, dxFi (the force: first harmonic only) */
+      const PetscReal *d = q == 0 ? ir : q == 1 ? ii : q == 2 ? dr : di;
+      for (PetscInt r = 0; r < nq; r++)
+        for (PetscInt k = 0; k < nm; k++) W[k + r * nm] = d[k] * h->QV[r * nm + k];
+      PetscCall(JRGemm("T", "N", nq, nq, nm, 1.0, h->QV, nm, W, nm, 0.0, Gr + q * nq * nq, nq));
+      for (PetscInt r = 0; r < nq; r++) {
+        PetscReal v = 0.0;
+        if (hh == 1)
+          for (PetscInt k = 0; k < nm; k++) v += W[k + r * nm] * h->VF[k];
+        xF[q * nq + r] = v;
       }
-    }
-    for (PetscInt c = 0, p = 0; c < nq; c++)
-      for (PetscInt r = 0; r <= c; r++, p++) {
-        Gr[r + c * nq] = Gr[c + r * nq] = o0[p];
-        Gi[r + c * nq] = Gi[c + r * nq] = o1[p];
-        dGr[r + c * nq] = dGr[c + r * nq] = o2[p];
-        dGi[r + c * nq] = dGi[c + r * nq] = o3[p];
-      }
-    for (PetscInt r = 0, p = nq * (nq + 1) / 2; r < nq; r++, p++) { /* the force enters the first harmonic only */
-      xFr[r]  = hh == 1 ? o0[p] : 0.0;
-      xFi[r]  = hh == 1 ? o1[p] : 0.0;
-      dxFr[r] = hh == 1 ? o2[p] : 0.0;
-      dxFi[r] = hh == 1 ? o3[p] : 0.0;
     }
   }
-  PetscCall(PetscLogFlops(8.0 * h->H * nm * np));
+  PetscCall(PetscLogFlops(8.0 * h->H * nm * nq * (nq + 2)));
   h->wq    = w;
   h->wq_ok = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -166,49 +147,113 @@ static PetscErrorCode CondenseReset(JRHBM h)
   PetscFunctionReturn(0);
 }
 
-/* The joints' rows Q (nq x nm, row-major: the nj tangential rows, then the nj normal ones if anyn), the average of
-   their elements' rows (4.4); exact: every element's rows are its joint's, to 1e-10 of the largest (collective) */
-static PetscErrorCode JointRowsQ(JRHBM h, const JRElements *el, PetscInt nq, PetscBool anyn, PetscBool *exact)
+/* The joints' rows Q (nq x nm, row-major, joint by joint): an orthogonal basis of the rows (tangential and normal) of
+   each joint's elements, by the SVD of their stack on every rank (singular values below 1e-10 of the largest
+   dropped), scaled to their root-mean-square row; a joint's elements that move with its mean give 2 rows (1 without a
+   normal row), with a field linear in their coordinates 2 (1 + the coordinates that vary). off (nj + 1): each joint's
+   first row, and the total. Collective. */
+static PetscErrorCode JointRowSpace(JRHBM h, const JRElements *el, PetscBool anyn, PetscInt **off, PetscReal **scale)
 {
-  const PetscInt nm = h->nm, nj = el->njoints, wdt = 2 * nm + 1;
-  PetscReal     *loc, *sum, dev = 0, scale = 0, dd[2], da[2];
+  const PetscInt nm = h->nm, ne = el->n, nj = el->njoints, nr = anyn ? 2 : 1;
+  PetscReal     *loc, *all, *A, *sv, *VT, *Qs = NULL, wq, *work;
+  PetscInt      *cnt, *kj, mmax = 0;
+  PetscBLASInt   bm, bn, lda, ldvt, lwork = -1, info, one = 1;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscCalloc2(nj * wdt, &loc, nj * wdt, &sum));
+  PetscCall(PetscCalloc2(ne * nr * nm, &loc, ne * nr * nm, &all));
   for (PetscInt t = 0; t < h->ngroups; t++) {
-    JRHBMGroup *g = &h->g[t];
-    for (PetscInt e = 0; e < g->nloc; e++) {
-      PetscReal *r = loc + el->joint[g->eidx[e]] * wdt;
-      for (PetscInt i = 0; i < nm; i++) r[i] += g->R[e + i * g->nloc];
-      if (g->normal)
-        for (PetscInt i = 0; i < nm; i++) r[nm + i] += g->S[e + i * g->nloc];
-      r[wdt - 1] += 1.0;
-    }
-  }
-  PetscCall(MPIU_Allreduce(loc, sum, nj * wdt, MPIU_REAL, MPIU_SUM, h->ecomm));
-  PetscCall(PetscCalloc3(nq * nm, &h->Q, nq * nm, &h->QV, nm, &h->VF));
-  for (PetscInt j = 0; j < nj; j++) {
-    const PetscReal *r = sum + j * wdt;
-    PetscCheck(r[wdt - 1] > 0, h->comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no element", j);
-    for (PetscInt i = 0; i < nm; i++) {
-      h->Q[j * nm + i] = r[i] / r[wdt - 1];
-      if (anyn) h->Q[(nj + j) * nm + i] = r[nm + i] / r[wdt - 1];
-    }
-  }
-  for (PetscInt i = 0; i < nq * nm; i++) scale = PetscMax(scale, PetscAbsReal(h->Q[i]));
-  for (PetscInt t = 0; t < h->ngroups; t++) {
-    JRHBMGroup *g = &h->g[t];
-    for (PetscInt e = 0; e < g->nloc; e++) {
-      const PetscInt j = el->joint[g->eidx[e]];
+    const JRHBMGroup *g = &h->g[t];
+    for (PetscInt e = 0; e < g->nloc; e++)
       for (PetscInt i = 0; i < nm; i++) {
-        dev = PetscMax(dev, PetscAbsReal(g->R[e + i * g->nloc] - h->Q[j * nm + i]));
-        if (g->normal) dev = PetscMax(dev, PetscAbsReal(g->S[e + i * g->nloc] - h->Q[(nj + j) * nm + i]));
+        loc[(g->eidx[e] * nr) * nm + i] = g->R[e + i * g->nloc];
+        if (g->normal) loc[(g->eidx[e] * nr + 1) * nm + i] = g->S[e + i * g->nloc];
+      }
+  }
+  PetscCall(MPIU_Allreduce(loc, all, ne * nr * nm, MPIU_REAL, MPIU_SUM, h->ecomm));
+  PetscCall(PetscCalloc2(nj, &cnt, nj, &kj));
+  PetscCall(PetscCalloc2(nj + 1, off, nj, scale));
+  for (PetscInt e = 0; e < ne; e++) cnt[el->joint[e]]++;
+  for (PetscInt j = 0; j < nj; j++) mmax = PetscMax(mmax, cnt[j] * nr);
+  PetscCall(PetscMalloc3(mmax * nm + 1, &A, PetscMin(mmax, nm) + 1, &sv, PetscMin(mmax, nm) * nm + 1, &VT));
+  PetscCall(PetscMalloc1(nj * PetscMin(mmax, nm) * nm + 1, &Qs)); /* each joint's kept rows, unscaled */
+  PetscCall(PetscBLASIntCast(nm, &bn));
+  for (PetscInt j = 0; j < nj; j++) {
+    PetscInt m = 0, mn;
+    PetscCheck(cnt[j] > 0, h->comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no element", j);
+    for (PetscInt e = 0; e < ne; e++) /* the joint's rows, column-major m x nm */
+      if (el->joint[e] == j)
+        for (PetscInt q = 0; q < nr; q++, m++)
+          for (PetscInt i = 0; i < nm; i++) A[m + i * cnt[j] * nr] = all[(e * nr + q) * nm + i];
+    mn = PetscMin(m, nm);
+    PetscCall(PetscBLASIntCast(m, &bm));
+    PetscCall(PetscBLASIntCast(m, &lda));
+    PetscCall(PetscBLASIntCast(mn, &ldvt));
+    lwork = -1;
+    PetscCallBLAS("LAPACKgesvd", LAPACKgesvd_("N", "S", &bm, &bn, A, &lda, sv, NULL, &one, VT, &ldvt, &wq, &lwork, &info));
+    PetscCall(PetscBLASIntCast((PetscInt)wq + 1, &lwork));
+    PetscCall(PetscMalloc1(lwork, &work));
+    PetscCallBLAS("LAPACKgesvd", LAPACKgesvd_("N", "S", &bm, &bn, A, &lda, sv, NULL, &one, VT, &ldvt, work, &lwork, &info));
+    PetscCall(PetscFree(work));
+    PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK gesvd (the joints' rows) failed: info %d", (int)info);
+    for (PetscInt k = 0; k < mn && sv[k] > 1e-10 * sv[0]; k++) kj[j]++;
+    (*scale)[j] = sv[0] / PetscSqrtReal((PetscReal)cnt[j]);
+    for (PetscInt k = 0; k < kj[j]; k++)
+      for (PetscInt i = 0; i < nm; i++) Qs[((*off)[j] + k) * nm + i] = VT[k + i * mn];
+    (*off)[j + 1] = (*off)[j] + kj[j];
+  }
+  h->nq = (*off)[nj];
+  PetscCall(PetscCalloc3(h->nq * nm + 1, &h->Q, h->nq * nm + 1, &h->QV, nm, &h->VF));
+  for (PetscInt j = 0; j < nj; j++)
+    for (PetscInt r = (*off)[j]; r < (*off)[j + 1]; r++)
+      for (PetscInt i = 0; i < nm; i++) h->Q[r * nm + i] = (*scale)[j] * Qs[r * nm + i];
+  PetscCall(PetscFree3(A, sv, VT));
+  PetscCall(PetscFree(Qs));
+  PetscCall(PetscFree2(cnt, kj));
+  PetscCall(PetscFree2(loc, all));
+  PetscFunctionReturn(0);
+}
+
+/* Every element's coefficients on its joint's rows Q_j (scale s_j: Q_j Q_j^T = s_j^2 I), c = Q_j r / s_j^2; exact:
+   every element's rows are c^T Q_j to 1e-10 of the largest (collective) */
+static PetscErrorCode ElementCoefficients(JRHBM h, const JRElements *el, const PetscInt off[], const PetscReal scale[], PetscBool *exact)
+{
+  const PetscInt nm = h->nm;
+  PetscReal      dd[2] = {0, 0}, da[2];
+  PetscInt       cw = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt j = 0; j < el->njoints; j++) cw = PetscMax(cw, off[j + 1] - off[j]);
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    JRHBMGroup    *g    = &h->g[t];
+    const PetscInt nloc = g->nloc;
+    PetscCall(PetscFree2(g->qo, g->qw));
+    PetscCall(PetscFree2(g->Ct, g->Cn));
+    PetscCall(PetscMalloc2(nloc + 1, &g->qo, nloc + 1, &g->qw));
+    PetscCall(PetscCalloc2(nloc * cw + 1, &g->Ct, g->normal ? nloc * cw + 1 : 1, &g->Cn));
+    g->cw = cw;
+    for (PetscInt e = 0; e < nloc; e++) {
+      const PetscInt j = el->joint[g->eidx[e]], k = off[j + 1] - off[j];
+      const PetscReal s2 = scale[j] * scale[j];
+      g->qo[e]         = off[j];
+      g->qw[e]         = k;
+      for (PetscInt q = 0; q < (g->normal ? 2 : 1); q++) {
+        const PetscReal *X = q ? g->S : g->R;
+        PetscReal       *C = q ? g->Cn : g->Ct;
+        for (PetscInt r = 0; r < k; r++) {
+          const PetscReal *qr = h->Q + (off[j] + r) * nm;
+          PetscReal        c  = 0;
+          for (PetscInt i = 0; i < nm; i++) c += qr[i] * X[e + i * nloc];
+          C[e + r * nloc] = c / s2;
+        }
+        for (PetscInt i = 0; i < nm; i++) {
+          PetscReal x = X[e + i * nloc];
+          dd[1] = PetscMax(dd[1], PetscAbsReal(x));
+          for (PetscInt r = 0; r < k; r++) x -= C[e + r * nloc] * h->Q[(off[j] + r) * nm + i];
+          dd[0] = PetscMax(dd[0], PetscAbsReal(x));
+        }
       }
     }
   }
-  PetscCall(PetscFree2(loc, sum));
-  dd[0] = dev;
-  dd[1] = scale;
   PetscCall(MPIU_Allreduce(dd, da, 2, MPIU_REAL, MPIU_MAX, h->comm));
   *exact = (PetscBool)!(da[0] > 1e-10 * da[1]);
   PetscFunctionReturn(0);
@@ -273,7 +318,8 @@ static PetscErrorCode CondenseOperators(JRHBM h, PetscInt nq, const char **why)
 PetscErrorCode JRHBMCondenseSetUp(JRHBM h, const JRElements *el)
 {
   const PetscInt nm = h->nm, nc = h->nc;
-  PetscInt       nj, nq;
+  PetscInt      *off = NULL;
+  PetscReal     *scale = NULL;
   PetscBool      anyn = PETSC_FALSE, want = (PetscBool)(h->condense == JR_HBM_CONDENSE_YES), exact;
   const char    *why = NULL;
 
@@ -281,38 +327,30 @@ PetscErrorCode JRHBMCondenseSetUp(JRHBM h, const JRElements *el)
   PetscCall(CondenseReset(h));
   if (h->condense == JR_HBM_CONDENSE_NO) PetscFunctionReturn(0);
   if (!el->joint || el->njoints < 1) PetscFunctionReturn(0); /* not a reduced model: nothing to condense onto */
-  nj = el->njoints;
   for (PetscInt t = 0; t < h->ngroups; t++) anyn = (PetscBool)(anyn || h->g[t].normal);
-  nq = anyn ? 2 * nj : nj;
-  PetscCall(JointRowsQ(h, el, nq, anyn, &exact));
+  PetscCall(JointRowSpace(h, el, anyn, &off, &scale));
+  PetscCall(ElementCoefficients(h, el, off, scale, &exact));
+  PetscCall(PetscFree2(off, scale));
   if (!exact) why = "the elements of a joint do not all move with the joint's rows";
-  else if (nq >= nm && !want) why = "at least as many joint rows as modes (nothing to gain; -hbm_condense yes forces it)";
-  if (!why) PetscCall(CondenseOperators(h, nq, &why)); /* (Kg, Mm) eigenvectors; the viscous damping must be diagonal in them */
+  else if (h->nq >= nm && !want) why = "at least as many joint rows as modes (nothing to gain; -hbm_condense yes forces it)";
+  if (!why) PetscCall(CondenseOperators(h, h->nq, &why)); /* (Kg, Mm) eigenvectors; the viscous damping must be diagonal in them */
   if (why) {
     PetscCheck(!want, h->comm, PETSC_ERR_ARG_INCOMP, "-hbm_condense yes: cannot condense onto the joints: %s", why);
     PetscCall(PetscInfo(NULL, "No condensation: %s\n", why));
     PetscCall(PetscFree3(h->Q, h->QV, h->VF));
     PetscCall(PetscFree4(h->V, h->lamv, h->cv, h->G0));
     PetscCall(PetscFree2(h->Z0, h->piv0));
+    for (PetscInt t = 0; t < h->ngroups; t++) {
+      PetscCall(PetscFree2(h->g[t].qo, h->g[t].qw));
+      PetscCall(PetscFree2(h->g[t].Ct, h->g[t].Cn));
+    }
+    h->nq = 0;
     PetscFunctionReturn(0);
   }
-  /* every element's joint row (and normal row) */
-  for (PetscInt t = 0; t < h->ngroups; t++) {
-    JRHBMGroup    *g    = &h->g[t];
-    const PetscInt nloc = g->nloc;
-    PetscCall(PetscFree2(g->qt, g->qn));
-    PetscCall(PetscMalloc2(nloc, &g->qt, nloc, &g->qn));
-    for (PetscInt e = 0; e < nloc; e++) {
-      const PetscInt j = el->joint[g->eidx[e]];
-      g->qt[e]         = j;
-      g->qn[e]         = g->normal ? nj + j : -1;
-    }
-  }
-  h->nq = nq;
-  h->ns = nq * nc;
-  PetscCall(PetscMalloc3(h->H * (4 * nq * nq + 4 * nq), &h->Gb, 2 * h->H * nm, &h->inv, h->ns + h->ns * h->ns, &h->ctmp));
+  h->ns = h->nq * nc;
+  PetscCall(PetscMalloc3(h->H * (4 * h->nq * h->nq + 4 * h->nq), &h->Gb, 2 * h->H * nm, &h->inv, h->ns + h->ns * h->ns, &h->ctmp));
   h->cond = PETSC_TRUE;
-  PetscCall(PetscSNPrintf(h->condinfo, sizeof(h->condinfo), "condensed onto %" PetscInt_FMT " joint motions: %" PetscInt_FMT " unknowns instead of %" PetscInt_FMT, nq, h->ns, h->n));
+  PetscCall(PetscSNPrintf(h->condinfo, sizeof(h->condinfo), "condensed onto %" PetscInt_FMT " joint motions: %" PetscInt_FMT " unknowns instead of %" PetscInt_FMT, h->nq, h->ns, h->n));
   PetscFunctionReturn(0);
 }
 

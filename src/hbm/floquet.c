@@ -89,8 +89,9 @@ struct _JRMonodromy {
   /* the fast modes condensed through the elements' distinct rows (LowRankPoint, LowRankStatic): where the rows [R; S]
      are a few nd distinct ones Rd (elements sharing a joint's motion), Kp = Aref + Rd^T dD Rd with Aref the stiffness
      with every element stuck in contact, and Kff^-1 follows from Aref_ff^-1 once per point by the Woodbury identity */
-  PetscInt   nd, *dr, *td;            /* distinct rows (0: too many), each of the l rows' distinct one, per point each
-                                         tracked row's (2 nt) */
+  PetscInt   nd, *dr, *td;            /* distinct rows (0: too many), each of the l rows' distinct one (-1: the rows are
+                                         combinations of Rd, coefficients in Cf), per point each tracked row (2 nt) */
+  PetscReal *Cf;                      /* where the rows are combinations of Rd: each row's coefficients (l x nd, row-major) */
   PetscReal *Rd, *cref, *Aref;        /* nd x nk (row-major: row d at Rd + d nk); the reference coefficients (3 ne);
                                          K + Rd^T Dref Rd (nk x nk) */
   PetscBool  lowrank;                 /* this point uses them */
@@ -141,13 +142,65 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscCall(PetscFree(f->sdr));
   PetscCall(PetscFree4(f->dr, f->td, f->lpiv, f->lrkey));
   PetscCall(PetscFree5(f->Rd, f->cref, f->Aref, f->LR, f->LW));
+  PetscCall(PetscFree(f->Cf));
   PetscCall(PetscFree(h->mono));
   PetscFunctionReturn(0);
 }
 
-/* The elements' distinct rows among the l rows of RSt (equal to 1e-12 of the larger), f->nd of them, or f->nd = 0 where
-   more than nk / 2 (the fast modes then condensed by Kff's LU per step); with them the reference stiffness Aref = K +
-   sum over the elements stuck in contact (kt r r^T + kn s s^T), symmetric where K is, else f->nd = 0 */
+/* Where the l rows of RSt are not a few distinct ones: a basis Rd of their span (a reduced model whose elements move
+   with their joints' fields: a few rows per joint) by the SVD of the rows (singular values below 1e-10 of the largest
+   dropped), nd of them, and each row's coefficients Cf on it; f->nd = 0 if more than nk / 2 or a row is not in the
+   span to 1e-10 of the largest entry */
+static PetscErrorCode RowBasis(struct _JRMonodromy *f, PetscReal **Rd)
+{
+  const PetscInt nk = f->nk, l = f->l, mn = PetscMin(nk, l);
+  PetscReal     *A, *U, *sv, wq, *work, big = 0.0, dev = 0.0;
+  PetscBLASInt   bn, bl, lwork = -1, info, one = 1;
+  PetscInt       nd = 0;
+
+  PetscFunctionBeginUser;
+  f->nd = 0;
+  PetscCall(PetscMalloc3(nk * l + 1, &A, nk * mn + 1, &U, mn + 1, &sv));
+  PetscCall(PetscArraycpy(A, f->RSt, nk * l)); /* column r: row r (nk x l, column-major) */
+  PetscCall(PetscBLASIntCast(nk, &bn));
+  PetscCall(PetscBLASIntCast(l, &bl));
+  PetscCallBLAS("LAPACKgesvd", LAPACKgesvd_("S", "N", &bn, &bl, A, &bn, sv, U, &bn, NULL, &one, &wq, &lwork, &info));
+  PetscCall(PetscBLASIntCast((PetscInt)wq + 1, &lwork));
+  PetscCall(PetscMalloc1(lwork, &work));
+  PetscCallBLAS("LAPACKgesvd", LAPACKgesvd_("S", "N", &bn, &bl, A, &bn, sv, U, &bn, NULL, &one, work, &lwork, &info));
+  PetscCall(PetscFree(work));
+  if (!info && mn > 0 && sv[0] > 0)
+    while (nd < mn && sv[nd] > 1e-10 * sv[0]) nd++;
+  if (!info && nd && nd <= nk / 2) {
+    PetscCall(PetscMalloc1(l * nd, &f->Cf));
+    for (PetscInt d = 0; d < nd; d++)
+      for (PetscInt i = 0; i < nk; i++) (*Rd)[d * nk + i] = U[i + d * nk];
+    for (PetscInt r = 0; r < l; r++) { /* Rd orthonormal: c = Rd x */
+      const PetscReal *x = f->RSt + r * nk;
+      PetscReal       *c = f->Cf + r * nd;
+      f->dr[r]           = -1;
+      for (PetscInt d = 0; d < nd; d++) {
+        c[d] = 0.0;
+        for (PetscInt i = 0; i < nk; i++) c[d] += (*Rd)[d * nk + i] * x[i];
+      }
+      for (PetscInt i = 0; i < nk; i++) {
+        PetscReal y = x[i];
+        for (PetscInt d = 0; d < nd; d++) y -= c[d] * (*Rd)[d * nk + i];
+        big = PetscMax(big, PetscAbsReal(x[i]));
+        dev = PetscMax(dev, PetscAbsReal(y));
+      }
+    }
+    if (dev > 1e-10 * big) PetscCall(PetscFree(f->Cf));
+    else f->nd = nd;
+  }
+  PetscCall(PetscFree3(A, U, sv));
+  PetscFunctionReturn(0);
+}
+
+/* The elements' distinct rows among the l rows of RSt (equal to 1e-12 of the larger), f->nd of them, or else a basis
+   of their span (RowBasis), or f->nd = 0 where more than nk / 2 (the fast modes then condensed by Kff's LU per step);
+   with them the reference stiffness Aref = K + sum over the elements stuck in contact (kt r r^T + kn s s^T), symmetric
+   where K is, else f->nd = 0 */
 static PetscErrorCode DistinctRows(struct _JRMonodromy *f)
 {
   const PetscInt nk = f->nk, ne = f->ne, l = f->l;
@@ -181,23 +234,29 @@ static PetscErrorCode DistinctRows(struct _JRMonodromy *f)
     }
     f->dr[r] = d;
   }
+  if (nd > nk / 2) {
+    PetscCall(RowBasis(f, &Rd));
+    nd = f->nd;
+  }
   for (PetscInt j = 0; j < nk; j++)
     for (PetscInt i = 0; i < nk; i++) {
       kmax = PetscMax(kmax, PetscAbsReal(f->K[i + j * nk]));
       asym = PetscMax(asym, PetscAbsReal(f->K[i + j * nk] - f->K[j + i * nk]));
     }
+  f->nd = 0;
   if (nd > nk / 2 || nd == 0 || asym > 1e-12 * kmax) {
     PetscCall(PetscFree(Rd));
+    PetscCall(PetscFree(f->Cf));
     PetscFunctionReturn(0);
   }
   f->nd = nd;
-  PetscCall(PetscMalloc5(nd * nk, &f->Rd, 3 * ne + 1, &f->cref, nk * nk, &f->Aref, 10 * nk * nk + 16 * nk * nd + 8 * nd * nd + 1, &f->LR, 12 * nd * nd + 8 * nd * nk + 1, &f->LW));
+  PetscCall(PetscMalloc5(nd * nk, &f->Rd, 3 * ne + 1, &f->cref, nk * nk, &f->Aref, 10 * nk * nk + 16 * nk * nd + 8 * nd * nd + 1, &f->LR, 12 * nd * nd + 8 * nd * nk + nd * ne + 1, &f->LW));
   PetscCall(PetscArraycpy(f->Rd, Rd, nd * nk));
   PetscCall(PetscFree(Rd));
   PetscCall(PetscArraycpy(f->Aref, f->K, nk * nk));
   for (PetscInt e = 0; e < ne; e++) {
-    PetscReal      *c  = f->cref + 3 * e;
-    const PetscReal *r = f->Rd + f->dr[e] * nk, *sv = f->srow[e] >= 0 ? f->Rd + f->dr[f->srow[e]] * nk : NULL;
+    PetscReal       *c  = f->cref + 3 * e;
+    const PetscReal *r = f->RSt + e * nk, *sv = f->srow[e] >= 0 ? f->RSt + f->srow[e] * nk : NULL;
     c[0] = f->kt[e];
     c[1] = 0.0;
     c[2] = sv ? f->kn[e] : 0.0;
@@ -205,6 +264,15 @@ static PetscErrorCode DistinctRows(struct _JRMonodromy *f)
       for (PetscInt i = 0; i < nk; i++) f->Aref[i + j * nk] += c[0] * r[i] * r[j] + (sv ? c[2] * sv[i] * sv[j] : 0.0);
   }
   PetscFunctionReturn(0);
+}
+
+/* Row r of the l rows through the basis Rd: x[dr[r] * ld] where it is a distinct row, else sum_d Cf[r, d] x[d * ld] */
+static inline PetscReal RowDot(const struct _JRMonodromy *f, PetscInt r, const PetscReal *x, PetscInt ld)
+{
+  PetscReal v = 0.0;
+  if (f->dr[r] >= 0) return x[f->dr[r] * ld];
+  for (PetscInt d = 0; d < f->nd; d++) v += f->Cf[r * f->nd + d] * x[d * ld];
+  return v;
 }
 
 /* Every element's record on every rank (collective): type (0 jenkins, 1 jenkins_nv, 2 cubic), kt, kn, mu, n0 and its
@@ -862,8 +930,8 @@ static PetscErrorCode LowRankPoint(struct _JRMonodromy *f, PetscReal g)
   for (PetscInt i = 0; i < S; i++) B0[3 * S + i] = B0[S + i] + g * B0[2 * S + i]; /* Cv = C + (gamma / w) Kg */
   for (PetscInt e = 0; e < f->ne; e++)
     if (f->memp[e] >= 0) {
-      f->td[2 * f->memp[e]]     = f->dr[e];
-      f->td[2 * f->memp[e] + 1] = f->srow[e] >= 0 ? f->dr[f->srow[e]] : -1;
+      f->td[2 * f->memp[e]]     = e;
+      f->td[2 * f->memp[e] + 1] = f->srow[e];
     }
   PetscFunctionReturn(0);
 }
@@ -887,13 +955,19 @@ static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscRea
   PetscCall(PetscArraycpy(f->bws + k * f->cap, f->bwt, nt));
   PetscCall(PetscArrayzero(dD, nd * nd));
   for (PetscInt e = 0; e < f->ne; e++) {
-    const PetscReal *c = f->cfn + 3 * e, *o = f->cref + 3 * e;
-    const PetscInt   ir = f->dr[e];
-    dD[ir + ir * nd] += c[0] - o[0];
-    if (f->srow[e] >= 0) {
-      const PetscInt is = f->dr[f->srow[e]];
-      dD[ir + is * nd] += c[1] - o[1];
-      dD[is + is * nd] += c[2] - o[2];
+    const PetscReal *c = f->cfn + 3 * e, *o = f->cref + 3 * e, d0 = c[0] - o[0], d1 = c[1] - o[1], d2 = c[2] - o[2];
+    if (!f->Cf) {
+      const PetscInt ir = f->dr[e];
+      dD[ir + ir * nd] += d0;
+      if (f->srow[e] >= 0) {
+        const PetscInt is = f->dr[f->srow[e]];
+        dD[ir + is * nd] += d1;
+        dD[is + is * nd] += d2;
+      }
+    } else if (d0 != 0.0 || d1 != 0.0 || d2 != 0.0) { /* d0 ct ct^T + d1 ct cs^T + d2 cs cs^T, ct and cs its rows' coefficients */
+      const PetscReal *ct = f->Cf + e * nd, *cs = f->srow[e] >= 0 ? f->Cf + f->srow[e] * nd : NULL;
+      for (PetscInt b = 0; b < nd; b++)
+        for (PetscInt a = 0; a < nd; a++) dD[a + b * nd] += d0 * ct[a] * ct[b] + (cs ? d1 * ct[a] * cs[b] + d2 * cs[a] * cs[b] : 0.0);
     }
   }
   PetscCall(JRGemm("N", "N", nd, nd, nd, 1.0, dD, nd, G, nd, 0.0, DG, nd));
@@ -934,7 +1008,7 @@ static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscRea
   PetscCall(PetscArrayzero(RH + 2 * nsl * nsl, nsl * nt));
   for (PetscInt c = 0; c < nt; c++)
     if (f->bwt[c] != 0.0)
-      for (PetscInt i = 0; i < nsl; i++) RH[i + (2 * nsl + c) * nsl] = f->bwt[c] * Bm[i + f->td[2 * c] * nsl];
+      for (PetscInt i = 0; i < nsl; i++) RH[i + (2 * nsl + c) * nsl] = f->bwt[c] * RowDot(f, f->td[2 * c], Bm + i, nsl);
   PetscCall(SlowSolve(f, Mr, RH, wmax));
   *X = RH;
   PetscFunctionReturn(0);
@@ -1067,11 +1141,13 @@ static PetscErrorCode Commit(struct _JRMonodromy *f, PetscInt j, PetscInt k)
   if (f->nfa && f->lowrank) { /* the same from slot k's Rd T and Hn = Rd_f Kff^-1 Rd_f^T at the rows' distinct ones */
     const PetscInt   nsl = f->nsl, nd = f->nd;
     const PetscReal *RTk = f->Ts + k * nk * nk, *Hk = f->KFs + k * nk * nk, *bw = f->bws + k * f->cap;
-    PetscReal       *A = f->CB, *B = A + nr * nsl;
+    PetscReal       *A = f->CB, *B = A + nr * nsl, *HC = f->LW; /* HC = Hn's columns at the held slips' rows (nd x nt) */
+    for (PetscInt c = 0; c < nt; c++)
+      for (PetscInt a = 0; a < nd; a++) HC[a + c * nd] = RowDot(f, f->td[2 * c], Hk + a, nd);
     for (PetscInt r = 0; r < nr; r++) {
-      const PetscInt d = f->td[f->rows[r]];
-      for (PetscInt i = 0; i < nsl; i++) A[r + i * nr] = RTk[d + i * nd];
-      for (PetscInt c = 0; c < nt; c++) B[r + c * nr] = Hk[d + f->td[2 * c] * nd] * bw[c];
+      const PetscInt rr = f->td[f->rows[r]];
+      for (PetscInt i = 0; i < nsl; i++) A[r + i * nr] = RowDot(f, rr, RTk + i * nd, 1);
+      for (PetscInt c = 0; c < nt; c++) B[r + c * nr] = RowDot(f, rr, HC + c * nd, 1) * bw[c];
     }
     PetscCall(JRGemm("N", "N", nr, m, nsl, 1.0, A, nr, Y, m, 0.0, f->DUV, nr));
     PetscCall(JRGemm("N", "N", nr, m, nt, 1.0, B, nr, Y + n2, m, 1.0, f->DUV, nr));

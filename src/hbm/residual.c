@@ -40,19 +40,26 @@ PetscErrorCode JRHBMCreateVecs(JRHBM h, Vec *x, Mat *J)
   PetscFunctionReturn(0);
 }
 
-/* Condensed: every element of group g moves with one joint row (and one normal row): gathers and scatter-adds of its
-   forces into loc (n) and, if jac, of its derivatives into loc + n (n x n column-major) */
+/* Condensed: every element of group g moves with its joint's few rows (its coefficients Ct, Cn on them): gathers and
+   scatter-adds of its forces into loc (n) and, if jac, of its derivatives into loc + n (n x n column-major), on its
+   joint's block only */
 static PetscErrorCode GroupCondensed(JRHBM h, JRHBMGroup *g, const PetscReal *a, PetscBool reuse, PetscBool derivs, PetscBool jac, PetscReal *loc)
 {
-  const PetscInt  nm = h->nq, nc = h->nc, n = h->ns, nloc = g->nloc; /* nm: the rows' length */
-  const PetscInt *qt = g->qt, *qn = g->qn;
+  const PetscInt   nq = h->nq, nc = h->nc, n = h->ns, nloc = g->nloc;
+  const PetscInt  *qo = g->qo, *qw = g->qw;
+  const PetscReal *Ct = g->Ct, *Cn = g->Cn;
 
   PetscFunctionBeginUser;
   if (!reuse) {
     for (PetscInt c = 0; c < nc; c++)
       for (PetscInt e = 0; e < nloc; e++) {
-        g->U[e + c * nloc] = a[qt[e] + c * nm];
-        if (g->normal) g->V[e + c * nloc] = a[qn[e] + c * nm];
+        const PetscReal *x = a + qo[e] + c * nq;
+        PetscReal        u = 0, v = 0;
+        for (PetscInt r = 0; r < qw[e]; r++) u += Ct[e + r * nloc] * x[r];
+        g->U[e + c * nloc] = u;
+        if (!g->normal) continue;
+        for (PetscInt r = 0; r < qw[e]; r++) v += Cn[e + r * nloc] * x[r];
+        g->V[e + c * nloc] = v;
       }
     PetscCall(JRContactEvaluate(g->c, g->U, g->V, g->F, g->normal ? g->N : NULL, derivs ? g->DU : NULL, derivs && g->normal ? g->DV : NULL, derivs && g->normal ? g->DN : NULL, NULL));
     if (g->normal)
@@ -60,24 +67,25 @@ static PetscErrorCode GroupCondensed(JRHBM h, JRHBMGroup *g, const PetscReal *a,
   }
   for (PetscInt c = 0; c < nc; c++)
     for (PetscInt e = 0; e < nloc; e++) {
-      loc[qt[e] + c * nm] += g->F[e + c * nloc];
-      if (g->normal) loc[qn[e] + c * nm] += g->N[e + c * nloc];
+      PetscReal      *y = loc + qo[e] + c * nq;
+      const PetscReal f = g->F[e + c * nloc], fn = g->normal ? g->N[e + c * nloc] : 0.0;
+      for (PetscInt r = 0; r < qw[e]; r++) y[r] += Ct[e + r * nloc] * f + (g->normal ? Cn[e + r * nloc] * fn : 0.0);
     }
-  if (jac) { /* dF/du on (joint row, joint row), dF/dv on (joint row, normal row), dN/dv on (normal row, normal row) */
+  if (jac) { /* c^T dF/du c + c^T dF/dv d + d^T dN/dv d on the joint's block, c and d the element's coefficients */
     PetscCall(PetscLogEventBegin(JR_HBMJacobian, 0, 0, 0, 0));
     for (PetscInt k = 0; k < nc; k++)
       for (PetscInt m = 0; m < nc; m++) {
-        PetscReal       *blk = loc + n + (k * nm) + (m * nm) * n;
         const PetscReal *du = g->DU + (k * nc + m) * nloc, *dv = g->normal ? g->DV + (k * nc + m) * nloc : NULL, *dn = g->normal ? g->DN + (k * nc + m) * nloc : NULL;
         for (PetscInt e = 0; e < nloc; e++) {
-          blk[qt[e] + qt[e] * n] += du[e];
-          if (g->normal) {
-            blk[qt[e] + qn[e] * n] += dv[e];
-            blk[qn[e] + qn[e] * n] += dn[e];
+          PetscReal *blk = loc + n + (k * nq + qo[e]) + (m * nq + qo[e]) * n;
+          for (PetscInt l = 0; l < qw[e]; l++) {
+            const PetscReal cl = Ct[e + l * nloc], dl = g->normal ? Cn[e + l * nloc] : 0.0;
+            const PetscReal tu = du[e] * cl + (g->normal ? dv[e] * dl : 0.0), tn = g->normal ? dn[e] * dl : 0.0;
+            for (PetscInt r = 0; r < qw[e]; r++) blk[r + l * n] += Ct[e + r * nloc] * tu + (g->normal ? Cn[e + r * nloc] * tn : 0.0);
           }
         }
       }
-    PetscCall(PetscLogFlops(1.0 * nloc * nc * nc * (g->normal ? 3 : 1)));
+    PetscCall(PetscLogFlops(4.0 * nloc * nc * nc * g->cw * g->cw * (g->normal ? 2 : 1)));
     PetscCall(PetscLogEventEnd(JR_HBMJacobian, 0, 0, 0, 0));
   }
   PetscFunctionReturn(0);

@@ -40,7 +40,9 @@ typedef struct {
   PetscInt  *eidx;         /* the model's element number of each local element */
   PetscReal *Kc;           /* stuck basis: the stuck springs of this rank's elements in contact at rest (nm x nm) */
   PetscReal *R0, *S0;      /* joints in a stuck basis: the members' own rows until Kc is formed */
-  PetscInt  *qt, *qn;      /* condensed: each element's joint row among the nq condensed rows, and its normal row */
+  PetscInt  *qo, *qw;      /* condensed: the first of its joint's rows among the nq condensed ones, and their number */
+  PetscReal *Ct, *Cn;      /* condensed: its rows' coefficients on its joint's rows (nloc x cw, column-major) */
+  PetscInt   cw;           /* the most rows of a joint */
 } JRHBMGroup;
 
 struct _p_JRHBM {
@@ -96,13 +98,13 @@ struct _p_JRHBM {
   MPI_Comm          ecomm;        /* the communicator of sums over the elements: h->comm, or PETSC_COMM_SELF if repl */
   JRJointMotion     jmotion;      /* first reduction: how a joint's members move (-rom_joint_motion) */
   PetscBool         cond;         /* in use: the solve space is the joints' motions */
-  PetscInt          nq, ns;       /* condensed rows (nj tangential, then nj normal for jenkins_nv); solve-space size */
+  PetscInt          nq, ns;       /* condensed rows (a basis of each joint's elements' rows, joint by joint); solve-space size */
   PetscReal        *Q, *V, *lamv, *cv, *QV, *VF; /* rows (nq x nm row-major); (Kg, Mm) eigenvectors (col-major), values,
                                                      V^T Cm V (diagonal); Q V (nq x nm row-major); V^T fm */
   PetscReal        *Z0, *G0;      /* the mean block Kg + pin, LU-factored (nm x nm); Q Z0^-1 Q^T (nq x nq) */
   PetscBLASInt     *piv0;
   PetscReal        *Gb, *inv;     /* per harmonic at frequency wq: G, dG/dw (re, im), xF, dxF/dw; 1/z_k (re, im) */
-  PetscReal        *QQ, *cb;      /* products of QV's rows per mode (nm x (pairs r <= c, then rows x VF)); CondBlocks work */
+  PetscReal        *QQ, *cb;      /* CondBlocks work: (Q V)^T scaled (nm x nq), d(1/z_k)/dw (re, im) */
   PetscReal        *jres;         /* JRHBMComputeJacobian: the residual it also computes (ns) */
   PetscReal        *pptab;        /* JRHBMResponse: sin, cos of each harmonic at 16 nc samples of a cycle */
   PetscReal         wq;
