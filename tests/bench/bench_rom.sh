@@ -8,7 +8,9 @@
 # harmonic-balance unknowns, the reduced one is condensed onto its 6 joints x 3; rom_elem_s: the reduced model's
 # solve time in its elements, cap: node-to-node's solve over the reduced model's time outside its elements, the
 # ratio if its elements cost nothing). Then the three-bolt lap joint (runs/lap3_rom.opts: jenkins_nv, 506 pairs,
-# 12 joints x 3 elements on the stuck-mode field, not condensed) with the same split. On 1 and 2 ranks.
+# 12 joints x 3 elements on the stuck-mode field, not condensed: its rows outnumber its modes) and the single-bolt lap
+# joint (runs/lap1_rom.opts: 4 zone joints on the linear field, first reduction, condensed onto their rows) with the
+# same split. On 1 and 2 ranks.
 # JR_BENCH_ROM_SPLITS sets the k's.
 cd "$(dirname "$0")/../.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
@@ -38,17 +40,21 @@ for k in $splits; do
       END {printf "%-9s %-5s %11.4f %11.4f %8.2f %12.3f %12.3f %14.3f %14.3f %11.4f %7.2f\n", ne, np, tn, tr, sp, sn, fit, 1e3 * tn / nt[1], 1e3 * tr / nt[2], er, cap}'
   done
 done
-echo
-echo "== reduced-order joints vs node-to-node: three-bolt lap joint (runs/lap3_rom.opts), 506 jenkins_nv pairs, 12 joints x 3 elements, 4 levels =="
-printf "%-5s %11s %11s %8s %13s %13s %13s %13s %7s %9s %9s\n" ranks n2n_solve_s rom_solve_s speedup n2n_elem_s n2n_rest_s rom_elem_s rom_rest_s cap freq_err amp_err
-for np in 1 2; do
-  o=$(mpiexec -n $np bin/jointrom -options_file runs/lap3_rom.opts -frf_plot 0 -cont_monitor 0 -frf_output_file "$tmp/lap3_$np" 2>&1)
-  if ! echo "$o" | grep -q '^compare time_split'; then
-    printf "%-5s failed: %s\n" $np "$(echo "$o" | grep -m1 -E 'ERROR: [A-Z]|Killed|memory' | cut -c1-100)"; continue
-  fi
-  echo "$o" | awk -v np=$np '
-    /^compare worst/ {fe = $4; ae = $6}
-    /^compare time / {tn = $4; tr = $6; sp = $8}
-    /^compare time_split/ {en = $4; rn = $6; er = $8; rr = $10; cap = $12}
-    END {printf "%-5s %11.4f %11.4f %8.2f %13.4f %13.4f %13.4f %13.4f %7.2f %9.2e %9.2e\n", np, tn, tr, sp, en, rn, er, rr, cap, fe, ae}'
-done
+compare_run() { # title, run file: the compare lines on 1 and 2 ranks
+  echo
+  echo "== reduced-order joints vs node-to-node: $1 =="
+  printf "%-5s %11s %11s %8s %13s %13s %13s %13s %7s %9s %9s\n" ranks n2n_solve_s rom_solve_s speedup n2n_elem_s n2n_rest_s rom_elem_s rom_rest_s cap freq_err amp_err
+  for np in 1 2; do
+    o=$(mpiexec -n $np bin/jointrom -options_file $2 -frf_plot 0 -cont_monitor 0 -frf_output_file "$tmp/cmp_$np" 2>&1)
+    if ! echo "$o" | grep -q '^compare time_split'; then
+      printf "%-5s failed: %s\n" $np "$(echo "$o" | grep -m1 -E 'ERROR: [A-Z]|Killed|memory' | cut -c1-100)"; continue
+    fi
+    echo "$o" | awk -v np=$np '
+      /^compare worst/ {fe = $4; ae = $6}
+      /^compare time / {tn = $4; tr = $6; sp = $8}
+      /^compare time_split/ {en = $4; rn = $6; er = $8; rr = $10; cap = $12}
+      END {printf "%-5s %11.4f %11.4f %8.2f %13.4f %13.4f %13.4f %13.4f %7.2f %9.2e %9.2e\n", np, tn, tr, sp, en, rn, er, rr, cap, fe, ae}'
+  done
+}
+compare_run "three-bolt lap joint (runs/lap3_rom.opts), 506 jenkins_nv pairs, 12 joints x 3 elements, 4 levels" runs/lap3_rom.opts
+compare_run "single-bolt lap joint (runs/lap1_rom.opts), 4 zone joints on the linear field (first reduction) condensed onto their rows, 3 levels" runs/lap1_rom.opts

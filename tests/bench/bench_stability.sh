@@ -14,7 +14,7 @@ solve() { # np stab args... -> "solve_seconds stability_seconds curve_seconds"
     awk '/JR 6 solve:/{t=$5} /^stability level/{for(i=1;i<=NF;i++){if($i=="seconds")s+=$(i+1); if($i=="(curve")c+=$(i+1)}} END{printf "%s %.4g %.4g\n", t, s, c}'
 }
 median() { sort -g | awk '{a[NR]=$1} END{print a[int((NR+1)/2)]}'; }
-echo "== stability: solve stage [s], off and on, median of 3 interleaved runs (runs/lap3_n2n.opts: one each, about 1 min of set-up per run) =="
+echo "== stability: solve stage [s], off and on, median of 3 interleaved runs (runs/lap3_n2n.opts and runs/lap1_rom.opts: one each, their set-up 15 s-1 min per run) =="
 printf "%-44s %-5s %10s %10s %7s %12s %12s\n" case ranks off on ratio stability curve
 while IFS='|' read -r name np reps args; do
   : > /tmp/jr_bench_off.$$
@@ -41,5 +41,6 @@ lap1 8 mm, 4 zone joints condensed (228 el.)|2|3|$lap1 -rom_joints zones -rom_jo
 lap1 8 mm, 4 zone joints x 3 condensed|1|3|$lap1 -rom_joints zones -rom_joint_motion mean -rom_elements 3
 lap1 8 mm, 4 zone joints x 3 condensed|2|3|$lap1 -rom_joints zones -rom_joint_motion mean -rom_elements 3
 runs/lap3_n2n.opts, 506 jenkins_nv, 88 modes|2|1|-options_file runs/lap3_n2n.opts
+runs/lap1_rom.opts reduced, linear field, 24 rows|2|1|-options_file runs/lap1_rom.opts -task frf
 EOF
 rm -f /tmp/jr_bench_off.$$ /tmp/jr_bench_on.$$
