@@ -167,17 +167,22 @@ check "[ '$czc' = 1 ] && [ '$czl' = 2 ] && [ '${czn:-0}' -gt 100 ] && [ '$czd' =
 # condensed onto a basis of the joints' rows, at most 3 field functions (1, x, y) x 2 directions = 6 per joint, 24 for
 # the 4; on a fixed frequency grid the amplitudes equal those of the modal equations (-hbm_condense no); the monodromy's
 # fast modes through a basis of the rows (-frf_stability_time_lowrank yes: fast_rows) flag every point as the fast
-# block's LU does
+# block's LU does; the incremental dissipativity certifies the points where no element changes state on the
+# condensed unknowns as on the modal ones (the same flags at the common frequencies)
 for c in yes no lu; do
-  case $c in yes) a="-frf_stability_time_lowrank yes" ;; no) a="-hbm_condense no -frf_stability 0" ;; lu) a="-frf_stability_time_lowrank no" ;; esac
+  case $c in yes) a="-frf_stability_time_lowrank yes" ;; no) a="-hbm_condense no" ;; lu) a="-frf_stability_time_lowrank no" ;; esac
   orl=$(mpiexec -n 2 $J -task frf $nv $nvl -frf_force 0.01,0.5 -rom_joints zones -rom_joint_motion linear -cont_type natural -cont_points 120 $a -frf_output_file "$tmp/rl_$c" 2>&1)
   [ $c = yes ] && rlq=$(echo "$orl" | sed -n 's/.*condensed onto \([0-9]*\) joint motions.*/\1/p') && rlr=$(echo "$orl" | grep '^stability level' | awk '{print $NF}' | sort -u)
+  [ $c = lu ] && rlc=$(echo "$orl" | grep '^stability level' | awk '{for (i = 1; i < NF; i++) if ($i == "dissipative") s += $(i+1)} END{print s + 0}')
 done
+rlsf=$(awk -F, 'NR == FNR {if (FNR > 1) a[$1 " " $4] = $NF; next} FNR > 1 && ($1 " " $4) in a {n++; if (a[$1 " " $4] != $NF || $NF < 0) d++} END{printf "%d %d", n, d}' "$tmp/rl_no.csv" "$tmp/rl_lu.csv" 2>/dev/null)
+read rlsn rlsd <<< "$rlsf"
 read rln rld <<< "$(same "$tmp/rl_no.csv" "$tmp/rl_yes.csv" 2>/dev/null)"
 rlf=$(paste -d, "$tmp/rl_yes.csv" "$tmp/rl_lu.csv" 2>/dev/null | awk -F, 'NR > 1 {n++; h = NF / 2; if ($h != $NF || $h < 0) d++} END{printf "%d %d", n, d}')
 read rlfn rlfd <<< "$rlf"
 check "[ -n '$rlq' ] && [ '$rlq' -ge 8 ] && [ '$rlq' -le 24 ] && [ '${rln:-0}' -ge 80 ] && lt '$rld' 1e-7" "jenkins_nv lap1, 4 zone joints, linear field (first reduction): condensed onto $rlq rows of the joints' fields (8 to 24); amplitudes at $rln common frequencies = the modal equations' within $rld (< 1e-7)"
 check "[ '$rlr' = '$rlq' ] && [ '${rlfn:-0}' -ge 100 ] && [ '$rlfd' = 0 ]" "the same, stability through a basis of the $rlr rows (fast_rows): all $rlfn points flagged as by the fast block's LU ($rlfd differ or unflagged)"
+check "[ '${rlc:-0}' -gt 0 ] && [ '${rlsn:-0}' -ge 80 ] && [ '$rlsd' = 0 ]" "the same condensed: $rlc points certified by the incremental dissipativity; at $rlsn common frequencies the flags of the modal equations' run ($rlsd differ or unflagged)"
 osv=$(mpiexec -n 2 $J -task frf $nv $nvl -frf_force 0.01,0.5,2 -rom_joints zones -rom_elements 3 -rom_joint_motion mode -rom_save "$tmp/nvrom.h5" -frf_output_file "$tmp/nvsv" 2>&1)
 # the read basis's check, of the whole basis (its static vectors included): no more than the computing run's without
 # them (a larger span misses less), no less than that run's estimate after them (the next pattern's flexibility: a

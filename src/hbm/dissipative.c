@@ -112,16 +112,14 @@ PetscErrorCode JRHBMStabilityVerdict(JRHBM h, Vec a, PetscBool certify, JRStabil
     *v = JR_STABILITY_DISSIPATIVE;
     PetscFunctionReturn(0);
   }
-  if (h->cond) changing = 1; /* jenkins_nv on the condensed unknowns: the states are not checked here */
-  else {
+  {
     const PetscScalar *x;
     PetscCall(VecGetArrayRead(a, &x));
     h->cache_ok = PETSC_FALSE;
     for (PetscInt t = 0; t < h->ngroups && !changing; t++) {
       JRHBMGroup *g = &h->g[t];
       if (!g->nloc || strcmp(g->c->type_name, JRCONTACTJENKINSNV)) continue;
-      PetscCall(JRGemm("N", "N", g->nloc, h->nc, h->nm, 1.0, g->R, g->nloc, x, h->nm, 0.0, g->U, g->nloc));
-      PetscCall(JRGemm("N", "N", g->nloc, h->nc, h->nm, 1.0, g->S, g->nloc, x, h->nm, 0.0, g->V, g->nloc));
+      PetscCall(JRHBMGroupMotion(h, g, x)); /* a: the solve space's unknowns, modal or condensed */
       PetscCall(JRContactEvaluate(g->c, g->U, g->V, NULL, NULL, NULL, NULL, NULL, g->state));
       for (PetscInt e = 0; e < g->nloc; e++)
         if (g->state[e] != JR_CONTACT_FULL_STICK && g->state[e] != JR_CONTACT_FULL_SEPARATION) changing = 1;

@@ -40,6 +40,31 @@ PetscErrorCode JRHBMCreateVecs(JRHBM h, Vec *x, Mat *J)
   PetscFunctionReturn(0);
 }
 
+/* JRHBMGroupMotion - group g's element motions U (and V, with a normal direction) at the solve-space unknowns x:
+   through their rows R (S) on the modal unknowns, or condensed through their coefficients on their joints' rows */
+PetscErrorCode JRHBMGroupMotion(JRHBM h, JRHBMGroup *g, const PetscReal *x)
+{
+  const PetscInt nc = h->nc, nloc = g->nloc;
+
+  PetscFunctionBeginUser;
+  if (!h->cond) {
+    PetscCall(JRGemm("N", "N", nloc, nc, h->nm, 1.0, g->R, nloc, x, h->nm, 0.0, g->U, nloc));
+    if (g->normal) PetscCall(JRGemm("N", "N", nloc, nc, h->nm, 1.0, g->S, nloc, x, h->nm, 0.0, g->V, nloc));
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt c = 0; c < nc; c++)
+    for (PetscInt e = 0; e < nloc; e++) {
+      const PetscReal *y = x + g->qo[e] + c * h->nq;
+      PetscReal        u = 0, v = 0;
+      for (PetscInt r = 0; r < g->qw[e]; r++) u += g->Ct[e + r * nloc] * y[r];
+      g->U[e + c * nloc] = u;
+      if (!g->normal) continue;
+      for (PetscInt r = 0; r < g->qw[e]; r++) v += g->Cn[e + r * nloc] * y[r];
+      g->V[e + c * nloc] = v;
+    }
+  PetscFunctionReturn(0);
+}
+
 /* Condensed: every element of group g moves with its joint's few rows (its coefficients Ct, Cn on them): gathers and
    scatter-adds of its forces into loc (n) and, if jac, of its derivatives into loc + n (n x n column-major), on its
    joint's block only */
@@ -51,16 +76,7 @@ static PetscErrorCode GroupCondensed(JRHBM h, JRHBMGroup *g, const PetscReal *a,
 
   PetscFunctionBeginUser;
   if (!reuse) {
-    for (PetscInt c = 0; c < nc; c++)
-      for (PetscInt e = 0; e < nloc; e++) {
-        const PetscReal *x = a + qo[e] + c * nq;
-        PetscReal        u = 0, v = 0;
-        for (PetscInt r = 0; r < qw[e]; r++) u += Ct[e + r * nloc] * x[r];
-        g->U[e + c * nloc] = u;
-        if (!g->normal) continue;
-        for (PetscInt r = 0; r < qw[e]; r++) v += Cn[e + r * nloc] * x[r];
-        g->V[e + c * nloc] = v;
-      }
+    PetscCall(JRHBMGroupMotion(h, g, a));
     PetscCall(JRContactEvaluate(g->c, g->U, g->V, g->F, g->normal ? g->N : NULL, derivs ? g->DU : NULL, derivs && g->normal ? g->DV : NULL, derivs && g->normal ? g->DN : NULL, NULL));
     if (g->normal)
       for (PetscInt e = 0; e < nloc; e++) g->N[e] -= g->nstatic[e];
@@ -198,8 +214,7 @@ PetscErrorCode JRHBMNonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Petsc
       continue;
     }
     if (!reuse) {
-      PetscCall(JRGemm("N", "N", nloc, nc, nm, 1.0, GR, nloc, a, nm, 0.0, g->U, nloc));
-      if (g->normal) PetscCall(JRGemm("N", "N", nloc, nc, nm, 1.0, GS, nloc, a, nm, 0.0, g->V, nloc));
+      PetscCall(JRHBMGroupMotion(h, g, a));
       PetscCall(JRContactEvaluate(g->c, g->U, g->V, g->F, g->normal ? g->N : NULL, derivs ? g->DU : NULL, derivs && g->normal ? g->DV : NULL, derivs && g->normal ? g->DN : NULL, NULL));
       if (g->normal)
         for (PetscInt e = 0; e < nloc; e++) g->N[e] -= g->nstatic[e]; /* the dynamic normal load */

@@ -143,6 +143,7 @@ PETSC_INTERN PetscErrorCode JRHBMProjectionRowsDir(JRHBM, PetscInt, const PetscI
 
 /* src/hbm/residual.c: the residual and Jacobian, the solver at fixed frequency */
 PETSC_INTERN PetscErrorCode JRHBMNonlinear(JRHBM, const PetscReal *, PetscReal *, PetscReal *);
+PETSC_INTERN PetscErrorCode JRHBMGroupMotion(JRHBM, JRHBMGroup *, const PetscReal *);
 PETSC_INTERN PetscErrorCode JRHBMSetUpSolver(JRHBM);
 PETSC_INTERN PetscErrorCode JRHBMLinear(JRHBM, PetscReal, const PetscReal *, PetscReal *, PetscReal *, PetscReal *);
 
