@@ -147,16 +147,16 @@ static PetscErrorCode CondenseReset(JRHBM h)
   PetscFunctionReturn(0);
 }
 
-/* The joints' rows Q (nq x nm, row-major, joint by joint): an orthogonal basis of the rows (tangential and normal) of
-   each joint's elements, by the SVD of their stack on every rank (singular values below 1e-10 of the largest
-   dropped), scaled to their root-mean-square row; a joint's elements that move with its mean give 2 rows (1 without a
-   normal row), with a field linear in their coordinates 2 (1 + the coordinates that vary). off (nj + 1): each joint's
-   first row, and the total. Collective. */
+/* The joints' rows Q (nq x nm, row-major, joint by joint, tangential then normal): an orthogonal basis of each joint's
+   elements' tangential rows, and of their normal rows, by the SVD of their stack on every rank (singular values below
+   1e-10 of the largest dropped), scaled to their root-mean-square row; a joint's elements that move with its mean give
+   one row per direction, with a field linear in their coordinates 1 + the coordinates that vary. off (2 nj + 1):
+   each joint's first tangential row (2 j) and normal row (2 j + 1), and the total; scale (2 nj). Collective. */
 static PetscErrorCode JointRowSpace(JRHBM h, const JRElements *el, PetscBool anyn, PetscInt **off, PetscReal **scale)
 {
   const PetscInt nm = h->nm, ne = el->n, nj = el->njoints, nr = anyn ? 2 : 1;
   PetscReal     *loc, *all, *A, *sv, *VT, *Qs = NULL, wq, *work;
-  PetscInt      *cnt, *kj, mmax = 0;
+  PetscInt      *cnt, mmax = 0;
   PetscBLASInt   bm, bn, lda, ldvt, lwork = -1, info, one = 1;
 
   PetscFunctionBeginUser;
@@ -170,51 +170,56 @@ static PetscErrorCode JointRowSpace(JRHBM h, const JRElements *el, PetscBool any
       }
   }
   PetscCall(MPIU_Allreduce(loc, all, ne * nr * nm, MPIU_REAL, MPIU_SUM, h->ecomm));
-  PetscCall(PetscCalloc2(nj, &cnt, nj, &kj));
-  PetscCall(PetscCalloc2(nj + 1, off, nj, scale));
+  PetscCall(PetscCalloc1(nj, &cnt));
+  PetscCall(PetscCalloc2(2 * nj + 1, off, 2 * nj, scale));
   for (PetscInt e = 0; e < ne; e++) cnt[el->joint[e]]++;
-  for (PetscInt j = 0; j < nj; j++) mmax = PetscMax(mmax, cnt[j] * nr);
+  for (PetscInt j = 0; j < nj; j++) mmax = PetscMax(mmax, cnt[j]);
   PetscCall(PetscMalloc3(mmax * nm + 1, &A, PetscMin(mmax, nm) + 1, &sv, PetscMin(mmax, nm) * nm + 1, &VT));
-  PetscCall(PetscMalloc1(nj * PetscMin(mmax, nm) * nm + 1, &Qs)); /* each joint's kept rows, unscaled */
+  PetscCall(PetscMalloc1(2 * nj * PetscMin(mmax, nm) * nm + 1, &Qs)); /* each joint's kept rows, unscaled */
   PetscCall(PetscBLASIntCast(nm, &bn));
   for (PetscInt j = 0; j < nj; j++) {
-    PetscInt m = 0, mn;
     PetscCheck(cnt[j] > 0, h->comm, PETSC_ERR_ARG_WRONG, "Joint %" PetscInt_FMT " has no element", j);
-    for (PetscInt e = 0; e < ne; e++) /* the joint's rows, column-major m x nm */
-      if (el->joint[e] == j)
-        for (PetscInt q = 0; q < nr; q++, m++)
-          for (PetscInt i = 0; i < nm; i++) A[m + i * cnt[j] * nr] = all[(e * nr + q) * nm + i];
-    mn = PetscMin(m, nm);
-    PetscCall(PetscBLASIntCast(m, &bm));
-    PetscCall(PetscBLASIntCast(m, &lda));
-    PetscCall(PetscBLASIntCast(mn, &ldvt));
-    lwork = -1;
-    PetscCallBLAS("LAPACKgesvd", LAPACKgesvd_("N", "S", &bm, &bn, A, &lda, sv, NULL, &one, VT, &ldvt, &wq, &lwork, &info));
-    PetscCall(PetscBLASIntCast((PetscInt)wq + 1, &lwork));
-    PetscCall(PetscMalloc1(lwork, &work));
-    PetscCallBLAS("LAPACKgesvd", LAPACKgesvd_("N", "S", &bm, &bn, A, &lda, sv, NULL, &one, VT, &ldvt, work, &lwork, &info));
-    PetscCall(PetscFree(work));
-    PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK gesvd (the joints' rows) failed: info %d", (int)info);
-    for (PetscInt k = 0; k < mn && sv[k] > 1e-10 * sv[0]; k++) kj[j]++;
-    (*scale)[j] = sv[0] / PetscSqrtReal((PetscReal)cnt[j]);
-    for (PetscInt k = 0; k < kj[j]; k++)
-      for (PetscInt i = 0; i < nm; i++) Qs[((*off)[j] + k) * nm + i] = VT[k + i * mn];
-    (*off)[j + 1] = (*off)[j] + kj[j];
+    for (PetscInt q = 0; q < 2; q++) {
+      const PetscInt o = (*off)[2 * j + q], m = cnt[j], mn = PetscMin(m, nm);
+      PetscInt       k = 0;
+      (*off)[2 * j + q + 1] = o;
+      if (q >= nr) continue;
+      for (PetscInt e = 0, r = 0; e < ne; e++) /* the joint's rows of direction q, column-major m x nm */
+        if (el->joint[e] == j) {
+          for (PetscInt i = 0; i < nm; i++) A[r + i * m] = all[(e * nr + q) * nm + i];
+          r++;
+        }
+      PetscCall(PetscBLASIntCast(m, &bm));
+      PetscCall(PetscBLASIntCast(m, &lda));
+      PetscCall(PetscBLASIntCast(mn, &ldvt));
+      lwork = -1;
+      PetscCallBLAS("LAPACKgesvd", LAPACKgesvd_("N", "S", &bm, &bn, A, &lda, sv, NULL, &one, VT, &ldvt, &wq, &lwork, &info));
+      PetscCall(PetscBLASIntCast((PetscInt)wq + 1, &lwork));
+      PetscCall(PetscMalloc1(lwork, &work));
+      PetscCallBLAS("LAPACKgesvd", LAPACKgesvd_("N", "S", &bm, &bn, A, &lda, sv, NULL, &one, VT, &ldvt, work, &lwork, &info));
+      PetscCall(PetscFree(work));
+      PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK gesvd (the joints' rows) failed: info %d", (int)info);
+      while (k < mn && sv[0] > 0 && sv[k] > 1e-10 * sv[0]) k++; /* none where every row is 0 (elements without a normal direction) */
+      (*scale)[2 * j + q] = sv[0] / PetscSqrtReal((PetscReal)m);
+      for (PetscInt r = 0; r < k; r++)
+        for (PetscInt i = 0; i < nm; i++) Qs[(o + r) * nm + i] = VT[r + i * mn];
+      (*off)[2 * j + q + 1] = o + k;
+    }
   }
-  h->nq = (*off)[nj];
+  h->nq = (*off)[2 * nj];
   PetscCall(PetscCalloc3(h->nq * nm + 1, &h->Q, h->nq * nm + 1, &h->QV, nm, &h->VF));
-  for (PetscInt j = 0; j < nj; j++)
-    for (PetscInt r = (*off)[j]; r < (*off)[j + 1]; r++)
-      for (PetscInt i = 0; i < nm; i++) h->Q[r * nm + i] = (*scale)[j] * Qs[r * nm + i];
+  for (PetscInt s = 0; s < 2 * nj; s++)
+    for (PetscInt r = (*off)[s]; r < (*off)[s + 1]; r++)
+      for (PetscInt i = 0; i < nm; i++) h->Q[r * nm + i] = (*scale)[s] * Qs[r * nm + i];
   PetscCall(PetscFree3(A, sv, VT));
   PetscCall(PetscFree(Qs));
-  PetscCall(PetscFree2(cnt, kj));
+  PetscCall(PetscFree(cnt));
   PetscCall(PetscFree2(loc, all));
   PetscFunctionReturn(0);
 }
 
-/* Every element's coefficients on its joint's rows Q_j (scale s_j: Q_j Q_j^T = s_j^2 I), c = Q_j r / s_j^2; exact:
-   every element's rows are c^T Q_j to 1e-10 of the largest (collective) */
+/* Every element's coefficients on its joint's rows Q_s of each direction (scale s_s: Q_s Q_s^T = s_s^2 I),
+   c = Q_s r / s_s^2; exact: every element's rows are c^T Q_s to 1e-10 of the largest (collective) */
 static PetscErrorCode ElementCoefficients(JRHBM h, const JRElements *el, const PetscInt off[], const PetscReal scale[], PetscBool *exact)
 {
   const PetscInt nm = h->nm;
@@ -222,25 +227,27 @@ static PetscErrorCode ElementCoefficients(JRHBM h, const JRElements *el, const P
   PetscInt       cw = 0;
 
   PetscFunctionBeginUser;
-  for (PetscInt j = 0; j < el->njoints; j++) cw = PetscMax(cw, off[j + 1] - off[j]);
+  for (PetscInt s = 0; s < 2 * el->njoints; s++) cw = PetscMax(cw, off[s + 1] - off[s]);
   for (PetscInt t = 0; t < h->ngroups; t++) {
     JRHBMGroup    *g    = &h->g[t];
     const PetscInt nloc = g->nloc;
     PetscCall(PetscFree2(g->qo, g->qw));
     PetscCall(PetscFree2(g->Ct, g->Cn));
-    PetscCall(PetscMalloc2(nloc + 1, &g->qo, nloc + 1, &g->qw));
+    PetscCall(PetscMalloc2(2 * nloc + 1, &g->qo, 2 * nloc + 1, &g->qw));
     PetscCall(PetscCalloc2(nloc * cw + 1, &g->Ct, g->normal ? nloc * cw + 1 : 1, &g->Cn));
     g->cw = cw;
     for (PetscInt e = 0; e < nloc; e++) {
-      const PetscInt j = el->joint[g->eidx[e]], k = off[j + 1] - off[j];
-      const PetscReal s2 = scale[j] * scale[j];
-      g->qo[e]         = off[j];
-      g->qw[e]         = k;
-      for (PetscInt q = 0; q < (g->normal ? 2 : 1); q++) {
+      const PetscInt j = el->joint[g->eidx[e]];
+      for (PetscInt q = 0; q < 2; q++) {
+        const PetscInt   sidx = 2 * j + q, k = off[sidx + 1] - off[sidx];
+        const PetscReal  s2 = scale[sidx] * scale[sidx];
         const PetscReal *X = q ? g->S : g->R;
         PetscReal       *C = q ? g->Cn : g->Ct;
+        g->qo[2 * e + q] = off[sidx];
+        g->qw[2 * e + q] = q && !g->normal ? 0 : k;
+        if (q && !g->normal) continue;
         for (PetscInt r = 0; r < k; r++) {
-          const PetscReal *qr = h->Q + (off[j] + r) * nm;
+          const PetscReal *qr = h->Q + (off[sidx] + r) * nm;
           PetscReal        c  = 0;
           for (PetscInt i = 0; i < nm; i++) c += qr[i] * X[e + i * nloc];
           C[e + r * nloc] = c / s2;
@@ -248,7 +255,7 @@ static PetscErrorCode ElementCoefficients(JRHBM h, const JRElements *el, const P
         for (PetscInt i = 0; i < nm; i++) {
           PetscReal x = X[e + i * nloc];
           dd[1] = PetscMax(dd[1], PetscAbsReal(x));
-          for (PetscInt r = 0; r < k; r++) x -= C[e + r * nloc] * h->Q[(off[j] + r) * nm + i];
+          for (PetscInt r = 0; r < k; r++) x -= C[e + r * nloc] * h->Q[(off[sidx] + r) * nm + i];
           dd[0] = PetscMax(dd[0], PetscAbsReal(x));
         }
       }

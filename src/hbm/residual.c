@@ -52,14 +52,22 @@ PetscErrorCode JRHBMGroupMotion(JRHBM h, JRHBMGroup *g, const PetscReal *x)
     if (g->normal) PetscCall(JRGemm("N", "N", nloc, nc, h->nm, 1.0, g->S, nloc, x, h->nm, 0.0, g->V, nloc));
     PetscFunctionReturn(0);
   }
+  if (g->cw == 1) { /* one row per direction (a joint's mean motion) */
+    for (PetscInt c = 0; c < nc; c++)
+      for (PetscInt e = 0; e < nloc; e++) {
+        g->U[e + c * nloc] = g->qw[2 * e] ? g->Ct[e] * x[g->qo[2 * e] + c * h->nq] : 0.0;
+        if (g->normal) g->V[e + c * nloc] = g->qw[2 * e + 1] ? g->Cn[e] * x[g->qo[2 * e + 1] + c * h->nq] : 0.0;
+      }
+    PetscFunctionReturn(0);
+  }
   for (PetscInt c = 0; c < nc; c++)
     for (PetscInt e = 0; e < nloc; e++) {
-      const PetscReal *y = x + g->qo[e] + c * h->nq;
+      const PetscReal *yt = x + g->qo[2 * e] + c * h->nq, *yn = x + g->qo[2 * e + 1] + c * h->nq;
       PetscReal        u = 0, v = 0;
-      for (PetscInt r = 0; r < g->qw[e]; r++) u += g->Ct[e + r * nloc] * y[r];
+      for (PetscInt r = 0; r < g->qw[2 * e]; r++) u += g->Ct[e + r * nloc] * yt[r];
       g->U[e + c * nloc] = u;
       if (!g->normal) continue;
-      for (PetscInt r = 0; r < g->qw[e]; r++) v += g->Cn[e + r * nloc] * y[r];
+      for (PetscInt r = 0; r < g->qw[2 * e + 1]; r++) v += g->Cn[e + r * nloc] * yn[r];
       g->V[e + c * nloc] = v;
     }
   PetscFunctionReturn(0);
@@ -83,25 +91,50 @@ static PetscErrorCode GroupCondensed(JRHBM h, JRHBMGroup *g, const PetscReal *a,
   }
   for (PetscInt c = 0; c < nc; c++)
     for (PetscInt e = 0; e < nloc; e++) {
-      PetscReal      *y = loc + qo[e] + c * nq;
+      PetscReal      *yt = loc + qo[2 * e] + c * nq, *yn = loc + qo[2 * e + 1] + c * nq;
       const PetscReal f = g->F[e + c * nloc], fn = g->normal ? g->N[e + c * nloc] : 0.0;
-      for (PetscInt r = 0; r < qw[e]; r++) y[r] += Ct[e + r * nloc] * f + (g->normal ? Cn[e + r * nloc] * fn : 0.0);
+      for (PetscInt r = 0; r < qw[2 * e]; r++) yt[r] += Ct[e + r * nloc] * f;
+      for (PetscInt r = 0; r < qw[2 * e + 1]; r++) yn[r] += Cn[e + r * nloc] * fn;
     }
-  if (jac) { /* c^T dF/du c + c^T dF/dv d + d^T dN/dv d on the joint's block, c and d the element's coefficients */
+  if (jac) { /* c^T dF/du c, c^T dF/dv d, d^T dN/dv d on the joint's blocks, c and d the element's coefficients on its
+                tangential and normal rows */
     PetscCall(PetscLogEventBegin(JR_HBMJacobian, 0, 0, 0, 0));
     for (PetscInt k = 0; k < nc; k++)
       for (PetscInt m = 0; m < nc; m++) {
         const PetscReal *du = g->DU + (k * nc + m) * nloc, *dv = g->normal ? g->DV + (k * nc + m) * nloc : NULL, *dn = g->normal ? g->DN + (k * nc + m) * nloc : NULL;
+        if (g->cw == 1) { /* one row per direction (a joint's mean motion): scalar coefficients */
+          PetscReal *blk = loc + n + (k * nq) + (m * nq) * n;
+          for (PetscInt e = 0; e < nloc; e++) {
+            const PetscInt  it = qo[2 * e], in = qo[2 * e + 1];
+            const PetscReal ct = Ct[e];
+            if (qw[2 * e]) blk[it + it * n] += ct * du[e] * ct;
+            if (qw[2 * e + 1]) {
+              const PetscReal cn = Cn[e];
+              if (qw[2 * e]) blk[it + in * n] += ct * dv[e] * cn;
+              blk[in + in * n] += cn * dn[e] * cn;
+            }
+          }
+          continue;
+        }
         for (PetscInt e = 0; e < nloc; e++) {
-          PetscReal *blk = loc + n + (k * nq + qo[e]) + (m * nq + qo[e]) * n;
-          for (PetscInt l = 0; l < qw[e]; l++) {
-            const PetscReal cl = Ct[e + l * nloc], dl = g->normal ? Cn[e + l * nloc] : 0.0;
-            const PetscReal tu = du[e] * cl + (g->normal ? dv[e] * dl : 0.0), tn = g->normal ? dn[e] * dl : 0.0;
-            for (PetscInt r = 0; r < qw[e]; r++) blk[r + l * n] += Ct[e + r * nloc] * tu + (g->normal ? Cn[e + r * nloc] * tn : 0.0);
+          const PetscInt wt = qw[2 * e], wn = qw[2 * e + 1];
+          PetscReal     *btt = loc + n + (k * nq + qo[2 * e]) + (m * nq + qo[2 * e]) * n;
+          for (PetscInt l = 0; l < wt; l++) {
+            const PetscReal tu = du[e] * Ct[e + l * nloc];
+            for (PetscInt r = 0; r < wt; r++) btt[r + l * n] += Ct[e + r * nloc] * tu;
+          }
+          if (!wn) continue;
+          {
+            PetscReal *btn = loc + n + (k * nq + qo[2 * e]) + (m * nq + qo[2 * e + 1]) * n, *bnn = loc + n + (k * nq + qo[2 * e + 1]) + (m * nq + qo[2 * e + 1]) * n;
+            for (PetscInt l = 0; l < wn; l++) {
+              const PetscReal tv = dv[e] * Cn[e + l * nloc], tn = dn[e] * Cn[e + l * nloc];
+              for (PetscInt r = 0; r < wt; r++) btn[r + l * n] += Ct[e + r * nloc] * tv;
+              for (PetscInt r = 0; r < wn; r++) bnn[r + l * n] += Cn[e + r * nloc] * tn;
+            }
           }
         }
       }
-    PetscCall(PetscLogFlops(4.0 * nloc * nc * nc * g->cw * g->cw * (g->normal ? 2 : 1)));
+    PetscCall(PetscLogFlops(2.0 * nloc * nc * nc * g->cw * g->cw * (g->normal ? 3 : 1)));
     PetscCall(PetscLogEventEnd(JR_HBMJacobian, 0, 0, 0, 0));
   }
   PetscFunctionReturn(0);

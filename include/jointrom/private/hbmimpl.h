@@ -40,9 +40,10 @@ typedef struct {
   PetscInt  *eidx;         /* the model's element number of each local element */
   PetscReal *Kc;           /* stuck basis: the stuck springs of this rank's elements in contact at rest (nm x nm) */
   PetscReal *R0, *S0;      /* joints in a stuck basis: the members' own rows until Kc is formed */
-  PetscInt  *qo, *qw;      /* condensed: the first of its joint's rows among the nq condensed ones, and their number */
-  PetscReal *Ct, *Cn;      /* condensed: its rows' coefficients on its joint's rows (nloc x cw, column-major) */
-  PetscInt   cw;           /* the most rows of a joint */
+  PetscInt  *qo, *qw;      /* condensed: per element (2 e: tangential, 2 e + 1: normal) the first of its joint's rows of
+                              that direction among the nq condensed ones, and their number */
+  PetscReal *Ct, *Cn;      /* condensed: its rows' coefficients on them (nloc x cw, column-major) */
+  PetscInt   cw;           /* the most rows of a joint in one direction */
 } JRHBMGroup;
 
 struct _p_JRHBM {
