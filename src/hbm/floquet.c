@@ -32,7 +32,9 @@
    resonance) are condensed quasi-statically for each step's pattern (QuasiStatic, Guyan's reduction with the
    pattern's stiffness): their inertia is dropped, the slow modes carry the rest, and the map is the exponential of
    the slow modes' equations, whose stiffest mode sets far fewer squarings. The exponents change by about
-   (w / w_fast)^2 (test_stability); the fast modes' own exponents are not computed.
+   (w / w_fast)^2 (test_stability); the fast modes' own exponents are not computed. Where the elements' rows are a
+   few distinct ones, or combinations of a few (a reduced model's joints), each step's condensation follows from one
+   factorisation per point by the Woodbury identity (LowRankPoint, LowRankStatic).
    Every rank holds every element (gathered once); JRHBMFloquetTime marches one point on rank 0 and broadcasts,
    JRHBMFloquetTimePoints shares a level's points out over the ranks.
 */
