@@ -95,6 +95,42 @@ static PetscErrorCode FDCheck(JRHBM hbm, Vec a, double h, double w, double *ej, 
   PetscFunctionReturn(0);
 }
 
+/* The condensed model hc and the modal one hm solved at w from their linearised solutions (x: hc's solve space, its
+   solution on exit): whether both converged, the largest difference of hc's solution expanded to the modes from hm's
+   relative to hm's largest entry, and the contact states of hm's solution */
+static PetscErrorCode CondensedVsModal(JRHBM hc, JRHBM hm, double w, Vec x, PetscBool *conv, double *rel, PetscInt cnt[4])
+{
+  Vec                a, ac;
+  PetscInt           n, its;
+  PetscBool          cc, cm;
+  const PetscScalar *u, *v;
+  double             da = 0, amax = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMGetSizes(hm, NULL, NULL, &n));
+  PetscCall(JRHBMLinearSolution(hc, w, x));
+  PetscCall(JRHBMSolve(hc, w, x, &its, &cc));
+  PetscCall(JRHBMCreateVecs(hm, &a, NULL));
+  PetscCall(JRHBMLinearSolution(hm, w, a));
+  PetscCall(JRHBMSolve(hm, w, a, &its, &cm));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &ac));
+  PetscCall(JRHBMExpand(hc, w, x, ac));
+  PetscCall(VecGetArrayRead(ac, &u));
+  PetscCall(VecGetArrayRead(a, &v));
+  for (PetscInt i = 0; i < n; i++) {
+    da   = fmax(da, fabs(u[i] - v[i]));
+    amax = fmax(amax, fabs(v[i]));
+  }
+  PetscCall(VecRestoreArrayRead(a, &v));
+  PetscCall(VecRestoreArrayRead(ac, &u));
+  PetscCall(JRHBMContactStates(hm, a, cnt));
+  *conv = (PetscBool)(cc && cm);
+  *rel  = da / amax;
+  PetscCall(VecDestroy(&a));
+  PetscCall(VecDestroy(&ac));
+  PetscFunctionReturn(0);
+}
+
 /* point k of level l as a Vec */
 static PetscErrorCode PointVec(Problem *p, PetscInt l, PetscInt k, Vec a)
 {
@@ -479,11 +515,11 @@ int main(int argc, char **argv)
     const double  *K = K4, *M = M4;
     const El      *e = E4;
     const PetscInt joint[6] = {0, 0, 1, 1, 2, 0}; /* 3 joints: their members move with the average of their rows */
-    double         C[16], ej = 0.0, ew = 0.0, jmax = 0.0, wmax = 0.0, w = 2 * M_PI * 250, da = 0.0, amax = 0.0;
+    double         C[16], ej = 0.0, ew = 0.0, jmax = 0.0, wmax = 0.0, w = 2 * M_PI * 250, da = 0.0;
     Problem        p, q;
-    Vec            x, a, ac;
-    PetscInt       n, ns, its;
-    PetscBool      conv, convq;
+    Vec            x;
+    PetscInt       n, ns;
+    PetscBool      conv;
     const char    *info;
     char           opts[160];
     for (PetscInt i = 0; i < 16; i++) C[i] = 2.0 * M[i] + 1e-5 * K[i]; /* proportional: diagonal in the modes */
@@ -515,30 +551,12 @@ int main(int argc, char **argv)
        joints' motions to modes */
     PetscCall(JRHBMSetForceLevel(p.hbm, 40.0));
     PetscCall(JRHBMSetForceLevel(q.hbm, 40.0));
-    PetscCall(JRHBMLinearSolution(p.hbm, w, x));
-    PetscCall(JRHBMSolve(p.hbm, w, x, &its, &conv));
-    PetscCall(JRHBMCreateVecs(q.hbm, &a, NULL));
-    PetscCall(JRHBMLinearSolution(q.hbm, w, a));
-    PetscCall(JRHBMSolve(q.hbm, w, a, &its, &convq));
-    PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &ac));
-    PetscCall(JRHBMExpand(p.hbm, w, x, ac));
     {
-      const PetscScalar *u, *v;
-      PetscInt           cnt[4];
-      PetscCall(VecGetArrayRead(ac, &u));
-      PetscCall(VecGetArrayRead(a, &v));
-      for (PetscInt i = 0; i < n; i++) {
-        da   = fmax(da, fabs(u[i] - v[i]));
-        amax = fmax(amax, fabs(v[i]));
-      }
-      PetscCall(VecRestoreArrayRead(a, &v));
-      PetscCall(VecRestoreArrayRead(ac, &u));
-      PetscCall(JRHBMContactStates(q.hbm, a, cnt));
-      CHECK(conv && convq && da < 1e-8 * amax, "condensed solution at 250 Hz, H = %" PetscInt_FMT ", expanded to the modes = the modal equations' solution within %.1e (relative; states %" PetscInt_FMT " stick, %" PetscInt_FMT " slip, %" PetscInt_FMT " separating)", H, da / amax, cnt[0], cnt[1], cnt[2] + cnt[3]);
+      PetscInt cnt[4];
+      PetscCall(CondensedVsModal(p.hbm, q.hbm, w, x, &conv, &da, cnt));
+      CHECK(conv && da < 1e-8, "condensed solution at 250 Hz, H = %" PetscInt_FMT ", expanded to the modes = the modal equations' solution within %.1e (relative; states %" PetscInt_FMT " stick, %" PetscInt_FMT " slip, %" PetscInt_FMT " separating)", H, da, cnt[0], cnt[1], cnt[2] + cnt[3]);
     }
     PetscCall(VecDestroy(&x));
-    PetscCall(VecDestroy(&a));
-    PetscCall(VecDestroy(&ac));
     PetscCall(ProblemDestroy(&p));
     PetscCall(ProblemDestroy(&q));
   }
@@ -549,7 +567,7 @@ int main(int argc, char **argv)
      joint (by hand), so 8 condensed rows against 10 modes; the condensed Jacobian against finite differences and the
      condensed solution, expanded, against the modal equations' ---- */
   for (PetscInt H = 1; H <= 3; H += 2) {
-    double         K[100], M[100], w = 2 * M_PI * 60, ej = 0, ew = 0, jmax = 0, wmax = 0, da = 0, amax = 0;
+    double         K[100], M[100], w = 2 * M_PI * 60, ej = 0, ew = 0, jmax = 0, wmax = 0, da = 0;
     const El       e[8]     = {
       {"jenkins_nv", 0, -1, 4, -1, 1e6, 1e6, 0.3, 2  },
       {"jenkins_nv", 1, -1, 5, -1, 1e6, 1e6, 0.3, 3  },
@@ -563,9 +581,9 @@ int main(int argc, char **argv)
     const PetscInt joint[8] = {0, 0, 0, 0, 1, 1, 1, 1};
     const double   pos[24]  = {0, 0, 0, 1, 0, 0, 2, 0, 0, 4, 0, 0, 0, 0, 0, 1, 0, 0, 3, 0, 0, 4, 0, 0};
     Problem        p, q;
-    Vec            x, a, ac;
-    PetscInt       n, ns, its, cnt[4];
-    PetscBool      conv, convq;
+    Vec            x;
+    PetscInt       n, ns, cnt[4];
+    PetscBool      conv;
     const char    *info;
     char           opts[160];
     for (PetscInt i = 0; i < 100; i++) K[i] = M[i] = 0;
@@ -593,31 +611,11 @@ int main(int argc, char **argv)
     PetscCall(JRHBMSetForceLevel(p.hbm, 2.0));
     PetscCall(JRHBMSetForceLevel(q.hbm, 2.0));
     PetscCall(JRHBMCreateVecs(p.hbm, &x, NULL));
-    PetscCall(JRHBMLinearSolution(p.hbm, w, x));
-    PetscCall(JRHBMSolve(p.hbm, w, x, &its, &conv));
+    PetscCall(CondensedVsModal(p.hbm, q.hbm, w, x, &conv, &da, cnt));
     PetscCall(FDCheck(p.hbm, x, 1e-6 * 1e-5, w, &ej, &jmax, &ew, &wmax));
     CHECK(ej < 1e-6 * jmax && ew < 1e-6 * wmax, "row-space condensed Jacobian, H = %" PetscInt_FMT ", at the solution at 60 Hz: dr/dx %.1e, dr/dw %.1e relative to finite differences", H, ej / jmax, ew / wmax);
-    PetscCall(JRHBMCreateVecs(q.hbm, &a, NULL));
-    PetscCall(JRHBMLinearSolution(q.hbm, w, a));
-    PetscCall(JRHBMSolve(q.hbm, w, a, &its, &convq));
-    PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &ac));
-    PetscCall(JRHBMExpand(p.hbm, w, x, ac));
-    {
-      const PetscScalar *u, *v;
-      PetscCall(VecGetArrayRead(ac, &u));
-      PetscCall(VecGetArrayRead(a, &v));
-      for (PetscInt i = 0; i < n; i++) {
-        da   = fmax(da, fabs(u[i] - v[i]));
-        amax = fmax(amax, fabs(v[i]));
-      }
-      PetscCall(VecRestoreArrayRead(a, &v));
-      PetscCall(VecRestoreArrayRead(ac, &u));
-    }
-    PetscCall(JRHBMContactStates(q.hbm, a, cnt));
-    CHECK(conv && convq && da < 1e-8 * amax && cnt[1] > 0 && cnt[2] + cnt[3] > 0, "row-space condensed solution at 60 Hz, H = %" PetscInt_FMT ", expanded to the modes = the modal equations' within %.1e (relative; states %" PetscInt_FMT " stick, %" PetscInt_FMT " slip, %" PetscInt_FMT " separating or open)", H, da / amax, cnt[0], cnt[1], cnt[2] + cnt[3]);
+    CHECK(conv && da < 1e-8 && cnt[1] > 0 && cnt[2] + cnt[3] > 0, "row-space condensed solution at 60 Hz, H = %" PetscInt_FMT ", expanded to the modes = the modal equations' within %.1e (relative; states %" PetscInt_FMT " stick, %" PetscInt_FMT " slip, %" PetscInt_FMT " separating or open)", H, da, cnt[0], cnt[1], cnt[2] + cnt[3]);
     PetscCall(VecDestroy(&x));
-    PetscCall(VecDestroy(&a));
-    PetscCall(VecDestroy(&ac));
     PetscCall(ProblemDestroy(&p));
     PetscCall(ProblemDestroy(&q));
   }
