@@ -95,6 +95,21 @@ static PetscErrorCode FDCheck(JRHBM hbm, Vec a, double h, double w, double *ej, 
   PetscFunctionReturn(0);
 }
 
+/* The same model condensed onto its joints (p, -hbm_condense yes) and on the modal unknowns (q, no), H harmonics,
+   structural damping 0.01, extra options before */
+static PetscErrorCode CondensedPair(const char *extra, PetscInt H, PetscInt n, const double *K, const double *M, const double *C, PetscInt ne, const El *e, Problem *p, Problem *q)
+{
+  char opts[200];
+
+  PetscFunctionBeginUser;
+  for (PetscInt c = 0; c < 2; c++) {
+    PetscCall(PetscSNPrintf(opts, sizeof(opts), "%s -hbm_harmonics %" PetscInt_FMT " -hbm_samples 128 -hbm_gamma 0.01 -frf_force 1 -hbm_condense %s", extra, H, c ? "no" : "yes"));
+    PetscCall(Options(opts));
+    PetscCall(ProblemCreate(n, K, M, C, ne, e, c ? q : p));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The condensed model hc and the modal one hm solved at w from their linearised solutions (x: hc's solve space, its
    solution on exit): whether both converged, the largest difference of hc's solution expanded to the modes from hm's
    relative to hm's largest entry, and the contact states of hm's solution */
@@ -521,16 +536,10 @@ int main(int argc, char **argv)
     PetscInt       n, ns;
     PetscBool      conv;
     const char    *info;
-    char           opts[160];
     for (PetscInt i = 0; i < 16; i++) C[i] = 2.0 * M[i] + 1e-5 * K[i]; /* proportional: diagonal in the modes */
     jr_joints  = joint;
     jr_njoints = 3;
-    PetscCall(PetscSNPrintf(opts, sizeof(opts), "-hbm_harmonics %" PetscInt_FMT " -hbm_samples 128 -hbm_gamma 0.01 -frf_force 1 -hbm_condense yes", H));
-    PetscCall(Options(opts));
-    PetscCall(ProblemCreate(4, K, M, C, 6, e, &p));
-    PetscCall(PetscSNPrintf(opts, sizeof(opts), "-hbm_harmonics %" PetscInt_FMT " -hbm_samples 128 -hbm_gamma 0.01 -frf_force 1 -hbm_condense no", H));
-    PetscCall(Options(opts));
-    PetscCall(ProblemCreate(4, K, M, C, 6, e, &q));
+    PetscCall(CondensedPair("", H, 4, K, M, C, 6, e, &p, &q));
     jr_joints = NULL;
     PetscCall(JRHBMGetSolveSize(p.hbm, &ns, &info));
     PetscCall(JRHBMGetSizes(p.hbm, NULL, NULL, &n));
@@ -585,7 +594,6 @@ int main(int argc, char **argv)
     PetscInt       n, ns, cnt[4];
     PetscBool      conv;
     const char    *info;
-    char           opts[160];
     for (PetscInt i = 0; i < 100; i++) K[i] = M[i] = 0;
     for (PetscInt i = 0; i < 10; i++) { /* springs of 1e6 N/m between neighbours and to the ground at both ends */
       K[i + 10 * i] = 2e6;
@@ -596,12 +604,7 @@ int main(int argc, char **argv)
     jr_njoints = 2;
     jr_pos     = pos;
     jr_jmotion = JR_JOINT_MOTION_LINEAR;
-    PetscCall(PetscSNPrintf(opts, sizeof(opts), "-hbm_physical -hbm_harmonics %" PetscInt_FMT " -hbm_samples 128 -hbm_gamma 0.01 -frf_force 1", H));
-    PetscCall(Options(opts));
-    PetscCall(ProblemCreate(10, K, M, NULL, 8, e, &p));
-    PetscCall(PetscSNPrintf(opts, sizeof(opts), "-hbm_physical -hbm_harmonics %" PetscInt_FMT " -hbm_samples 128 -hbm_gamma 0.01 -frf_force 1 -hbm_condense no", H));
-    PetscCall(Options(opts));
-    PetscCall(ProblemCreate(10, K, M, NULL, 8, e, &q));
+    PetscCall(CondensedPair("-hbm_physical", H, 10, K, M, NULL, 8, e, &p, &q));
     jr_joints  = NULL;
     jr_pos     = NULL;
     jr_jmotion = JR_JOINT_MOTION_MEAN;
