@@ -75,6 +75,9 @@ struct _JRMonodromy {
   PetscInt  *isl, *ifa;               /* their indices among the kept modes */
   PetscReal *Mm, *Cv;                 /* nk x nk column-major: the modal mass, the damping at the point's frequency */
   PetscReal *QW;                      /* the condensation's work (9 nk x nk + 4 nk x ne) */
+  PetscReal *MCb;                     /* per point: Mm's and Cv's blocks over the slow and fast modes, ss, sf, fs, ff
+                                         (PointBlocks; nk x nk each) */
+  PetscBool  mcdiag[2];               /* per point: Mm, Cv diagonal (their blocks ss, ff then diagonals, sf, fs 0) */
   PetscReal *Ts, *KFs, *bws;          /* per kept map: the modes over the slow ones T (nk x nsl, stride nk nk), Kff's LU
                                          (nfa x nfa, stride nk nk), the held slips' stiffness (Bw = [r_e kt], nt, stride cap) */
   PetscBLASInt *pivs;                 /* per kept map: Kff's pivots (stride nk) */
@@ -136,6 +139,7 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscCall(PetscFree2(f->ncol, f->cols));
   PetscCall(PetscFree3(f->PS, f->piv, f->RT));
   PetscCall(PetscFree5(f->isl, f->ifa, f->Mm, f->Cv, f->QW));
+  PetscCall(PetscFree(f->MCb));
   PetscCall(PetscFree4(f->Ts, f->KFs, f->bws, f->pivs));
   PetscCall(PetscFree2(f->Rfa, f->bwt));
   PetscCall(PetscFree4(f->RSt, f->Kp, f->Rg, f->rows));
@@ -443,6 +447,7 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
     PetscCall(PetscMalloc2(JR_MONO_SLOTS + 1, &f->ncol, (JR_MONO_SLOTS + 1) * ne + 1, &f->cols));
     PetscCall(PetscMalloc3(5 * n2 * n2 + 1, &f->PS, n2 + 1, &f->piv, 2 * ne * nk + 1, &f->RT));
     PetscCall(PetscMalloc5(nk + 1, &f->isl, nk + 1, &f->ifa, nk * nk + 1, &f->Mm, nk * nk + 1, &f->Cv, 9 * nk * nk + 4 * nk * ne + 1, &f->QW));
+    PetscCall(PetscMalloc1(2 * nk * nk + 1, &f->MCb));
     for (PetscInt j = 0; j < nk; j++)
       for (PetscInt i = 0; i < nk; i++) f->Mm[i + j * nk] = h->Mm[keep[i] * nm + keep[j]];
     PetscCall(PetscMalloc2(3 * ne + 1, &f->cf, 3 * ne + 1, &f->cfn));
@@ -799,24 +804,59 @@ static PetscErrorCode SlowSolve(struct _JRMonodromy *f, PetscReal *Mr, PetscReal
   PetscFunctionReturn(0);
 }
 
+/* The rows x cols block (idx r, idx c) of the nk x nk column-major matrix A into B (column-major, nr rows) */
+static void Block(const PetscReal *A, PetscInt nk, const PetscInt *ir, PetscInt nr, const PetscInt *ic, PetscInt nc, PetscReal *B)
+{
+  for (PetscInt j = 0; j < nc; j++)
+    for (PetscInt i = 0; i < nr; i++) B[i + j * nr] = A[ir[i] + ic[j] * nk];
+}
+
+/* The point's blocks of Mm and Cv over its slow and fast modes (f->MCb: ss, sf, fs, ff of each, or the diagonals of
+   ss and ff where the matrix is diagonal: f->mcdiag), for QuasiStatic */
+static void PointBlocks(struct _JRMonodromy *f)
+{
+  const PetscInt nk = f->nk, nsl = f->nsl, nfa = f->nfa;
+
+  for (PetscInt q = 0; q < 2; q++) {
+    const PetscReal *B  = q ? f->Cv : f->Mm;
+    PetscReal       *ss = f->MCb + q * nk * nk, *sf = ss + nsl * nsl, *fs = sf + nsl * nfa, *ff = fs + nfa * nsl;
+    PetscBool        diag = PETSC_TRUE;
+    for (PetscInt j = 0; j < nk && diag; j++)
+      for (PetscInt i = 0; i < nk && diag; i++) diag = (PetscBool)(i == j || B[i + j * nk] == 0.0);
+    f->mcdiag[q] = diag;
+    if (diag) {
+      for (PetscInt i = 0; i < nsl; i++) ss[i] = B[f->isl[i] * (nk + 1)];
+      for (PetscInt a = 0; a < nfa; a++) ff[a] = B[f->ifa[a] * (nk + 1)];
+      continue;
+    }
+    Block(B, nk, f->isl, nsl, f->isl, nsl, ss);
+    Block(B, nk, f->isl, nsl, f->ifa, nfa, sf);
+    Block(B, nk, f->ifa, nfa, f->isl, nsl, fs);
+    Block(B, nk, f->ifa, nfa, f->ifa, nfa, ff);
+  }
+}
+
 /* The fast kept modes (f->ifa) condensed quasi-statically for the step's element states (f->Kp, the stiffness with
    them, StiffnessUpdate; Bw, the held slips' forces): the fast modes follow the slow ones and the
-   held slips statically, q = T q_s + T_w w, T = [I; -Kff^-1 Kfs], T_w = [0; Kff^-1 Bw_f] (rows slow; fast), and the
-   slow modes obey Mr q_s'' + Cr q_s' + Kr q_s = Br w with Mr = T^T Mm T, Cr = T^T Cv T, Kr = T^T Kp T (the Schur
-   complement) and Br = Bw_s - Ksf Kff^-1 Bw_f. Out: X = Mr^-1 [Kr, Cr, Br] (nsl x (2 nsl + nt)), wmax >= the
-   stiffest slow mode (the square root of X's first block's 1-norm), and slot k's T and Kff^-1 Bw_f for the commits. */
+   held slips statically, q = T q_s + T_w w, T = [I; X], X = -Kff^-1 Kfs, T_w = [0; Kff^-1 Bw_f] (rows slow; fast),
+   and the slow modes obey Mr q_s'' + Cr q_s' + Kr q_s = Br w with Mr = T^T Mm T, Cr = T^T Cv T, Kr = T^T Kp T =
+   Kss + Ksf X (the Schur complement: Kfs + Kff X = 0, Kp symmetric or not) and Br = Bw_s - Ksf Kff^-1 Bw_f; for
+   B = Mm, Cv, T^T B T = Bss + Bsf X + X^T (Bfs + Bff X) from the point's blocks (PointBlocks; Bss + X^T Bff X where
+   B is diagonal). Out:
+   X = Mr^-1 [Kr, Cr, Br] (nsl x (2 nsl + nt)), wmax >= the stiffest slow mode (the square root of X's first block's
+   1-norm), and slot k's T and Kff^-1 Bw_f for the commits. */
 static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, const PetscReal *Bw, PetscInt k, PetscReal **X, PetscReal *wmax)
 {
   const PetscInt nk = f->nk, nsl = f->nsl, nfa = f->nfa, nt = f->mt - f->n2r;
   PetscReal     *Kp = f->Kp, *T = f->Ts + k * nk * nk, *MT = f->QW + 2 * nk * nk, *Mr = MT + nk * nk, *KF = f->KFs + k * nk * nk, *RH = Mr + 2 * nk * nk;
+  PetscReal     *KS = f->QW, *BY = f->QW + nk * nk; /* Ksf (nsl x nfa); Bfs + Bff X (nfa x nsl) */
   PetscBLASInt   bf, bs, brhs, info, *piv = f->pivs + k * nk;
 
   PetscFunctionBeginUser;
   PetscCall(PetscBLASIntCast(nfa, &bf));
   PetscCall(PetscBLASIntCast(nsl, &bs));
-  /* Kff's LU (kept for the commits); T's fast rows -Kff^-1 Kfs (in MT first) */
-  for (PetscInt b = 0; b < nfa; b++)
-    for (PetscInt a = 0; a < nfa; a++) KF[a + b * nfa] = Kp[f->ifa[a] + f->ifa[b] * nk];
+  /* Kff's LU (kept for the commits); X = -Kff^-1 Kfs (in MT) */
+  Block(Kp, nk, f->ifa, nfa, f->ifa, nfa, KF);
   PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bf, &bf, KF, &bf, piv, &info));
   PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the fast modes' stiffness is singular (LAPACK getrf info %d); -frf_stability_time_fast 0 marches every mode", (int)info);
   for (PetscInt b = 0; b < nsl; b++)
@@ -846,23 +886,29 @@ static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, const PetscReal *Bw, P
     T[f->isl[b] + b * nk] = 1.0;
     for (PetscInt a = 0; a < nfa; a++) T[f->ifa[a] + b * nk] = MT[a + b * nfa];
   }
-  /* RH = [Kr, Cr, Br] (Br above): Kr = T^T (Kp T), Cr = T^T (Cv T) */
-  PetscCall(JRGemm("N", "N", nk, nsl, nk, 1.0, Kp, nk, T, nk, 0.0, MT, nk));
-  PetscCall(JRGemm("T", "N", nsl, nsl, nk, 1.0, T, nk, MT, nk, 0.0, RH, nsl));
-  PetscCall(JRGemm("N", "N", nk, nsl, nk, 1.0, f->Cv, nk, T, nk, 0.0, MT, nk));
-  PetscCall(JRGemm("T", "N", nsl, nsl, nk, 1.0, T, nk, MT, nk, 0.0, RH + nsl * nsl, nsl));
-  PetscCall(JRGemm("N", "N", nk, nsl, nk, 1.0, f->Mm, nk, T, nk, 0.0, MT, nk));
-  PetscCall(JRGemm("T", "N", nsl, nsl, nk, 1.0, T, nk, MT, nk, 0.0, Mr, nsl));
+  /* RH = [Kr, Cr, Br] (Br above): Kr = Kss + Ksf X; Mr and Cr = Bss + Bsf X + X^T (Bfs + Bff X) */
+  Block(Kp, nk, f->isl, nsl, f->isl, nsl, RH);
+  Block(Kp, nk, f->isl, nsl, f->ifa, nfa, KS);
+  PetscCall(JRGemm("N", "N", nsl, nsl, nfa, 1.0, KS, nsl, MT, nfa, 1.0, RH, nsl));
+  for (PetscInt q = 0; q < 2; q++) {
+    const PetscReal *ss = f->MCb + q * nk * nk, *sf = ss + nsl * nsl, *fs = sf + nsl * nfa, *ff = fs + nfa * nsl;
+    PetscReal       *out = q ? RH + nsl * nsl : Mr;
+    if (f->mcdiag[q]) {
+      PetscCall(PetscArrayzero(out, nsl * nsl));
+      for (PetscInt i = 0; i < nsl; i++) out[i + i * nsl] = ss[i];
+      for (PetscInt b = 0; b < nsl; b++)
+        for (PetscInt a = 0; a < nfa; a++) BY[a + b * nfa] = ff[a] * MT[a + b * nfa];
+    } else {
+      PetscCall(PetscArraycpy(out, ss, nsl * nsl));
+      PetscCall(JRGemm("N", "N", nsl, nsl, nfa, 1.0, sf, nsl, MT, nfa, 1.0, out, nsl));
+      PetscCall(PetscArraycpy(BY, fs, nfa * nsl));
+      PetscCall(JRGemm("N", "N", nfa, nsl, nfa, 1.0, ff, nfa, MT, nfa, 1.0, BY, nfa));
+    }
+    PetscCall(JRGemm("T", "N", nsl, nsl, nfa, 1.0, MT, nfa, BY, nfa, 1.0, out, nsl));
+  }
   PetscCall(SlowSolve(f, Mr, RH, wmax));
   *X = RH;
   PetscFunctionReturn(0);
-}
-
-/* The rows x cols block (idx r, idx c) of the nk x nk column-major matrix A into B (column-major, nr rows) */
-static void Block(const PetscReal *A, PetscInt nk, const PetscInt *ir, PetscInt nr, const PetscInt *ic, PetscInt nc, PetscReal *B)
-{
-  for (PetscInt j = 0; j < nc; j++)
-    for (PetscInt i = 0; i < nr; i++) B[i + j * nr] = A[ir[i] + ic[j] * nk];
 }
 
 /* Per point, the fast modes' condensation through the distinct rows (f->lowrank): with A = Aref_ff (LU),
@@ -1309,6 +1355,7 @@ static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, P
   f->nsl = nk;
   f->nfa = 0;
   if (!f->smooth) PetscCall(FastModes(h, w, &mt));
+  if (f->nfa && !f->lowrank) PointBlocks(f);
   f->n2r = 2 * f->nsl;
   /* G = -Mm^-1 [K, Cv] where every mode is marched (its stiffness block for RK4 only: the step maps take Mm^-1 Kp) */
   if (f->smooth) PetscCall(JRGemm("N", "N", nk, nk, nk, -1.0, f->Mi, nk, f->K, nk, 0.0, f->G, nk));
