@@ -194,12 +194,19 @@ se=$(echo "$osv" | grep -m1 '^rom stiffness_energy'); sj=$(echo "$osv" | grep -m
 check "[ -n '$se' ] && awk -v a='$(field "$se" members_share)' -v b='$(field "$se" joints_share)' 'BEGIN{d = a - b; if (d < 0) d = -d; exit !(d < 1e-6 * a)}' && { [ -z '$sj' ] || [ '$(field "$sj" joints)' = none ]; }" "jenkins_nv lap1, 4 zone joints, -rom_joint_motion mode: joints' share of the stuck mode's strain energy = members' ($(field "$se" joints_share)); the correction's warning names no joint (${sj:-no warning})"
 check "[ -n '$r1' ] && [ -n '$r0' ] && awk -v a='$r0' -v b='$r1' -v c='$rm0' 'BEGIN{exit !(a <= b * (1 + 1e-6) && b <= c)}'" "jenkins_nv lap1, basis check of the read mixed basis $r1 between the computing run's $r0 (after the static vectors, estimated) and $rm0 (without them)"
 # joints from the slip onsets in the stuck mode (-rom_joints onset: bands of equal ratio of the modal amplitude at which
-# each member in contact starts to slip, per bolt side, and each side's open pairs a joint of their own), the
-# first reduction on the mode's field: within 0.1% and 2% of node-to-node from microslip (0.01 N) through
-# separation (2 N) on the basis of the each-joint run (4 zone joints on the same field: 1.8% and 28%)
-oo=$(mpiexec -n 2 $J -task compare $nv $nvl -frf_force 0.01,0.5,2 -rom_joints onset -rom_joint_motion mode -frf_output_file '' 2>&1)
+# each member in contact starts to slip, per bolt side, and each side's open pairs joints of their own, here in two
+# bands of the amplitude at which they close), the first reduction on the mode's field: within 0.1% and 2% of
+# node-to-node from microslip (0.01 N) through separation (2 N) on the basis of the each-joint run (4 zone joints on
+# the same field: 1.8% and 28%)
+oo=$(mpiexec -n 2 $J -task compare $nv $nvl -frf_force 0.01,0.5,2 -rom_joints onset -rom_onset_open_bands 2 -rom_joint_motion mode -frf_output_file '' 2>&1)
 read f a <<< "$(worst "$oo")"; nj=$(field "$(echo "$oo" | grep '^rom partition joints')" joints)
-check "lt '$f' 1e-3 && lt '$a' 0.02 && [ -n '$nj' ] && [ '$nj' -gt 4 ] && echo \"\$oo\" | grep -q 'open pairs'" "jenkins_nv lap1, -rom_joints onset ($nj joints), first reduction on the mode's field: worst peak frequency error $f, amplitude error $a at 0.01, 0.5, 2 N"
+check "lt '$f' 1e-3 && lt '$a' 0.02 && [ -n '$nj' ] && [ '$nj' -gt 4 ]" "jenkins_nv lap1, -rom_joints onset ($nj joints), first reduction on the mode's field: worst peak frequency error $f, amplitude error $a at 0.01, 0.5, 2 N"
+# the open pairs' joints: every pair open at rest (132 pairs, those in contact counted from the joints' report) in a
+# closing band, 2 per bolt side, none in contact, the bands in order of the closing onset printed
+ob=$(echo "$oo" | awk '/^rom: joint [0-9]+:/{n += $4; c += substr($6, 2)} /^rom: joint [0-9]+:.*open pairs, closing band/{m += $4; if (substr($6, 2) != 0) bad = 1; k++} END{printf "%d %d %d %d %d", n, c, m, k, bad}')
+read obn obc obm obk obb <<< "$ob"
+oc=$(echo "$oo" | grep -o 'the first open member closes at [0-9.e+-]*, 0.9 of them by [0-9.e+-]*' | awk '{print $7, $12}')
+check "[ '$obn' = 132 ] && [ '$obm' = \$((132 - obc)) ] && [ '$obk' = 4 ] && [ '$obb' = 0 ] && [ -n '$oc' ] && awk -v a='${oc% *}' -v b='${oc#* }' 'BEGIN{exit !(a > 0 && b > a)}'" "jenkins_nv lap1, -rom_onset_open_bands 2: the $obm pairs open at rest ($obn members, $obc in contact) in $obk closing-band joints, none in contact; closing onsets from $oc"
 # the second reduction of those joints, 3 elements each (mode: each element in two halves where its group of members
 # is, at the group's mean -/+ spread of stuck-mode motion): within 1% and 8% of node-to-node, and under the
 # node-to-node peak's motion (rom_at_n2n_peak_J: the same modal unknowns) its joints dissipate what the members do
@@ -227,6 +234,8 @@ expect_error "empty joint" "holds no element: an empty joint" $J -task frf $brb 
 expect_error "onset bands without onset" "-rom_onset_bands needs -rom_joints onset" $J -task frf $brb -frf_force 1 -rom_joints zones -rom_onset_bands 3 -frf_output_file ''
 expect_error "no onset bands" "-rom_onset_bands 0: 1 to 16 bands" $J -task frf $brb -frf_force 1 -rom_joints onset -rom_onset_bands 0 -frf_output_file ''
 expect_error "onset fraction" "-rom_onset_upto 1.5: a fraction in (0, 1]" $J -task frf $brb -frf_force 1 -rom_joints onset -rom_onset_upto 1.5 -frf_output_file ''
+expect_error "open bands without onset" "-rom_onset_open_bands needs -rom_joints onset" $J -task frf $brb -frf_force 1 -rom_joints zones -rom_onset_open_bands 2 -frf_output_file ''
+expect_error "no open bands" "-rom_onset_open_bands 0: 1 to 16 bands" $J -task frf $brb -frf_force 1 -rom_joints onset -rom_onset_open_bands 0 -frf_output_file ''
 expect_error "compare without joints" "-task compare needs a reduced model" $J -task compare $brb -frf_force 1 -frf_output_file ''
 # jenkins_nv with open pairs (lap3, zones, first reduction): a joint moves with the average of its members in
 # contact at rest, whose springs it carries; then by Cauchy-Schwarz (k sum u_e^2 >= K (mean u)^2) the reduced

@@ -29,9 +29,14 @@
              k bands (default 6) of equal ratio divide the onsets from the first to the one by which the fraction
              -rom_onset_upto (0.9) of the interface's slip force mu n0 slips (later onsets join the last band; the
              same bands over the whole interface), and each band is split by nearest bolt and side as in auto; the
-             open members (n0 <= 0) of each bolt side are a joint of their own (their field fitted to their own
-             motion: tied to the closed members' field, the gaps could not breathe and close as they do). Empty
-             joints are dropped. The joints are set once the modes are known (JRReduceSetUp), each a region that
+             open members (n0 <= 0) of each bolt side are joints of their own (their field fitted to their own
+             motion: tied to the closed members' field, the gaps could not breathe and close as they do),
+             -rom_onset_open_bands k (default 1) of them by closing onset, the modal amplitude c_e = -n0_e / (kn
+             |v_e|) at which the member closes (v_e its normal motion in the stuck mode), in bands of equal ratio
+             from the first closing onset to the one by which the fraction -rom_onset_upto of the open members
+             close (later ones join the last band): one field over a side's open members misplaces those that
+             close first, near the contact's edge, where a few closing members stiffen the joint. Empty joints
+             are dropped. The joints are set once the modes are known (JRReduceSetUp), each a region that
              slips at about one level, so that a slip front does not cross the inside of a joint.
   and -rom_split_width splits every strip-type region at mid-width. Each region must hold elements (else an error
   naming it); its members move with the average of their relative motions (4.4).
@@ -388,16 +393,17 @@ PetscErrorCode JRReduceAssignJoints(JRReduce r, JRModel model, JRElements *el, c
 }
 
 /*
-  JRReduceAssignOnset - -rom_joints onset: the joints of el (the node-to-node elements) from their slip onsets in the
-  stuck mode of interest, u[e] each element's tangential motion in it (see the top of this file), then the report
+  JRReduceAssignOnset - -rom_joints onset: the joints of el (the node-to-node elements) from their slip onsets (and the
+  open ones' closing onsets) in the stuck mode of interest, u[e] and v[e] each element's tangential and normal motion
+  in it (see the top of this file), then the report
 */
-PetscErrorCode JRReduceAssignOnset(JRReduce o, JRModel model, JRElements *el, const PetscReal u[])
+PetscErrorCode JRReduceAssignOnset(JRReduce o, JRModel model, JRElements *el, const PetscReal u[], const PetscReal v[])
 {
   MPI_Comm       comm = o->comm;
   const JRPairs *P;
-  const PetscInt k = o->bands, n = el->n;
+  const PetscInt k = o->bands, ko = o->obands, kk = k + ko, n = el->n;
   PetscInt      *side, *ord, nb = 0, nc = 0, nreg = 0;
-  PetscReal     *a, cap = 0, sum = 0, *x, a0, a1;
+  PetscReal     *a, cap = 0, sum = 0, *x, a0, a1, oc[2] = {0, 0};
 
   PetscFunctionBeginUser;
   PetscCheck(o->pair, comm, PETSC_ERR_ORDER, "JRReduceAssignJoints() first");
@@ -429,33 +435,63 @@ PetscErrorCode JRReduceAssignOnset(JRReduce o, JRModel model, JRElements *el, co
       const PetscInt e = ord[i];
       PetscInt       band = a1 > a0 ? (PetscInt)PetscFloorReal(k * PetscLogReal(a[e] / a0) / PetscLogReal(a1 / a0)) : 0;
       band         = PetscMin(PetscMax(band, 0), k - 1);
-      el->joint[e] = side[e] * (k + 1) + band;
+      el->joint[e] = side[e] * kk + band;
     }
   }
-  for (PetscInt e = 0; e < n; e++) /* open members: their bolt side's gap joint */
-    if (!(el->n0[e] > 0)) el->joint[e] = side[e] * (k + 1) + k;
+  { /* open members: their bolt side's gap joints, by closing onset c_e in bands of equal ratio from the first, c0, to
+       c1, by which the fraction upto of them close */
+    PetscInt no = 0;
+    for (PetscInt e = 0; e < n; e++) {
+      if (el->n0[e] > 0) continue;
+      a[e]      = el->kn[e] > 0 && PetscAbsReal(v[e]) > 0 ? -el->n0[e] / (el->kn[e] * PetscAbsReal(v[e])) : PETSC_MAX_REAL;
+      ord[no++] = e;
+    }
+    for (PetscInt i = 1; i < no; i++) /* by closing onset, then index */
+      for (PetscInt c = i; c > 0 && a[ord[c]] < a[ord[c - 1]]; c--) {
+        const PetscInt t = ord[c];
+        ord[c]           = ord[c - 1];
+        ord[c - 1]       = t;
+      }
+    if (no) {
+      PetscInt  i0 = 0;
+      PetscReal c0, c1;
+      while (i0 < no - 1 && !(a[ord[i0]] > 0)) i0++; /* members touching at rest (c = 0) join the first band */
+      c0 = a[ord[i0]];
+      c1 = a[ord[PetscMin(no - 1, PetscMax(i0, (PetscInt)PetscCeilReal(o->upto * no * (1 - 1e-12)) - 1))]];
+      oc[0] = c0;
+      oc[1] = c1;
+      for (PetscInt i = 0; i < no; i++) {
+        const PetscInt e    = ord[i];
+        PetscInt       band = c1 > c0 && a[e] > c0 ? (PetscInt)PetscFloorReal(ko * PetscLogReal(a[e] / c0) / PetscLogReal(c1 / c0)) : 0;
+        band                = PetscMin(PetscMax(band, 0), ko - 1);
+        el->joint[e]        = side[e] * kk + k + band;
+      }
+    }
+  }
   { /* drop the empty joints, number the rest in order */
     PetscInt *map;
-    PetscCall(PetscMalloc1(2 * nb * (k + 1), &map));
-    for (PetscInt r = 0; r < 2 * nb * (k + 1); r++) map[r] = -1;
+    PetscCall(PetscMalloc1(2 * nb * kk, &map));
+    for (PetscInt r = 0; r < 2 * nb * kk; r++) map[r] = -1;
     for (PetscInt e = 0; e < n; e++) map[el->joint[e]] = 0;
-    for (PetscInt r = 0; r < 2 * nb * (k + 1); r++)
+    for (PetscInt r = 0; r < 2 * nb * kk; r++)
       if (!map[r]) map[r] = nreg++;
     PetscCall(PetscFree(o->ji));
     PetscCall(PetscCalloc1(nreg, &o->ji));
-    for (PetscInt r = 0; r < 2 * nb * (k + 1); r++) {
+    for (PetscInt r = 0; r < 2 * nb * kk; r++) {
       if (map[r] < 0) continue;
       o->ji[map[r]].zone = -1;
-      const PetscInt b = r / (2 * (k + 1)) + 1, band = r % (k + 1);
-      const char    *sd = (r / (k + 1)) % 2 ? "+x" : "-x";
+      const PetscInt b = r / (2 * kk) + 1, band = r % kk;
+      const char    *sd = (r / kk) % 2 ? "+x" : "-x";
       if (band < k) PetscCall(PetscSNPrintf(o->ji[map[r]].kind, sizeof(o->ji[map[r]].kind), "onset band %" PetscInt_FMT " of %" PetscInt_FMT ", bolt %" PetscInt_FMT ", %s side", band + 1, k, b, sd));
-      else PetscCall(PetscSNPrintf(o->ji[map[r]].kind, sizeof(o->ji[map[r]].kind), "open pairs, bolt %" PetscInt_FMT ", %s side", b, sd));
+      else if (ko == 1) PetscCall(PetscSNPrintf(o->ji[map[r]].kind, sizeof(o->ji[map[r]].kind), "open pairs, bolt %" PetscInt_FMT ", %s side", b, sd));
+      else PetscCall(PetscSNPrintf(o->ji[map[r]].kind, sizeof(o->ji[map[r]].kind), "open pairs, closing band %" PetscInt_FMT " of %" PetscInt_FMT ", bolt %" PetscInt_FMT ", %s side", band - k + 1, ko, b, sd));
     }
     for (PetscInt e = 0; e < n; e++) el->joint[e] = map[el->joint[e]];
     PetscCall(PetscFree(map));
   }
   el->njoints = nreg;
-  PetscCall(PetscPrintf(comm, "rom: onset partition: the first member in contact starts to slip at the modal amplitude %.4g in the stuck mode, %g of the slip force by %.4g; %" PetscInt_FMT " bands of equal ratio between, and the open pairs, split by bolt side: %" PetscInt_FMT " joints\n", (double)a0, (double)o->upto, (double)a1, k, nreg));
+  if (ko == 1) PetscCall(PetscPrintf(comm, "rom: onset partition: the first member in contact starts to slip at the modal amplitude %.4g in the stuck mode, %g of the slip force by %.4g; %" PetscInt_FMT " bands of equal ratio between, and the open pairs, split by bolt side: %" PetscInt_FMT " joints\n", (double)a0, (double)o->upto, (double)a1, k, nreg));
+  else PetscCall(PetscPrintf(comm, "rom: onset partition: the first member in contact starts to slip at the modal amplitude %.4g in the stuck mode, %g of the slip force by %.4g; %" PetscInt_FMT " bands of equal ratio between; the first open member closes at %.4g, %g of them by %.4g; %" PetscInt_FMT " bands of equal ratio between; split by bolt side: %" PetscInt_FMT " joints\n", (double)a0, (double)o->upto, (double)a1, k, (double)oc[0], (double)o->upto, (double)oc[1], ko, nreg));
   PetscCall(PetscMalloc1(3 * n + 1, &x));
   for (PetscInt e = 0; e < n; e++)
     for (PetscInt c = 0; c < 3; c++) x[3 * e + c] = P->x[3 * o->pair[e] + c];

@@ -276,6 +276,7 @@ PetscErrorCode JRReduceCreate(MPI_Comm comm, JRReduce *red)
   r->zone_fraction = 0.5;
   r->rings         = 2;
   r->bands         = 6;
+  r->obands        = 1;
   r->upto          = 0.9;
   r->mode_weights  = PETSC_TRUE;
   r->corr_on       = PETSC_TRUE;
@@ -312,7 +313,7 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
 {
   const char *sel[] = {"none", "first"};
   MPI_Comm    comm    = r->comm;
-  PetscBool   set, bset, st, sc, rset, bdset, uset;
+  PetscBool   set, bset, st, sc, rset, bdset, uset, obset;
   PetscInt    nst = 8, nsc = 8;
 
   PetscFunctionBeginUser;
@@ -325,6 +326,7 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
   PetscCall(PetscOptionsReal("-zone_fraction", "-rom_joints zones: the high-load zone of a bolt side holds the members with n0 at least this fraction of the side's largest", "JRReduceAssignJoints", r->zone_fraction, &r->zone_fraction, NULL));
   PetscCall(PetscOptionsInt("-auto_rings", "-rom_joints auto: rings of equal load per bolt (each cut into the bolt's two sides)", "JRReduceAssignJoints", r->rings, &r->rings, &rset));
   PetscCall(PetscOptionsInt("-onset_bands", "-rom_joints onset: bands of slip onset in the stuck mode of interest (each split by bolt side)", "JRReduceAssignJoints", r->bands, &r->bands, &bdset));
+  PetscCall(PetscOptionsInt("-onset_open_bands", "-rom_joints onset: bands of closing onset in the stuck mode of interest that divide the open members (each split by bolt side)", "JRReduceAssignJoints", r->obands, &r->obands, &obset));
   PetscCall(PetscOptionsReal("-onset_upto", "-rom_joints onset: the bands divide, in equal ratios, the slip onsets from the first to the one by which this fraction of the interface's slip force mu n0 slips (later onsets join the last band)", "JRReduceAssignJoints", r->upto, &r->upto, &uset));
   PetscCall(PetscOptionsBool("-split_width", "Split every strip at mid-width into two joints", "JRReduceAssignJoints", r->split_width, &r->split_width, NULL));
   PetscCall(PetscOptionsInt("-elements", "Second reduction: fit this many elements per joint to its hysteresis loops (0: the first reduction only)", "JRReduceSetUp", r->m, &r->m, NULL));
@@ -345,6 +347,8 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
   PetscCheck(!rset || r->joints == 8, comm, PETSC_ERR_ARG_INCOMP, "-rom_auto_rings needs -rom_joints auto");
   PetscCheck(!bdset || r->joints == 9, comm, PETSC_ERR_ARG_INCOMP, "-rom_onset_bands needs -rom_joints onset");
   PetscCheck(!uset || r->joints == 9, comm, PETSC_ERR_ARG_INCOMP, "-rom_onset_upto needs -rom_joints onset");
+  PetscCheck(!obset || r->joints == 9, comm, PETSC_ERR_ARG_INCOMP, "-rom_onset_open_bands needs -rom_joints onset");
+  PetscCheck(r->obands >= 1 && r->obands <= 16, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_onset_open_bands %" PetscInt_FMT ": 1 to 16 bands", r->obands);
   PetscCheck(r->upto > 0 && r->upto <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_onset_upto %g: a fraction in (0, 1]", (double)r->upto);
   PetscCheck(r->bands >= 1 && r->bands <= 16, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_onset_bands %" PetscInt_FMT ": 1 to 16 bands", r->bands);
   PetscCheck(r->rings >= 1 && r->rings <= 8, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_auto_rings %" PetscInt_FMT ": 1 to 8 rings per bolt", r->rings);
@@ -438,12 +442,14 @@ PetscErrorCode JRReduceSetUp(JRReduce r, JRModel model, JRHBM hbm, JRElements *e
   PetscCall(PetscTime(&t0));
   if (r->joints == 9) { /* onset: the joints from the members' slip onsets in the stuck mode of interest */
     PetscInt  k = 0;
-    PetscReal ft = 0, *u;
+    PetscReal ft = 0, *u, *v;
     PetscCall(TargetMode(r, hbm, &k, &ft));
     PetscCall(PetscMalloc1(n, &u));
-    PetscCall(JRHBMStuckModeMotion(hbm, k, u, NULL));
-    PetscCall(JRReduceAssignOnset(r, model, elj, u));
+    PetscCall(PetscMalloc1(n, &v));
+    PetscCall(JRHBMStuckModeMotion(hbm, k, u, v));
+    PetscCall(JRReduceAssignOnset(r, model, elj, u, v));
     PetscCall(PetscFree(u));
+    PetscCall(PetscFree(v));
   }
   if (!strcmp(elj->typename[0], JRCONTACTJENKINS) || jmotion == 2) {
     PetscInt  k = 0;

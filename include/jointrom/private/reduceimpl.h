@@ -19,6 +19,7 @@ struct _p_JRReduce {
   PetscInt  joints; /* 0 none, 1 each, 2 strips, 3 bolts, 4 between, 5 sides, 6 zones, 7 boxes, 8 auto, 9 onset */
   PetscInt  rings;  /* -rom_auto_rings */
   PetscInt  bands;  /* -rom_onset_bands */
+  PetscInt  obands; /* -rom_onset_open_bands */
   PetscReal upto;   /* -rom_onset_upto */
   const PetscInt *pair; /* each element's pair (JRReduceAssignJoints' argument, kept for onset) */
   PetscInt  ncut, nbox;
@@ -51,7 +52,7 @@ struct _p_JRReduce {
    reduction's elements (src/reduce/fit.c) and a loaded model's (src/reduce/io.c) */
 PETSC_INTERN PetscErrorCode JRROMElementsSetUp(JRElements *, PetscInt, const char[], PetscBool);
 /* -rom_joints onset: the joints from the members' slip onsets in the stuck mode (their tangential motion u[]) */
-PETSC_INTERN PetscErrorCode JRReduceAssignOnset(JRReduce, JRModel, JRElements *, const PetscReal[]);
+PETSC_INTERN PetscErrorCode JRReduceAssignOnset(JRReduce, JRModel, JRElements *, const PetscReal[], const PetscReal[]);
 
 /* The fit's least-squares solvers (src/reduce/lsq.c), on PETSC_COMM_SELF.
    JRLSQSolve: r(x) -> min 1/2 |r|^2 with x >= lo by TAO (prefix rom_); fn(ctx, x, r, J) gives r and J (nr x nx,
