@@ -392,6 +392,24 @@ PetscErrorCode JRReduceAssignJoints(JRReduce r, JRModel model, JRElements *el, c
   PetscFunctionReturn(0);
 }
 
+/* ord[0..n) sorted by a[ord[i]], ties in the given order (insertion sort: stable, the same on every rank) */
+static void SortByValue(const PetscReal a[], PetscInt n, PetscInt ord[])
+{
+  for (PetscInt i = 1; i < n; i++)
+    for (PetscInt c = i; c > 0 && a[ord[c]] < a[ord[c - 1]]; c--) {
+      const PetscInt t = ord[c];
+      ord[c]           = ord[c - 1];
+      ord[c - 1]       = t;
+    }
+}
+
+/* The band of x among k bands of equal ratio from x0 to x1 (below x0 the first, above x1 the last) */
+static inline PetscInt EqualRatioBand(PetscReal x, PetscReal x0, PetscReal x1, PetscInt k)
+{
+  const PetscInt band = x1 > x0 && x > x0 ? (PetscInt)PetscFloorReal(k * PetscLogReal(x / x0) / PetscLogReal(x1 / x0)) : 0;
+  return PetscMin(PetscMax(band, 0), k - 1);
+}
+
 /*
   JRReduceAssignOnset - -rom_joints onset: the joints of el (the node-to-node elements) from their slip onsets (and the
   open ones' closing onsets) in the stuck mode of interest, u[e] and v[e] each element's tangential and normal motion
@@ -417,12 +435,7 @@ PetscErrorCode JRReduceAssignOnset(JRReduce o, JRModel model, JRElements *el, co
     ord[nc++] = e;
   }
   PetscCheck(nc > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joints onset: no member is in contact at rest");
-  for (PetscInt i = 1; i < nc; i++) /* by onset, then index (insertion sort: stable, the same on every rank) */
-    for (PetscInt c = i; c > 0 && a[ord[c]] < a[ord[c - 1]]; c--) {
-      const PetscInt t = ord[c];
-      ord[c]           = ord[c - 1];
-      ord[c - 1]       = t;
-    }
+  SortByValue(a, nc, ord); /* by onset, then index */
   for (PetscInt e = 0; e < n; e++) el->joint[e] = -1;
   a0 = a1 = a[ord[0]];
   { /* bands of equal ratio from the first onset a0 to a1, by which the fraction upto of the slip force slips */
@@ -431,12 +444,7 @@ PetscErrorCode JRReduceAssignOnset(JRReduce o, JRModel model, JRElements *el, co
       a1 = a[ord[i]];
       if (sum >= o->upto * cap * (1 - 1e-12)) break;
     }
-    for (PetscInt i = 0; i < nc; i++) {
-      const PetscInt e = ord[i];
-      PetscInt       band = a1 > a0 ? (PetscInt)PetscFloorReal(k * PetscLogReal(a[e] / a0) / PetscLogReal(a1 / a0)) : 0;
-      band         = PetscMin(PetscMax(band, 0), k - 1);
-      el->joint[e] = side[e] * kk + band;
-    }
+    for (PetscInt i = 0; i < nc; i++) el->joint[ord[i]] = side[ord[i]] * kk + EqualRatioBand(a[ord[i]], a0, a1, k);
   }
   { /* open members: their bolt side's gap joints, by closing onset c_e in bands of equal ratio from the first, c0, to
        c1, by which the fraction upto of them close */
@@ -446,12 +454,7 @@ PetscErrorCode JRReduceAssignOnset(JRReduce o, JRModel model, JRElements *el, co
       a[e]      = el->kn[e] > 0 && PetscAbsReal(v[e]) > 0 ? -el->n0[e] / (el->kn[e] * PetscAbsReal(v[e])) : PETSC_MAX_REAL;
       ord[no++] = e;
     }
-    for (PetscInt i = 1; i < no; i++) /* by closing onset, then index */
-      for (PetscInt c = i; c > 0 && a[ord[c]] < a[ord[c - 1]]; c--) {
-        const PetscInt t = ord[c];
-        ord[c]           = ord[c - 1];
-        ord[c - 1]       = t;
-      }
+    SortByValue(a, no, ord); /* by closing onset, then index */
     if (no) {
       PetscInt  i0 = 0;
       PetscReal c0, c1;
@@ -460,12 +463,7 @@ PetscErrorCode JRReduceAssignOnset(JRReduce o, JRModel model, JRElements *el, co
       c1 = a[ord[PetscMin(no - 1, PetscMax(i0, (PetscInt)PetscCeilReal(o->upto * no * (1 - 1e-12)) - 1))]];
       oc[0] = c0;
       oc[1] = c1;
-      for (PetscInt i = 0; i < no; i++) {
-        const PetscInt e    = ord[i];
-        PetscInt       band = c1 > c0 && a[e] > c0 ? (PetscInt)PetscFloorReal(ko * PetscLogReal(a[e] / c0) / PetscLogReal(c1 / c0)) : 0;
-        band                = PetscMin(PetscMax(band, 0), ko - 1);
-        el->joint[e]        = side[e] * kk + k + band;
-      }
+      for (PetscInt i = 0; i < no; i++) el->joint[ord[i]] = side[ord[i]] * kk + k + EqualRatioBand(a[ord[i]], c0, c1, ko);
     }
   }
   { /* drop the empty joints, number the rest in order */
