@@ -52,6 +52,7 @@ struct _JRMonodromy {
   PetscReal *K, *C, *Kg, *Mi, *G;     /* nk x nk column-major: Km - Kc, Cm, Kg, Mm^-1; G = -Mm^-1 [K, Cv] (nk x 2 nk) */
   PetscReal  wmax;                    /* the stiffest mode with every element stuck [rad/s] */
   PetscReal *u, *v, *wn;              /* the point's motion at the half steps (ne x (2 ns + 1)), committed slip (ne x (ns + 1)) */
+  PetscReal *rb, *nb;                 /* the slip bound mu n / kt and the normal load n at the half steps (ne x (2 ns + 1)) */
   PetscReal *Y, *Y0, *Ys, *DUV, *DFN, *Wc; /* the march's work: DUV = [du; dv], DFN = [df; dn] (max(l, 2 ne, nk) x m) */
   PetscReal *ev, *wr, *wi, *work;
   PetscBLASInt lwork;
@@ -65,10 +66,10 @@ struct _JRMonodromy {
   PetscReal *SL, *SW;                 /* the kept step maps: n2 x n2 and n2 x ne each, n2 = 2 nk; SW's columns those of the
                                          held slips of stuck elements only (the others' are 0) */
   PetscInt  *ncol, *cols;             /* per kept map: those columns' number and their slips (JR_MONO_SLOTS + 1, x ne) */
-  PetscReal *XL, *XW, *T1, *T2;       /* the step map's work (n2 x n2, n2 x ne, n2 x ne), the march's (n2 x m) */
+  PetscReal *XL, *XW, *T2;            /* the step map's work (n2 x n2, n2 x ne), the march's (n2 x m) */
   PetscReal *trig;                    /* sin, cos of h w t at the half steps ((2 ns + 1) x 2 H) */
-  PetscReal *PS;                      /* the exponential's work (5 n2 x n2: four for the polynomial, L's LU) */
-  PetscBLASInt *piv;                  /* L's pivots (n2) */
+  PetscReal *PS;                      /* the exponential's work (5 n2 x n2: four for the polynomials, phi1's columns G) */
+  PetscBLASInt *piv;                  /* a small LU's pivots (n2: Mr's, Aref_ff's) */
   PetscReal *RT;                      /* per point: the tracked elements' rows [r_e; s_e] over the kept modes (2 nt x nk) */
   /* the fast modes' quasi-static condensation (JRHBMSetFloquetFast; QuasiStatic) */
   PetscInt   nsl, nfa, n2r;           /* per point: slow and fast kept modes, the marched (q, q') size 2 nsl */
@@ -101,6 +102,9 @@ struct _JRMonodromy {
                                          K + Rd^T Dref Rd (nk x nk) */
   PetscBool  lowrank;                 /* this point uses them */
   PetscInt   lrnsl, *lrkey;           /* the slow modes of the split LowRankPoint's pieces are for (-1: none yet) */
+  PetscReal *dDk, *cl;                /* per point: dD (nd x nd) of the coefficients cl (3 ne), updated by the elements whose
+                                         coefficients change (dvalid) */
+  PetscBool  dvalid;
   PetscReal *LR, *LW;                 /* per point: U, G, W, Rs, K0, KU, M0, Ma, Mb, Mc, C0, Ca, Cb, Cc; per step: work */
   PetscBLASInt *lpiv;                 /* the per-step LU's pivots (nd) */
 };
@@ -127,12 +131,12 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscCall(PetscFree2(f->mem, f->srow));
   PetscCall(PetscFree4(f->Ra, f->Sa, f->RS, f->MRS));
   PetscCall(PetscFree5(f->K, f->C, f->Kg, f->Mi, f->G));
-  PetscCall(PetscFree3(f->u, f->v, f->wn));
+  PetscCall(PetscFree5(f->u, f->v, f->wn, f->rb, f->nb));
   PetscCall(PetscFree3(f->Y, f->Y0, f->Ys));
   PetscCall(PetscFree3(f->DUV, f->DFN, f->Wc));
   PetscCall(PetscFree4(f->ev, f->wr, f->wi, f->work));
   PetscCall(PetscFree4(f->key, f->slotkey, f->SL, f->SW));
-  PetscCall(PetscFree4(f->XL, f->XW, f->T1, f->T2));
+  PetscCall(PetscFree3(f->XL, f->XW, f->T2));
   PetscCall(PetscFree(f->trig));
   PetscCall(PetscFree4(f->ka, f->kb, f->kend, f->th));
   PetscCall(PetscFree2(f->cls, f->memp));
@@ -148,6 +152,7 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscCall(PetscFree(f->sdr));
   PetscCall(PetscFree4(f->dr, f->td, f->lpiv, f->lrkey));
   PetscCall(PetscFree5(f->Rd, f->cref, f->Aref, f->LR, f->LW));
+  PetscCall(PetscFree2(f->dDk, f->cl));
   PetscCall(PetscFree(f->Cf));
   PetscCall(PetscFree(h->mono));
   PetscFunctionReturn(0);
@@ -257,6 +262,7 @@ static PetscErrorCode DistinctRows(struct _JRMonodromy *f)
   }
   f->nd = nd;
   PetscCall(PetscMalloc5(nd * nk, &f->Rd, 3 * ne + 1, &f->cref, nk * nk, &f->Aref, 10 * nk * nk + 16 * nk * nd + 8 * nd * nd + 1, &f->LR, 12 * nd * nd + 8 * nd * nk + nd * ne + 1, &f->LW));
+  PetscCall(PetscMalloc2(nd * nd, &f->dDk, 3 * ne + 1, &f->cl));
   PetscCall(PetscArraycpy(f->Rd, Rd, nd * nk));
   PetscCall(PetscFree(Rd));
   PetscCall(PetscArraycpy(f->Aref, f->K, nk * nk));
@@ -441,7 +447,7 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
   if (!f->smooth) {
     const PetscInt n2 = 2 * nk;
     PetscCall(PetscMalloc4(ne + 1, &f->key, JR_MONO_SLOTS * ne + 1, &f->slotkey, (JR_MONO_SLOTS + 1) * n2 * n2 + 1, &f->SL, (JR_MONO_SLOTS + 1) * n2 * ne + 1, &f->SW));
-    PetscCall(PetscMalloc4(n2 * n2 + 1, &f->XL, n2 * ne + 1, &f->XW, n2 * ne + 1, &f->T1, n2 * f->m + 1, &f->T2));
+    PetscCall(PetscMalloc3(n2 * n2 + 1, &f->XL, n2 * ne + 1, &f->XW, n2 * f->m + 1, &f->T2));
     PetscCall(PetscMalloc4(ne + 1, &f->ka, ne + 1, &f->kb, ne + 1, &f->kend, ne + 1, &f->th));
     PetscCall(PetscMalloc2(ne + 1, &f->cls, ne + 1, &f->memp));
     PetscCall(PetscMalloc2(JR_MONO_SLOTS + 1, &f->ncol, (JR_MONO_SLOTS + 1) * ne + 1, &f->cols));
@@ -471,6 +477,15 @@ static inline PetscReal Bound(const struct _JRMonodromy *f, PetscInt e, PetscRea
   return f->kt[e] > 0 ? f->mu[e] * *n / f->kt[e] : 0.0;
 }
 
+/* Bound() at element e's half step s of the point's motion (PointMotion keeps them) */
+static inline PetscReal HalfBound(const struct _JRMonodromy *f, PetscInt e, PetscInt s, PetscReal *n)
+{
+  const PetscInt i = e * (2 * f->ns + 1) + s;
+
+  *n = f->nb[i];
+  return f->rb[i];
+}
+
 /* The linearised element forces at half step s from the committed slip of step j: DFN from DUV and Wc */
 static void ElementForces(const struct _JRMonodromy *f, PetscInt s, PetscInt j)
 {
@@ -483,7 +498,7 @@ static void ElementForces(const struct _JRMonodromy *f, PetscInt s, PetscInt j)
       for (PetscInt c = 0; c < m; c++) f->DFN[e + c * l] = 3 * kt * u * u * f->DUV[e + c * l];
       continue;
     }
-    r = Bound(f, e, f->v[e * N2 + s], &n);
+    r = HalfBound(f, e, s, &n);
     {
       const PetscBool contact = (PetscBool)(f->type[e] == 1 && n > 0);
       const PetscReal drdv    = contact && kt > 0 ? f->mu[e] * kn / kt : 0.0;
@@ -548,13 +563,14 @@ static void PointMotion(JRHBM h, PetscReal w, const PetscReal *a)
         uu += U[2 * hh - 1] * tr[2 * hh - 2] + U[2 * hh] * tr[2 * hh - 1];
         vv += V[2 * hh - 1] * tr[2 * hh - 2] + V[2 * hh] * tr[2 * hh - 1];
       }
-      f->u[e * N2 + q] = uu;
-      f->v[e * N2 + q] = vv;
+      f->u[e * N2 + q]  = uu;
+      f->v[e * N2 + q]  = vv;
+      f->rb[e * N2 + q] = Bound(f, e, vv, &f->nb[e * N2 + q]);
     }
     if (f->type[e] == 2) continue;
     for (PetscInt p = 0; p < 3; p++) /* two periods to the periodic slip, then the third's committed values */
       for (PetscInt j = 0; j <= ns; j++) {
-        const PetscReal r = Bound(f, e, f->v[e * N2 + 2 * j], &n), uu = f->u[e * N2 + 2 * j];
+        const PetscReal r = HalfBound(f, e, 2 * j, &n), uu = f->u[e * N2 + 2 * j];
         s = PetscMin(PetscMax(s, uu - r), uu + r);
         if (p == 2) f->wn[e * (ns + 1) + j] = s;
       }
@@ -567,7 +583,7 @@ static inline PetscInt Side(const struct _JRMonodromy *f, PetscInt e, PetscInt s
 {
   const PetscInt  N2 = 2 * f->ns + 1;
   const PetscReal u = f->u[e * N2 + s], w = f->wn[e * (f->ns + 1) + j];
-  PetscReal       n, r = Bound(f, e, f->v[e * N2 + s], &n);
+  PetscReal       n, r = HalfBound(f, e, s, &n);
 
   *contact = (PetscBool)(f->type[e] == 1 && n > 0);
   *drdv    = *contact && f->kt[e] > 0 ? f->mu[e] * f->kn[e] / f->kt[e] : 0.0;
@@ -611,7 +627,7 @@ PetscCall(PetscMalloc1(m * m, &acc));
         PetscReal       n, r;
         PetscInt        side;
         if (f->type[e] == 2) continue;
-        r    = Bound(f, e, f->v[e * N2 + 2 * j + 2], &n);
+        r    = HalfBound(f, e, 2 * j + 2, &n);
         side = wj < u - r ? -1 : wj > u + r ? 1 : 0;
         if (!side) continue;
         {
@@ -647,7 +663,7 @@ static void StepStates(struct _JRMonodromy *f, PetscInt e, PetscInt j, unsigned 
   for (PetscInt q = 0; q < 3; q++) {
     const PetscInt  s = 2 * j + q;
     PetscReal       nn;
-    const PetscReal r = Bound(f, e, f->v[e * N2 + s], &nn);
+    const PetscReal r = HalfBound(f, e, s, &nn);
     g[q]              = PetscAbsReal(f->u[e * N2 + s] - w) - r;
     n[q]              = f->n0[e] + f->kn[e] * f->v[e * N2 + s];
     c[q]              = (PetscBool)(f->type[e] == 1 && nn > 0);
@@ -699,17 +715,21 @@ static PetscInt Classify(struct _JRMonodromy *f)
   return f->mt;
 }
 
-/* SL = exp(XL) ^ (2^sq) (n2 x n2): the Taylor polynomial of degree JR_MONO_TAYLOR = 8 by Paterson and Stockmeyer's
-   scheme, p(X) = B0 + X^4 B1 with B0, B1 of degree 3 and 4 in X (four products), then squared sq times; work
-   (4 n2 x n2) */
-static PetscErrorCode ExpmTaylor(PetscInt n2, const PetscReal *XL, PetscInt sq, PetscReal *SL, PetscReal *work)
+/* SL = exp(XL) ^ (2^sq) (n2 x n2) and, where G is given, G = the last n2 / 2 columns of phi1(XL) = sum_k XL^k / (k + 1)!
+   carried through the same squarings (n2 x n2 / 2): the held slips' response over the step is then G XW's last n2 / 2
+   rows, exactly as the map of the augmented matrix [XL, XW; 0, 0] has it, with no inverse of XL. Both by their
+   Taylor polynomials of degree JR_MONO_TAYLOR = 8 with Paterson and Stockmeyer's scheme, p(X) = B0 + X^4 B1, B0 and
+   B1 of degree 3 and 4 in X (four products for SL, one more for G), then squared sq times: [E, F; 0, I]^2 = [E E,
+   (E + I) F; 0, I]; work (4 n2 x n2) */
+static PetscErrorCode ExpmPhi(PetscInt n2, const PetscReal *XL, PetscInt sq, PetscReal *SL, PetscReal *G, PetscReal *work)
 {
-  PetscReal *X2 = work, *X3 = work + n2 * n2, *X4 = work + 2 * n2 * n2, *B = work + 3 * n2 * n2;
-  PetscReal  c[JR_MONO_TAYLOR + 1];
+  PetscReal     *X2 = work, *X3 = work + n2 * n2, *X4 = work + 2 * n2 * n2, *B = work + 3 * n2 * n2;
+  const PetscInt h  = n2 / 2;
+  PetscReal      c[JR_MONO_TAYLOR + 2];
 
   PetscFunctionBeginUser;
   c[0] = 1.0;
-  for (PetscInt i = 1; i <= JR_MONO_TAYLOR; i++) c[i] = c[i - 1] / i;
+  for (PetscInt i = 1; i <= JR_MONO_TAYLOR + 1; i++) c[i] = c[i - 1] / i;
   PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, XL, n2, XL, n2, 0.0, X2, n2));
   PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, X2, n2, XL, n2, 0.0, X3, n2));
   PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, X2, n2, X2, n2, 0.0, X4, n2));
@@ -718,7 +738,20 @@ static PetscErrorCode ExpmTaylor(PetscInt n2, const PetscReal *XL, PetscInt sq, 
   PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, X4, n2, B, n2, 0.0, SL, n2));
   for (PetscInt i = 0; i < n2 * n2; i++) SL[i] += c[1] * XL[i] + c[2] * X2[i] + c[3] * X3[i];
   for (PetscInt i = 0; i < n2; i++) SL[i + i * n2] += c[0];
+  if (G) { /* phi1's last h columns: coefficients 1 / (k + 1)! */
+    const PetscInt o = h * n2;
+    for (PetscInt i = 0; i < n2 * h; i++) B[i] = c[6] * XL[o + i] + c[7] * X2[o + i] + c[8] * X3[o + i] + c[9] * X4[o + i];
+    for (PetscInt i = 0; i < h; i++) B[h + i + i * n2] += c[5];
+    PetscCall(JRGemm("N", "N", n2, h, n2, 1.0, X4, n2, B, n2, 0.0, G, n2));
+    for (PetscInt i = 0; i < n2 * h; i++) G[i] += c[2] * XL[o + i] + c[3] * X2[o + i] + c[4] * X3[o + i];
+    for (PetscInt i = 0; i < h; i++) G[h + i + i * n2] += c[1];
+  }
   for (PetscInt q = 0; q < sq; q++) {
+    if (G) {
+      PetscCall(PetscArraycpy(X3, G, n2 * h));
+      PetscCall(JRGemm("N", "N", n2, h, n2, 1.0, SL, n2, G, n2, 1.0, X3, n2));
+      PetscCall(PetscArraycpy(G, X3, n2 * h));
+    }
     PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, SL, n2, SL, n2, 0.0, X2, n2));
     PetscCall(PetscArraycpy(SL, X2, n2 * n2));
   }
@@ -767,37 +800,52 @@ static PetscErrorCode StiffnessUpdate(struct _JRMonodromy *f, PetscReal *Bw)
     PetscCall(PetscArraycpy(f->Kp, f->K, nk * nk));
     PetscCall(JRGemm("N", "T", nk, nk, f->l, 1.0, f->RSt, nk, V, nk, 1.0, f->Kp, nk));
     f->kvalid = PETSC_TRUE;
-  } else
+  } else { /* Kp += A V^T over the elements whose coefficients change: A's columns r (and s), V's a r + b s (and c s) */
+    PetscReal *A = f->DUV, *V = A + 2 * nk * ne;
+    PetscInt   nu = 0;
     for (PetscInt e = 0; e < ne; e++) {
       const PetscReal *c = f->cfn + 3 * e, *o = f->cf + 3 * e, *r = f->RSt + e * nk, *sv = f->srow[e] >= 0 ? f->RSt + f->srow[e] * nk : NULL;
       const PetscReal  da = c[0] - o[0], db = c[1] - o[1], dc = c[2] - o[2];
       if (da == 0.0 && db == 0.0 && dc == 0.0) continue;
-      for (PetscInt j = 0; j < nk; j++) {
-        const PetscReal vj = da * r[j] + (sv ? db * sv[j] : 0.0), sj = sv ? dc * sv[j] : 0.0;
-        for (PetscInt i = 0; i < nk; i++) f->Kp[i + j * nk] += r[i] * vj + (sv ? sv[i] * sj : 0.0);
+      for (PetscInt i = 0; i < nk; i++) {
+        A[i + nu * nk] = r[i];
+        V[i + nu * nk] = da * r[i] + (sv ? db * sv[i] : 0.0);
+      }
+      nu++;
+      if (sv && dc != 0.0) {
+        for (PetscInt i = 0; i < nk; i++) {
+          A[i + nu * nk] = sv[i];
+          V[i + nu * nk] = dc * sv[i];
+        }
+        nu++;
       }
     }
+    if (nu) PetscCall(JRGemm("N", "T", nk, nk, nu, 1.0, A, nk, V, nk, 1.0, f->Kp, nk));
+  }
   PetscCall(PetscArraycpy(f->cf, f->cfn, 3 * ne));
   PetscFunctionReturn(0);
 }
 
-/* The slow modes' equations after the condensation: RH = [Kr, Cr, Br] (nsl x (2 nsl + nt)) becomes Mr^-1 RH (Mr's LU
-   in place); wmax >= the stiffest slow mode, the square root of the 1-norm of Mr^-1 Kr */
-static PetscErrorCode SlowSolve(struct _JRMonodromy *f, PetscReal *Mr, PetscReal *RH, PetscReal *wmax)
+/* The slow modes' equations after the condensation: Mr becomes Mr^-1 (in place; small, so an inverse and products
+   cost less than triangular solves with the 2 nsl + held slips right-hand sides RH = [Kr, Cr, Br]); P = Mr^-1 Kr
+   (nsl x nsl) and wmax >= the stiffest slow mode, the square root of P's 1-norm */
+static PetscErrorCode SlowSolve(struct _JRMonodromy *f, PetscReal *Mr, const PetscReal *RH, PetscReal *P, PetscReal *wmax)
 {
-  const PetscInt nsl = f->nsl, nt = f->mt - f->n2r;
+  const PetscInt nsl = f->nsl;
   PetscReal      norm = 0.0;
-  PetscBLASInt   bs, brhs, info;
+  PetscBLASInt   bs, lw, info;
 
   PetscFunctionBeginUser;
   PetscCall(PetscBLASIntCast(nsl, &bs));
-  PetscCall(PetscBLASIntCast(2 * nsl + nt, &brhs));
+  PetscCall(PetscBLASIntCast(f->nk * f->nk, &lw));
   PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bs, &bs, Mr, &bs, f->piv, &info));
   PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the condensed modal mass is singular (LAPACK getrf info %d)", (int)info);
-  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bs, &brhs, Mr, &bs, f->piv, RH, &bs, &info));
+  PetscCallBLAS("LAPACKgetri", LAPACKgetri_(&bs, Mr, &bs, f->piv, P, &lw, &info));
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK getri failed (info %d)", (int)info);
+  PetscCall(JRGemm("N", "N", nsl, nsl, nsl, 1.0, Mr, nsl, RH, nsl, 0.0, P, nsl));
   for (PetscInt c = 0; c < nsl; c++) {
     PetscReal cs = 0.0;
-    for (PetscInt i = 0; i < nsl; i++) cs += PetscAbsReal(RH[i + c * nsl]);
+    for (PetscInt i = 0; i < nsl; i++) cs += PetscAbsReal(P[i + c * nsl]);
     norm = PetscMax(norm, cs);
   }
   *wmax = PetscSqrtReal(norm);
@@ -842,10 +890,10 @@ static void PointBlocks(struct _JRMonodromy *f)
    and the slow modes obey Mr q_s'' + Cr q_s' + Kr q_s = Br w with Mr = T^T Mm T, Cr = T^T Cv T, Kr = T^T Kp T =
    Kss + Ksf X (the Schur complement: Kfs + Kff X = 0, Kp symmetric or not) and Br = Bw_s - Ksf Kff^-1 Bw_f; for
    B = Mm, Cv, T^T B T = Bss + Bsf X + X^T (Bfs + Bff X) from the point's blocks (PointBlocks; Bss + X^T Bff X where
-   B is diagonal). Out:
-   X = Mr^-1 [Kr, Cr, Br] (nsl x (2 nsl + nt)), wmax >= the stiffest slow mode (the square root of X's first block's
-   1-norm), and slot k's T and Kff^-1 Bw_f for the commits. */
-static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, const PetscReal *Bw, PetscInt k, PetscReal **X, PetscReal *wmax)
+   B is diagonal); Br by the nc held slips' columns col. Out: X = [Kr, Cr, Br] (nsl x (2 nsl + nc)), Mr^-1 and
+   Mr^-1 Kr (at f->QW + 3 nk nk and + 4 nk nk, SlowSolve), wmax >= the stiffest slow mode, and slot k's T and Kff's LU
+   for the commits. */
+static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, const PetscReal *Bw, PetscInt k, PetscInt nc, const PetscInt *col, PetscReal **X, PetscReal *wmax)
 {
   const PetscInt nk = f->nk, nsl = f->nsl, nfa = f->nfa, nt = f->mt - f->n2r;
   PetscReal     *Kp = f->Kp, *T = f->Ts + k * nk * nk, *MT = f->QW + 2 * nk * nk, *Mr = MT + nk * nk, *KF = f->KFs + k * nk * nk, *RH = Mr + 2 * nk * nk;
@@ -865,21 +913,16 @@ static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, const PetscReal *Bw, P
   PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bf, &brhs, KF, &bf, piv, MT, &bf, &info));
   PetscCall(PetscArraycpy(f->bws + k * f->cap, f->bwt, nt));
   { /* RH's last block Br = Bw_s - Ksf Kff^-1 Bw_f = Bw_s - Z^T Bw_f, Z = Kff^-T Ksf^T (nfa x nsl), by the columns
-       of the held slips of stuck elements (the others are 0) */
-    PetscInt   nc = 0, *col = f->rows;
-    PetscReal *Z = f->CB, *BF = Z + nfa * nsl, *BR = BF + nfa * nt;
+       of the held slips of stuck elements (col; the others are 0) */
+    PetscReal *Z = f->CB, *BF = Z + nfa * nsl, *BR = RH + 2 * nsl * nsl;
     for (PetscInt i = 0; i < nsl; i++)
       for (PetscInt a = 0; a < nfa; a++) Z[a + i * nfa] = Kp[f->isl[i] + f->ifa[a] * nk];
     PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("T", &bf, &brhs, KF, &bf, piv, Z, &bf, &info));
-    for (PetscInt c = 0; c < nt; c++) {
-      if (f->bwt[c] == 0.0) continue;
-      for (PetscInt a = 0; a < nfa; a++) BF[a + nc * nfa] = Bw[f->ifa[a] + c * nk];
-      for (PetscInt i = 0; i < nsl; i++) BR[i + nc * nsl] = Bw[f->isl[i] + c * nk];
-      col[nc++] = c;
+    for (PetscInt q = 0; q < nc; q++) {
+      for (PetscInt a = 0; a < nfa; a++) BF[a + q * nfa] = Bw[f->ifa[a] + col[q] * nk];
+      for (PetscInt i = 0; i < nsl; i++) BR[i + q * nsl] = Bw[f->isl[i] + col[q] * nk];
     }
     PetscCall(JRGemm("T", "N", nsl, nc, nfa, -1.0, Z, nfa, BF, nfa, 1.0, BR, nsl));
-    PetscCall(PetscArrayzero(RH + 2 * nsl * nsl, nsl * nt));
-    for (PetscInt q = 0; q < nc; q++) PetscCall(PetscArraycpy(RH + (2 * nsl + col[q]) * nsl, BR + q * nsl, nsl));
   }
   PetscCall(PetscArrayzero(T, nk * nsl));
   for (PetscInt b = 0; b < nsl; b++) {
@@ -906,7 +949,7 @@ static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, const PetscReal *Bw, P
     }
     PetscCall(JRGemm("T", "N", nsl, nsl, nfa, 1.0, MT, nfa, BY, nfa, 1.0, out, nsl));
   }
-  PetscCall(SlowSolve(f, Mr, RH, wmax));
+  PetscCall(SlowSolve(f, Mr, RH, Mr + nk * nk, wmax));
   *X = RH;
   PetscFunctionReturn(0);
 }
@@ -989,7 +1032,7 @@ static PetscErrorCode LowRankPoint(struct _JRMonodromy *f, PetscReal g)
    are -X0 + U Y with Y = P^-1 dD W - Q1 dD Rs, and Kr = K0 + KU Y + Rs^T dD (Rd T), Rd T = Rs - W + G Y, Mr and Cr
    from their pieces, Br = (Rs^T (I - dD Hn) - KU Q1) E (E: the held slips' stiffness at their rows) with
    Hn = Rd_f Kff^-1 Rd_f^T = G Q1. Slot k keeps Rd T and Hn for the commits. Out as QuasiStatic's. */
-static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscReal **X, PetscReal *wmax)
+static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscInt nc, const PetscInt *col, PetscReal **X, PetscReal *wmax)
 {
   const PetscInt nk = f->nk, nd = f->nd, nsl = f->nsl, nfa = f->nfa, nt = f->mt - f->n2r;
   const PetscReal *U = f->LR, *G = U + nfa * nd, *W = G + nd * nd, *Rs = W + nd * nsl, *K0 = Rs + nd * nsl, *KU = K0 + nsl * nsl, *B0 = KU + nsl * nd;
@@ -1001,23 +1044,30 @@ static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscRea
   PetscCall(PetscBLASIntCast(nd, &bd));
   PetscCall(PetscBLASIntCast(nsl, &bs));
   PetscCall(PetscArraycpy(f->bws + k * f->cap, f->bwt, nt));
-  PetscCall(PetscArrayzero(dD, nd * nd));
+  if (!f->dvalid) { /* from the reference coefficients, at the point's first map; then by the elements that change */
+    PetscCall(PetscArrayzero(f->dDk, nd * nd));
+    PetscCall(PetscArraycpy(f->cl, f->cref, 3 * f->ne));
+    f->dvalid = PETSC_TRUE;
+  }
   for (PetscInt e = 0; e < f->ne; e++) {
-    const PetscReal *c = f->cfn + 3 * e, *o = f->cref + 3 * e, d0 = c[0] - o[0], d1 = c[1] - o[1], d2 = c[2] - o[2];
+    const PetscReal *c = f->cfn + 3 * e, *o = f->cl + 3 * e, d0 = c[0] - o[0], d1 = c[1] - o[1], d2 = c[2] - o[2];
+    if (d0 == 0.0 && d1 == 0.0 && d2 == 0.0) continue;
     if (!f->Cf) {
       const PetscInt ir = f->dr[e];
-      dD[ir + ir * nd] += d0;
+      f->dDk[ir + ir * nd] += d0;
       if (f->srow[e] >= 0) {
         const PetscInt is = f->dr[f->srow[e]];
-        dD[ir + is * nd] += d1;
-        dD[is + is * nd] += d2;
+        f->dDk[ir + is * nd] += d1;
+        f->dDk[is + is * nd] += d2;
       }
-    } else if (d0 != 0.0 || d1 != 0.0 || d2 != 0.0) { /* d0 ct ct^T + d1 ct cs^T + d2 cs cs^T, ct and cs its rows' coefficients */
+    } else { /* d0 ct ct^T + d1 ct cs^T + d2 cs cs^T, ct and cs its rows' coefficients */
       const PetscReal *ct = f->Cf + e * nd, *cs = f->srow[e] >= 0 ? f->Cf + f->srow[e] * nd : NULL;
       for (PetscInt b = 0; b < nd; b++)
-        for (PetscInt a = 0; a < nd; a++) dD[a + b * nd] += d0 * ct[a] * ct[b] + (cs ? d1 * ct[a] * cs[b] + d2 * cs[a] * cs[b] : 0.0);
+        for (PetscInt a = 0; a < nd; a++) f->dDk[a + b * nd] += d0 * ct[a] * ct[b] + (cs ? d1 * ct[a] * cs[b] + d2 * cs[a] * cs[b] : 0.0);
     }
   }
+  PetscCall(PetscArraycpy(f->cl, f->cfn, 3 * f->ne));
+  PetscCall(PetscArraycpy(dD, f->dDk, nd * nd));
   PetscCall(JRGemm("N", "N", nd, nd, nd, 1.0, dD, nd, G, nd, 0.0, DG, nd));
   PetscCall(PetscArraycpy(P, DG, nd * nd));
   for (PetscInt i = 0; i < nd; i++) P[i + i * nd] += 1.0;
@@ -1053,11 +1103,9 @@ static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscRea
   for (PetscInt i = 0; i < nd; i++) DH[i + i * nd] += 1.0;
   PetscCall(JRGemm("T", "N", nsl, nd, nd, 1.0, Rs, nd, DH, nd, 0.0, Bm, nsl));
   PetscCall(JRGemm("N", "N", nsl, nd, nd, -1.0, KU, nsl, Q1, nd, 1.0, Bm, nsl));
-  PetscCall(PetscArrayzero(RH + 2 * nsl * nsl, nsl * nt));
-  for (PetscInt c = 0; c < nt; c++)
-    if (f->bwt[c] != 0.0)
-      for (PetscInt i = 0; i < nsl; i++) RH[i + (2 * nsl + c) * nsl] = f->bwt[c] * RowDot(f, f->td[2 * c], Bm + i, nsl);
-  PetscCall(SlowSolve(f, Mr, RH, wmax));
+  for (PetscInt q = 0; q < nc; q++)
+    for (PetscInt i = 0; i < nsl; i++) RH[i + (2 * nsl + q) * nsl] = f->bwt[col[q]] * RowDot(f, f->td[2 * col[q]], Bm + i, nsl);
+  PetscCall(SlowSolve(f, Mr, RH, Mr + nk * nk, wmax));
   *X = RH;
   PetscFunctionReturn(0);
 }
@@ -1066,23 +1114,23 @@ static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscRea
    stuck or slipping at either bound, in contact or not, each element's two states weighted by their shares): the
    variational equations are then linear with constant coefficients, Z' = A Z, A = [L, Aw; 0, 0] in the blocks (Q, P)
    and the marched slips W, L = [0, I; G + Mm^-1 (-R^T D)], and the map is exp(A dtstep) = [SL, SW; 0, I]:
-   SL = exp(L dtstep) by ExpmTaylor on a step halved sq times to dt w_max <= JR_MONO_WDT, and SW, the response to a
-   held slip, = L^-1 (SL - I) Aw, L being invertible (the stiffness of the state pattern, K + R^T D, nonsingular);
-   where it is not (an LU pivot below 1e-10 of the largest), the Taylor polynomial of the augmented matrix's
-   column block by Horner's rule, squared along. Into slot k. */
+   SL = exp(L dtstep) and SW, the response to a held slip, = phi1(L dtstep) Aw dtstep (phi1(X) = sum_k X^k / (k + 1)!,
+   no inverse of L: the pattern's stiffness may be singular) by ExpmPhi on a step halved sq times to
+   dt w_max <= JR_MONO_WDT. Into slot k. */
 static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt k)
 {
-  const PetscInt nk = f->nk, ne = f->ne, n2 = f->n2r, m2 = 2 * nk;
-  PetscInt       nt = f->mt - n2;
-  PetscReal     *SL = f->SL + k * m2 * m2, *SW = f->SW + k * m2 * ne, *tw = f->T1, *LU = f->PS + 4 * m2 * m2;
+  const PetscInt nk = f->nk, ne = f->ne, n2 = f->n2r, m2 = 2 * nk, nt = f->mt - n2;
+  PetscReal     *SL = f->SL + k * m2 * m2, *SW = f->SW + k * m2 * ne, *G = f->PS + 4 * m2 * m2;
   PetscReal     *Bw = f->QW + 7 * nk * nk + 2 * nk * ne, wmax = f->wmax, dt;
-  PetscInt       sq;
-  PetscBool      direct = PETSC_FALSE;
+  PetscInt       sq, *col = f->cols + k * ne, nc = 0;
 
   PetscFunctionBeginUser;
   PetscCall(StiffnessUpdate(f, Bw));
+  for (PetscInt c = 0; c < nt; c++) /* the held slips of stuck elements: SW's only nonzero columns */
+    if (f->bwt[c] != 0.0) col[nc++] = c;
+  f->ncol[k] = nc;
   PetscCall(PetscArrayzero(f->XL, n2 * n2));
-  PetscCall(PetscArrayzero(f->XW, n2 * nt));
+  PetscCall(PetscArrayzero(f->XW, n2 * nc));
   if (!f->nfa) { /* XL = L dt = [0, I; -Mm^-1 Kp, -Mm^-1 Cv] dt, XW = Aw dt = [0; Mm^-1 Bw] dt */
     sq = dtstep * wmax > JR_MONO_WDT ? (PetscInt)PetscCeilReal(PetscLog2Real(dtstep * wmax / JR_MONO_WDT)) : 0;
     dt = dtstep / (PetscReal)(1 << sq);
@@ -1093,72 +1141,25 @@ static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt
         f->XL[nk + i + c * n2]        = f->T2[i + c * nk];
         f->XL[nk + i + (nk + c) * n2] = dt * f->G[i + (nk + c) * nk];
       }
-    if (nt) PetscCall(JRGemm("N", "N", nk, nt, nk, dt, f->Mi, nk, Bw, nk, 0.0, f->XW + nk, n2));
+    for (PetscInt q = 0; q < nc; q++) PetscCall(PetscArraycpy(f->T2 + q * nk, Bw + col[q] * nk, nk));
+    if (nc) PetscCall(JRGemm("N", "N", nk, nc, nk, dt, f->Mi, nk, f->T2, nk, 0.0, f->XW + nk, n2));
   } else { /* the slow modes with the fast ones condensed: [0, I; -Mr^-1 [Kr, Cr]] dt and [0; Mr^-1 Br] dt */
-    const PetscInt nsl = f->nsl;
-    PetscReal     *X = NULL;
-    if (f->lowrank) PetscCall(LowRankStatic(f, k, &X, &wmax));
-    else PetscCall(QuasiStatic(f, Bw, k, &X, &wmax));
+    const PetscInt   nsl = f->nsl;
+    const PetscReal *Mi = f->QW + 3 * nk * nk, *P = Mi + nk * nk; /* where either condensation leaves Mr^-1, Mr^-1 Kr */
+    PetscReal       *X  = NULL;
+    if (f->lowrank) PetscCall(LowRankStatic(f, k, nc, col, &X, &wmax));
+    else PetscCall(QuasiStatic(f, Bw, k, nc, col, &X, &wmax));
     sq = dtstep * wmax > JR_MONO_WDT ? (PetscInt)PetscCeilReal(PetscLog2Real(dtstep * wmax / JR_MONO_WDT)) : 0;
     dt = dtstep / (PetscReal)(1 << sq);
     for (PetscInt i = 0; i < nsl; i++) f->XL[i + (nsl + i) * n2] = dt;
-    for (PetscInt c = 0; c < n2; c++)
-      for (PetscInt i = 0; i < nsl; i++) f->XL[nsl + i + c * n2] = -dt * X[i + c * nsl];
-    for (PetscInt c = 0; c < nt; c++)
-      for (PetscInt i = 0; i < nsl; i++) f->XW[nsl + i + c * n2] = dt * X[i + (n2 + c) * nsl];
+    for (PetscInt c = 0; c < nsl; c++)
+      for (PetscInt i = 0; i < nsl; i++) f->XL[nsl + i + c * n2] = -dt * P[i + c * nsl];
+    PetscCall(JRGemm("N", "N", nsl, nsl, nsl, -dt, Mi, nsl, X + nsl * nsl, nsl, 0.0, f->XL + nsl + nsl * n2, n2));
+    if (nc) PetscCall(JRGemm("N", "N", nsl, nc, nsl, dt, Mi, nsl, X + n2 * nsl, nsl, 0.0, f->XW + nsl, n2));
   }
-  { /* XW's nonzero columns (the held slips of stuck elements), compacted: nc of them from here */
-    PetscInt *col = f->cols + k * ne, nc = 0;
-    for (PetscInt c = 0; c < nt; c++) {
-      PetscBool nz = PETSC_FALSE;
-      for (PetscInt i = 0; i < n2 && !nz; i++) nz = (PetscBool)(f->XW[i + c * n2] != 0.0);
-      if (!nz) continue;
-      if (nc != c) PetscCall(PetscArraycpy(f->XW + nc * n2, f->XW + c * n2, n2));
-      col[nc++] = c;
-    }
-    f->ncol[k] = nc;
-    nt         = nc;
-  }
-  if (nt) { /* L's LU (XL = L dt), used where its pivots are not tiny */
-    PetscBLASInt bn, info;
-    PetscReal    umin = PETSC_MAX_REAL, umax = 0.0;
-    PetscCall(PetscBLASIntCast(n2, &bn));
-    PetscCall(PetscArraycpy(LU, f->XL, n2 * n2));
-    PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bn, &bn, LU, &bn, f->piv, &info));
-    for (PetscInt i = 0; i < n2; i++) {
-      umin = PetscMin(umin, PetscAbsReal(LU[i + i * n2]));
-      umax = PetscMax(umax, PetscAbsReal(LU[i + i * n2]));
-    }
-    direct = (PetscBool)(!info && umin > 1e-10 * umax);
-  }
-  if (nt && !direct) { /* Horner on the column block: SW <- (XL SW + XW) / i, i = p .. 1, from SW = 0 */
-    PetscCall(PetscArrayzero(SW, n2 * nt));
-    for (PetscInt i = JR_MONO_TAYLOR; i >= 1; i--) {
-      PetscCall(PetscArraycpy(tw, f->XW, n2 * nt));
-      PetscCall(JRGemm("N", "N", n2, nt, n2, 1.0 / i, f->XL, n2, SW, n2, 1.0 / i, tw, n2));
-      PetscCall(PetscArraycpy(SW, tw, n2 * nt));
-    }
-  }
-  if (direct || !nt) PetscCall(ExpmTaylor(n2, f->XL, sq, SL, f->PS));
-  else { /* the squarings along: [SL, SW; 0, I]^2 = [SL SL, SL SW + SW; 0, I] */
-    PetscCall(ExpmTaylor(n2, f->XL, 0, SL, f->PS));
-    for (PetscInt q = 0; q < sq; q++) {
-      PetscCall(PetscArraycpy(tw, SW, n2 * nt));
-      PetscCall(JRGemm("N", "N", n2, nt, n2, 1.0, SL, n2, SW, n2, 1.0, tw, n2));
-      PetscCall(PetscArraycpy(SW, tw, n2 * nt));
-      PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, SL, n2, SL, n2, 0.0, f->PS, n2));
-      PetscCall(PetscArraycpy(SL, f->PS, n2 * n2));
-    }
-  }
-  if (nt && direct) { /* SW = (L dt)^-1 (SL - I) (Aw dt) */
-    PetscBLASInt bn, bt, info;
-    PetscCall(PetscBLASIntCast(n2, &bn));
-    PetscCall(PetscBLASIntCast(nt, &bt));
-    PetscCall(PetscArraycpy(SW, f->XW, n2 * nt));
-    PetscCall(JRGemm("N", "N", n2, nt, n2, 1.0, SL, n2, f->XW, n2, -1.0, SW, n2));
-    PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bn, &bt, LU, &bn, f->piv, SW, &bn, &info));
-    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK getrs failed (info %d)", (int)info);
-  }
+  /* SL, and SW = G XW (XW's first n2 / 2 rows are 0) */
+  PetscCall(ExpmPhi(n2, f->XL, sq, SL, nc ? G : NULL, f->PS));
+  if (nc) PetscCall(JRGemm("N", "N", n2, nc, n2 / 2, 1.0, G, n2, f->XW + n2 / 2, n2, 0.0, SW, n2));
   PetscFunctionReturn(0);
 }
 
@@ -1240,7 +1241,7 @@ static PetscErrorCode MarchPatterns(JRHBM h, PetscReal dt)
 
   PetscFunctionBeginUser;
   f->nslot = f->next = 0;
-  f->kvalid = PETSC_FALSE;
+  f->kvalid = f->dvalid = PETSC_FALSE;
   for (PetscInt j = 0; j < ns; j++) {
     PetscInt  k      = -1;
     PetscBool change = PETSC_FALSE;
@@ -1342,10 +1343,10 @@ static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, P
 
   PetscFunctionBeginUser;
   if (ns != f->ns) {
-    PetscCall(PetscFree3(f->u, f->v, f->wn));
+    PetscCall(PetscFree5(f->u, f->v, f->wn, f->rb, f->nb));
     PetscCall(PetscFree(f->trig));
     f->ns = ns;
-    PetscCall(PetscMalloc3(f->ne * (2 * ns + 1) + 1, &f->u, f->ne * (2 * ns + 1) + 1, &f->v, f->ne * (ns + 1) + 1, &f->wn));
+    PetscCall(PetscMalloc5(f->ne * (2 * ns + 1) + 1, &f->u, f->ne * (2 * ns + 1) + 1, &f->v, f->ne * (ns + 1) + 1, &f->wn, f->ne * (2 * ns + 1) + 1, &f->rb, f->ne * (2 * ns + 1) + 1, &f->nb));
     PetscCall(PetscMalloc1((2 * ns + 1) * 2 * h->H + 1, &f->trig));
   }
   Cv = f->smooth ? f->Y0 : f->Cv; /* Cm + (gamma / w) Kg at this frequency */
