@@ -67,7 +67,8 @@ struct _JRMonodromy {
                                          held slips of stuck elements only (the others' are 0) */
   PetscInt  *ncol, *cols;             /* per kept map: those columns' number and their slips (JR_MONO_SLOTS + 1, x ne) */
   PetscReal *XL, *XW, *T2;            /* the step map's work (n2 x n2, n2 x ne), the march's (n2 x m) */
-  PetscReal *trig;                    /* sin, cos of h w t at the half steps ((2 ns + 1) x 2 H) */
+  PetscReal *trig;                    /* the harmonics at the half steps, 1, sin, cos of h w t (nc x (2 ns + 1)), and the
+                                         elements' coefficients of u and v (ne x nc each) */
   PetscReal *PS;                      /* the exponential's work (5 n2 x n2: four for the polynomials, phi1's columns G) */
   PetscBLASInt *piv;                  /* a small LU's pivots (n2: Mr's, Aref_ff's) */
   PetscReal *RT;                      /* per point: the tracked elements' rows [r_e; s_e] over the kept modes (2 nt x nk) */
@@ -261,7 +262,7 @@ static PetscErrorCode DistinctRows(struct _JRMonodromy *f)
     PetscFunctionReturn(0);
   }
   f->nd = nd;
-  PetscCall(PetscMalloc5(nd * nk, &f->Rd, 3 * ne + 1, &f->cref, nk * nk, &f->Aref, 10 * nk * nk + 16 * nk * nd + 8 * nd * nd + 1, &f->LR, 12 * nd * nd + 8 * nd * nk + nd * ne + 1, &f->LW));
+  PetscCall(PetscMalloc5(nd * nk, &f->Rd, 3 * ne + 1, &f->cref, nk * nk, &f->Aref, 10 * nk * nk + 16 * nk * nd + 8 * nd * nd + 1, &f->LR, 12 * nd * nd + 8 * nd * nk + 4 * nd * ne + 1, &f->LW));
   PetscCall(PetscMalloc2(nd * nd, &f->dDk, 3 * ne + 1, &f->cl));
   PetscCall(PetscArraycpy(f->Rd, Rd, nd * nk));
   PetscCall(PetscFree(Rd));
@@ -278,13 +279,15 @@ static PetscErrorCode DistinctRows(struct _JRMonodromy *f)
   PetscFunctionReturn(0);
 }
 
-/* Row r of the l rows through the basis Rd: x[dr[r] * ld] where it is a distinct row, else sum_d Cf[r, d] x[d * ld] */
-static inline PetscReal RowDot(const struct _JRMonodromy *f, PetscInt r, const PetscReal *x, PetscInt ld)
+/* Row r of the l rows in the basis Rd, times scale, into c (nd): a unit vector where it is a distinct row, else its
+   coefficients Cf[r, .] */
+static inline void RowCoefficients(const struct _JRMonodromy *f, PetscInt r, PetscReal scale, PetscReal *c)
 {
-  PetscReal v = 0.0;
-  if (f->dr[r] >= 0) return x[f->dr[r] * ld];
-  for (PetscInt d = 0; d < f->nd; d++) v += f->Cf[r * f->nd + d] * x[d * ld];
-  return v;
+  if (f->dr[r] >= 0) {
+    for (PetscInt d = 0; d < f->nd; d++) c[d] = 0.0;
+    c[f->dr[r]] = scale;
+  } else
+    for (PetscInt d = 0; d < f->nd; d++) c[d] = scale * f->Cf[r * f->nd + d];
 }
 
 /* Every element's record on every rank (collective): type (0 jenkins, 1 jenkins_nv, 2 cubic), kt, kn, mu, n0 and its
@@ -535,38 +538,31 @@ static PetscErrorCode Rhs(JRHBM h, PetscInt s, PetscInt j, const PetscReal *Z, P
 
 /* The point's element motions at the half steps of one period and the committed slip at the steps (the play
    operator from rest over two periods first, as the alternating frequency-time march starts) */
-static void PointMotion(JRHBM h, PetscReal w, const PetscReal *a)
+static PetscErrorCode PointMotion(JRHBM h, PetscReal w, const PetscReal *a)
 {
   struct _JRMonodromy *f = h->mono;
-  const PetscInt       ne = f->ne, nm = h->nm, ns = f->ns, N2 = 2 * ns + 1, H = h->H;
+  const PetscInt       ne = f->ne, nm = h->nm, ns = f->ns, N2 = 2 * ns + 1, H = h->H, nc = h->nc;
   const PetscReal      dt = 2 * PETSC_PI / w / ns;
+  PetscReal           *tb = f->trig, *uc = tb + nc * N2, *vc = uc + ne * nc;
 
-  for (PetscInt q = 0; q < N2; q++) /* sin, cos of h w t at the half steps, the same for every element */
+  PetscFunctionBeginUser;
+  for (PetscInt q = 0; q < N2; q++) { /* 1, sin, cos of h w t at the half steps, the same for every element */
+    const PetscReal t = 0.5 * q * dt;
+    tb[q * nc] = 1.0;
     for (PetscInt hh = 1; hh <= H; hh++) {
-      const PetscReal t = 0.5 * q * dt;
-      f->trig[q * 2 * H + 2 * hh - 2] = PetscSinReal(hh * w * t);
-      f->trig[q * 2 * H + 2 * hh - 1] = PetscCosReal(hh * w * t);
+      tb[q * nc + 2 * hh - 1] = PetscSinReal(hh * w * t);
+      tb[q * nc + 2 * hh]     = PetscCosReal(hh * w * t);
     }
+  }
+  /* the elements' harmonics of u and v (ne x nc), then their values at the half steps (N2 x ne: element e's at u + e N2) */
+  if (!ne) PetscFunctionReturn(0);
+  PetscCall(JRGemm("N", "N", ne, nc, nm, 1.0, f->Ra, ne, a, nm, 0.0, uc, ne));
+  PetscCall(JRGemm("N", "N", ne, nc, nm, 1.0, f->Sa, ne, a, nm, 0.0, vc, ne));
+  PetscCall(JRGemm("T", "T", N2, ne, nc, 1.0, tb, nc, uc, ne, 0.0, f->u, N2));
+  PetscCall(JRGemm("T", "T", N2, ne, nc, 1.0, tb, nc, vc, ne, 0.0, f->v, N2));
   for (PetscInt e = 0; e < ne; e++) {
-    PetscReal U[JR_MAX_NC], V[JR_MAX_NC], s = 0.0, n;
-    for (PetscInt k = 0; k < h->nc; k++) {
-      U[k] = V[k] = 0.0;
-      for (PetscInt i = 0; i < nm; i++) {
-        U[k] += f->Ra[e + i * ne] * a[k * nm + i];
-        V[k] += f->Sa[e + i * ne] * a[k * nm + i];
-      }
-    }
-    for (PetscInt q = 0; q < N2; q++) {
-      const PetscReal *tr = f->trig + q * 2 * H;
-      PetscReal        uu = U[0], vv = V[0];
-      for (PetscInt hh = 1; hh <= H; hh++) {
-        uu += U[2 * hh - 1] * tr[2 * hh - 2] + U[2 * hh] * tr[2 * hh - 1];
-        vv += V[2 * hh - 1] * tr[2 * hh - 2] + V[2 * hh] * tr[2 * hh - 1];
-      }
-      f->u[e * N2 + q]  = uu;
-      f->v[e * N2 + q]  = vv;
-      f->rb[e * N2 + q] = Bound(f, e, vv, &f->nb[e * N2 + q]);
-    }
+    PetscReal s = 0.0, n;
+    for (PetscInt q = 0; q < N2; q++) f->rb[e * N2 + q] = Bound(f, e, f->v[e * N2 + q], &f->nb[e * N2 + q]);
     if (f->type[e] == 2) continue;
     for (PetscInt p = 0; p < 3; p++) /* two periods to the periodic slip, then the third's committed values */
       for (PetscInt j = 0; j <= ns; j++) {
@@ -575,6 +571,7 @@ static void PointMotion(JRHBM h, PetscReal w, const PetscReal *a)
         if (p == 2) f->wn[e * (ns + 1) + j] = s;
       }
   }
+  PetscFunctionReturn(0);
 }
 
 /* Element e's state at half step s against the committed slip of step j: side -1 / 1 slipping at the lower / upper
@@ -1028,7 +1025,7 @@ static PetscErrorCode LowRankPoint(struct _JRMonodromy *f, PetscReal g)
 }
 
 /* QuasiStatic through the distinct rows (LowRankPoint's pieces): the step's Kp = Aref + Rd^T dD Rd, dD from the
-   elements' coefficients less the reference ones; with P = I + dD G and Q1 = I - P^-1 dD G (Woodbury), T's fast rows
+   elements' coefficients less the reference ones; with P = I + dD G and Q1 = I - P^-1 dD G = P^-1 (Woodbury), T's fast rows
    are -X0 + U Y with Y = P^-1 dD W - Q1 dD Rs, and Kr = K0 + KU Y + Rs^T dD (Rd T), Rd T = Rs - W + G Y, Mr and Cr
    from their pieces, Br = (Rs^T (I - dD Hn) - KU Q1) E (E: the held slips' stiffness at their rows) with
    Hn = Rd_f Kff^-1 Rd_f^T = G Q1. Slot k keeps Rd T and Hn for the commits. Out as QuasiStatic's. */
@@ -1038,11 +1035,11 @@ static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscInt
   const PetscReal *U = f->LR, *G = U + nfa * nd, *W = G + nd * nd, *Rs = W + nd * nsl, *K0 = Rs + nd * nsl, *KU = K0 + nsl * nsl, *B0 = KU + nsl * nd;
   PetscReal     *dD = f->LW, *DG = dD + nd * nd, *P = DG + nd * nd, *Q1 = P + nd * nd, *DH = Q1 + nd * nd, *Y = DH + nd * nd, *DW = Y + nd * nsl, *DR = DW + nd * nsl, *tmp = DR + nd * nsl, *Bm = tmp + nd * nsl;
   PetscReal     *RT = f->Ts + k * nk * nk, *Hn = f->KFs + k * nk * nk, *Mr = f->QW + 3 * nk * nk, *RH = f->QW + 5 * nk * nk;
-  PetscBLASInt   bd, bs, info;
+  PetscBLASInt   bd, bdd, info;
 
   PetscFunctionBeginUser;
   PetscCall(PetscBLASIntCast(nd, &bd));
-  PetscCall(PetscBLASIntCast(nsl, &bs));
+  PetscCall(PetscBLASIntCast(nd * nd, &bdd));
   PetscCall(PetscArraycpy(f->bws + k * f->cap, f->bwt, nt));
   if (!f->dvalid) { /* from the reference coefficients, at the point's first map; then by the elements that change */
     PetscCall(PetscArrayzero(f->dDk, nd * nd));
@@ -1073,12 +1070,11 @@ static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscInt
   for (PetscInt i = 0; i < nd; i++) P[i + i * nd] += 1.0;
   PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bd, &bd, P, &bd, f->lpiv, &info));
   PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the fast modes' stiffness is singular (LAPACK getrf info %d); -frf_stability_time_fast 0 marches every mode", (int)info);
-  PetscCall(PetscArraycpy(Q1, DG, nd * nd));
-  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bd, &bd, P, &bd, f->lpiv, Q1, &bd, &info));
-  for (PetscInt i = 0; i < nd * nd; i++) Q1[i] = -Q1[i];
-  for (PetscInt i = 0; i < nd; i++) Q1[i + i * nd] += 1.0;
-  PetscCall(JRGemm("N", "N", nd, nsl, nd, 1.0, dD, nd, W, nd, 0.0, Y, nd));
-  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bd, &bs, P, &bd, f->lpiv, Y, &bd, &info));
+  PetscCallBLAS("LAPACKgetri", LAPACKgetri_(&bd, P, &bd, f->lpiv, DH, &bdd, &info)); /* Q1 = I - P^-1 dD G = P^-1 */
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK getri failed (info %d)", (int)info);
+  PetscCall(PetscArraycpy(Q1, P, nd * nd));
+  PetscCall(JRGemm("N", "N", nd, nsl, nd, 1.0, dD, nd, W, nd, 0.0, DW, nd));
+  PetscCall(JRGemm("N", "N", nd, nsl, nd, 1.0, Q1, nd, DW, nd, 0.0, Y, nd));
   PetscCall(JRGemm("N", "N", nd, nsl, nd, 1.0, dD, nd, Rs, nd, 0.0, DR, nd));
   PetscCall(JRGemm("N", "N", nd, nsl, nd, -1.0, Q1, nd, DR, nd, 1.0, Y, nd));
   for (PetscInt i = 0; i < nd * nsl; i++) RT[i] = Rs[i] - W[i];
@@ -1103,8 +1099,11 @@ static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscInt
   for (PetscInt i = 0; i < nd; i++) DH[i + i * nd] += 1.0;
   PetscCall(JRGemm("T", "N", nsl, nd, nd, 1.0, Rs, nd, DH, nd, 0.0, Bm, nsl));
   PetscCall(JRGemm("N", "N", nsl, nd, nd, -1.0, KU, nsl, Q1, nd, 1.0, Bm, nsl));
-  for (PetscInt q = 0; q < nc; q++)
-    for (PetscInt i = 0; i < nsl; i++) RH[i + (2 * nsl + q) * nsl] = f->bwt[col[q]] * RowDot(f, f->td[2 * col[q]], Bm + i, nsl);
+  { /* Br = Bm Cq, Cq's columns the held slips' rows' coefficients in Rd scaled by their stiffness (nd x nc) */
+    PetscReal *Cq = Bm + nsl * nd;
+    for (PetscInt q = 0; q < nc; q++) RowCoefficients(f, f->td[2 * col[q]], f->bwt[col[q]], Cq + q * nd);
+    if (nc) PetscCall(JRGemm("N", "N", nsl, nc, nd, 1.0, Bm, nsl, Cq, nd, 0.0, RH + 2 * nsl * nsl, nsl));
+  }
   PetscCall(SlowSolve(f, Mr, RH, Mr + nk * nk, wmax));
   *X = RH;
   PetscFunctionReturn(0);
@@ -1190,14 +1189,14 @@ static PetscErrorCode Commit(struct _JRMonodromy *f, PetscInt j, PetscInt k)
   if (f->nfa && f->lowrank) { /* the same from slot k's Rd T and Hn = Rd_f Kff^-1 Rd_f^T at the rows' distinct ones */
     const PetscInt   nsl = f->nsl, nd = f->nd;
     const PetscReal *RTk = f->Ts + k * nk * nk, *Hk = f->KFs + k * nk * nk, *bw = f->bws + k * f->cap;
-    PetscReal       *A = f->CB, *B = A + nr * nsl, *HC = f->LW; /* HC = Hn's columns at the held slips' rows (nd x nt) */
-    for (PetscInt c = 0; c < nt; c++)
-      for (PetscInt a = 0; a < nd; a++) HC[a + c * nd] = RowDot(f, f->td[2 * c], Hk + a, nd);
-    for (PetscInt r = 0; r < nr; r++) {
-      const PetscInt rr = f->td[f->rows[r]];
-      for (PetscInt i = 0; i < nsl; i++) A[r + i * nr] = RowDot(f, rr, RTk + i * nd, 1);
-      for (PetscInt c = 0; c < nt; c++) B[r + c * nr] = RowDot(f, rr, HC + c * nd, 1) * bw[c];
-    }
+    PetscReal       *A = f->CB, *B = A + nr * nsl, *HC = f->LW, *Ct = HC + nd * nt, *Cr = Ct + nd * nt;
+    /* the rows' coefficients in Rd: Ct (nd x nt) of the held slips' (scaled by their stiffness), Cr (nd x nr) of the
+       committing ones; HC = Hn Ct, A = Cr^T (Rd T), B = Cr^T HC */
+    for (PetscInt c = 0; c < nt; c++) RowCoefficients(f, f->td[2 * c], bw[c], Ct + c * nd);
+    for (PetscInt r = 0; r < nr; r++) RowCoefficients(f, f->td[f->rows[r]], 1.0, Cr + r * nd);
+    PetscCall(JRGemm("N", "N", nd, nt, nd, 1.0, Hk, nd, Ct, nd, 0.0, HC, nd));
+    PetscCall(JRGemm("T", "N", nr, nsl, nd, 1.0, Cr, nd, RTk, nd, 0.0, A, nr));
+    PetscCall(JRGemm("T", "N", nr, nt, nd, 1.0, Cr, nd, HC, nd, 0.0, B, nr));
     PetscCall(JRGemm("N", "N", nr, m, nsl, 1.0, A, nr, Y, m, 0.0, f->DUV, nr));
     PetscCall(JRGemm("N", "N", nr, m, nt, 1.0, B, nr, Y + n2, m, 1.0, f->DUV, nr));
   } else if (f->nfa) { /* DUV = (Rg T) Y_q + (Rg_f Kff^-1 R_f diag(bw)) Y_w, Rg_f Kff^-1 = (Kff^-T Rg_f^T)^T */
@@ -1347,11 +1346,11 @@ static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, P
     PetscCall(PetscFree(f->trig));
     f->ns = ns;
     PetscCall(PetscMalloc5(f->ne * (2 * ns + 1) + 1, &f->u, f->ne * (2 * ns + 1) + 1, &f->v, f->ne * (ns + 1) + 1, &f->wn, f->ne * (2 * ns + 1) + 1, &f->rb, f->ne * (2 * ns + 1) + 1, &f->nb));
-    PetscCall(PetscMalloc1((2 * ns + 1) * 2 * h->H + 1, &f->trig));
+    PetscCall(PetscMalloc1(h->nc * (2 * ns + 1 + 2 * f->ne) + 1, &f->trig));
   }
   Cv = f->smooth ? f->Y0 : f->Cv; /* Cm + (gamma / w) Kg at this frequency */
   for (PetscInt i = 0; i < nk * nk; i++) Cv[i] = f->C[i] + h->gamma / w * f->Kg[i];
-  PointMotion(h, w, x);
+  PetscCall(PointMotion(h, w, x));
   mt = f->smooth ? m : Classify(f);
   f->nsl = nk;
   f->nfa = 0;
