@@ -154,7 +154,7 @@ check "[ -n '$cs' ] && [ \$(field '$cs' full_stick) -gt 0 ] && [ \$(field '$cs' 
 bc=$(echo "$o" | grep '^basis check'); r0=$(field "$bc" rho); rm0=$(field "$bc" rho_modes)
 nvl="-preload_load $tmp/nv_preload.h5 -modes_load $tmp/nv_modes.h5"
 # a reduced model condensed onto its joints (4 zone joints x 3, mean field: 8 joint rows) gets the stability of every
-# point by default, its fast modes condensed through the 8 rows (fast_rows); the fast block's LU at every step
+# point by default, its fast modes condensed through the 8 rows (fast_rows); the fast block's inverse at every step
 # (-frf_stability_time_lowrank no) flags every point the same
 for lr in auto no; do
   ocz=$(mpiexec -n 2 $J -task frf $nv $nvl -frf_force 0.01,0.5 -rom_joints zones -rom_elements 3 -rom_joint_motion mean -frf_stability_time_lowrank $lr -frf_output_file "$tmp/cz_$lr" 2>&1)
@@ -162,7 +162,7 @@ for lr in auto no; do
 done
 czf=$(paste -d, "$tmp/cz_auto.csv" "$tmp/cz_no.csv" 2>/dev/null | awk -F, 'NR > 1 {n++; h = NF / 2; if ($h != $NF || $h < 0) d++} END{printf "%d %d", n, d}')
 read czn czd <<< "$czf"
-check "[ '$czc' = 1 ] && [ '$czl' = 2 ] && [ '${czn:-0}' -gt 100 ] && [ '$czd' = 0 ]" "jenkins_nv lap1, 4 zone joints x 3 condensed onto 8 joint motions: stability by default at both levels through the 8 rows ($czl levels); all $czn points flagged, as by the fast block's LU ($czd differ or unflagged)"
+check "[ '$czc' = 1 ] && [ '$czl' = 2 ] && [ '${czn:-0}' -gt 100 ] && [ '$czd' = 0 ]" "jenkins_nv lap1, 4 zone joints x 3 condensed onto 8 joint motions: stability by default at both levels through the 8 rows ($czl levels); all $czn points flagged, as by the fast block's inverse ($czd differ or unflagged)"
 # the first reduction on the zone joints with the linear field (each member at its own point of its joint's field):
 # condensed onto a basis of the joints' rows, at most 3 field functions (1, x, y) x 2 directions = 6 per joint, 24 for
 # the 4; on a fixed frequency grid the amplitudes equal those of the modal equations (-hbm_condense no); the monodromy's
@@ -181,7 +181,7 @@ read rln rld <<< "$(same "$tmp/rl_no.csv" "$tmp/rl_yes.csv" 2>/dev/null)"
 rlf=$(paste -d, "$tmp/rl_yes.csv" "$tmp/rl_lu.csv" 2>/dev/null | awk -F, 'NR > 1 {n++; h = NF / 2; if ($h != $NF || $h < 0) d++} END{printf "%d %d", n, d}')
 read rlfn rlfd <<< "$rlf"
 check "[ -n '$rlq' ] && [ '$rlq' -ge 8 ] && [ '$rlq' -le 24 ] && [ '${rln:-0}' -ge 80 ] && lt '$rld' 1e-7" "jenkins_nv lap1, 4 zone joints, linear field (first reduction): condensed onto $rlq rows of the joints' fields (8 to 24); amplitudes at $rln common frequencies = the modal equations' within $rld (< 1e-7)"
-check "[ '$rlr' = '$rlq' ] && [ '${rlfn:-0}' -ge 100 ] && [ '$rlfd' = 0 ]" "the same, stability through a basis of the $rlr rows (fast_rows): all $rlfn points flagged as by the fast block's LU ($rlfd differ or unflagged)"
+check "[ '$rlr' = '$rlq' ] && [ '${rlfn:-0}' -ge 100 ] && [ '$rlfd' = 0 ]" "the same, stability through a basis of the $rlr rows (fast_rows): all $rlfn points flagged as by the fast block's inverse ($rlfd differ or unflagged)"
 check "[ '${rlc:-0}' -gt 0 ] && [ '${rlsn:-0}' -ge 80 ] && [ '$rlsd' = 0 ]" "the same condensed: $rlc points certified by the incremental dissipativity; at $rlsn common frequencies the flags of the modal equations' run ($rlsd differ or unflagged)"
 osv=$(mpiexec -n 2 $J -task frf $nv $nvl -frf_force 0.01,0.5,2 -rom_joints zones -rom_elements 3 -rom_joint_motion mode -rom_save "$tmp/nvrom.h5" -frf_output_file "$tmp/nvsv" 2>&1)
 # the read basis's check, of the whole basis (its static vectors included): no more than the computing run's without

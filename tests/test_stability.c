@@ -754,7 +754,7 @@ int main(int argc, char **argv)
     CHECK(err[4] < 1e-2 * ref[0], "2-DOF, gamma 0.01, the default steps: condensed against marched differ by at most %.2e 1/s (< 1%% of %.3g 1/s)", err[4], ref[0]);
   }
 
-  /* ---- the fast modes condensed through the elements' distinct rows (Woodbury) = by the fast block's LU ----
+  /* ---- the fast modes condensed through the elements' distinct rows (Woodbury) = by the fast block's inverse ----
      a mass on a spring to ground and seven masses on stiff springs to it, six light (fast: above 20 H w, damped within
      a period) and mass 4 heavier (slow); three jenkins elements from light mass 1 to ground and two from light mass 2
      (two distinct rows), and two jenkins_nv elements on light mass 3 (tangential) and mass 4 (normal, preloaded,
@@ -820,7 +820,7 @@ int main(int argc, char **argv)
     }
     PetscCall(VecDestroy(&xv));
     PetscCall(ProblemDestroy(&p));
-    CHECK(nd0 == 0 && nd2 == 4 && nslip > 0 && err <= 1e-9 * ref, "8 DOFs, 7 light masses condensed, 7 elements on 4 distinct rows: at %" PetscInt_FMT " points (%" PetscInt_FMT " with slips marched) every exponent through the distinct rows (%" PetscInt_FMT " used) equals the fast block's LU's (%" PetscInt_FMT " rows) within %.2e 1/s (largest |real part| %.3g 1/s; <= 1e-9 of it)", npq, nslip, nd2, nd0, err, ref);
+    CHECK(nd0 == 0 && nd2 == 4 && nslip > 0 && err <= 1e-9 * ref, "8 DOFs, 7 light masses condensed, 7 elements on 4 distinct rows: at %" PetscInt_FMT " points (%" PetscInt_FMT " with slips marched) every exponent through the distinct rows (%" PetscInt_FMT " used) equals the fast block's inverse's (%" PetscInt_FMT " rows) within %.2e 1/s (largest |real part| %.3g 1/s; <= 1e-9 of it)", npq, nslip, nd2, nd0, err, ref);
   }
 
   /* ---- a symmetric 3-DOF system forced on its axis: symmetry-breaking branch points at H = 1 and 3 ---- */

@@ -80,7 +80,7 @@ struct _JRMonodromy {
   PetscReal *MCb;                     /* per point: Mm's and Cv's blocks over the slow and fast modes, ss, sf, fs, ff
                                          (PointBlocks; nk x nk each) */
   PetscBool  mcdiag[2];               /* per point: Mm, Cv diagonal (their blocks ss, ff then diagonals, sf, fs 0) */
-  PetscReal *Ts, *KFs, *bws;          /* per kept map: the modes over the slow ones T (nk x nsl, stride nk nk), Kff's LU
+  PetscReal *Ts, *KFs, *bws;          /* per kept map: the modes over the slow ones T (nk x nsl, stride nk nk), Kff^-1
                                          (nfa x nfa, stride nk nk), the held slips' stiffness (Bw = [r_e kt], nt, stride cap) */
   PetscBLASInt *pivs;                 /* per kept map: Kff's pivots (stride nk) */
   PetscReal *Rfa, *bwt;               /* per point: the tracked elements' r over the fast modes (nfa x nt); the step's held
@@ -210,7 +210,7 @@ static PetscErrorCode RowBasis(struct _JRMonodromy *f, PetscReal **Rd)
 }
 
 /* The elements' distinct rows among the l rows of RSt (equal to 1e-12 of the larger), f->nd of them, or else a basis
-   of their span (RowBasis), or f->nd = 0 where more than nk / 2 (the fast modes then condensed by Kff's LU per step);
+   of their span (RowBasis), or f->nd = 0 where more than nk / 2 (the fast modes then condensed by Kff^-1 per step);
    with them the reference stiffness Aref = K + sum over the elements stuck in contact (kt r r^T + kn s s^T), symmetric
    where K is, else f->nd = 0 */
 static PetscErrorCode DistinctRows(struct _JRMonodromy *f)
@@ -888,33 +888,36 @@ static void PointBlocks(struct _JRMonodromy *f)
    Kss + Ksf X (the Schur complement: Kfs + Kff X = 0, Kp symmetric or not) and Br = Bw_s - Ksf Kff^-1 Bw_f; for
    B = Mm, Cv, T^T B T = Bss + Bsf X + X^T (Bfs + Bff X) from the point's blocks (PointBlocks; Bss + X^T Bff X where
    B is diagonal); Br by the nc held slips' columns col. Out: X = [Kr, Cr, Br] (nsl x (2 nsl + nc)), Mr^-1 and
-   Mr^-1 Kr (at f->QW + 3 nk nk and + 4 nk nk, SlowSolve), wmax >= the stiffest slow mode, and slot k's T and Kff's LU
+   Mr^-1 Kr (at f->QW + 3 nk nk and + 4 nk nk, SlowSolve), wmax >= the stiffest slow mode, and slot k's T and Kff^-1
    for the commits. */
 static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, const PetscReal *Bw, PetscInt k, PetscInt nc, const PetscInt *col, PetscReal **X, PetscReal *wmax)
 {
   const PetscInt nk = f->nk, nsl = f->nsl, nfa = f->nfa, nt = f->mt - f->n2r;
   PetscReal     *Kp = f->Kp, *T = f->Ts + k * nk * nk, *MT = f->QW + 2 * nk * nk, *Mr = MT + nk * nk, *KF = f->KFs + k * nk * nk, *RH = Mr + 2 * nk * nk;
   PetscReal     *KS = f->QW, *BY = f->QW + nk * nk; /* Ksf (nsl x nfa); Bfs + Bff X (nfa x nsl) */
-  PetscBLASInt   bf, bs, brhs, info, *piv = f->pivs + k * nk;
+  PetscBLASInt   bf, lw, info, *piv = f->pivs + k * nk;
 
   PetscFunctionBeginUser;
   PetscCall(PetscBLASIntCast(nfa, &bf));
-  PetscCall(PetscBLASIntCast(nsl, &bs));
-  /* Kff's LU (kept for the commits); X = -Kff^-1 Kfs (in MT) */
+  PetscCall(PetscBLASIntCast(nk * nk, &lw));
+  /* Kff^-1 (kept for the commits: small, so an inverse and products cost less than triangular solves);
+     X = -Kff^-1 Kfs (in MT) */
   Block(Kp, nk, f->ifa, nfa, f->ifa, nfa, KF);
   PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bf, &bf, KF, &bf, piv, &info));
   PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the fast modes' stiffness is singular (LAPACK getrf info %d); -frf_stability_time_fast 0 marches every mode", (int)info);
-  for (PetscInt b = 0; b < nsl; b++)
-    for (PetscInt a = 0; a < nfa; a++) MT[a + b * nfa] = -Kp[f->ifa[a] + f->isl[b] * nk];
-  PetscCall(PetscBLASIntCast(nsl, &brhs));
-  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bf, &brhs, KF, &bf, piv, MT, &bf, &info));
+  PetscCallBLAS("LAPACKgetri", LAPACKgetri_(&bf, KF, &bf, piv, BY, &lw, &info));
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK getri failed (info %d)", (int)info);
   PetscCall(PetscArraycpy(f->bws + k * f->cap, f->bwt, nt));
   { /* RH's last block Br = Bw_s - Ksf Kff^-1 Bw_f = Bw_s - Z^T Bw_f, Z = Kff^-T Ksf^T (nfa x nsl), by the columns
        of the held slips of stuck elements (col; the others are 0) */
     PetscReal *Z = f->CB, *BF = Z + nfa * nsl, *BR = RH + 2 * nsl * nsl;
-    for (PetscInt i = 0; i < nsl; i++)
-      for (PetscInt a = 0; a < nfa; a++) Z[a + i * nfa] = Kp[f->isl[i] + f->ifa[a] * nk];
-    PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("T", &bf, &brhs, KF, &bf, piv, Z, &bf, &info));
+    for (PetscInt b = 0; b < nsl; b++)
+      for (PetscInt a = 0; a < nfa; a++) {
+        Z[a + b * nfa]  = Kp[f->ifa[a] + f->isl[b] * nk]; /* Kfs */
+        BF[a + b * nfa] = Kp[f->isl[b] + f->ifa[a] * nk]; /* Ksf^T */
+      }
+    PetscCall(JRGemm("N", "N", nfa, nsl, nfa, -1.0, KF, nfa, Z, nfa, 0.0, MT, nfa));
+    PetscCall(JRGemm("T", "N", nfa, nsl, nfa, 1.0, KF, nfa, BF, nfa, 0.0, Z, nfa));
     for (PetscInt q = 0; q < nc; q++) {
       for (PetscInt a = 0; a < nfa; a++) BF[a + q * nfa] = Bw[f->ifa[a] + col[q] * nk];
       for (PetscInt i = 0; i < nsl; i++) BR[i + q * nsl] = Bw[f->isl[i] + col[q] * nk];
@@ -1201,15 +1204,12 @@ static PetscErrorCode Commit(struct _JRMonodromy *f, PetscInt j, PetscInt k)
     PetscCall(JRGemm("N", "N", nr, m, nt, 1.0, B, nr, Y + n2, m, 1.0, f->DUV, nr));
   } else if (f->nfa) { /* DUV = (Rg T) Y_q + (Rg_f Kff^-1 R_f diag(bw)) Y_w, Rg_f Kff^-1 = (Kff^-T Rg_f^T)^T */
     const PetscInt nsl = f->nsl, nfa = f->nfa;
-    PetscReal     *A = f->CB, *B = A + nr * nsl, *Rf = B + nr * nt, *bw = f->bws + k * f->cap;
-    PetscBLASInt   bf, br, info;
-    PetscCall(PetscBLASIntCast(nfa, &bf));
-    PetscCall(PetscBLASIntCast(nr, &br));
+    PetscReal     *A = f->CB, *B = A + nr * nsl, *Rf = B + nr * nt, *KR = Rf + nfa * nr, *bw = f->bws + k * f->cap;
     PetscCall(JRGemm("N", "N", nr, nsl, nk, 1.0, f->Rg, nr, f->Ts + k * nk * nk, nk, 0.0, A, nr));
     for (PetscInt r = 0; r < nr; r++)
       for (PetscInt a = 0; a < nfa; a++) Rf[a + r * nfa] = f->Rg[r + f->ifa[a] * nr];
-    PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("T", &bf, &br, f->KFs + k * nk * nk, &bf, f->pivs + k * nk, Rf, &bf, &info));
-    PetscCall(JRGemm("T", "N", nr, nt, nfa, 1.0, Rf, nfa, f->Rfa, nfa, 0.0, B, nr));
+    PetscCall(JRGemm("T", "N", nfa, nr, nfa, 1.0, f->KFs + k * nk * nk, nfa, Rf, nfa, 0.0, KR, nfa)); /* Kff^-T Rg_f^T */
+    PetscCall(JRGemm("T", "N", nr, nt, nfa, 1.0, KR, nfa, f->Rfa, nfa, 0.0, B, nr));
     for (PetscInt c = 0; c < nt; c++)
       for (PetscInt r = 0; r < nr; r++) B[r + c * nr] *= bw[c];
     PetscCall(JRGemm("N", "N", nr, m, f->nsl, 1.0, A, nr, Y, m, 0.0, f->DUV, nr));
@@ -1509,7 +1509,7 @@ PetscErrorCode JRHBMFloquetTimePoints(JRHBM h, PetscInt np, const PetscReal omeg
 
 /*
   JRHBMGetFloquetLowRankRows - the distinct rows through which the last JRHBMFloquetTime() or JRHBMFloquetTimePoints()
-  condensed the fast modes (the most over the points; 0: by the fast block's LU, or none fast). Not collective.
+  condensed the fast modes (the most over the points; 0: by the fast block's inverse, or none fast). Not collective.
 */
 PetscErrorCode JRHBMGetFloquetLowRankRows(JRHBM h, PetscInt *nd)
 {

@@ -241,7 +241,7 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
   {
     const char *const lr[] = {"no", "auto", "yes"};
     PetscInt          v    = c->stablr;
-    PetscCall(PetscOptionsEList("-frf_stability_time_lowrank", "Fast modes condensed through the elements' distinct rows (Woodbury; reduced models' joints): auto where at most half as many as the fast modes, yes where at most half the kept modes, no: the fast block's LU at every step", "JRHBMSetFloquetLowRank", lr, 3, lr[v], &v, NULL));
+    PetscCall(PetscOptionsEList("-frf_stability_time_lowrank", "Fast modes condensed through the elements' distinct rows (Woodbury; reduced models' joints): auto where at most half as many as the fast modes, yes where at most half the kept modes, no: the fast block's inverse at every step", "JRHBMSetFloquetLowRank", lr, 3, lr[v], &v, NULL));
     c->stablr = v;
   }
   PetscCall(PetscOptionsInt("-frf_stability_dense_max", "Largest nm (2H+1) solved by LAPACK's QZ; above it SLEPc's PEP (prefix hbm_hill_, strip selection)", "JRHBMFloquet", c->stabdense, &c->stabdense, NULL));
