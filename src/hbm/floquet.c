@@ -53,13 +53,16 @@ struct _JRMonodromy {
   PetscReal  wmax;                    /* the stiffest mode with every element stuck [rad/s] */
   PetscReal *u, *v, *wn;              /* the point's motion at the half steps (ne x (2 ns + 1)), committed slip (ne x (ns + 1)) */
   PetscReal *rb, *nb;                 /* the slip bound mu n / kt and the normal load n at the half steps (ne x (2 ns + 1)) */
+  unsigned char *sde, *cnt;           /* each element's side + 1 at the steps' ends against the committed slip (ne x ns: step
+                                         j's end at sde[e ns + j]), and in contact (jenkins_nv, n > 0) at the half steps
+                                         (ne x (2 ns + 1)), of the point's motion */
   PetscReal *Y, *Y0, *Ys, *DUV, *DFN, *Wc; /* the march's work: DUV = [du; dv], DFN = [df; dn] (max(l, 2 ne, nk) x m) */
   PetscReal *ev, *wr, *wi, *work;
   PetscBLASInt lwork;
   PetscBool  smooth;                  /* a cubic spring: its stiffness follows the motion within a step (RK4 march) */
   PetscInt   nslot, next;             /* step maps kept, and the slot the next new one takes */
   unsigned char *key, *slotkey;       /* the current step's pattern (ne), each kept map's (JR_MONO_SLOTS x ne) */
-  unsigned char *ka, *kb, *kend;      /* a step's states of each element before and after a change within it, at its end */
+  unsigned char *ka, *kb;             /* a step's states of each element before and after a change within it */
   PetscReal     *th;                  /* the share of the step in state ka (ne) */
   PetscInt      *cls, *memp, mt;      /* per point: each element's class (JR_MONO_TRACK, _HOLD, _FORGET) and its slip's
                                          row among the tracked ones (-1: not tracked); the state's size 2 nk + tracked */
@@ -133,13 +136,14 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscCall(PetscFree4(f->Ra, f->Sa, f->RS, f->MRS));
   PetscCall(PetscFree5(f->K, f->C, f->Kg, f->Mi, f->G));
   PetscCall(PetscFree5(f->u, f->v, f->wn, f->rb, f->nb));
+  PetscCall(PetscFree2(f->sde, f->cnt));
   PetscCall(PetscFree3(f->Y, f->Y0, f->Ys));
   PetscCall(PetscFree3(f->DUV, f->DFN, f->Wc));
   PetscCall(PetscFree4(f->ev, f->wr, f->wi, f->work));
   PetscCall(PetscFree4(f->key, f->slotkey, f->SL, f->SW));
   PetscCall(PetscFree3(f->XL, f->XW, f->T2));
   PetscCall(PetscFree(f->trig));
-  PetscCall(PetscFree4(f->ka, f->kb, f->kend, f->th));
+  PetscCall(PetscFree3(f->ka, f->kb, f->th));
   PetscCall(PetscFree2(f->cls, f->memp));
   PetscCall(PetscFree2(f->ncol, f->cols));
   PetscCall(PetscFree3(f->PS, f->piv, f->RT));
@@ -451,7 +455,7 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
     const PetscInt n2 = 2 * nk;
     PetscCall(PetscMalloc4(ne + 1, &f->key, JR_MONO_SLOTS * ne + 1, &f->slotkey, (JR_MONO_SLOTS + 1) * n2 * n2 + 1, &f->SL, (JR_MONO_SLOTS + 1) * n2 * ne + 1, &f->SW));
     PetscCall(PetscMalloc3(n2 * n2 + 1, &f->XL, n2 * ne + 1, &f->XW, n2 * f->m + 1, &f->T2));
-    PetscCall(PetscMalloc4(ne + 1, &f->ka, ne + 1, &f->kb, ne + 1, &f->kend, ne + 1, &f->th));
+    PetscCall(PetscMalloc3(ne + 1, &f->ka, ne + 1, &f->kb, ne + 1, &f->th));
     PetscCall(PetscMalloc2(ne + 1, &f->cls, ne + 1, &f->memp));
     PetscCall(PetscMalloc2(JR_MONO_SLOTS + 1, &f->ncol, (JR_MONO_SLOTS + 1) * ne + 1, &f->cols));
     PetscCall(PetscMalloc3(5 * n2 * n2 + 1, &f->PS, n2 + 1, &f->piv, 2 * ne * nk + 1, &f->RT));
@@ -473,14 +477,8 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
   PetscFunctionReturn(0);
 }
 
-/* The slip bound r = mu n / kt and its normal load n of element e at the motion (u, v) */
-static inline PetscReal Bound(const struct _JRMonodromy *f, PetscInt e, PetscReal v, PetscReal *n)
-{
-  *n = f->type[e] == 1 ? PetscMax(0.0, f->n0[e] + f->kn[e] * v) : PetscMax(f->n0[e], 0.0);
-  return f->kt[e] > 0 ? f->mu[e] * *n / f->kt[e] : 0.0;
-}
-
-/* Bound() at element e's half step s of the point's motion (PointMotion keeps them) */
+/* The slip bound r = mu n / kt and its normal load n (n0 + kn v, at least 0, for jenkins_nv; n0 otherwise) at element
+   e's half step s of the point's motion (PointMotion keeps them) */
 static inline PetscReal HalfBound(const struct _JRMonodromy *f, PetscInt e, PetscInt s, PetscReal *n)
 {
   const PetscInt i = e * (2 * f->ns + 1) + s;
@@ -561,30 +559,38 @@ static PetscErrorCode PointMotion(JRHBM h, PetscReal w, const PetscReal *a)
   PetscCall(JRGemm("T", "T", N2, ne, nc, 1.0, tb, nc, uc, ne, 0.0, f->u, N2));
   PetscCall(JRGemm("T", "T", N2, ne, nc, 1.0, tb, nc, vc, ne, 0.0, f->v, N2));
   for (PetscInt e = 0; e < ne; e++) {
-    PetscReal s = 0.0, n;
-    for (PetscInt q = 0; q < N2; q++) f->rb[e * N2 + q] = Bound(f, e, f->v[e * N2 + q], &f->nb[e * N2 + q]);
+    const PetscReal *u = f->u + e * N2, *v = f->v + e * N2, n0 = f->n0[e], kn = f->kn[e], mu = f->mu[e], kt = f->kt[e];
+    PetscReal       *rb = f->rb + e * N2, *nb = f->nb + e * N2, *wn = f->wn + e * (ns + 1), s = 0.0;
+    unsigned char   *sd = f->sde + e * ns, *cn = f->cnt + e * N2;
+    if (f->type[e] == 1) /* Bound() */
+      for (PetscInt q = 0; q < N2; q++) {
+        nb[q] = PetscMax(0.0, n0 + kn * v[q]);
+        rb[q] = kt > 0 ? mu * nb[q] / kt : 0.0;
+        cn[q] = (unsigned char)(nb[q] > 0);
+      }
+    else
+      for (PetscInt q = 0; q < N2; q++) {
+        nb[q] = PetscMax(n0, 0.0);
+        rb[q] = kt > 0 ? mu * nb[q] / kt : 0.0;
+        cn[q] = 0;
+      }
     if (f->type[e] == 2) continue;
     for (PetscInt p = 0; p < 3; p++) /* two periods to the periodic slip, then the third's committed values */
       for (PetscInt j = 0; j <= ns; j++) {
-        const PetscReal r = HalfBound(f, e, 2 * j, &n), uu = f->u[e * N2 + 2 * j];
-        s = PetscMin(PetscMax(s, uu - r), uu + r);
-        if (p == 2) f->wn[e * (ns + 1) + j] = s;
+        s = PetscMin(PetscMax(s, u[2 * j] - rb[2 * j]), u[2 * j] + rb[2 * j]);
+        if (p == 2) wn[j] = s;
       }
+    for (PetscInt j = 0; j < ns; j++) /* Side() at the steps' ends */
+      sd[j] = (unsigned char)(wn[j] < u[2 * j + 2] - rb[2 * j + 2] ? 0 : wn[j] > u[2 * j + 2] + rb[2 * j + 2] ? 2 : 1);
   }
   PetscFunctionReturn(0);
 }
 
-/* Element e's state at half step s against the committed slip of step j: side -1 / 1 slipping at the lower / upper
-   bound, 0 stuck; contact: a jenkins_nv element in contact; drdv: the bound's derivative in the normal motion */
-static inline PetscInt Side(const struct _JRMonodromy *f, PetscInt e, PetscInt s, PetscInt j, PetscBool *contact, PetscReal *drdv)
+/* Element e's state at the end of step j against its committed slip (PointMotion keeps them): -1 / 1 slipping at the
+   lower / upper bound, 0 stuck */
+static inline PetscInt Side(const struct _JRMonodromy *f, PetscInt e, PetscInt j)
 {
-  const PetscInt  N2 = 2 * f->ns + 1;
-  const PetscReal u = f->u[e * N2 + s], w = f->wn[e * (f->ns + 1) + j];
-  PetscReal       n, r = HalfBound(f, e, s, &n);
-
-  *contact = (PetscBool)(f->type[e] == 1 && n > 0);
-  *drdv    = *contact && f->kt[e] > 0 ? f->mu[e] * f->kn[e] / f->kt[e] : 0.0;
-  return w < u - r ? -1 : w > u + r ? 1 : 0;
+  return (PetscInt)f->sde[e * f->ns + j] - 1;
 }
 
 /* The fundamental matrix Y (m x m, from the identity) over one period with a cubic spring, whose stiffness follows
@@ -648,35 +654,28 @@ static inline PetscReal Zero(PetscReal a, PetscReal b)
    step only where its slip is committed at the step's end, from where |u - w| - mu n / kt crosses zero if it was stuck
    at the last step's end; a jenkins_nv contact opens or closes where n crosses zero (each zero by linear interpolation
    between the half steps). Output: the states before and after (side + 1, plus 3 in contact) and the share th of the
-   step before; f->kend[e] becomes the step's end side + 1. */
+   step before. */
 static void StepStates(struct _JRMonodromy *f, PetscInt e, PetscInt j, unsigned char *ka, unsigned char *kb, PetscReal *th)
 {
-  const PetscInt  N2 = 2 * f->ns + 1;
-  const PetscReal w  = f->wn[e * (f->ns + 1) + j];
-  PetscReal       g[3], n[3], ts = -1.0, tc = -1.0, drdv;
-  PetscBool       c[3];
-  PetscInt        sprev, send, sa = 0, ca, cb;
+  const PetscInt       ns = f->ns, N2 = 2 * ns + 1, i = e * N2 + 2 * j;
+  const unsigned char *cn = f->cnt + i;
+  const PetscInt       sprev = Side(f, e, j ? j - 1 : ns - 1), send = Side(f, e, j);
+  PetscReal            ts = -1.0, tc = -1.0;
+  PetscInt             sa = 0, ca, cb;
 
-  for (PetscInt q = 0; q < 3; q++) {
-    const PetscInt  s = 2 * j + q;
-    PetscReal       nn;
-    const PetscReal r = HalfBound(f, e, s, &nn);
-    g[q]              = PetscAbsReal(f->u[e * N2 + s] - w) - r;
-    n[q]              = f->n0[e] + f->kn[e] * f->v[e * N2 + s];
-    c[q]              = (PetscBool)(f->type[e] == 1 && nn > 0);
-  }
-  sprev       = j ? (PetscInt)f->kend[e] - 1 : Side(f, e, 2 * f->ns, f->ns - 1, &c[1], &drdv);
-  c[1]        = (PetscBool)(f->type[e] == 1 && n[1] > 0);
-  send        = Side(f, e, 2 * j + 2, j, &c[2], &drdv);
-  f->kend[e]  = (unsigned char)(send + 1);
   if (send) {
     sa = sprev == send || f->cls[e] == JR_MONO_FORGET ? send : 0;
-    if (!sa) ts = g[1] > 0 ? 0.5 * Zero(g[0], g[1]) : 0.5 + 0.5 * Zero(g[1], g[2]);
+    if (!sa) { /* stuck at the last step's end: it starts to slip where |u - w| - mu n / kt crosses zero */
+      const PetscReal  w = f->wn[e * (ns + 1) + j], *u = f->u + i, *rb = f->rb + i;
+      const PetscReal  g0 = PetscAbsReal(u[0] - w) - rb[0], g1 = PetscAbsReal(u[1] - w) - rb[1], g2 = PetscAbsReal(u[2] - w) - rb[2];
+      ts = g1 > 0 ? 0.5 * Zero(g0, g1) : 0.5 + 0.5 * Zero(g1, g2);
+    }
   }
-  ca = cb = c[0];
-  if (c[0] != c[2]) {
-    cb = c[2];
-    tc = c[1] == c[2] ? 0.5 * Zero(n[0], n[1]) : 0.5 + 0.5 * Zero(n[1], n[2]);
+  ca = cb = cn[0];
+  if (cn[0] != cn[2]) { /* the contact opens or closes where n0 + kn v crosses zero */
+    const PetscReal *v = f->v + i, n0 = f->n0[e], kn = f->kn[e];
+    cb = cn[2];
+    tc = cn[1] == cn[2] ? 0.5 * Zero(n0 + kn * v[0], n0 + kn * v[1]) : 0.5 + 0.5 * Zero(n0 + kn * v[1], n0 + kn * v[2]);
   }
   *ka = (unsigned char)(sa + 1 + (ca ? 3 : 0));
   *kb = (unsigned char)(send + 1 + (cb ? 3 : 0));
@@ -692,12 +691,10 @@ static PetscInt Classify(struct _JRMonodromy *f)
   PetscInt       nt = 0;
 
   for (PetscInt e = 0; e < f->ne; e++) {
-    PetscInt  commits = 0, contacts = 0;
-    PetscBool contact;
-    PetscReal drdv;
+    PetscInt commits = 0, contacts = 0;
     for (PetscInt j = 0; j < f->ns; j++) {
-      if (Side(f, e, 2 * j + 2, j, &contact, &drdv)) commits++;
-      if (f->type[e] == 1 && f->n0[e] + f->kn[e] * f->v[e * N2 + 2 * j + 1] > 0) contacts++;
+      if (Side(f, e, j)) commits++;
+      if (f->cnt[e * N2 + 2 * j + 1]) contacts++;
     }
     f->cls[e]  = commits == f->ns ? JR_MONO_FORGET : commits == 0 && (contacts == 0 || contacts == f->ns) ? JR_MONO_HOLD : JR_MONO_TRACK;
     f->memp[e] = f->cls[e] == JR_MONO_TRACK ? nt++ : -1;
@@ -1178,10 +1175,10 @@ static PetscErrorCode Commit(struct _JRMonodromy *f, PetscInt j, PetscInt k)
 
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < ne; e++) {
-    PetscBool      contact;
-    PetscReal      drdv, dn;
-    const PetscInt sd = f->memp[e] < 0 ? 0 : Side(f, e, 2 * j + 2, j, &contact, &drdv), q = 2 * f->memp[e];
-    if (!sd || (j + 1 < f->ns && Side(f, e, 2 * j + 4, j + 1, &contact, &dn) == sd)) continue;
+    const PetscInt  sd = f->memp[e] < 0 ? 0 : Side(f, e, j), q = 2 * f->memp[e];
+    const PetscBool contact = (PetscBool)(sd && f->cnt[e * (2 * f->ns + 1) + 2 * j + 2]);
+    const PetscReal drdv    = contact && f->kt[e] > 0 ? f->mu[e] * f->kn[e] / f->kt[e] : 0.0;
+    if (!sd || (j + 1 < f->ns && Side(f, e, j + 1) == sd)) continue;
     side[e]       = sd * drdv;
     f->rows[nr++] = q;
     if (drdv != 0.0) f->rows[nr++] = q + 1;
@@ -1343,9 +1340,11 @@ static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, P
   PetscFunctionBeginUser;
   if (ns != f->ns) {
     PetscCall(PetscFree5(f->u, f->v, f->wn, f->rb, f->nb));
+    PetscCall(PetscFree2(f->sde, f->cnt));
     PetscCall(PetscFree(f->trig));
     f->ns = ns;
     PetscCall(PetscMalloc5(f->ne * (2 * ns + 1) + 1, &f->u, f->ne * (2 * ns + 1) + 1, &f->v, f->ne * (ns + 1) + 1, &f->wn, f->ne * (2 * ns + 1) + 1, &f->rb, f->ne * (2 * ns + 1) + 1, &f->nb));
+    PetscCall(PetscMalloc2(f->ne * ns + 1, &f->sde, f->ne * (2 * ns + 1) + 1, &f->cnt));
     PetscCall(PetscMalloc1(h->nc * (2 * ns + 1 + 2 * f->ne) + 1, &f->trig));
   }
   Cv = f->smooth ? f->Y0 : f->Cv; /* Cm + (gamma / w) Kg at this frequency */
