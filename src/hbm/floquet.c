@@ -837,6 +837,68 @@ static PetscErrorCode StiffnessUpdate(struct _JRMonodromy *f, PetscReal *Bw)
   PetscFunctionReturn(0);
 }
 
+/* A <- A^-1 (n x n, column-major, in place), or *singular where a pivot is 0. Up to JR_MONO_GJ_MAX by Gauss-Jordan
+   elimination with partial pivoting (row interchanges, undone on the columns at the end): at the step maps' sizes
+   (10-30) LAPACK's getrf and getri cost several times more, in their calls to level-2 BLAS; larger by them.
+   piv: n, work: n x n. */
+#define JR_MONO_GJ_MAX 48
+static PetscErrorCode SmallInverse(PetscInt n, PetscReal *A, PetscBLASInt *piv, PetscReal *work, PetscBool *singular)
+{
+  PetscFunctionBeginUser;
+  *singular = PETSC_FALSE;
+  if (n > JR_MONO_GJ_MAX) {
+    PetscBLASInt bn, lw, info;
+    PetscCall(PetscBLASIntCast(n, &bn));
+    PetscCall(PetscBLASIntCast(n * n, &lw));
+    PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bn, &bn, A, &bn, piv, &info));
+    PetscCheck(info >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK getrf: argument %d", (int)-info);
+    if (info > 0) {
+      *singular = PETSC_TRUE;
+      PetscFunctionReturn(0);
+    }
+    PetscCallBLAS("LAPACKgetri", LAPACKgetri_(&bn, A, &bn, piv, work, &lw, &info));
+    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK getri failed (info %d)", (int)info);
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt k = 0; k < n; k++) {
+    PetscInt  p = k;
+    PetscReal d, *c = work;
+    for (PetscInt i = k + 1; i < n; i++)
+      if (PetscAbsReal(A[i + k * n]) > PetscAbsReal(A[p + k * n])) p = i;
+    if (A[p + k * n] == 0.0) {
+      *singular = PETSC_TRUE;
+      PetscFunctionReturn(0);
+    }
+    piv[k] = (PetscBLASInt)p;
+    if (p != k)
+      for (PetscInt j = 0; j < n; j++) {
+        const PetscReal t = A[k + j * n];
+        A[k + j * n]      = A[p + j * n];
+        A[p + j * n]      = t;
+      }
+    d = 1.0 / A[k + k * n];
+    for (PetscInt i = 0; i < n; i++) c[i] = A[i + k * n];
+    c[k] = 0.0;
+    for (PetscInt j = 0; j < n; j++) {
+      PetscReal *a = A + j * n, akj;
+      if (j == k) continue;
+      akj  = a[k] * d;
+      a[k] = akj;
+      for (PetscInt i = 0; i < n; i++) a[i] -= c[i] * akj;
+    }
+    for (PetscInt i = 0; i < n; i++) A[i + k * n] = -c[i] * d;
+    A[k + k * n] = d;
+  }
+  for (PetscInt k = n - 1; k >= 0; k--)
+    if (piv[k] != k)
+      for (PetscInt i = 0; i < n; i++) {
+        const PetscReal t  = A[i + k * n];
+        A[i + k * n]       = A[i + piv[k] * n];
+        A[i + piv[k] * n]  = t;
+      }
+  PetscFunctionReturn(0);
+}
+
 /* The slow modes' equations after the condensation: Mr becomes Mr^-1 (in place; small, so an inverse and products
    cost less than triangular solves with the 2 nsl + held slips right-hand sides RH = [Kr, Cr, Br]); P = Mr^-1 Kr
    (nsl x nsl) and wmax >= the stiffest slow mode, the square root of P's 1-norm */
@@ -844,15 +906,11 @@ static PetscErrorCode SlowSolve(struct _JRMonodromy *f, PetscReal *Mr, const Pet
 {
   const PetscInt nsl = f->nsl;
   PetscReal      norm = 0.0;
-  PetscBLASInt   bs, lw, info;
+  PetscBool      singular;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscBLASIntCast(nsl, &bs));
-  PetscCall(PetscBLASIntCast(f->nk * f->nk, &lw));
-  PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bs, &bs, Mr, &bs, f->piv, &info));
-  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the condensed modal mass is singular (LAPACK getrf info %d)", (int)info);
-  PetscCallBLAS("LAPACKgetri", LAPACKgetri_(&bs, Mr, &bs, f->piv, P, &lw, &info));
-  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK getri failed (info %d)", (int)info);
+  PetscCall(SmallInverse(nsl, Mr, f->piv, P, &singular));
+  PetscCheck(!singular, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the condensed modal mass is singular");
   PetscCall(JRGemm("N", "N", nsl, nsl, nsl, 1.0, Mr, nsl, RH, nsl, 0.0, P, nsl));
   for (PetscInt c = 0; c < nsl; c++) {
     PetscReal cs = 0.0;
@@ -909,18 +967,15 @@ static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, const PetscReal *Bw, P
   const PetscInt nk = f->nk, nsl = f->nsl, nfa = f->nfa, nt = f->mt - f->n2r;
   PetscReal     *Kp = f->Kp, *T = f->Ts + k * nk * nk, *MT = f->QW + 2 * nk * nk, *Mr = MT + nk * nk, *KF = f->KFs + k * nk * nk, *RH = Mr + 2 * nk * nk;
   PetscReal     *KS = f->QW, *BY = f->QW + nk * nk; /* Ksf (nsl x nfa); Bfs + Bff X (nfa x nsl) */
-  PetscBLASInt   bf, lw, info, *piv = f->pivs + k * nk;
+  PetscBLASInt  *piv = f->pivs + k * nk;
+  PetscBool      singular;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscBLASIntCast(nfa, &bf));
-  PetscCall(PetscBLASIntCast(nk * nk, &lw));
   /* Kff^-1 (kept for the commits: small, so an inverse and products cost less than triangular solves);
      X = -Kff^-1 Kfs (in MT) */
   Block(Kp, nk, f->ifa, nfa, f->ifa, nfa, KF);
-  PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bf, &bf, KF, &bf, piv, &info));
-  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the fast modes' stiffness is singular (LAPACK getrf info %d); -frf_stability_time_fast 0 marches every mode", (int)info);
-  PetscCallBLAS("LAPACKgetri", LAPACKgetri_(&bf, KF, &bf, piv, BY, &lw, &info));
-  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK getri failed (info %d)", (int)info);
+  PetscCall(SmallInverse(nfa, KF, piv, BY, &singular));
+  PetscCheck(!singular, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the fast modes' stiffness is singular; -frf_stability_time_fast 0 marches every mode");
   PetscCall(PetscArraycpy(f->bws + k * f->cap, f->bwt, nt));
   { /* RH's last block Br = Bw_s - Ksf Kff^-1 Bw_f = Bw_s - Z^T Bw_f, Z = Kff^-T Ksf^T (nfa x nsl), by the columns
        of the held slips of stuck elements (col; the others are 0) */
@@ -1052,11 +1107,9 @@ static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscInt
   const PetscReal *U = f->LR, *G = U + nfa * nd, *W = G + nd * nd, *Rs = W + nd * nsl, *K0 = Rs + nd * nsl, *KU = K0 + nsl * nsl, *B0 = KU + nsl * nd;
   PetscReal     *dD = f->LW, *DG = dD + nd * nd, *P = DG + nd * nd, *Q1 = P + nd * nd, *DH = Q1 + nd * nd, *Y = DH + nd * nd, *DW = Y + nd * nsl, *DR = DW + nd * nsl, *tmp = DR + nd * nsl, *Bm = tmp + nd * nsl;
   PetscReal     *RT = f->Ts + k * nk * nk, *Hn = f->KFs + k * nk * nk, *Mr = f->QW + 3 * nk * nk, *RH = f->QW + 5 * nk * nk;
-  PetscBLASInt   bd, bdd, info;
+  PetscBool      singular;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscBLASIntCast(nd, &bd));
-  PetscCall(PetscBLASIntCast(nd * nd, &bdd));
   PetscCall(PetscArraycpy(f->bws + k * f->cap, f->bwt, nt));
   if (!f->dvalid) { /* from the reference coefficients, at the point's first map; then by the elements that change */
     PetscCall(PetscArrayzero(f->dDk, nd * nd));
@@ -1085,10 +1138,8 @@ static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscInt
   PetscCall(JRGemm("N", "N", nd, nd, nd, 1.0, dD, nd, G, nd, 0.0, DG, nd));
   PetscCall(PetscArraycpy(P, DG, nd * nd));
   for (PetscInt i = 0; i < nd; i++) P[i + i * nd] += 1.0;
-  PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bd, &bd, P, &bd, f->lpiv, &info));
-  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the fast modes' stiffness is singular (LAPACK getrf info %d); -frf_stability_time_fast 0 marches every mode", (int)info);
-  PetscCallBLAS("LAPACKgetri", LAPACKgetri_(&bd, P, &bd, f->lpiv, DH, &bdd, &info)); /* Q1 = I - P^-1 dD G = P^-1 */
-  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK getri failed (info %d)", (int)info);
+  PetscCall(SmallInverse(nd, P, f->lpiv, DH, &singular)); /* Q1 = I - P^-1 dD G = P^-1 */
+  PetscCheck(!singular, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the fast modes' stiffness is singular; -frf_stability_time_fast 0 marches every mode");
   PetscCall(PetscArraycpy(Q1, P, nd * nd));
   PetscCall(JRGemm("N", "N", nd, nsl, nd, 1.0, dD, nd, W, nd, 0.0, DW, nd));
   PetscCall(JRGemm("N", "N", nd, nsl, nd, 1.0, Q1, nd, DW, nd, 0.0, Y, nd));
