@@ -726,12 +726,26 @@ static PetscInt Classify(struct _JRMonodromy *f)
   return f->mt;
 }
 
+/* Y = XL X (n2 x n2) for XL = [0, a I; A, B] (a step's matrix: q' = p): Y's first half a X's second half, its
+   second half [A, B] X, half a product */
+static PetscErrorCode LeftXL(PetscInt n2, const PetscReal *XL, const PetscReal *X, PetscReal *Y)
+{
+  const PetscInt  h = n2 / 2;
+  const PetscReal a = XL[h * n2];
+
+  PetscFunctionBeginUser;
+  for (PetscInt c = 0; c < n2; c++)
+    for (PetscInt i = 0; i < h; i++) Y[i + c * n2] = a * X[h + i + c * n2];
+  PetscCall(JRGemm("N", "N", h, n2, n2, 1.0, XL + h, n2, X, n2, 0.0, Y + h, n2));
+  PetscFunctionReturn(0);
+}
+
 /* SL = exp(XL) ^ (2^sq) (n2 x n2) and, where G is given, G = the last n2 / 2 columns of phi1(XL) = sum_k XL^k / (k + 1)!
    carried through the same squarings (n2 x n2 / 2): the held slips' response over the step is then G XW's last n2 / 2
    rows, exactly as the map of the augmented matrix [XL, XW; 0, 0] has it, with no inverse of XL. Both by their
    Taylor polynomials of degree JR_MONO_TAYLOR = 8 with Paterson and Stockmeyer's scheme, p(X) = B0 + X^4 B1, B0 and
-   B1 of degree 3 and 4 in X (four products for SL, one more for G), then squared sq times: [E, F; 0, I]^2 = [E E,
-   (E + I) F; 0, I]; work (4 n2 x n2) */
+   B1 of degree 3 and 4 in X (XL's powers by LeftXL, then one product for SL, one more for G), then squared sq times:
+   [E, F; 0, I]^2 = [E E, (E + I) F; 0, I]; work (4 n2 x n2) */
 static PetscErrorCode ExpmPhi(PetscInt n2, const PetscReal *XL, PetscInt sq, PetscReal *SL, PetscReal *G, PetscReal *work)
 {
   PetscReal     *X2 = work, *X3 = work + n2 * n2, *X4 = work + 2 * n2 * n2, *B = work + 3 * n2 * n2;
@@ -741,9 +755,9 @@ static PetscErrorCode ExpmPhi(PetscInt n2, const PetscReal *XL, PetscInt sq, Pet
   PetscFunctionBeginUser;
   c[0] = 1.0;
   for (PetscInt i = 1; i <= JR_MONO_TAYLOR + 1; i++) c[i] = c[i - 1] / i;
-  PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, XL, n2, XL, n2, 0.0, X2, n2));
-  PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, X2, n2, XL, n2, 0.0, X3, n2));
-  PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, X2, n2, X2, n2, 0.0, X4, n2));
+  PetscCall(LeftXL(n2, XL, XL, X2));
+  PetscCall(LeftXL(n2, XL, X2, X3));
+  PetscCall(LeftXL(n2, XL, X3, X4));
   for (PetscInt i = 0; i < n2 * n2; i++) B[i] = c[5] * XL[i] + c[6] * X2[i] + c[7] * X3[i] + c[8] * X4[i];
   for (PetscInt i = 0; i < n2; i++) B[i + i * n2] += c[4];
   PetscCall(JRGemm("N", "N", n2, n2, n2, 1.0, X4, n2, B, n2, 0.0, SL, n2));
