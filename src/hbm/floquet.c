@@ -66,6 +66,11 @@ struct _JRMonodromy {
   PetscReal     *th;                  /* the share of the step in state ka (ne) */
   PetscInt      *cls, *memp, mt;      /* per point: each element's class (JR_MONO_TRACK, _HOLD, _FORGET) and its slip's
                                          row among the tracked ones (-1: not tracked); the state's size 2 nk + tracked */
+  PetscInt      *tel;                 /* per point: each tracked slip's element */
+  unsigned char *lka, *lkb;           /* each element's states at the last StiffnessUpdate (valid where svalid) */
+  PetscReal     *lth;
+  PetscBool      svalid;
+  PetscInt      *chg, nchg;           /* the step's elements whose states differ from those (all where not svalid) */
   PetscReal *SL, *SW;                 /* the kept step maps: n2 x n2 and n2 x ne each, n2 = 2 nk; SW's columns those of the
                                          held slips of stuck elements only (the others' are 0) */
   PetscInt  *ncol, *cols;             /* per kept map: those columns' number and their slips (JR_MONO_SLOTS + 1, x ne) */
@@ -144,7 +149,8 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscCall(PetscFree3(f->XL, f->XW, f->T2));
   PetscCall(PetscFree(f->trig));
   PetscCall(PetscFree3(f->ka, f->kb, f->th));
-  PetscCall(PetscFree2(f->cls, f->memp));
+  PetscCall(PetscFree3(f->cls, f->memp, f->tel));
+  PetscCall(PetscFree4(f->lka, f->lkb, f->lth, f->chg));
   PetscCall(PetscFree2(f->ncol, f->cols));
   PetscCall(PetscFree3(f->PS, f->piv, f->RT));
   PetscCall(PetscFree5(f->isl, f->ifa, f->Mm, f->Cv, f->QW));
@@ -456,7 +462,8 @@ static PetscErrorCode MonodromySetUp(JRHBM h)
     PetscCall(PetscMalloc4(ne + 1, &f->key, JR_MONO_SLOTS * ne + 1, &f->slotkey, (JR_MONO_SLOTS + 1) * n2 * n2 + 1, &f->SL, (JR_MONO_SLOTS + 1) * n2 * ne + 1, &f->SW));
     PetscCall(PetscMalloc3(n2 * n2 + 1, &f->XL, n2 * ne + 1, &f->XW, n2 * f->m + 1, &f->T2));
     PetscCall(PetscMalloc3(ne + 1, &f->ka, ne + 1, &f->kb, ne + 1, &f->th));
-    PetscCall(PetscMalloc2(ne + 1, &f->cls, ne + 1, &f->memp));
+    PetscCall(PetscMalloc3(ne + 1, &f->cls, ne + 1, &f->memp, ne + 1, &f->tel));
+    PetscCall(PetscMalloc4(ne + 1, &f->lka, ne + 1, &f->lkb, ne + 1, &f->lth, ne + 1, &f->chg));
     PetscCall(PetscMalloc2(JR_MONO_SLOTS + 1, &f->ncol, (JR_MONO_SLOTS + 1) * ne + 1, &f->cols));
     PetscCall(PetscMalloc3(5 * n2 * n2 + 1, &f->PS, n2 + 1, &f->piv, 2 * ne * nk + 1, &f->RT));
     PetscCall(PetscMalloc5(nk + 1, &f->isl, nk + 1, &f->ifa, nk * nk + 1, &f->Mm, nk * nk + 1, &f->Cv, 9 * nk * nk + 4 * nk * ne + 1, &f->QW));
@@ -714,7 +721,11 @@ static PetscInt Classify(struct _JRMonodromy *f)
       if (f->cnt[e * N2 + 2 * j + 1]) contacts++;
     }
     f->cls[e]  = commits == f->ns ? JR_MONO_FORGET : commits == 0 && (contacts == 0 || contacts == f->ns) ? JR_MONO_HOLD : JR_MONO_TRACK;
-    f->memp[e] = f->cls[e] == JR_MONO_TRACK ? nt++ : -1;
+    f->memp[e] = -1;
+    if (f->cls[e] == JR_MONO_TRACK) {
+      f->tel[nt] = e;
+      f->memp[e] = nt++;
+    }
   }
   for (PetscInt e = 0; e < f->ne; e++) /* the tracked elements' rows, for their motion at the steps' ends */
     if (f->memp[e] >= 0)
@@ -786,15 +797,19 @@ static PetscErrorCode ExpmPhi(PetscInt n2, const PetscReal *XL, PetscInt sq, Pet
 /* The stiffness of the step's element states (f->ka, f->kb, f->th: each element's two states weighted by their
    shares), Kp = K + sum_e (a r r^T + b r s^T + c s s^T): a = kt stuck, b = -side kt d(mu n / kt)/dv slipping in
    contact (jenkins_nv), c = kn in contact; updated by the elements whose coefficients change, in full at a point's
-   first step. Bw (nk x nt): a held slip's force kt w on the modes, kt r_e of the tracked elements stuck. */
-static PetscErrorCode StiffnessUpdate(struct _JRMonodromy *f, PetscReal *Bw)
+   first step. f->bwt: a held slip's stiffness, kt of the tracked elements stuck (its force on the modes kt w r_e).
+   Only the elements whose states differ from those of the last call (f->chg) are visited. */
+static PetscErrorCode StiffnessUpdate(struct _JRMonodromy *f)
 {
-  const PetscInt nk = f->nk, ne = f->ne, nt = f->mt - f->n2r;
+  const PetscInt nk = f->nk, ne = f->ne;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscArrayzero(Bw, nk * nt));
-  for (PetscInt e = 0; e < ne; e++) {
-    PetscReal *c = f->cfn + 3 * e, bw = 0.0;
+  for (PetscInt ic = 0; ic < f->nchg; ic++) {
+    const PetscInt e = f->chg[ic];
+    PetscReal     *c = f->cfn + 3 * e, bw = 0.0;
+    f->lka[e] = f->ka[e];
+    f->lkb[e] = f->kb[e];
+    f->lth[e] = f->th[e];
     c[0] = c[1] = c[2] = 0.0;
     for (PetscInt q = 0; q < 2; q++) {
       const unsigned char st = q ? f->kb[e] : f->ka[e];
@@ -809,9 +824,8 @@ static PetscErrorCode StiffnessUpdate(struct _JRMonodromy *f, PetscReal *Bw)
       if (side == 0) bw += wq * kt;
     }
     if (f->memp[e] >= 0) f->bwt[f->memp[e]] = bw;
-    if (bw != 0.0 && f->memp[e] >= 0)
-      for (PetscInt i = 0; i < nk; i++) Bw[i + f->memp[e] * nk] = bw * f->RSt[i + e * nk];
   }
+  f->svalid = PETSC_TRUE;
   if (f->lowrank && f->nfa) { /* LowRankStatic takes the coefficients, not Kp */
     f->kvalid = PETSC_FALSE;
   } else if (!f->kvalid) { /* Kp = K + [R; S]^T V^T, V's columns a r + b s (row e) and c s (row srow[e]) */
@@ -824,13 +838,19 @@ static PetscErrorCode StiffnessUpdate(struct _JRMonodromy *f, PetscReal *Bw)
     }
     PetscCall(PetscArraycpy(f->Kp, f->K, nk * nk));
     PetscCall(JRGemm("N", "T", nk, nk, f->l, 1.0, f->RSt, nk, V, nk, 1.0, f->Kp, nk));
+    PetscCall(PetscArraycpy(f->cf, f->cfn, 3 * ne));
     f->kvalid = PETSC_TRUE;
   } else { /* Kp += A V^T over the elements whose coefficients change: A's columns r (and s), V's a r + b s (and c s) */
     PetscReal *A = f->DUV, *V = A + 2 * nk * ne;
     PetscInt   nu = 0;
-    for (PetscInt e = 0; e < ne; e++) {
-      const PetscReal *c = f->cfn + 3 * e, *o = f->cf + 3 * e, *r = f->RSt + e * nk, *sv = f->srow[e] >= 0 ? f->RSt + f->srow[e] * nk : NULL;
+    for (PetscInt ic = 0; ic < f->nchg; ic++) {
+      const PetscInt   e = f->chg[ic];
+      PetscReal       *o = f->cf + 3 * e;
+      const PetscReal *c = f->cfn + 3 * e, *r = f->RSt + e * nk, *sv = f->srow[e] >= 0 ? f->RSt + f->srow[e] * nk : NULL;
       const PetscReal  da = c[0] - o[0], db = c[1] - o[1], dc = c[2] - o[2];
+      o[0] = c[0];
+      o[1] = c[1];
+      o[2] = c[2];
       if (da == 0.0 && db == 0.0 && dc == 0.0) continue;
       for (PetscInt i = 0; i < nk; i++) {
         A[i + nu * nk] = r[i];
@@ -847,7 +867,6 @@ static PetscErrorCode StiffnessUpdate(struct _JRMonodromy *f, PetscReal *Bw)
     }
     if (nu) PetscCall(JRGemm("N", "T", nk, nk, nu, 1.0, A, nk, V, nk, 1.0, f->Kp, nk));
   }
-  PetscCall(PetscArraycpy(f->cf, f->cfn, 3 * ne));
   PetscFunctionReturn(0);
 }
 
@@ -976,7 +995,7 @@ static void PointBlocks(struct _JRMonodromy *f)
    B is diagonal); Br by the nc held slips' columns col. Out: X = [Kr, Cr, Br] (nsl x (2 nsl + nc)), Mr^-1 and
    Mr^-1 Kr (at f->QW + 3 nk nk and + 4 nk nk, SlowSolve), wmax >= the stiffest slow mode, and slot k's T and Kff^-1
    for the commits. */
-static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, const PetscReal *Bw, PetscInt k, PetscInt nc, const PetscInt *col, PetscReal **X, PetscReal *wmax)
+static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, PetscInt k, PetscInt nc, const PetscInt *col, PetscReal **X, PetscReal *wmax)
 {
   const PetscInt nk = f->nk, nsl = f->nsl, nfa = f->nfa, nt = f->mt - f->n2r;
   PetscReal     *Kp = f->Kp, *T = f->Ts + k * nk * nk, *MT = f->QW + 2 * nk * nk, *Mr = MT + nk * nk, *KF = f->KFs + k * nk * nk, *RH = Mr + 2 * nk * nk;
@@ -1001,9 +1020,10 @@ static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, const PetscReal *Bw, P
       }
     PetscCall(JRGemm("N", "N", nfa, nsl, nfa, -1.0, KF, nfa, Z, nfa, 0.0, MT, nfa));
     PetscCall(JRGemm("T", "N", nfa, nsl, nfa, 1.0, KF, nfa, BF, nfa, 0.0, Z, nfa));
-    for (PetscInt q = 0; q < nc; q++) {
-      for (PetscInt a = 0; a < nfa; a++) BF[a + q * nfa] = Bw[f->ifa[a] + col[q] * nk];
-      for (PetscInt i = 0; i < nsl; i++) BR[i + q * nsl] = Bw[f->isl[i] + col[q] * nk];
+    for (PetscInt q = 0; q < nc; q++) { /* Bw's column: bwt r_e */
+      const PetscReal *r = f->RSt + f->tel[col[q]] * nk, bw = f->bwt[col[q]];
+      for (PetscInt a = 0; a < nfa; a++) BF[a + q * nfa] = bw * r[f->ifa[a]];
+      for (PetscInt i = 0; i < nsl; i++) BR[i + q * nsl] = bw * r[f->isl[i]];
     }
     PetscCall(JRGemm("T", "N", nsl, nc, nfa, -1.0, Z, nfa, BF, nfa, 1.0, BR, nsl));
   }
@@ -1122,16 +1142,22 @@ static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscInt
   PetscReal     *dD = f->LW, *DG = dD + nd * nd, *P = DG + nd * nd, *Q1 = P + nd * nd, *DH = Q1 + nd * nd, *Y = DH + nd * nd, *DW = Y + nd * nsl, *DR = DW + nd * nsl, *tmp = DR + nd * nsl, *Bm = tmp + nd * nsl;
   PetscReal     *RT = f->Ts + k * nk * nk, *Hn = f->KFs + k * nk * nk, *Mr = f->QW + 3 * nk * nk, *RH = f->QW + 5 * nk * nk;
   PetscBool      singular;
+  const PetscBool all = (PetscBool)!f->dvalid;
 
   PetscFunctionBeginUser;
   PetscCall(PetscArraycpy(f->bws + k * f->cap, f->bwt, nt));
-  if (!f->dvalid) { /* from the reference coefficients, at the point's first map; then by the elements that change */
+  if (all) { /* from the reference coefficients, at the point's first map; then by the elements that change (f->chg) */
     PetscCall(PetscArrayzero(f->dDk, nd * nd));
     PetscCall(PetscArraycpy(f->cl, f->cref, 3 * f->ne));
     f->dvalid = PETSC_TRUE;
   }
-  for (PetscInt e = 0; e < f->ne; e++) {
-    const PetscReal *c = f->cfn + 3 * e, *o = f->cl + 3 * e, d0 = c[0] - o[0], d1 = c[1] - o[1], d2 = c[2] - o[2];
+  for (PetscInt ic = 0; ic < (all ? f->ne : f->nchg); ic++) {
+    const PetscInt   e = all ? ic : f->chg[ic];
+    PetscReal       *o = f->cl + 3 * e;
+    const PetscReal *c = f->cfn + 3 * e, d0 = c[0] - o[0], d1 = c[1] - o[1], d2 = c[2] - o[2];
+    o[0] = c[0];
+    o[1] = c[1];
+    o[2] = c[2];
     if (d0 == 0.0 && d1 == 0.0 && d2 == 0.0) continue;
     if (!f->Cf) {
       const PetscInt ir = f->dr[e];
@@ -1147,7 +1173,6 @@ static PetscErrorCode LowRankStatic(struct _JRMonodromy *f, PetscInt k, PetscInt
         for (PetscInt a = 0; a < nd; a++) f->dDk[a + b * nd] += d0 * ct[a] * ct[b] + (cs ? d1 * ct[a] * cs[b] + d2 * cs[a] * cs[b] : 0.0);
     }
   }
-  PetscCall(PetscArraycpy(f->cl, f->cfn, 3 * f->ne));
   PetscCall(PetscArraycpy(dD, f->dDk, nd * nd));
   PetscCall(JRGemm("N", "N", nd, nd, nd, 1.0, dD, nd, G, nd, 0.0, DG, nd));
   PetscCall(PetscArraycpy(P, DG, nd * nd));
@@ -1202,11 +1227,11 @@ static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt
 {
   const PetscInt nk = f->nk, ne = f->ne, n2 = f->n2r, m2 = 2 * nk, nt = f->mt - n2;
   PetscReal     *SL = f->SL + k * m2 * m2, *SW = f->SW + k * m2 * ne, *G = f->PS + 4 * m2 * m2;
-  PetscReal     *Bw = f->QW + 7 * nk * nk + 2 * nk * ne, wmax = f->wmax, dt;
+  PetscReal      wmax = f->wmax, dt;
   PetscInt       sq, *col = f->cols + k * ne, nc = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(StiffnessUpdate(f, Bw));
+  PetscCall(StiffnessUpdate(f));
   for (PetscInt c = 0; c < nt; c++) /* the held slips of stuck elements: SW's only nonzero columns */
     if (f->bwt[c] != 0.0) col[nc++] = c;
   f->ncol[k] = nc;
@@ -1222,14 +1247,17 @@ static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt
         f->XL[nk + i + c * n2]        = f->T2[i + c * nk];
         f->XL[nk + i + (nk + c) * n2] = dt * f->G[i + (nk + c) * nk];
       }
-    for (PetscInt q = 0; q < nc; q++) PetscCall(PetscArraycpy(f->T2 + q * nk, Bw + col[q] * nk, nk));
+    for (PetscInt q = 0; q < nc; q++) { /* Bw's columns bwt r_e */
+      const PetscReal *r = f->RSt + f->tel[col[q]] * nk, bw = f->bwt[col[q]];
+      for (PetscInt i = 0; i < nk; i++) f->T2[i + q * nk] = bw * r[i];
+    }
     if (nc) PetscCall(JRGemm("N", "N", nk, nc, nk, dt, f->Mi, nk, f->T2, nk, 0.0, f->XW + nk, n2));
   } else { /* the slow modes with the fast ones condensed: [0, I; -Mr^-1 [Kr, Cr]] dt and [0; Mr^-1 Br] dt */
     const PetscInt   nsl = f->nsl;
     const PetscReal *Mi = f->QW + 3 * nk * nk, *P = Mi + nk * nk; /* where either condensation leaves Mr^-1, Mr^-1 Kr */
     PetscReal       *X  = NULL;
     if (f->lowrank) PetscCall(LowRankStatic(f, k, nc, col, &X, &wmax));
-    else PetscCall(QuasiStatic(f, Bw, k, nc, col, &X, &wmax));
+    else PetscCall(QuasiStatic(f, k, nc, col, &X, &wmax));
     sq = dtstep * wmax > JR_MONO_WDT ? (PetscInt)PetscCeilReal(PetscLog2Real(dtstep * wmax / JR_MONO_WDT)) : 0;
     dt = dtstep / (PetscReal)(1 << sq);
     for (PetscInt i = 0; i < nsl; i++) f->XL[i + (nsl + i) * n2] = dt;
@@ -1319,14 +1347,16 @@ static PetscErrorCode MarchPatterns(JRHBM h, PetscReal dt)
 
   PetscFunctionBeginUser;
   f->nslot = f->next = 0;
-  f->kvalid = f->dvalid = PETSC_FALSE;
+  f->kvalid = f->dvalid = f->svalid = PETSC_FALSE;
   for (PetscInt j = 0; j < ns; j++) {
     PetscInt  k      = -1;
     PetscBool change = PETSC_FALSE;
+    f->nchg          = 0;
     for (PetscInt e = 0; e < ne; e++) {
       StepStates(f, e, j, &f->ka[e], &f->kb[e], &f->th[e]);
       f->key[e] = f->kb[e] >= 3 || f->kb[e] == 1 ? f->kb[e] : 0; /* slipping off contact: either side the same map */
       if (f->ka[e] != f->kb[e]) change = PETSC_TRUE;
+      if (!f->svalid || f->ka[e] != f->lka[e] || f->kb[e] != f->lkb[e] || (f->ka[e] != f->kb[e] && f->th[e] != f->lth[e])) f->chg[f->nchg++] = e;
     }
     if (change) { /* a state changes within the step: the map of the states weighted by their shares, not kept */
       k = JR_MONO_SLOTS;
