@@ -67,6 +67,7 @@ struct _JRMonodromy {
   PetscInt      *cls, *memp, mt;      /* per point: each element's class (JR_MONO_TRACK, _HOLD, _FORGET) and its slip's
                                          row among the tracked ones (-1: not tracked); the state's size 2 nk + tracked */
   PetscInt      *tel;                 /* per point: each tracked slip's element */
+  PetscInt       np;                  /* per point: the tracked slips never read before their first commit (the last np) */
   unsigned char *lka, *lkb;           /* each element's states at the last StiffnessUpdate (valid where svalid) */
   PetscReal     *lth;
   PetscBool      svalid;
@@ -708,12 +709,17 @@ static void StepStates(struct _JRMonodromy *f, PetscInt e, PetscInt j, unsigned 
 
 /* Each element's class over the point's period (the play operator on the steps' ends, PointMotion): tracked where it
    changes state, held where it is stuck and its contact unchanged throughout, forgotten where its slip is committed
-   at every step; f->memp, f->mt. Returns f->mt. */
+   at every step; f->memp, f->mt. Returns f->mt.
+   A tracked slip whose element slips on the same side at the period's end and through the first step is not read
+   (held) before its first commit overwrites it: its column of the monodromy matrix is 0, a multiplier 0. Such slips
+   come last, f->np of them: the march propagates the other columns only and the multipliers are those of the
+   leading block (its determinant expanded along the zero columns). */
 static PetscInt Classify(struct _JRMonodromy *f)
 {
   const PetscInt N2 = 2 * f->ns + 1;
   PetscInt       nt = 0;
 
+  f->np = 0;
   for (PetscInt e = 0; e < f->ne; e++) {
     PetscInt commits = 0, contacts = 0;
     for (PetscInt j = 0; j < f->ns; j++) {
@@ -722,11 +728,17 @@ static PetscInt Classify(struct _JRMonodromy *f)
     }
     f->cls[e]  = commits == f->ns ? JR_MONO_FORGET : commits == 0 && (contacts == 0 || contacts == f->ns) ? JR_MONO_HOLD : JR_MONO_TRACK;
     f->memp[e] = -1;
-    if (f->cls[e] == JR_MONO_TRACK) {
+  }
+  for (PetscInt pass = 0; pass < 2; pass++) /* the slips read at the period's start, then the others */
+    for (PetscInt e = 0; e < f->ne; e++) {
+      PetscBool unread;
+      if (f->cls[e] != JR_MONO_TRACK) continue;
+      unread = (PetscBool)(Side(f, e, f->ns - 1) != 0 && Side(f, e, 0) == Side(f, e, f->ns - 1));
+      if (unread != (PetscBool)pass) continue;
       f->tel[nt] = e;
       f->memp[e] = nt++;
+      if (unread) f->np++;
     }
-  }
   for (PetscInt e = 0; e < f->ne; e++) /* the tracked elements' rows, for their motion at the steps' ends */
     if (f->memp[e] >= 0)
       for (PetscInt i = 0; i < f->nk; i++) {
@@ -1279,7 +1291,7 @@ static PetscErrorCode StepMap(struct _JRMonodromy *f, PetscReal dtstep, PetscInt
    modes' motion is Y's (Q) rows, or with fast modes condensed T q_s + T_w w (slot k's). */
 static PetscErrorCode Commit(struct _JRMonodromy *f, PetscInt j, PetscInt k)
 {
-  const PetscInt nk = f->nk, ne = f->ne, n2 = f->n2r, m = f->mt, nt = m - n2;
+  const PetscInt nk = f->nk, ne = f->ne, n2 = f->n2r, m = f->mt, mc = m - f->np, nt = m - n2;
   PetscInt       nr = 0;
   PetscReal     *Y = f->Y, *side = f->sdr;
 
@@ -1307,8 +1319,8 @@ static PetscErrorCode Commit(struct _JRMonodromy *f, PetscInt j, PetscInt k)
     PetscCall(JRGemm("N", "N", nd, nt, nd, 1.0, Hk, nd, Ct, nd, 0.0, HC, nd));
     PetscCall(JRGemm("T", "N", nr, nsl, nd, 1.0, Cr, nd, RTk, nd, 0.0, A, nr));
     PetscCall(JRGemm("T", "N", nr, nt, nd, 1.0, Cr, nd, HC, nd, 0.0, B, nr));
-    PetscCall(JRGemm("N", "N", nr, m, nsl, 1.0, A, nr, Y, m, 0.0, f->DUV, nr));
-    PetscCall(JRGemm("N", "N", nr, m, nt, 1.0, B, nr, Y + n2, m, 1.0, f->DUV, nr));
+    PetscCall(JRGemm("N", "N", nr, mc, nsl, 1.0, A, nr, Y, m, 0.0, f->DUV, nr));
+    PetscCall(JRGemm("N", "N", nr, mc, nt, 1.0, B, nr, Y + n2, m, 1.0, f->DUV, nr));
   } else if (f->nfa) { /* DUV = (Rg T) Y_q + (Rg_f Kff^-1 R_f diag(bw)) Y_w, Rg_f Kff^-1 = (Kff^-T Rg_f^T)^T */
     const PetscInt nsl = f->nsl, nfa = f->nfa;
     PetscReal     *A = f->CB, *B = A + nr * nsl, *Rf = B + nr * nt, *KR = Rf + nfa * nr, *bw = f->bws + k * f->cap;
@@ -1319,30 +1331,31 @@ static PetscErrorCode Commit(struct _JRMonodromy *f, PetscInt j, PetscInt k)
     PetscCall(JRGemm("T", "N", nr, nt, nfa, 1.0, KR, nfa, f->Rfa, nfa, 0.0, B, nr));
     for (PetscInt c = 0; c < nt; c++)
       for (PetscInt r = 0; r < nr; r++) B[r + c * nr] *= bw[c];
-    PetscCall(JRGemm("N", "N", nr, m, f->nsl, 1.0, A, nr, Y, m, 0.0, f->DUV, nr));
-    PetscCall(JRGemm("N", "N", nr, m, nt, 1.0, B, nr, Y + n2, m, 1.0, f->DUV, nr));
-  } else PetscCall(JRGemm("N", "N", nr, m, nk, 1.0, f->Rg, nr, Y, m, 0.0, f->DUV, nr));
+    PetscCall(JRGemm("N", "N", nr, mc, f->nsl, 1.0, A, nr, Y, m, 0.0, f->DUV, nr));
+    PetscCall(JRGemm("N", "N", nr, mc, nt, 1.0, B, nr, Y + n2, m, 1.0, f->DUV, nr));
+  } else PetscCall(JRGemm("N", "N", nr, mc, nk, 1.0, f->Rg, nr, Y, m, 0.0, f->DUV, nr));
   for (PetscInt r = 0, e = 0; r < nr; e++) {
     const PetscInt q = 2 * f->memp[e];
     if (f->memp[e] < 0 || f->rows[r] != q) continue;
     if (r + 1 < nr && f->rows[r + 1] == q + 1) {
-      for (PetscInt c = 0; c < m; c++) Y[n2 + f->memp[e] + c * m] = f->DUV[r + c * nr] + side[e] * f->DUV[r + 1 + c * nr];
+      for (PetscInt c = 0; c < mc; c++) Y[n2 + f->memp[e] + c * m] = f->DUV[r + c * nr] + side[e] * f->DUV[r + 1 + c * nr];
       r += 2;
     } else {
-      for (PetscInt c = 0; c < m; c++) Y[n2 + f->memp[e] + c * m] = f->DUV[r + c * nr];
+      for (PetscInt c = 0; c < mc; c++) Y[n2 + f->memp[e] + c * m] = f->DUV[r + c * nr];
       r += 1;
     }
   }
   PetscFunctionReturn(0);
 }
 
-/* The fundamental matrix Y (f->mt x f->mt, from the identity) over one period of friction elements (no cubic spring):
+/* The fundamental matrix Y (f->mt x f->mt, from the identity; its first f->mt - f->np columns, Classify) over one
+   period of friction elements (no cubic spring):
    per step the map of its states (StepMap; kept by pattern where no state changes within the step: a period's
    patterns mostly repeat), then the tracked slips committed at the step's end by the return map's derivative */
 static PetscErrorCode MarchPatterns(JRHBM h, PetscReal dt)
 {
   struct _JRMonodromy *f  = h->mono;
-  const PetscInt       nk = f->nk, ne = f->ne, n2 = f->n2r, m2 = 2 * nk, m = f->mt, nt = m - n2, ns = f->ns;
+  const PetscInt       nk = f->nk, ne = f->ne, n2 = f->n2r, m2 = 2 * nk, m = f->mt, mc = m - f->np, nt = m - n2, ns = f->ns;
   PetscReal           *Y  = f->Y;
 
   PetscFunctionBeginUser;
@@ -1372,14 +1385,14 @@ static PetscErrorCode MarchPatterns(JRHBM h, PetscReal dt)
       PetscCall(StepMap(f, dt, k));
     }
     /* [Q; P] <- SL [Q; P] + SW W */
-    PetscCall(JRGemm("N", "N", n2, m, n2, 1.0, f->SL + k * m2 * m2, n2, Y, m, 0.0, f->T2, n2));
+    PetscCall(JRGemm("N", "N", n2, mc, n2, 1.0, f->SL + k * m2 * m2, n2, Y, m, 0.0, f->T2, n2));
     if (nt && f->ncol[k]) { /* SW's columns by the held slips' rows of Y, gathered */
       const PetscInt nc = f->ncol[k], *col = f->cols + k * ne;
-      for (PetscInt c = 0; c < m; c++)
+      for (PetscInt c = 0; c < mc; c++)
         for (PetscInt q = 0; q < nc; q++) f->Y0[q + c * nc] = Y[n2 + col[q] + c * m];
-      PetscCall(JRGemm("N", "N", n2, m, nc, 1.0, f->SW + k * m2 * ne, n2, f->Y0, nc, 1.0, f->T2, n2));
+      PetscCall(JRGemm("N", "N", n2, mc, nc, 1.0, f->SW + k * m2 * ne, n2, f->Y0, nc, 1.0, f->T2, n2));
     }
-    for (PetscInt c = 0; c < m; c++) PetscCall(PetscArraycpy(Y + c * m, f->T2 + c * n2, n2));
+    for (PetscInt c = 0; c < mc; c++) PetscCall(PetscArraycpy(Y + c * m, f->T2 + c * n2, n2));
     /* the slips committed at step j + 1 */
     if (nt) PetscCall(Commit(f, j, k));
   }
@@ -1446,8 +1459,8 @@ static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, P
   const PetscInt       ns = Steps(h, w, steps);
   const PetscReal      dt = 2 * PETSC_PI / w / ns, T = ns * dt;
   PetscReal           *Y  = f->Y, *Cv;
-  PetscBLASInt         bm, info, one = 1;
-  PetscInt             mt;
+  PetscBLASInt         bm, ld, info, one = 1;
+  PetscInt             mt, np;
 
   PetscFunctionBeginUser;
   if (ns != f->ns) {
@@ -1475,13 +1488,17 @@ static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, P
   for (PetscInt i = 0; i < mt; i++) Y[i + i * mt] = 1.0;
   if (f->smooth) PetscCall(MarchRK4(h, dt));
   else PetscCall(MarchPatterns(h, dt));
-  /* the multipliers: the marched state's, then 1 per held slip and 0 per forgotten one */
-  PetscCall(PetscBLASIntCast(mt, &bm));
-  if (mt) {
+  /* the multipliers: the marched state's (0 for the slips not read before their first commit, Classify), then 1 per
+     held slip and 0 per forgotten one */
+  np = f->smooth ? 0 : f->np;
+  PetscCall(PetscBLASIntCast(mt - np, &bm));
+  PetscCall(PetscBLASIntCast(mt, &ld));
+  if (mt - np) {
     PetscReal dummy;
-    PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &bm, Y, &bm, f->wr, f->wi, &dummy, &one, &dummy, &one, f->work, &f->lwork, &info));
+    PetscCallBLAS("LAPACKgeev", LAPACKgeev_("N", "N", &bm, Y, &ld, f->wr, f->wi, &dummy, &one, &dummy, &one, f->work, &f->lwork, &info));
     PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: LAPACK geev failed (info %d) at %g Hz", (int)info, (double)(w / (2 * PETSC_PI)));
   }
+  for (PetscInt i = mt - np; i < mt; i++) f->wr[i] = f->wi[i] = 0.0;
   for (PetscInt i = 0; i < mt; i++) {
     const PetscReal mod = PetscSqrtReal(f->wr[i] * f->wr[i] + f->wi[i] * f->wi[i]);
     out[i]              = mod > 0 ? PetscLogReal(mod) / T : PETSC_NINFINITY;
