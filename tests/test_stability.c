@@ -823,6 +823,69 @@ int main(int argc, char **argv)
     CHECK(nd0 == 0 && nd2 == 4 && nslip > 0 && err <= 1e-9 * ref, "8 DOFs, 7 light masses condensed, 7 elements on 4 distinct rows: at %" PetscInt_FMT " points (%" PetscInt_FMT " with slips marched) every exponent through the distinct rows (%" PetscInt_FMT " used) equals the fast block's inverse's (%" PetscInt_FMT " rows) within %.2e 1/s (largest |real part| %.3g 1/s; <= 1e-9 of it)", npq, nslip, nd2, nd0, err, ref);
   }
 
+  /* ---- the slips not read before their first commit left out of the march = marched ----
+     the 8-DOF system above, its fast modes condensed and every mode marched: at the points of the stick-slip
+     resonance every exponent whose multiplier exceeds 1e-6 with those slips left out (JRHBMSetFloquetUnread, the
+     default) equals the one with every tracked slip marched to round-off, at points with slips left out and not */
+  {
+    const PetscInt n = 8;
+    const double   k0 = pow(2 * PETSC_PI * 10, 2), ks = 2e4;
+    double         K[64], M[64], err = 0, ref = 0;
+    PetscInt       npq = 0, nleft = 0, nslips = 0, bad = 0;
+    Problem        p;
+    PetscInt       np, nn;
+    const PetscReal *om, *aa;
+    Vec            xv;
+    PetscScalar   *xa;
+    PetscCall(PetscArrayzero(K, 64));
+    PetscCall(PetscArrayzero(M, 64));
+    K[0] = k0;
+    M[0] = 1.0;
+    for (PetscInt i = 1; i < n; i++) {
+      K[0] += ks;
+      K[i + i * n] = ks;
+      K[i] = K[i * n] = -ks;
+      M[i + i * n] = i == 4 ? 0.05 : 5e-4 * (1.0 + 0.1 * i);
+    }
+    PetscCall(Options("-hbm_physical -hbm_gamma 0.01 -hbm_harmonics 3 -frf_force 1.0 -frf_fmin 6 -frf_fmax 14"));
+    PetscCall(ProblemCreate(n, K, M, NULL, 7, (El[]){{"jenkins", 1, -1, -1, -1, 4e3, 0, 0.3, 0.3}, {"jenkins", 1, -1, -1, -1, 3e3, 0, 0.3, 0.6}, {"jenkins", 1, -1, -1, -1, 2e3, 0, 0.3, 1.0}, {"jenkins", 2, -1, -1, -1, 3e3, 0, 0.3, 0.5}, {"jenkins", 2, -1, -1, -1, 1e3, 0, 0.3, 1.2}, {"jenkins_nv", 3, -1, 4, -1, 3e3, 2e3, 0.3, 0.1}, {"jenkins_nv", 3, -1, 4, -1, 2e3, 2e3, 0.3, 0.2}}, &p));
+    PetscCall(JRContSolve(p.cont));
+    PetscCall(JRContGetBranch(p.cont, 0, &np, &om, &aa, NULL));
+    PetscCall(JRHBMGetSolveSize(p.hbm, &nn, NULL));
+    PetscCall(JRHBMCreateVecs(p.hbm, &xv, NULL));
+    for (PetscInt fast = 0; fast < 2; fast++) {
+      PetscCall(JRHBMSetFloquetFast(p.hbm, fast ? 20 : 0));
+      for (PetscInt q = 0; q < np; q++) {
+        PetscInt  m0, m1, nl;
+        PetscReal r0[64], r1[64], i0[64], i1[64], x0, x1;
+        const PetscReal T = 2 * PETSC_PI / om[q], lo = PetscLogReal(1e-6) / T;
+        PetscCall(VecGetArray(xv, &xa));
+        for (PetscInt i = 0; i < nn; i++) xa[i] = aa[q * nn + i];
+        PetscCall(VecRestoreArray(xv, &xa));
+        PetscCall(JRHBMSetFloquetUnread(p.hbm, PETSC_TRUE));
+        PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, &m0, r0, i0, &x0, NULL));
+        PetscCall(JRHBMGetFloquetUnreadSlips(p.hbm, &nl));
+        PetscCall(JRHBMSetFloquetUnread(p.hbm, PETSC_FALSE));
+        PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, &m1, r1, i1, &x1, NULL));
+        if (m0 != m1) bad++;
+        else
+          for (PetscInt i = 0; i < m0; i++) {
+            const PetscBool c0 = (PetscBool)(r0[i] > lo), c1 = (PetscBool)(r1[i] > lo);
+            if (c0 != c1 && PetscAbsReal(r0[i] - r1[i]) > 1e-6 * PetscAbsReal(lo)) bad++;
+            else if (c0 && c1) err = PetscMax(err, PetscMax(PetscAbsReal(r0[i] - r1[i]), PetscAbsReal(i0[i] - i1[i])));
+            if (c0) ref = PetscMax(ref, PetscAbsReal(r0[i]));
+          }
+        nleft += nl > 0;
+        nslips += nl;
+        npq++;
+      }
+    }
+    PetscCall(JRHBMSetFloquetUnread(p.hbm, PETSC_TRUE));
+    PetscCall(VecDestroy(&xv));
+    PetscCall(ProblemDestroy(&p));
+    CHECK(!bad && nleft > 0 && nleft < npq && err <= 1e-9 * ref, "8 DOFs, 7 elements, fast modes condensed and marched: at %" PetscInt_FMT " points (%" PetscInt_FMT " with %" PetscInt_FMT " slips in all left out of the march) every exponent equals the one with every tracked slip marched within %.2e 1/s (largest |real part| %.3g 1/s; <= 1e-9 of it)", npq, nleft, nslips, err, ref);
+  }
+
   /* ---- a symmetric 3-DOF system forced on its axis: symmetry-breaking branch points at H = 1 and 3 ---- */
   { /* the symmetric resonance, its peak at 10.74 Hz and not folded at 20 N, is unstable to antisymmetric motion over
        10.41-10.89 Hz; at 5 N it is stable throughout */

@@ -68,6 +68,7 @@ struct _JRMonodromy {
                                          row among the tracked ones (-1: not tracked); the state's size 2 nk + tracked */
   PetscInt      *tel;                 /* per point: each tracked slip's element */
   PetscInt       np;                  /* per point: the tracked slips never read before their first commit (the last np) */
+  PetscBool      unread;              /* leave those out of the march (JRHBMSetFloquetUnread) */
   unsigned char *lka, *lkb;           /* each element's states at the last StiffnessUpdate (valid where svalid) */
   PetscReal     *lth;
   PetscBool      svalid;
@@ -733,7 +734,7 @@ static PetscInt Classify(struct _JRMonodromy *f)
     for (PetscInt e = 0; e < f->ne; e++) {
       PetscBool unread;
       if (f->cls[e] != JR_MONO_TRACK) continue;
-      unread = (PetscBool)(Side(f, e, f->ns - 1) != 0 && Side(f, e, 0) == Side(f, e, f->ns - 1));
+      unread = (PetscBool)(f->unread && Side(f, e, f->ns - 1) != 0 && Side(f, e, 0) == Side(f, e, f->ns - 1));
       if (unread != (PetscBool)pass) continue;
       f->tel[nt] = e;
       f->memp[e] = nt++;
@@ -1475,7 +1476,8 @@ static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, P
   Cv = f->smooth ? f->Y0 : f->Cv; /* Cm + (gamma / w) Kg at this frequency */
   for (PetscInt i = 0; i < nk * nk; i++) Cv[i] = f->C[i] + h->gamma / w * f->Kg[i];
   PetscCall(PointMotion(h, w, x));
-  mt = f->smooth ? m : Classify(f);
+  f->unread = (PetscBool)!h->monomarch;
+  mt        = f->smooth ? m : Classify(f);
   f->nsl = nk;
   f->nfa = 0;
   if (!f->smooth) PetscCall(FastModes(h, w, &mt));
@@ -1586,9 +1588,11 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt steps, Pet
     PetscCall(VecRestoreArrayRead(a, &x));
     out[0]    = m ? out[1] : 0.0;
     h->monond = f->lowrank ? f->nd : 0;
+    h->mononp = f->smooth ? 0 : f->np;
   }
   if (h->size > 1) PetscCallMPI(MPI_Bcast(out, (PetscMPIInt)(1 + 2 * m), MPIU_REAL, 0, h->comm));
   if (h->size > 1) PetscCallMPI(MPI_Bcast(&h->monond, 1, MPIU_INT, 0, h->comm));
+  if (h->size > 1) PetscCallMPI(MPI_Bcast(&h->mononp, 1, MPIU_INT, 0, h->comm));
   if (nexp) *nexp = m;
   if (nsteps) *nsteps = Steps(h, w, steps);
   *maxre = out[0];
@@ -1657,6 +1661,30 @@ PetscErrorCode JRHBMSetFloquetLowRank(JRHBM h, PetscInt mode)
   PetscFunctionBeginUser;
   PetscCheck(mode >= 0 && mode <= 2, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "the fast modes' low-rank condensation %" PetscInt_FMT ": give 0, 1 or 2", mode);
   h->monolr = mode;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMSetFloquetUnread - leave = PETSC_TRUE (the default): JRHBMFloquetTime leaves the slips that are not read before
+  their first commit (their elements slip on the same side at the period's end and through the first step) out of
+  the march, their columns of the monodromy matrix being zero (multipliers 0); PETSC_FALSE marches them too. The
+  same exponents to round-off. Logically collective.
+*/
+PetscErrorCode JRHBMSetFloquetUnread(JRHBM h, PetscBool leave)
+{
+  PetscFunctionBeginUser;
+  h->monomarch = (PetscBool)!leave;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMGetFloquetUnreadSlips - the slips the last JRHBMFloquetTime point left out of the march (JRHBMSetFloquetUnread).
+  Not collective.
+*/
+PetscErrorCode JRHBMGetFloquetUnreadSlips(JRHBM h, PetscInt *np)
+{
+  PetscFunctionBeginUser;
+  *np = h->mononp;
   PetscFunctionReturn(0);
 }
 

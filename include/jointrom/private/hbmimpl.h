@@ -125,6 +125,8 @@ struct _p_JRHBM {
   PetscInt          monond;       /* the distinct rows the last monodromy condensed the fast modes through (0: none) */
   PetscInt          monolr;       /* JRHBMSetFloquetLowRank(): the fast modes condensed through the distinct rows (0 no, 1 auto, 2 yes) */
   PetscReal         monofast;     /* JRHBMSetFloquetFast(): kept modes above monofast x H w quasi-static there (0: none) */
+  PetscBool         monomarch;    /* JRHBMSetFloquetUnread(): the slips not read before their first commit marched too */
+  PetscInt          mononp;       /* the slips JRHBMFloquetTime left out of the march at its last point */
   PetscInt          dissip;       /* JRHBMStabilityVerdict(): 0 not yet known, 1 no certificate (smooth or other elements, or
                                      a linear part that is not dissipative), 2 every element jenkins, 3 jenkins and
                                      jenkins_nv (decided per point) */
