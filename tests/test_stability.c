@@ -486,6 +486,34 @@ static PetscErrorCode SymmetricCase(const Sym3 *o, PetscInt H, double f1, double
   PetscFunctionReturn(0);
 }
 
+/* A mass on a spring to ground and seven masses on stiff springs to it, six light (fast: above 20 H w, damped within
+   a period) and mass 4 heavier (slow); three jenkins elements from light mass 1 to ground and two from light mass 2
+   (two distinct rows), and two jenkins_nv elements on light mass 3 (tangential) and mass 4 (normal, preloaded,
+   slipping in contact and separating): four distinct rows for seven elements. H = 3, its curve at 1 N over 6-14 Hz
+   solved. */
+static PetscErrorCode EightDofCurve(Problem *p)
+{
+  const PetscInt n = 8;
+  const double   k0 = pow(2 * PETSC_PI * 10, 2), ks = 2e4;
+  double         K[64], M[64];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArrayzero(K, 64));
+  PetscCall(PetscArrayzero(M, 64));
+  K[0] = k0;
+  M[0] = 1.0;
+  for (PetscInt i = 1; i < n; i++) {
+    K[0] += ks;
+    K[i + i * n] = ks;
+    K[i] = K[i * n] = -ks;
+    M[i + i * n] = i == 4 ? 0.05 : 5e-4 * (1.0 + 0.1 * i);
+  }
+  PetscCall(Options("-hbm_physical -hbm_gamma 0.01 -hbm_harmonics 3 -frf_force 1.0 -frf_fmin 6 -frf_fmax 14"));
+  PetscCall(ProblemCreate(n, K, M, NULL, 7, (El[]){{"jenkins", 1, -1, -1, -1, 4e3, 0, 0.3, 0.3}, {"jenkins", 1, -1, -1, -1, 3e3, 0, 0.3, 0.6}, {"jenkins", 1, -1, -1, -1, 2e3, 0, 0.3, 1.0}, {"jenkins", 2, -1, -1, -1, 3e3, 0, 0.3, 0.5}, {"jenkins", 2, -1, -1, -1, 1e3, 0, 0.3, 1.2}, {"jenkins_nv", 3, -1, 4, -1, 3e3, 2e3, 0.3, 0.1}, {"jenkins_nv", 3, -1, 4, -1, 2e3, 2e3, 0.3, 0.2}}, p));
+  PetscCall(JRContSolve(p->cont));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   PetscCall(SlepcInitialize(&argc, &argv, NULL, NULL));
@@ -755,35 +783,18 @@ int main(int argc, char **argv)
   }
 
   /* ---- the fast modes condensed through the elements' distinct rows (Woodbury) = by the fast block's inverse ----
-     a mass on a spring to ground and seven masses on stiff springs to it, six light (fast: above 20 H w, damped within
-     a period) and mass 4 heavier (slow); three jenkins elements from light mass 1 to ground and two from light mass 2
-     (two distinct rows), and two jenkins_nv elements on light mass 3 (tangential) and mass 4 (normal, preloaded,
-     slipping in contact and separating): four distinct rows for seven elements. At the points of the stick-slip
+     EightDofCurve's system: four distinct rows for seven elements. At the points of the stick-slip
      resonance every exponent whose multiplier exceeds 1e-6 (the smaller ones are at the monodromy matrix's round-off)
      from -frf_stability_time_lowrank yes equals the LU's to round-off. */
   {
-    const PetscInt n = 8;
-    const double   k0 = pow(2 * PETSC_PI * 10, 2), ks = 2e4;
-    double         K[64], M[64], err = 0, ref = 0;
+    double         err = 0, ref = 0;
     PetscInt       npq = 0, nslip = 0, nd0 = -1, nd2 = -1;
     Problem        p;
     PetscInt       np, nn;
     const PetscReal *om, *aa;
     Vec            xv;
     PetscScalar   *xa;
-    PetscCall(PetscArrayzero(K, 64));
-    PetscCall(PetscArrayzero(M, 64));
-    K[0] = k0;
-    M[0] = 1.0;
-    for (PetscInt i = 1; i < n; i++) {
-      K[0] += ks;
-      K[i + i * n] = ks;
-      K[i] = K[i * n] = -ks;
-      M[i + i * n] = i == 4 ? 0.05 : 5e-4 * (1.0 + 0.1 * i);
-    }
-    PetscCall(Options("-hbm_physical -hbm_gamma 0.01 -hbm_harmonics 3 -frf_force 1.0 -frf_fmin 6 -frf_fmax 14"));
-    PetscCall(ProblemCreate(n, K, M, NULL, 7, (El[]){{"jenkins", 1, -1, -1, -1, 4e3, 0, 0.3, 0.3}, {"jenkins", 1, -1, -1, -1, 3e3, 0, 0.3, 0.6}, {"jenkins", 1, -1, -1, -1, 2e3, 0, 0.3, 1.0}, {"jenkins", 2, -1, -1, -1, 3e3, 0, 0.3, 0.5}, {"jenkins", 2, -1, -1, -1, 1e3, 0, 0.3, 1.2}, {"jenkins_nv", 3, -1, 4, -1, 3e3, 2e3, 0.3, 0.1}, {"jenkins_nv", 3, -1, 4, -1, 2e3, 2e3, 0.3, 0.2}}, &p));
-    PetscCall(JRContSolve(p.cont));
+    PetscCall(EightDofCurve(&p));
     PetscCall(JRContGetBranch(p.cont, 0, &np, &om, &aa, NULL));
     PetscCall(JRHBMGetSolveSize(p.hbm, &nn, NULL));
     PetscCall(JRHBMCreateVecs(p.hbm, &xv, NULL));
@@ -824,32 +835,18 @@ int main(int argc, char **argv)
   }
 
   /* ---- the slips not read before their first commit left out of the march = marched ----
-     the 8-DOF system above, its fast modes condensed and every mode marched: at the points of the stick-slip
+     EightDofCurve's system, its fast modes condensed and every mode marched: at the points of the stick-slip
      resonance every exponent whose multiplier exceeds 1e-6 with those slips left out (JRHBMSetFloquetUnread, the
      default) equals the one with every tracked slip marched to round-off, at points with slips left out and not */
   {
-    const PetscInt n = 8;
-    const double   k0 = pow(2 * PETSC_PI * 10, 2), ks = 2e4;
-    double         K[64], M[64], err = 0, ref = 0;
+    double         err = 0, ref = 0;
     PetscInt       npq = 0, nleft = 0, nslips = 0, bad = 0;
     Problem        p;
     PetscInt       np, nn;
     const PetscReal *om, *aa;
     Vec            xv;
     PetscScalar   *xa;
-    PetscCall(PetscArrayzero(K, 64));
-    PetscCall(PetscArrayzero(M, 64));
-    K[0] = k0;
-    M[0] = 1.0;
-    for (PetscInt i = 1; i < n; i++) {
-      K[0] += ks;
-      K[i + i * n] = ks;
-      K[i] = K[i * n] = -ks;
-      M[i + i * n] = i == 4 ? 0.05 : 5e-4 * (1.0 + 0.1 * i);
-    }
-    PetscCall(Options("-hbm_physical -hbm_gamma 0.01 -hbm_harmonics 3 -frf_force 1.0 -frf_fmin 6 -frf_fmax 14"));
-    PetscCall(ProblemCreate(n, K, M, NULL, 7, (El[]){{"jenkins", 1, -1, -1, -1, 4e3, 0, 0.3, 0.3}, {"jenkins", 1, -1, -1, -1, 3e3, 0, 0.3, 0.6}, {"jenkins", 1, -1, -1, -1, 2e3, 0, 0.3, 1.0}, {"jenkins", 2, -1, -1, -1, 3e3, 0, 0.3, 0.5}, {"jenkins", 2, -1, -1, -1, 1e3, 0, 0.3, 1.2}, {"jenkins_nv", 3, -1, 4, -1, 3e3, 2e3, 0.3, 0.1}, {"jenkins_nv", 3, -1, 4, -1, 2e3, 2e3, 0.3, 0.2}}, &p));
-    PetscCall(JRContSolve(p.cont));
+    PetscCall(EightDofCurve(&p));
     PetscCall(JRContGetBranch(p.cont, 0, &np, &om, &aa, NULL));
     PetscCall(JRHBMGetSolveSize(p.hbm, &nn, NULL));
     PetscCall(JRHBMCreateVecs(p.hbm, &xv, NULL));
