@@ -486,6 +486,23 @@ static PetscErrorCode SymmetricCase(const Sym3 *o, PetscInt H, double f1, double
   PetscFunctionReturn(0);
 }
 
+/* Two lists of Floquet exponents (real parts re, imaginary im, largest first) of the same point at frequency w: the
+   same where every exponent whose multiplier exp(re T) exceeds 1e-6 (the smaller ones are at the monodromy
+   matrix's round-off) is in both, *err the largest difference of those, *ref the largest |real part| among them */
+static PetscBool SameExponents(PetscInt m0, const PetscReal *r0, const PetscReal *i0, PetscInt m1, const PetscReal *r1, const PetscReal *i1, PetscReal w, double *err, double *ref)
+{
+  const PetscReal lo = PetscLogReal(1e-6) / (2 * PETSC_PI / w);
+  PetscBool       same = (PetscBool)(m0 == m1);
+
+  for (PetscInt i = 0; i < m0 && same; i++) {
+    const PetscBool c0 = (PetscBool)(r0[i] > lo), c1 = (PetscBool)(r1[i] > lo);
+    if (c0 != c1 && PetscAbsReal(r0[i] - r1[i]) > 1e-6 * PetscAbsReal(lo)) same = PETSC_FALSE;
+    else if (c0 && c1) *err = PetscMax(*err, PetscMax(PetscAbsReal(r0[i] - r1[i]), PetscAbsReal(i0[i] - i1[i])));
+    if (c0) *ref = PetscMax(*ref, PetscAbsReal(r0[i]));
+  }
+  return same;
+}
+
 /* A mass on a spring to ground and seven masses on stiff springs to it, six light (fast: above 20 H w, damped within
    a period) and mass 4 heavier (slow); three jenkins elements from light mass 1 to ground and two from light mass 2
    (two distinct rows), and two jenkins_nv elements on light mass 3 (tangential) and mass 4 (normal, preloaded,
@@ -782,70 +799,21 @@ int main(int argc, char **argv)
     CHECK(err[4] < 1e-2 * ref[0], "2-DOF, gamma 0.01, the default steps: condensed against marched differ by at most %.2e 1/s (< 1%% of %.3g 1/s)", err[4], ref[0]);
   }
 
-  /* ---- the fast modes condensed through the elements' distinct rows (Woodbury) = by the fast block's inverse ----
-     EightDofCurve's system: four distinct rows for seven elements. At the points of the stick-slip
-     resonance every exponent whose multiplier exceeds 1e-6 (the smaller ones are at the monodromy matrix's round-off)
-     from -frf_stability_time_lowrank yes equals the LU's to round-off. */
+  /* ---- EightDofCurve's system (four distinct rows for seven elements), at the points of its stick-slip resonance:
+     every exponent whose multiplier exceeds 1e-6 (the smaller ones are at the monodromy matrix's round-off)
+     - with the fast modes condensed through the distinct rows (Woodbury, -frf_stability_time_lowrank yes) equals the
+       one by the fast block's inverse (every 30th point);
+     - with the slips not read before their first commit left out of the march (JRHBMSetFloquetUnread, the default)
+       equals the one with every tracked slip marched, the fast modes condensed and every mode marched (every point,
+       with slips left out and not) --- to round-off */
   {
-    double         err = 0, ref = 0;
-    PetscInt       npq = 0, nslip = 0, nd0 = -1, nd2 = -1;
-    Problem        p;
-    PetscInt       np, nn;
+    double           err = 0, ref = 0, erru = 0, refu = 0;
+    PetscInt         npq = 0, nslip = 0, nd0 = -1, nd2 = -1, npu = 0, nleft = 0, nslips = 0, badu = 0;
+    Problem          p;
+    PetscInt         np, nn;
     const PetscReal *om, *aa;
-    Vec            xv;
-    PetscScalar   *xa;
-    PetscCall(EightDofCurve(&p));
-    PetscCall(JRContGetBranch(p.cont, 0, &np, &om, &aa, NULL));
-    PetscCall(JRHBMGetSolveSize(p.hbm, &nn, NULL));
-    PetscCall(JRHBMCreateVecs(p.hbm, &xv, NULL));
-    PetscCall(JRHBMSetFloquetFast(p.hbm, 20));
-    for (PetscInt q = 0; q < np; q += PetscMax(1, np / 30)) {
-      PetscInt  m0, m2, ndq;
-      PetscReal r0[64], r2[64], i0[64], i2[64], x0, x2;
-      PetscCall(VecGetArray(xv, &xa));
-      for (PetscInt i = 0; i < nn; i++) xa[i] = aa[q * nn + i];
-      PetscCall(VecRestoreArray(xv, &xa));
-      PetscCall(JRHBMSetFloquetLowRank(p.hbm, 0));
-      PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, &m0, r0, i0, &x0, NULL));
-      PetscCall(JRHBMGetFloquetLowRankRows(p.hbm, &ndq));
-      nd0 = PetscMax(nd0, ndq);
-      PetscCall(JRHBMSetFloquetLowRank(p.hbm, 2));
-      PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, &m2, r2, i2, &x2, NULL));
-      PetscCall(JRHBMGetFloquetLowRankRows(p.hbm, &ndq));
-      nd2 = PetscMax(nd2, ndq);
-      if (m0 != m2) err = PETSC_INFINITY;
-      else {
-        PetscInt fin = 0;
-        for (PetscInt i = 0; i < m0; i++) {
-          /* multipliers above 1e-6 (exp(re T)): the smaller ones are at the monodromy matrix's round-off */
-          const PetscReal T = 2 * PETSC_PI / om[q], lo = PetscLogReal(1e-6) / T;
-          const PetscBool c0 = (PetscBool)(r0[i] > lo), c2 = (PetscBool)(r2[i] > lo);
-          if (c0 != c2 && PetscAbsReal(r0[i] - r2[i]) > 1e-6 * PetscAbsReal(lo)) err = PETSC_INFINITY;
-          else if (c0 && c2) err = PetscMax(err, PetscMax(PetscAbsReal(r0[i] - r2[i]), PetscAbsReal(i0[i] - i2[i])));
-          if (c0) ref = PetscMax(ref, PetscAbsReal(r0[i]));
-          fin += r0[i] > PETSC_NINFINITY && r0[i] != 0.0; /* marched: the main mass's pair and the tracked slips */
-        }
-        nslip += fin > 2 * 1; /* more exponents than the main mass's pair: slips marched */
-      }
-      npq++;
-    }
-    PetscCall(VecDestroy(&xv));
-    PetscCall(ProblemDestroy(&p));
-    CHECK(nd0 == 0 && nd2 == 4 && nslip > 0 && err <= 1e-9 * ref, "8 DOFs, 7 light masses condensed, 7 elements on 4 distinct rows: at %" PetscInt_FMT " points (%" PetscInt_FMT " with slips marched) every exponent through the distinct rows (%" PetscInt_FMT " used) equals the fast block's inverse's (%" PetscInt_FMT " rows) within %.2e 1/s (largest |real part| %.3g 1/s; <= 1e-9 of it)", npq, nslip, nd2, nd0, err, ref);
-  }
-
-  /* ---- the slips not read before their first commit left out of the march = marched ----
-     EightDofCurve's system, its fast modes condensed and every mode marched: at the points of the stick-slip
-     resonance every exponent whose multiplier exceeds 1e-6 with those slips left out (JRHBMSetFloquetUnread, the
-     default) equals the one with every tracked slip marched to round-off, at points with slips left out and not */
-  {
-    double         err = 0, ref = 0;
-    PetscInt       npq = 0, nleft = 0, nslips = 0, bad = 0;
-    Problem        p;
-    PetscInt       np, nn;
-    const PetscReal *om, *aa;
-    Vec            xv;
-    PetscScalar   *xa;
+    Vec              xv;
+    PetscScalar     *xa;
     PetscCall(EightDofCurve(&p));
     PetscCall(JRContGetBranch(p.cont, 0, &np, &om, &aa, NULL));
     PetscCall(JRHBMGetSolveSize(p.hbm, &nn, NULL));
@@ -855,32 +823,42 @@ int main(int argc, char **argv)
       for (PetscInt q = 0; q < np; q++) {
         PetscInt  m0, m1, nl;
         PetscReal r0[64], r1[64], i0[64], i1[64], x0, x1;
-        const PetscReal T = 2 * PETSC_PI / om[q], lo = PetscLogReal(1e-6) / T;
         PetscCall(VecGetArray(xv, &xa));
         for (PetscInt i = 0; i < nn; i++) xa[i] = aa[q * nn + i];
         PetscCall(VecRestoreArray(xv, &xa));
+        if (fast && q % PetscMax(1, np / 30) == 0) { /* distinct rows against the fast block's inverse */
+          PetscInt ndq, fin = 0;
+          PetscCall(JRHBMSetFloquetLowRank(p.hbm, 0));
+          PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, &m0, r0, i0, &x0, NULL));
+          PetscCall(JRHBMGetFloquetLowRankRows(p.hbm, &ndq));
+          nd0 = PetscMax(nd0, ndq);
+          PetscCall(JRHBMSetFloquetLowRank(p.hbm, 2));
+          PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, &m1, r1, i1, &x1, NULL));
+          PetscCall(JRHBMGetFloquetLowRankRows(p.hbm, &ndq));
+          nd2 = PetscMax(nd2, ndq);
+          if (!SameExponents(m0, r0, i0, m1, r1, i1, om[q], &err, &ref)) err = PETSC_INFINITY;
+          for (PetscInt i = 0; i < m0; i++) fin += r0[i] > PETSC_NINFINITY && r0[i] != 0.0; /* the main mass's pair and the tracked slips */
+          nslip += fin > 2 * 1; /* more exponents than the main mass's pair: slips marched */
+          npq++;
+          PetscCall(JRHBMSetFloquetLowRank(p.hbm, 1));
+        }
+        /* the unread slips left out against every slip marched */
         PetscCall(JRHBMSetFloquetUnread(p.hbm, PETSC_TRUE));
         PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, &m0, r0, i0, &x0, NULL));
         PetscCall(JRHBMGetFloquetUnreadSlips(p.hbm, &nl));
         PetscCall(JRHBMSetFloquetUnread(p.hbm, PETSC_FALSE));
         PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, &m1, r1, i1, &x1, NULL));
-        if (m0 != m1) bad++;
-        else
-          for (PetscInt i = 0; i < m0; i++) {
-            const PetscBool c0 = (PetscBool)(r0[i] > lo), c1 = (PetscBool)(r1[i] > lo);
-            if (c0 != c1 && PetscAbsReal(r0[i] - r1[i]) > 1e-6 * PetscAbsReal(lo)) bad++;
-            else if (c0 && c1) err = PetscMax(err, PetscMax(PetscAbsReal(r0[i] - r1[i]), PetscAbsReal(i0[i] - i1[i])));
-            if (c0) ref = PetscMax(ref, PetscAbsReal(r0[i]));
-          }
+        PetscCall(JRHBMSetFloquetUnread(p.hbm, PETSC_TRUE));
+        if (!SameExponents(m0, r0, i0, m1, r1, i1, om[q], &erru, &refu)) badu++;
         nleft += nl > 0;
         nslips += nl;
-        npq++;
+        npu++;
       }
     }
-    PetscCall(JRHBMSetFloquetUnread(p.hbm, PETSC_TRUE));
     PetscCall(VecDestroy(&xv));
     PetscCall(ProblemDestroy(&p));
-    CHECK(!bad && nleft > 0 && nleft < npq && err <= 1e-9 * ref, "8 DOFs, 7 elements, fast modes condensed and marched: at %" PetscInt_FMT " points (%" PetscInt_FMT " with %" PetscInt_FMT " slips in all left out of the march) every exponent equals the one with every tracked slip marched within %.2e 1/s (largest |real part| %.3g 1/s; <= 1e-9 of it)", npq, nleft, nslips, err, ref);
+    CHECK(nd0 == 0 && nd2 == 4 && nslip > 0 && err <= 1e-9 * ref, "8 DOFs, 7 light masses condensed, 7 elements on 4 distinct rows: at %" PetscInt_FMT " points (%" PetscInt_FMT " with slips marched) every exponent through the distinct rows (%" PetscInt_FMT " used) equals the fast block's inverse's (%" PetscInt_FMT " rows) within %.2e 1/s (largest |real part| %.3g 1/s; <= 1e-9 of it)", npq, nslip, nd2, nd0, err, ref);
+    CHECK(!badu && nleft > 0 && nleft < npu && erru <= 1e-9 * refu, "8 DOFs, 7 elements, fast modes condensed and marched: at %" PetscInt_FMT " points (%" PetscInt_FMT " with %" PetscInt_FMT " slips in all left out of the march) every exponent equals the one with every tracked slip marched within %.2e 1/s (largest |real part| %.3g 1/s; <= 1e-9 of it)", npu, nleft, nslips, erru, refu);
   }
 
   /* ---- a symmetric 3-DOF system forced on its axis: symmetry-breaking branch points at H = 1 and 3 ---- */
