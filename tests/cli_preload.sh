@@ -52,3 +52,4 @@ expect_error "pairs file that does not exist" "nowhere.csv" $J $lap -preload_loa
 expect_error "tied interface" "needs the free interface" $J $lap -model_interface tied -preload_output_file ''
 expect_error "model without an interface" "needs an FE model with a contact interface" $J -task preload -model_type beam -model_mesh_h 0.02 -preload_output_file ''
 expect_error "unknown support" "-preload_support" $J $lap -preload_support hinge -preload_output_file ''
+expect_error "PETSc's own LU on 2 ranks (it factors only sequential matrices)" "on more than one rank use mumps" mpiexec -n 2 $J $lap -preload_pc_factor_mat_solver_type petsc -preload_output_file ''

@@ -30,6 +30,7 @@ static PetscBool IsUserError(PetscErrorCode n)
   case PETSC_ERR_USER_INPUT:
   case PETSC_ERR_SUP:
   case PETSC_ERR_NOT_CONVERGED: /* an outcome the message explains (an incomplete curve, no solution at the start) */
+  case PETSC_ERR_MISSING_FACTOR: /* a factorisation package chosen by an option that cannot factor this matrix */
     return PETSC_TRUE;
   default:
     return PETSC_FALSE;
@@ -49,8 +50,13 @@ static PetscErrorCode Handler(MPI_Comm comm, int line, const char *fun, const ch
     jr_collective = (PetscBool)(size == wsize);
     if (!rank) {
       const char *ctx = jr_ncontext ? jr_context[jr_ncontext - 1] : "", *sep = jr_ncontext ? ": " : "";
-      if (jr_collective) fprintf(stderr, "jointrom: error: %s%s%s\n", ctx, sep, mess ? mess : "(no message)");
-      else fprintf(stderr, "jointrom: error (rank %d): %s%s%s\n", wrank, ctx, sep, mess ? mess : "(no message)");
+      const char *hint = n == PETSC_ERR_MISSING_FACTOR ? " (set by a -*pc_factor_mat_solver_type option: PETSc's own LU and Cholesky factor only sequential matrices, so on more than one rank use mumps, the default)" : "";
+      char        one[1024];
+      snprintf(one, sizeof(one), "%s", mess ? mess : "(no message)");
+      for (char *c = one; *c; c++) /* one line: PETSc's messages may carry line breaks */
+        if (*c == '\n') *c = ' ';
+      if (jr_collective) fprintf(stderr, "jointrom: error: %s%s%s%s\n", ctx, sep, one, hint);
+      else fprintf(stderr, "jointrom: error (rank %d): %s%s%s%s\n", wrank, ctx, sep, one, hint);
       fflush(stderr);
     }
     return n;
