@@ -23,7 +23,9 @@ PETSC_EXTERN const char *const JRHBMBases[];
 typedef enum {
   JR_JOINT_MOTION_MEAN,   /* the joint's mean motion (the thesis) */
   JR_JOINT_MOTION_LINEAR, /* a linear field over the members' positions (JRElements pos) */
-  JR_JOINT_MOTION_MODE    /* ... and over their motions in the stuck mode of interest (JRElements phi) */
+  JR_JOINT_MOTION_MODE,   /* ... and over their motions in the stuck mode of interest (JRElements phi) */
+  JR_JOINT_MOTION_SHAPES  /* over their motions in the stuck mode of interest and in released modes, not their positions
+                             (JRElements phi, phir) */
 } JRJointMotion;
 PETSC_EXTERN const char *const JRJointMotions[];
 
@@ -61,6 +63,7 @@ PETSC_EXTERN PetscErrorCode JRHBMSetOutputPoints(JRHBM, PetscInt, const PetscRea
 PETSC_EXTERN PetscErrorCode JRHBMGetOutputPoints(JRHBM, const PetscReal **, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMMatchStickFrequency(JRHBM, PetscInt, PetscReal, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMStuckModeMotion(JRHBM, PetscInt, PetscReal[], PetscReal[]);
+PETSC_EXTERN PetscErrorCode JRHBMReleasedModeMotion(JRHBM, PetscInt, const PetscReal[], PetscReal[], PetscReal *);
 PETSC_EXTERN PetscErrorCode JRHBMStuckMode(JRHBM, PetscInt, PetscReal *, PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMStuckSpringEnergy(JRHBM, const PetscReal[], PetscReal[]);
 PETSC_EXTERN PetscErrorCode JRHBMStuckModeBalance(JRHBM, PetscInt, PetscReal *, PetscReal *, PetscReal *);

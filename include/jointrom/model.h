@@ -40,6 +40,8 @@ typedef struct {
   PetscReal *g, *ka, *x;
 } JRBolts;
 
+#define JR_NREL 4 /* released modes at most (-rom_release_fractions) */
+
 /* The contact elements of a model, one entry per element (the whole list, on every rank).
    Tangential relative motion u = x[dof_a] - x[dof_b], normal v = x[ndof_a] - x[ndof_b]; -1 = ground.
    Node-to-node interfaces instead give each element the x, y, z DOFs of its two nodes, vdof_a[3e..] and
@@ -59,6 +61,9 @@ typedef struct _JRElements {
                                   with -rom_joint_motion linear or mode it takes its joint's motion field there */
   PetscReal *phi;              /* optional, 2 per element: its tangential and normal motion in the stuck mode of
                                   interest (scaled), its other coordinates in the field with -rom_joint_motion mode */
+  PetscReal *phir;             /* optional, JR_NREL per element: its tangential motion in the released modes (the
+                                  stuck structure with the members that slip first freed; scaled), its further
+                                  coordinates in the field with -rom_joint_motion shapes (0: none in its joint) */
   struct _JRElements *members; /* second reduction, optional: the joints' motions are those of these (node-to-node)
                                   elements' joints (members->joint), whose stuck springs also define a stuck basis;
                                   then the elements here need no DOFs (their rows are their joint's) */

@@ -31,8 +31,8 @@ typedef struct {
 } JRROMFit;
 PETSC_EXTERN PetscErrorCode JRROMFitSetFromOptions(MPI_Comm, JRROMFit *);
 PETSC_EXTERN PetscErrorCode JRROMReduce(MPI_Comm, const JRElements *, PetscInt, const PetscReal[], const JRROMCase *, const JRROMFit *, const char[], PetscBool, PetscBool, JRElements *);
-PETSC_EXTERN PetscErrorCode JRROMSave(JRModel, const JRElements *, PetscReal, const char[]);
-PETSC_EXTERN PetscErrorCode JRROMLoad(JRModel, const char[], JRElements *, PetscReal *);
+PETSC_EXTERN PetscErrorCode JRROMSave(JRModel, const JRElements *, PetscReal, PetscInt, const char[]);
+PETSC_EXTERN PetscErrorCode JRROMLoad(JRModel, const char[], JRElements *, PetscReal *, PetscInt *);
 
 /* ------------------------------------------------------------------------------------------ */
 /* JRReduce: reduced-order joints, the first and the second reduction (prefix rom_)            */

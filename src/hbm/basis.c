@@ -524,8 +524,10 @@ PetscErrorCode JRHBMSetUpStuckSprings(JRHBM h, const JRElements *el)
 }
 
 /* The natural frequencies [Hz] of the structure with the elements in contact at rest stuck, their springs scaled by
-   scale, in the basis; and, if vec is not NULL, the kvec-th mode (M-normalised) */
-static PetscErrorCode StickEig(JRHBM h, PetscReal scale, PetscInt *nf, PetscReal freq[], PetscInt kvec, PetscReal vec[])
+   scale and each element's kt by ktf[e] (e in the model's element list; NULL: 1), in the basis; and, if vec is not
+   NULL, the *kvec-th mode (M-normalised), or where near is given the mode most like near (the largest |near^T Mm q|),
+   its index in *kvec */
+static PetscErrorCode StickEigF(JRHBM h, PetscReal scale, const PetscReal ktf[], PetscInt *nf, PetscReal freq[], PetscInt *kvec, PetscReal vec[], const PetscReal *near)
 {
   const PetscInt nm = h->nm;
   PetscReal     *A, *B, *loc, *w, *work;
@@ -539,7 +541,7 @@ static PetscErrorCode StickEig(JRHBM h, PetscReal scale, PetscInt *nf, PetscReal
     PetscCheck(g->split || !g->nloc, PETSC_COMM_SELF, PETSC_ERR_SUP, "Stuck frequencies need friction elements (jenkins, jenkins_nv)");
     if (!g->nloc) continue;
     for (PetscInt i = 0; i < nm; i++)
-      for (PetscInt e = 0; e < g->nloc; e++) g->W[e + i * g->nloc] = (g->nstatic[e] > 0 ? g->kt[e] : 0.0) * g->R[e + i * g->nloc];
+      for (PetscInt e = 0; e < g->nloc; e++) g->W[e + i * g->nloc] = (g->nstatic[e] > 0 ? g->kt[e] * (ktf ? ktf[g->eidx[e]] : 1.0) : 0.0) * g->R[e + i * g->nloc];
     PetscCall(JRGemm("T", "N", nm, nm, g->nloc, scale, g->R, g->nloc, g->W, g->nloc, 1.0, loc, nm));
     if (g->normal) {
       for (PetscInt i = 0; i < nm; i++)
@@ -558,10 +560,33 @@ static PetscErrorCode StickEig(JRHBM h, PetscReal scale, PetscInt *nf, PetscReal
   PetscCallBLAS("LAPACKsygv", LAPACKsygv_(&itype, vec ? "V" : "N", "U", &n, A, &n, B, &n, w, work, &lwork, &info));
   PetscCheck(!info, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK sygv failed: info %d", (int)info);
   for (PetscInt i = 0; i < nm; i++) freq[i] = PetscSqrtReal(PetscMax(w[i], 0.0)) / (2 * PETSC_PI);
+  if (vec && near) { /* the mode most like near */
+    PetscReal best = -1, *Mn;
+    PetscCall(PetscCalloc1(nm, &Mn));
+    for (PetscInt i = 0; i < nm; i++)
+      for (PetscInt j = 0; j < nm; j++) Mn[j] += near[i] * h->Mm[i * nm + j];
+    for (PetscInt k = 0; k < nm; k++) {
+      PetscReal d = 0;
+      for (PetscInt j = 0; j < nm; j++) d += Mn[j] * A[j + k * nm];
+      if (PetscAbsReal(d) > best) {
+        best  = PetscAbsReal(d);
+        *kvec = k;
+      }
+    }
+    PetscCall(PetscFree(Mn));
+  }
   if (vec)
-    for (PetscInt i = 0; i < nm; i++) vec[i] = A[i + kvec * nm];
+    for (PetscInt i = 0; i < nm; i++) vec[i] = A[i + *kvec * nm];
   *nf = nm;
   PetscCall(PetscFree5(A, B, loc, w, work));
+  PetscFunctionReturn(0);
+}
+
+/* StickEigF with every kt as it is, the kvec-th mode */
+static PetscErrorCode StickEig(JRHBM h, PetscReal scale, PetscInt *nf, PetscReal freq[], PetscInt kvec, PetscReal vec[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(StickEigF(h, scale, NULL, nf, freq, &kvec, vec, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -671,6 +696,42 @@ PetscErrorCode JRHBMStuckModeMotion(JRHBM h, PetscInt k, PetscReal u[], PetscRea
   if (v) PetscCall(PetscArraycpy(v, loc + el->n, el->n));
   PetscCall(PetscFree(loc));
   PetscCall(PetscFree2(f, q));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMReleasedModeMotion - the stuck structure (JRHBMStickFrequencies) with each element's kt scaled by ktf[e] (0:
+  freed; e in the model's element list, ktf on every rank): of its modes, the one most like the k-th stuck mode q_k
+  (the largest |q^T Mm q_k|), as every element's tangential relative motion u[e] (on every rank), and its frequency
+  *freq [Hz]. Collective.
+*/
+PetscErrorCode JRHBMReleasedModeMotion(JRHBM h, PetscInt k, const PetscReal ktf[], PetscReal u[], PetscReal *freq)
+{
+  const JRElements *el;
+  PetscReal        *f, *q, *qs, *loc;
+  PetscInt          nf, kr = k;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(JRHBMGetElements(h, &el));
+  PetscCheck(k >= 0 && k < h->nm, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Stuck mode %" PetscInt_FMT ": the basis has %" PetscInt_FMT, k, h->nm);
+  PetscCall(PetscMalloc3(h->nm, &f, h->nm, &q, h->nm, &qs));
+  PetscCall(StickEig(h, 1.0, &nf, f, k, qs));
+  PetscCall(StickEigF(h, 1.0, ktf, &nf, f, &kr, q, qs));
+  *freq = f[kr];
+  PetscCall(PetscCalloc1(el->n, &loc));
+  for (PetscInt t = 0; t < h->ngroups; t++) {
+    JRHBMGroup *g = &h->g[t];
+    for (PetscInt e = 0; e < g->nloc; e++) {
+      PetscReal s = 0;
+      for (PetscInt i = 0; i < h->nm; i++) s += g->R[e + i * g->nloc] * q[i];
+      loc[g->eidx[e]] = s;
+    }
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, loc, (PetscMPIInt)el->n, MPIU_REAL, MPIU_SUM, h->ecomm));
+  PetscCall(PetscArraycpy(u, loc, el->n));
+  PetscCall(PetscFree(loc));
+  PetscCall(PetscFree3(f, q, qs));
   PetscFunctionReturn(0);
 }
 

@@ -34,7 +34,7 @@
 const char *const JRHBMJacobianTypes[] = {"analytic", "fd", "JRHBMJacobianType", "JR_HBM_JACOBIAN_", NULL};
 const char *const JRHBMBases[]         = {"free", "stuck", "mixed", "JRHBMBasis", "JR_HBM_BASIS_", NULL};
 const char *const JRHBMCondenseTypes[] = {"auto", "yes", "no", "JRHBMCondense", "JR_HBM_CONDENSE_", NULL};
-const char *const JRJointMotions[]     = {"mean", "linear", "mode", "JRJointMotion", "JR_JOINT_MOTION_", NULL};
+const char *const JRJointMotions[]     = {"mean", "linear", "mode", "shapes", "JRJointMotion", "JR_JOINT_MOTION_", NULL};
 
 PetscErrorCode JRHBMCreate(MPI_Comm comm, JRHBM *hbm)
 {

@@ -1,8 +1,8 @@
 /*
    The reduced model's joint motion fields, for JRHBM (first reduction, thesis 4.4): every member of a joint moves with
    the joint's field, its mean motion or a field linear in the members' coordinates fitted to them by least squares
-   (-rom_joint_motion mean, linear, mode); and the second reduction's joints, whose few elements move with the fields
-   of their members. The fields' layout (JR_NF, JR_FIELD_WIDTH) is in include/jointrom/private/hbmimpl.h.
+   (-rom_joint_motion mean, linear, mode, shapes); and the second reduction's joints, whose few elements move with the
+   fields of their members. The fields' layout (JR_NF, JR_FIELD_WIDTH) is in include/jointrom/private/hbmimpl.h.
 */
 #include <jointrom/private/hbmimpl.h>
 
@@ -12,7 +12,7 @@
 static PetscErrorCode PseudoInverse(PetscInt n, PetscReal G[])
 {
   PetscBLASInt bn, lwork = 64, info;
-  PetscReal    lam[8], work[64], A[64];
+  PetscReal    lam[JR_NF], work[64], A[JR_NF * JR_NF];
 
   PetscFunctionBeginUser;
   PetscCall(PetscBLASIntCast(n, &bn));
@@ -41,6 +41,13 @@ static inline void FieldAt(const PetscReal *f, PetscInt nm, PetscInt q, const Pe
   }
 }
 
+/* -rom_joint_motion shapes: whether coordinate c (x, y, z, phi_t, phi_n, then the released modes' phi_t) enters the
+   field of row set q (0 tangential, 1 normal) */
+static inline PetscBool ShapeCoordinate(PetscInt q, PetscInt c)
+{
+  return (PetscBool)(q ? c == 4 : (c == 3 || c >= 5));
+}
+
 /* First reduction (4.4): the motion field of each joint, from the rows R (and S) of this rank's elements eidx[] of el
    (nloc x nm, column-major), collective. The field is fitted to the members in contact at rest (n0 > 0: those whose
    stuck springs the joint replaces; all members if none is). With -rom_joint_motion mean (the thesis) it is their
@@ -51,7 +58,8 @@ static inline void FieldAt(const PetscReal *f, PetscInt nm, PetscInt q, const Pe
    model is never stiffer than the node-to-node one */
 static PetscErrorCode JointFields(JRHBM h, const JRElements *el, PetscInt nloc, const PetscInt eidx[], const PetscReal R[], const PetscReal S[], const PetscReal P[], PetscReal field[])
 {
-  const PetscInt nm = h->nm, nj = el->njoints, nr = S ? 2 : 1, fw = JR_FIELD_WIDTH(nr, nm), NF = JR_NF;
+  const PetscBool shapes = (PetscBool)(h->jmotion == JR_JOINT_MOTION_SHAPES);
+  const PetscInt  nm = h->nm, nj = el->njoints, nr = S ? 2 : 1, fw = JR_FIELD_WIDTH(nr, nm), NF = JR_NF;
   const PetscInt w = 1 + NF + NF * NF + (1 + NF) * nr * nm; /* count, sum p, sum p p^T, then per set sum r, sum r p^T */
   PetscReal     *loc, *sum;
 
@@ -89,9 +97,15 @@ static PetscErrorCode JointFields(JRHBM h, const JRElements *el, PetscInt nloc, 
     for (PetscInt c = 0; c < NF; c++) cbar[c] = r[1 + c] / r[0];
     for (PetscInt c = 0; c < NF; c++)
       for (PetscInt d = 0; d < NF; d++) G[NF * c + d] = r[1 + NF + NF * c + d] - r[0] * cbar[c] * cbar[d];
-    if (P) PetscCall(PseudoInverse(NF, G)); /* B = sum_e r_e (p_e - cbar)^T G^+, G = sum_e (p_e - cbar)(p_e - cbar)^T */
     for (PetscInt q = 0; q < nr; q++) {
       const PetscReal *rs = r + 1 + NF + NF * NF + (1 + NF) * q * nm;
+      PetscReal        Gq[JR_NF * JR_NF];
+      PetscCall(PetscArraycpy(Gq, G, NF * NF));
+      if (shapes) /* the tangential rows on the tangential motions (stuck and released modes), the normal on the normal */
+        for (PetscInt c = 0; c < NF; c++)
+          for (PetscInt d = 0; d < NF; d++)
+            if (!ShapeCoordinate(q, c) || !ShapeCoordinate(q, d)) Gq[NF * c + d] = 0.0;
+      if (P) PetscCall(PseudoInverse(NF, Gq)); /* B = sum_e r_e (p_e - cbar)^T G^+, G = sum_e (p_e - cbar)(p_e - cbar)^T */
       PetscReal       *cb = f + 1 + q * (NF + (1 + NF) * nm), *ms = cb + NF, *B = ms + nm;
       for (PetscInt c = 0; c < NF; c++) cb[c] = cbar[c];
       for (PetscInt i = 0; i < nm; i++) {
@@ -102,7 +116,7 @@ static PetscErrorCode JointFields(JRHBM h, const JRElements *el, PetscInt nloc, 
           for (PetscInt c = 0; c < NF; c++) m[c] = rs[nm + NF * i + c] - rs[i] * cbar[c];
           for (PetscInt c = 0; c < NF; c++) {
             PetscReal x = 0;
-            for (PetscInt d = 0; d < NF; d++) x += G[NF * c + d] * m[d];
+            for (PetscInt d = 0; d < NF; d++) x += Gq[NF * c + d] * m[d];
             B[NF * i + c] = x;
           }
         }
@@ -113,8 +127,9 @@ static PetscErrorCode JointFields(JRHBM h, const JRElements *el, PetscInt nloc, 
   PetscFunctionReturn(0);
 }
 
-/* The field coordinates (JR_NF each) of elements eidx[0..nloc) of el: positions if el has them and lin, stuck-mode
-   motions if el has them (else 0); P = NULL (the mean) when there are none */
+/* The field coordinates (JR_NF each) of elements eidx[0..nloc) of el: positions if el has them and lin (not with
+   -rom_joint_motion shapes), stuck-mode and released-mode motions if el has them (else 0); P = NULL (the mean) when
+   there are none */
 static PetscErrorCode JointCoordinates(JRHBM h, const JRElements *el, PetscInt nloc, const PetscInt eidx[], PetscBool lin, PetscReal **P)
 {
   PetscFunctionBeginUser;
@@ -123,18 +138,20 @@ static PetscErrorCode JointCoordinates(JRHBM h, const JRElements *el, PetscInt n
   PetscCheck(el->pos, h->comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion linear or mode needs the elements' positions (node-to-node elements of an FE model)");
   PetscCall(PetscCalloc1(JR_NF * nloc + 1, P));
   for (PetscInt e = 0; e < nloc; e++) {
-    for (PetscInt c = 0; c < 3; c++) (*P)[JR_NF * e + c] = el->pos[3 * eidx[e] + c];
+    for (PetscInt c = 0; c < 3 && h->jmotion != JR_JOINT_MOTION_SHAPES; c++) (*P)[JR_NF * e + c] = el->pos[3 * eidx[e] + c];
     for (PetscInt c = 0; el->phi && c < 2; c++) (*P)[JR_NF * e + 3 + c] = el->phi[2 * eidx[e] + c];
+    for (PetscInt c = 0; el->phir && c < JR_NREL; c++) (*P)[JR_NF * e + 5 + c] = el->phir[JR_NREL * eidx[e] + c];
   }
   PetscFunctionReturn(0);
 }
 
-/* The field coordinates of element e of el (buffer p), or NULL */
-static inline const PetscReal *ElementCoordinates(const JRElements *el, PetscInt e, PetscReal p[JR_NF])
+/* The field coordinates of element e of el (buffer p; no positions with shapes), or NULL */
+static inline const PetscReal *ElementCoordinates(const JRElements *el, PetscInt e, PetscBool shapes, PetscReal p[JR_NF])
 {
   if (!el->pos) return NULL;
-  for (PetscInt c = 0; c < 3; c++) p[c] = el->pos[3 * e + c];
+  for (PetscInt c = 0; c < 3; c++) p[c] = shapes ? 0.0 : el->pos[3 * e + c];
   for (PetscInt c = 0; c < 2; c++) p[3 + c] = el->phi ? el->phi[2 * e + c] : 0.0;
+  for (PetscInt c = 0; c < JR_NREL; c++) p[5 + c] = el->phir ? el->phir[JR_NREL * e + c] : 0.0;
   return p;
 }
 
@@ -230,6 +247,6 @@ PetscErrorCode JRJointFieldRows(JRHBM h, const JRElements *el, PetscInt nloc, co
   PetscReal      pc[JR_NF]; /* an element's field coordinates */
 
   PetscFunctionBeginUser;
-  for (PetscInt e = 0; e < nloc; e++) FieldAt(field + el->joint[eidx[e]] * JR_FIELD_WIDTH(2, nm), nm, q, ElementCoordinates(el, eidx[e], pc), X + e, nloc);
+  for (PetscInt e = 0; e < nloc; e++) FieldAt(field + el->joint[eidx[e]] * JR_FIELD_WIDTH(2, nm), nm, q, ElementCoordinates(el, eidx[e], (PetscBool)(h->jmotion == JR_JOINT_MOTION_SHAPES), pc), X + e, nloc);
   PetscFunctionReturn(0);
 }

@@ -259,13 +259,15 @@ PetscErrorCode JRFitSpreadPoints(FitCtx *ctx, PetscInt j, PetscInt mj)
   PetscFunctionReturn(0);
 }
 
-/* ModePoints' sums per element: sum f phi_t, sum kt, sum kt phi_t^2, sum kn, sum kn phi_n, sum kn phi_n^2, sum kt x (3),
-   sum n0, sum kt phi_t, sum kt phi_t phi_n */
+/* ModePoints' sums per element (JR_MODE_SUMS): sum f phi_t, sum kt, sum kt phi_t^2, sum kn, sum kn phi_n,
+   sum kn phi_n^2, sum kt x (3), sum n0, sum kt phi_t, sum kt phi_t phi_n, then per released mode sum kt phi_r,
+   sum kt phi_r phi_t */
+#define JR_MODE_SUMS (12 + 2 * JR_NREL)
 static PetscErrorCode ModeAdd(FitCtx *ctx, PetscInt e, PetscInt g, PetscReal fr, void *user)
 {
   const JRElements *nn = ctx->nn;
   const PetscReal   pt = nn->phi[2 * e], pn = nn->phi[2 * e + 1];
-  PetscReal        *r  = (PetscReal *)user + 12 * g;
+  PetscReal        *r  = (PetscReal *)user + JR_MODE_SUMS * g;
 
   PetscFunctionBeginUser;
   r[0] += fr * nn->mu[e] * nn->n0[e] * pt;
@@ -278,6 +280,10 @@ static PetscErrorCode ModeAdd(FitCtx *ctx, PetscInt e, PetscInt g, PetscReal fr,
   r[9] += fr * PetscMax(nn->n0[e], 0);
   r[10] += fr * nn->kt[e] * pt;
   r[11] += fr * nn->kt[e] * pt * pn;
+  for (PetscInt c = 0; nn->phir && c < JR_NREL; c++) { /* the released modes' phi_r: sum kt phi_r, sum kt phi_r phi_t */
+    r[12 + 2 * c] += fr * nn->kt[e] * nn->phir[JR_NREL * e + c];
+    r[13 + 2 * c] += fr * nn->kt[e] * nn->phir[JR_NREL * e + c] * pt;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -314,10 +320,10 @@ PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
     }
   }
   mean = cnt > 0 ? mean / cnt : 0;
-  PetscCall(PetscCalloc1(12 * mj, &acc));
+  PetscCall(PetscCalloc1(JR_MODE_SUMS * mj, &acc));
   PetscCall(MemberShares(ctx, j, mj, ModeAdd, acc));
   for (PetscInt g = 0; g < mj; g++) {
-    const PetscReal *r = acc + 12 * g, m = r[3] > 0 ? r[4] / r[3] : 0, s = r[3] > 0 ? PetscSqrtReal(PetscMax(r[5] / r[3] - m * m, 0)) : 0;
+    const PetscReal *r = acc + JR_MODE_SUMS * g, m = r[3] > 0 ? r[4] / r[3] : 0, s = r[3] > 0 ? PetscSqrtReal(PetscMax(r[5] / r[3] - m * m, 0)) : 0;
     const PetscReal  mt = r[1] > 0 ? r[10] / r[1] : 0, st = r[1] > 0 ? PetscSqrtReal(PetscMax(r[2] / r[1] - mt * mt, 0)) : 0;
     const PetscReal  ctn = r[1] > 0 ? r[11] / r[1] - mt * (r[3] > 0 ? r[4] / r[3] : 0) : 0; /* the sign of phi_t's and phi_n's covariance */
     PetscReal        psi = r[1] > 0 ? PetscSqrtReal(r[2] / r[1]) : 0;
@@ -334,6 +340,11 @@ PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
       for (PetscInt a = 0; a < 3; a++) P[JR_EP * g + 5 * h + a] = r[1] > 0 ? r[6 + a] / r[1] : 0;
       P[JR_EP * g + 5 * h + 3] = psi == mean || !ctx->nv ? psi : mt + sg * st;
       P[JR_EP * g + 5 * h + 4] = m + (ctn < 0 ? -sg : sg) * s;
+      for (PetscInt c = 0; nn->phir && c < JR_NREL; c++) { /* shapes: each released mode's phi_r at its kt-weighted mean and
+                                                               regression on phi_t (the group's covariance kept) */
+        const PetscReal xm = r[1] > 0 ? r[12 + 2 * c] / r[1] : 0, cov = r[1] > 0 ? r[13 + 2 * c] / r[1] - xm * mt : 0;
+        ctx->epr[2 * JR_NREL * (ctx->cnt + g) + JR_NREL * h + c] = xm + (st > 0 ? cov / (st * st) * (P[JR_EP * g + 5 * h + 3] - mt) : 0);
+      }
     }
   }
   PetscCall(PetscFree(acc));
@@ -375,6 +386,11 @@ PetscErrorCode JRFitOpenPoints(FitCtx *ctx, const MemberDelta *od, PetscInt no, 
       for (PetscInt a = 0; a < 3; a++) P[JR_EP * g + 5 * h + a] = sx[a] / (i1 - i0);
       P[JR_EP * g + 5 * h + 3] = st / (i1 - i0);
       P[JR_EP * g + 5 * h + 4] = h ? m + s : m - s;
+      for (PetscInt c = 0; nn->phir && c < JR_NREL; c++) { /* shapes: the members' mean released motions */
+        PetscReal x = 0;
+        for (PetscInt i = i0; i < i1; i++) x += nn->phir[JR_NREL * od[i].e + c];
+        ctx->epr[2 * JR_NREL * (e0 + g) + JR_NREL * h + c] = x / (i1 - i0);
+      }
     }
   }
   PetscFunctionReturn(0);
@@ -599,8 +615,7 @@ PetscErrorCode JRROMFitSetFromOptions(MPI_Comm comm, JRROMFit *f)
   PetscCall(PetscOptionsReal("-fit_stiffness_weight", "Weight of the joint's stuck stiffness (its stuck loop), relative to one loop", "JRROMReduce", f->wstiff, &f->wstiff, NULL));
   PetscCall(PetscOptionsInt("-fit_normal_passes", "-rom_joint_motion mode, jenkins_nv, with a case: fit again this many times, each with the change the normal-load variation makes to the energy per cycle (members' and the previous fit's) added to the energy targets (0: once, fixed normal loads)", "JRROMReduce", f->npass, &f->npass, NULL));
   {
-    const char *jm[] = {"mean", "linear", "mode"};
-    PetscCall(PetscOptionsEList("-joint_motion", "How a joint's members move: mean (4.4), linear (a field over their positions: each fitted element is spread over three points of its members' spread) or mode (a field over their motions in the stuck mode of interest: each fitted element sits at its members' motion)", "JRROMReduce", jm, 3, jm[f->jmotion], &f->jmotion, NULL));
+    PetscCall(PetscOptionsEList("-joint_motion", "How a joint's members move: mean (4.4), linear (a field over their positions: each fitted element is spread over three points of its members' spread), mode (a field over their positions and motions in the stuck mode of interest: each fitted element sits at its members' motion) or shapes (a field over their motions in the stuck mode of interest and in released modes, -rom_release_fractions)", "JRROMReduce", JRJointMotions, 4, JRJointMotions[f->jmotion], &f->jmotion, NULL));
   }
   PetscCall(PetscOptionsBool("-joint_residual", "Keep each member's stuck springs, linear, on its motion outside its joint's field (the residual of the field's fit); the joints' elements replace only those on the field's motion, so the reduced model stuck is node-to-node stuck", "JRROMReduce", f->resid, &f->resid, NULL));
   PetscCall(PetscOptionsBool("-fit_search", "Choose the slip displacements among a grid over the members' range (best non-negative least squares of the forces); else those of the log-width groups of members", "JRROMReduce", f->search, &f->search, NULL));
@@ -631,8 +646,8 @@ static PetscErrorCode FitCheck(FitCtx *ctx)
   ctx->nv = (PetscBool)!strcmp(nn->typename[0], JRCONTACTJENKINSNV);
   PetscCheck(ctx->nv || !strcmp(nn->typename[0], JRCONTACTJENKINS), comm, PETSC_ERR_SUP, "The second reduction fits jenkins and jenkins_nv joints, not %s", nn->typename[0]);
   ctx->spread = (PetscBool)(ctx->fit->jmotion == 1);
-  ctx->modef  = (PetscBool)(ctx->fit->jmotion == 2);
-  PetscCheck(!(ctx->spread || ctx->modef) || (nn->pos && (!ctx->modef || nn->phi)), comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion %s needs the members' coordinates (node-to-node elements of an FE model)", ctx->spread ? "linear" : "mode");
+  ctx->modef  = (PetscBool)(ctx->fit->jmotion == JR_JOINT_MOTION_MODE || ctx->fit->jmotion == JR_JOINT_MOTION_SHAPES);
+  PetscCheck(!(ctx->spread || ctx->modef) || (nn->pos && (!ctx->modef || nn->phi)), comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion %s needs the members' coordinates (node-to-node elements of an FE model)", JRJointMotions[ctx->fit->jmotion]);
   PetscFunctionReturn(0);
 }
 
@@ -668,10 +683,12 @@ static PetscErrorCode FirstReduction(const FitCtx *ctx, JRElements *rom)
   rom->njoints = ctx->nj;
   if (ctx->spread || ctx->modef) PetscCall(PetscMalloc1(3 * cnt0 + 1, &rom->pos));
   if (ctx->modef) PetscCall(PetscMalloc1(2 * cnt0 + 1, &rom->phi));
+  if (ctx->modef && nn->phir) PetscCall(PetscMalloc1(JR_NREL * cnt0 + 1, &rom->phir));
   for (PetscInt e = 0, i = 0; e < nn->n; e++) {
     if (!(nv || ctx->mk[e] > 0)) continue;
     for (PetscInt c = 0; rom->pos && c < 3; c++) rom->pos[3 * i + c] = nn->pos[3 * e + c];
     for (PetscInt c = 0; rom->phi && c < 2; c++) rom->phi[2 * i + c] = nn->phi[2 * e + c];
+    for (PetscInt c = 0; rom->phir && c < JR_NREL; c++) rom->phir[JR_NREL * i + c] = nn->phir[JR_NREL * e + c];
     rom->kt[i]      = nv ? nn->kt[e] : ctx->mk[e];
     rom->kn[i]      = nn->kn[e];
     rom->mu[i]      = nn->mu[e];
@@ -726,6 +743,7 @@ static PetscErrorCode FitAllocate(FitCtx *ctx)
   nmax = cnt + (ctx->modef && ctx->nv ? nj * ctx->m : 0); /* mode, jenkins_nv: up to m elements more per joint for its open members */
   PetscCall(PetscMalloc5(nmax, &ctx->ek, nmax, &ctx->ef, nmax, &ctx->ekn, nmax, &ctx->en0, nmax, &ctx->emu));
   if (ctx->spread || ctx->modef) PetscCall(PetscMalloc2(JR_EP * nmax + 1, &ctx->ep, nmax + 1, &ctx->er));
+  if (ctx->modef && ctx->nn->phir) PetscCall(PetscCalloc1(2 * JR_NREL * nmax + 1, &ctx->epr));
   if (ctx->base && ctx->base[0]) {
     PetscCall(PetscSNPrintf(ctx->csv, sizeof(ctx->csv), "%s_rom_loops.csv", ctx->base));
     PetscCall(JRFileOpenTemp(ctx->comm, ctx->csv, &ctx->fp, ctx->tmp, sizeof(ctx->tmp)));
@@ -798,6 +816,7 @@ static PetscErrorCode AssembleElements(const FitCtx *ctx, JRElements *rom)
   PetscCall(JRROMElementsSetUp(rom, nc * cnt, ctx->nn->typename[0], PETSC_FALSE));
   if (ctx->spread || ctx->modef) PetscCall(PetscMalloc1(3 * nc * cnt, &rom->pos));
   if (ctx->modef) PetscCall(PetscMalloc1(2 * nc * cnt, &rom->phi));
+  if (ctx->modef && ctx->epr) PetscCall(PetscMalloc1(JR_NREL * nc * cnt, &rom->phir));
   rom->njoints = ctx->nj;
   for (PetscInt j = 0, e = 0; j < ctx->nj; j++)
     for (PetscInt i = 0; i < ctx->nel[j]; i++, e++)
@@ -811,6 +830,7 @@ static PetscErrorCode AssembleElements(const FitCtx *ctx, JRElements *rom)
         rom->joint[r]     = j;
         for (PetscInt k = 0; rom->pos && k < 3; k++) rom->pos[3 * r + k] = ctx->ep[JR_EP * e + 5 * c + k];
         for (PetscInt k = 0; rom->phi && k < 2; k++) rom->phi[2 * r + k] = ctx->ep[JR_EP * e + 5 * c + 3 + k];
+        for (PetscInt k = 0; rom->phir && k < JR_NREL; k++) rom->phir[JR_NREL * r + k] = ctx->epr[2 * JR_NREL * e + JR_NREL * c + k];
       }
   PetscCall(PetscNew(&rom->members));
   PetscCall(JRElementsDuplicate(ctx->nn, rom->members));
@@ -825,6 +845,7 @@ static PetscErrorCode FitCtxReset(FitCtx *ctx)
   PetscCall(PetscFree2(ctx->jf, ctx->nel));
   PetscCall(PetscFree5(ctx->ek, ctx->ef, ctx->ekn, ctx->en0, ctx->emu));
   PetscCall(PetscFree2(ctx->ep, ctx->er));
+  PetscCall(PetscFree(ctx->epr));
   PetscCall(PetscFree(ctx->md));
   PetscCall(PetscFree2(ctx->jn, ctx->joff));
   PetscCall(PetscFree2(ctx->mk, ctx->mf));

@@ -79,9 +79,10 @@ static void GetRow(JRElements *el, PetscInt e, const PetscReal r[])
 /*
   JRROMSave - write a reduced model (elements with members) to an HDF5 file: /rom/elements (joint, kt, kn, mu, n0,
   type per element), /rom/members (joint, kt, kn, mu, n0, type, the 6 DOFs, t, n and the nodes' coordinates per
-  member), attributes njoints, types, stiffness_correction. Written by rank 0 to a temporary file, then renamed.
+  member), attributes njoints, types, stiffness_correction, joint_motion (JRJointMotions[jmotion]). Written by rank 0
+  to a temporary file, then renamed.
 */
-PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, const char file[])
+PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, PetscInt jmotion, const char file[])
 {
   MPI_Comm          comm;
   PetscMPIInt       rank;
@@ -133,10 +134,19 @@ PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, c
       }
       PetscCall(PetscFree(p));
     }
+    if (rom->phir && mem->phir) { /* shapes: their coordinates in the released modes likewise */
+      PetscReal *p;
+      PetscCall(PetscMalloc1(JR_NREL * (rom->n + mem->n), &p));
+      PetscCall(PetscArraycpy(p, rom->phir, JR_NREL * rom->n));
+      PetscCall(PetscArraycpy(p + JR_NREL * rom->n, mem->phir, JR_NREL * mem->n));
+      PetscCall(WriteSeq(v, "released_coordinates", rom->n + mem->n, JR_NREL, p));
+      PetscCall(PetscFree(p));
+    }
     PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "njoints", PETSC_INT, &nj));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "element_type", PETSC_STRING, rom->typename[0]));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "members", "element_type", PETSC_STRING, mem->typename[0]));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "stiffness_correction", PETSC_REAL, &corr));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "joint_motion", PETSC_STRING, JRJointMotions[jmotion]));
     PetscCall(PetscViewerHDF5PopGroup(v));
     PetscCall(PetscViewerDestroy(&v));
     PetscCall(PetscFree(a));
@@ -179,10 +189,11 @@ static PetscErrorCode ReadSeq(PetscViewer v, const char file[], const char name[
 /* A file written by JRROMSave, as read (every rank) */
 typedef struct {
   const char *file;
-  PetscInt    ne, nmem, nj, npos, nphi;
-  PetscReal  *el, *mem;  /* rows of JR_ROM_EL and JR_ROM_MEM numbers */
-  PetscReal  *pos, *phi; /* rows of 3 and 2, one per element then one per member (NULL: not in the file) */
+  PetscInt    ne, nmem, nj, npos, nphi, nphir;
+  PetscReal  *el, *mem;        /* rows of JR_ROM_EL and JR_ROM_MEM numbers */
+  PetscReal  *pos, *phi, *phir; /* rows of 3, 2 and JR_NREL, one per element then one per member (NULL: not in the file) */
   char       *ty, *mty;  /* the elements' and the members' type */
+  char       *jm;        /* the joint motion that saved it (NULL: the file does not say) */
   PetscReal   corr;      /* the stiffness correction (1 if the file has none) */
 } ROMFile;
 
@@ -190,7 +201,7 @@ typedef struct {
 static PetscErrorCode ROMFileRead(MPI_Comm comm, const char file[], ROMFile *f)
 {
   PetscViewer v;
-  PetscBool   exists, haspos, hasphi;
+  PetscBool   exists, haspos, hasphi, hasphir;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(f, sizeof(*f)));
@@ -211,9 +222,16 @@ static PetscErrorCode ROMFileRead(MPI_Comm comm, const char file[], ROMFile *f)
   if (haspos) PetscCall(ReadSeq(v, file, "positions", 3, &f->npos, &f->pos));
   PetscCall(PetscViewerHDF5HasDataset(v, "mode_coordinates", &hasphi));
   if (hasphi) PetscCall(ReadSeq(v, file, "mode_coordinates", 2, &f->nphi, &f->phi));
+  PetscCall(PetscViewerHDF5HasDataset(v, "released_coordinates", &hasphir));
+  if (hasphir) PetscCall(ReadSeq(v, file, "released_coordinates", JR_NREL, &f->nphir, &f->phir));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "njoints", PETSC_INT, NULL, &f->nj));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "element_type", PETSC_STRING, NULL, &f->ty));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "members", "element_type", PETSC_STRING, NULL, &f->mty));
+  {
+    PetscBool has;
+    PetscCall(PetscViewerHDF5HasAttribute(v, "elements", "joint_motion", &has));
+    if (has) PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "joint_motion", PETSC_STRING, NULL, &f->jm));
+  }
   f->corr = 1.0;
   PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "stiffness_correction", PETSC_REAL, &f->corr, &f->corr));
   PetscCall(PetscViewerHDF5PopGroup(v));
@@ -230,8 +248,10 @@ static PetscErrorCode ROMFileDestroy(ROMFile *f)
   PetscCall(PetscFree(f->mem));
   PetscCall(PetscFree(f->pos));
   PetscCall(PetscFree(f->phi));
+  PetscCall(PetscFree(f->phir));
   PetscCall(PetscFree(f->ty));
   PetscCall(PetscFree(f->mty));
+  PetscCall(PetscFree(f->jm));
   PetscFunctionReturn(0);
 }
 
@@ -300,6 +320,13 @@ static PetscErrorCode ROMFilePoints(MPI_Comm comm, const ROMFile *f, JRElements 
     PetscCall(PetscArraycpy(rom->phi, f->phi, 2 * ne));
     PetscCall(PetscArraycpy(mem->phi, f->phi + 2 * ne, 2 * nmem));
   }
+  if (f->phir) { /* reduced with -rom_joint_motion shapes: their coordinates in the released modes */
+    PetscCheck(f->phi && f->nphir == ne + nmem, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: /rom/released_coordinates has %" PetscInt_FMT " rows, not one per element and member (%" PetscInt_FMT ") with /rom/mode_coordinates", f->file, f->nphir, ne + nmem);
+    PetscCall(PetscMalloc1(JR_NREL * ne, &rom->phir));
+    PetscCall(PetscMalloc1(JR_NREL * nmem, &mem->phir));
+    PetscCall(PetscArraycpy(rom->phir, f->phir, JR_NREL * ne));
+    PetscCall(PetscArraycpy(mem->phir, f->phir + JR_NREL * ne, JR_NREL * nmem));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -331,9 +358,10 @@ static PetscErrorCode ROMFileCheckNodes(JRModel model, const ROMFile *f, const J
 
 /*
   JRROMLoad - read a reduced model written by JRROMSave for this FE model: every member's nodes must be where the
-  file says (within 1e-9 of the model's size), else an error naming the file; corr: its stiffness correction.
+  file says (within 1e-9 of the model's size), else an error naming the file; corr: its stiffness correction; jmotion:
+  the joint motion that saved it (-1 if the file does not say).
 */
-PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, PetscReal *corr)
+PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, PetscReal *corr, PetscInt *jmotion)
 {
   MPI_Comm    comm;
   ROMFile     f;
@@ -342,7 +370,11 @@ PetscErrorCode JRROMLoad(JRModel model, const char file[], JRElements *rom, Pets
   PetscFunctionBeginUser;
   PetscCall(JRModelGetComm(model, &comm));
   PetscCall(ROMFileRead(comm, file, &f));
-  *corr = f.corr;
+  *corr    = f.corr;
+  *jmotion = -1;
+  for (PetscInt i = 0; f.jm && i <= JR_JOINT_MOTION_SHAPES; i++)
+    if (!strcmp(f.jm, JRJointMotions[i])) *jmotion = i;
+  PetscCheck(!f.jm || *jmotion >= 0, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: joint motion '%s' (mean, linear, mode or shapes)", file, f.jm);
   PetscCall(ROMFileElements(comm, &f, rom));
   PetscCall(ROMFileMembers(model, &f, &mem));
   rom->members = mem;

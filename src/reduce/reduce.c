@@ -278,6 +278,11 @@ PetscErrorCode JRReduceCreate(MPI_Comm comm, JRReduce *red)
   r->bands         = 6;
   r->obands        = 1;
   r->upto          = 0.9;
+  r->nrel          = 4;
+  r->rel[0]        = 0.003; /* released modes: from the first slip at the lap's ends to a tenth of the slip force */
+  r->rel[1]        = 0.01;
+  r->rel[2]        = 0.03;
+  r->rel[3]        = 0.1;
   r->mode_weights  = PETSC_TRUE;
   r->corr_on       = PETSC_TRUE;
   r->nst           = 3;
@@ -313,8 +318,8 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
 {
   const char *sel[] = {"none", "first"};
   MPI_Comm    comm    = r->comm;
-  PetscBool   set, bset, st, sc, rset, bdset, uset, obset;
-  PetscInt    nst = 8, nsc = 8;
+  PetscBool   set, bset, st, sc, rset, bdset, uset, obset, relset;
+  PetscInt    nst = 8, nsc = 8, nrel = JR_NREL;
 
   PetscFunctionBeginUser;
   r->ncut = 64;
@@ -328,6 +333,7 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
   PetscCall(PetscOptionsInt("-onset_bands", "-rom_joints onset: bands of slip onset in the stuck mode of interest (each split by bolt side)", "JRReduceAssignJoints", r->bands, &r->bands, &bdset));
   PetscCall(PetscOptionsInt("-onset_open_bands", "-rom_joints onset: bands of closing onset in the stuck mode of interest that divide the open members (each split by bolt side)", "JRReduceAssignJoints", r->obands, &r->obands, &obset));
   PetscCall(PetscOptionsReal("-onset_upto", "-rom_joints onset: the bands divide, in equal ratios, the slip onsets from the first to the one by which this fraction of the interface's slip force mu n0 slips (later onsets join the last band)", "JRReduceAssignJoints", r->upto, &r->upto, &uset));
+  PetscCall(PetscOptionsRealArray("-release_fractions", "-rom_joint_motion shapes: the released modes, each the stuck mode of interest with the members that slip first (in the order of their slip onsets in it) freed until they hold this fraction of the interface's slip force mu n0; increasing, in (0, 1), up to 4", "JRReduceSetUp", r->rel, &nrel, &relset));
   PetscCall(PetscOptionsBool("-split_width", "Split every strip at mid-width into two joints", "JRReduceAssignJoints", r->split_width, &r->split_width, NULL));
   PetscCall(PetscOptionsInt("-elements", "Second reduction: fit this many elements per joint to its hysteresis loops (0: the first reduction only)", "JRReduceSetUp", r->m, &r->m, NULL));
   PetscCall(PetscOptionsBool("-mode_weights", "Weight every member of a joint by its motion relative to the joint's in the stuck mode of interest (w^2 kt, |w| f; jenkins)", "JRReduceSetUp", r->mode_weights, &r->mode_weights, NULL));
@@ -368,6 +374,11 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
     PetscCall(JRFileCheckHDF5(comm, "-rom_load", r->load, "/rom", "write one with -rom_save"));
   }
   PetscCall(JRROMFitSetFromOptions(comm, &r->fit));
+  if (relset) r->nrel = nrel;
+  else if (r->fit.jmotion != JR_JOINT_MOTION_SHAPES) r->nrel = 0; /* mode: released modes only when asked for */
+  PetscCheck(!relset || r->fit.jmotion >= JR_JOINT_MOTION_MODE, comm, PETSC_ERR_ARG_INCOMP, "-rom_release_fractions needs -rom_joint_motion mode or shapes");
+  PetscCheck(!relset || r->nrel > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_release_fractions: 1 to %d fractions", JR_NREL);
+  for (PetscInt i = 0; i < r->nrel; i++) PetscCheck(r->rel[i] > 0 && r->rel[i] < 1 && (!i || r->rel[i] > r->rel[i - 1]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_release_fractions: %g: the fractions must increase, each in (0, 1)", (double)r->rel[i]);
   r->setfromoptions = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
@@ -421,6 +432,53 @@ PetscErrorCode JRReduceSetOutput(JRReduce r, const char base[], PetscBool plot)
 
 
 
+/* -rom_joint_motion shapes: the members' tangential motions elj->phir in the released modes. A member in contact at
+   rest starts to slip at the modal amplitude a_e = mu n0_e / (kt |u_e|) in the stuck mode of interest k (u: its
+   motion in it); in that order, released mode i frees (kt = 0) the members that slip first until they hold the fraction
+   r->rel[i] of the interface's slip force mu n0 and is the mode of that structure most like mode k (largest |q^T M q_k|),
+   so a joint's field spans the motion of a slip front inside it. A joint without a freed member takes no coordinate from
+   that mode (0: the joint's field keeps only what it spans). Each mode is scaled to a largest member motion of 1. */
+static PetscErrorCode ReleasedModes(JRReduce r, JRHBM hbm, JRElements *elj, PetscInt k, const PetscReal u[])
+{
+  const PetscInt n = elj->n;
+  PetscReal     *a, *ktf, *ur, tot = 0;
+  PetscInt      *perm, *has;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc4(n, &a, n, &ktf, n, &ur, n, &perm));
+  PetscCall(PetscCalloc1(elj->njoints, &has));
+  PetscCall(PetscFree(elj->phir));
+  PetscCall(PetscCalloc1(JR_NREL * n, &elj->phir));
+  for (PetscInt e = 0; e < n; e++) {
+    perm[e] = e;
+    a[e]    = elj->n0[e] > 0 && PetscAbsReal(u[e]) > 0 ? elj->mu[e] * elj->n0[e] / (elj->kt[e] * PetscAbsReal(u[e])) : PETSC_MAX_REAL;
+    if (elj->n0[e] > 0) tot += elj->mu[e] * elj->n0[e];
+  }
+  PetscCall(PetscSortRealWithPermutation(n, a, perm));
+  for (PetscInt i = 0; i < r->nrel; i++) {
+    PetscReal cum = 0, um = 0, fr;
+    PetscInt  nfree = 0, nj = 0;
+    for (PetscInt e = 0; e < n; e++) ktf[e] = 1.0;
+    for (PetscInt j = 0; j < elj->njoints; j++) has[j] = 0;
+    for (PetscInt q = 0; q < n && a[perm[q]] < PETSC_MAX_REAL && cum < r->rel[i] * tot; q++) {
+      const PetscInt e = perm[q];
+      ktf[e]           = 0.0;
+      cum += elj->mu[e] * elj->n0[e];
+      has[elj->joint[e]] = 1;
+      nfree++;
+    }
+    PetscCall(JRHBMReleasedModeMotion(hbm, k, ktf, ur, &fr));
+    for (PetscInt e = 0; e < n; e++) um = PetscMax(um, PetscAbsReal(ur[e]));
+    PetscCheck(um > 0, r->comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion shapes: the interface does not move in released mode %" PetscInt_FMT, i);
+    for (PetscInt e = 0; e < n; e++) elj->phir[JR_NREL * e + i] = has[elj->joint[e]] ? ur[e] / um : 0.0;
+    for (PetscInt j = 0; j < elj->njoints; j++) nj += has[j];
+    PetscCall(PetscPrintf(r->comm, "rom: released mode %" PetscInt_FMT ": %.6g Hz, %" PetscInt_FMT " members freed (%.3g of the slip force, the first to slip) in %" PetscInt_FMT " joints\n", i, (double)fr, nfree, (double)(tot > 0 ? cum / tot : 0), nj));
+  }
+  PetscCall(PetscFree(has));
+  PetscCall(PetscFree4(a, ktf, ur, perm));
+  PetscFunctionReturn(0);
+}
+
 /*
   JRReduceSetUp - the reduced model elr from the node-to-node elements elj whose joints JRReduceAssignJoints set:
   the stuck mode of interest of hbm (the node-to-node model, set up), each member's motion over its joint's in it (the
@@ -451,7 +509,7 @@ PetscErrorCode JRReduceSetUp(JRReduce r, JRModel model, JRHBM hbm, JRElements *e
     PetscCall(PetscFree(u));
     PetscCall(PetscFree(v));
   }
-  if (!strcmp(elj->typename[0], JRCONTACTJENKINS) || jmotion == 2) {
+  if (!strcmp(elj->typename[0], JRCONTACTJENKINS) || jmotion >= JR_JOINT_MOTION_MODE) {
     PetscInt  k = 0;
     PetscReal ft = 0, *u, *v, *cnt, *ua, umax = 0, smax = 0, om;
     PetscCall(TargetMode(r, hbm, &k, &ft));
@@ -470,19 +528,24 @@ PetscErrorCode JRReduceSetUp(JRReduce r, JRModel model, JRHBM hbm, JRElements *e
       umax = PetscMax(umax, PetscAbsReal(u[e]));
     }
     for (PetscInt j = 0; j < elj->njoints; j++) ubar[j] = cnt[2 * j] > 0 ? ubar[j] / cnt[2 * j] : ua[j] / cnt[2 * j + 1];
-    if (jmotion == 2) { /* -rom_joint_motion mode: each member's field coordinates are its position and its tangential
-                           and normal motions in this mode (scaled to at most 1); the fit weighs the members */
+    if (jmotion >= JR_JOINT_MOTION_MODE) { /* -rom_joint_motion mode: each member's field coordinates are its position
+                                              and its tangential and normal motions in this mode (scaled to at most 1);
+                                              shapes: also its tangential motions in the released modes, not its
+                                              position; the fit weighs the members */
       for (PetscInt e = 0; e < n; e++) smax = PetscMax(smax, PetscMax(PetscAbsReal(u[e]), PetscAbsReal(v[e])));
-      PetscCheck(smax > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion mode: the interface does not move in stuck mode %" PetscInt_FMT " (%g Hz)", k, (double)ft);
+      PetscCheck(smax > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion %s: the interface does not move in stuck mode %" PetscInt_FMT " (%g Hz)", JRJointMotions[jmotion], k, (double)ft);
       PetscCall(PetscFree(elj->phi));
       PetscCall(PetscMalloc1(2 * n, &elj->phi));
       for (PetscInt e = 0; e < n; e++) {
         elj->phi[2 * e]     = u[e] / smax;
         elj->phi[2 * e + 1] = v[e] / smax;
       }
-      PetscCall(PetscPrintf(comm, "rom: joints move with a field linear in their members' positions and motions in stuck mode %" PetscInt_FMT " (%.6g Hz)\n", k, (double)ft));
+      if (jmotion == JR_JOINT_MOTION_MODE) PetscCall(PetscPrintf(comm, "rom: joints move with a field linear in their members' positions and motions in stuck mode %" PetscInt_FMT " (%.6g Hz)\n", k, (double)ft));
+      else PetscCall(PetscPrintf(comm, "rom: joints move with a field linear in their members' motions in stuck mode %" PetscInt_FMT " (%.6g Hz) and in %" PetscInt_FMT " released modes\n", k, (double)ft, r->nrel));
+      if (jmotion == JR_JOINT_MOTION_MODE && r->nrel) PetscCall(PetscPrintf(comm, "rom: and in %" PetscInt_FMT " released modes\n", r->nrel));
+      if (r->nrel) PetscCall(ReleasedModes(r, hbm, elj, k, u));
     }
-    if (r->mode_weights || jmotion == 2) {
+    if (r->mode_weights || jmotion >= JR_JOINT_MOTION_MODE) {
       PetscCall(PetscMalloc1(n, &w));
       for (PetscInt e = 0; e < n; e++) w[e] = PetscAbsReal(ubar[elj->joint[e]]) > 1e-6 * umax ? u[e] / ubar[elj->joint[e]] : 1.0;
       PetscCall(PetscPrintf(comm, "rom: members weighted by their motion in stuck mode %" PetscInt_FMT " (%.6g Hz) over their joint's\n", k, (double)ft));
@@ -536,15 +599,23 @@ PetscErrorCode JRReduceCreateHBM(JRReduce r, JRModel model, JRHBM hbm, PetscBool
 PetscErrorCode JRReduceSave(JRReduce r, JRModel model, const JRElements *elr)
 {
   PetscFunctionBeginUser;
-  if (r->save[0]) PetscCall(JRROMSave(model, elr, r->corr, r->save));
+  if (r->save[0]) PetscCall(JRROMSave(model, elr, r->corr, r->fit.jmotion, r->save));
   PetscFunctionReturn(0);
 }
 
 /* -rom_load: the reduced model of the file, for this FE model */
 PetscErrorCode JRReduceLoad(JRReduce r, JRModel model, JRElements *elr)
 {
+  PetscInt jm;
+
   PetscFunctionBeginUser;
-  PetscCall(JRROMLoad(model, r->load, elr, &r->corr));
+  PetscCall(JRROMLoad(model, r->load, elr, &r->corr, &jm));
+  if (jm >= 0) { /* the joint motion that saved it (a file without one: as -rom_joint_motion says) */
+    PetscBool set;
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-rom_joint_motion", &set));
+    PetscCheck(!set || jm == r->fit.jmotion, r->comm, PETSC_ERR_ARG_INCOMP, "-rom_load %s: the model was reduced with -rom_joint_motion %s, not %s (the file's joint motion is used: leave the option out)", r->load, JRJointMotions[jm], JRJointMotions[r->fit.jmotion]);
+    r->fit.jmotion = jm;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -558,10 +629,8 @@ PetscErrorCode JRReduceGetStiffnessCorrection(JRReduce r, PetscReal *c)
 
 PetscErrorCode JRReduceView(JRReduce r, PetscViewer viewer)
 {
-  const char *jm[] = {"mean", "linear", "mode"};
-
   PetscFunctionBeginUser;
   if (!viewer) viewer = PETSC_VIEWER_STDOUT_(r->comm);
-  PetscCall(PetscViewerASCIIPrintf(viewer, "JRReduce: joints %s, %" PetscInt_FMT " elements per joint%s, joint motion %s, stiffness correction %s (%g)\n", JRReduceJointKinds[r->joints], r->m, r->m ? "" : " (first reduction)", jm[r->fit.jmotion], r->corr_on ? "on" : "off", (double)r->corr));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "JRReduce: joints %s, %" PetscInt_FMT " elements per joint%s, joint motion %s, stiffness correction %s (%g)\n", JRReduceJointKinds[r->joints], r->m, r->m ? "" : " (first reduction)", JRJointMotions[r->fit.jmotion], r->corr_on ? "on" : "off", (double)r->corr));
   PetscFunctionReturn(0);
 }

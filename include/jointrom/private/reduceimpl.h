@@ -21,6 +21,8 @@ struct _p_JRReduce {
   PetscInt  bands;  /* -rom_onset_bands */
   PetscInt  obands; /* -rom_onset_open_bands */
   PetscReal upto;   /* -rom_onset_upto */
+  PetscReal rel[JR_NREL]; /* -rom_release_fractions */
+  PetscInt  nrel;
   const PetscInt *pair; /* each element's pair (JRReduceAssignJoints' argument, kept for onset) */
   PetscInt  ncut, nbox;
   PetscReal cut[64], box[256], zone_fraction;

@@ -106,6 +106,7 @@ PetscErrorCode JRElementsDestroy(JRElements *el)
   PetscCall(PetscFree(el->joint));
   PetscCall(PetscFree(el->pos));
   PetscCall(PetscFree(el->phi));
+  PetscCall(PetscFree(el->phir));
   if (el->members) {
     PetscCall(JRElementsDestroy(el->members));
     PetscCall(PetscFree(el->members));
@@ -154,6 +155,10 @@ PetscErrorCode JRElementsDuplicate(const JRElements *a, JRElements *b)
   if (a->phi) {
     PetscCall(PetscMalloc1(2 * n, &b->phi));
     PetscCall(PetscArraycpy(b->phi, a->phi, 2 * n));
+  }
+  if (a->phir) {
+    PetscCall(PetscMalloc1(JR_NREL * n, &b->phir));
+    PetscCall(PetscArraycpy(b->phir, a->phir, JR_NREL * n));
   }
   if (a->members) {
     PetscCall(PetscNew(&b->members));
