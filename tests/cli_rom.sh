@@ -253,7 +253,7 @@ expect_error "no onset bands" "-rom_onset_bands 0: 1 to 16 bands" $J -task frf $
 expect_error "onset fraction" "-rom_onset_upto 1.5: a fraction in (0, 1]" $J -task frf $brb -frf_force 1 -rom_joints onset -rom_onset_upto 1.5 -frf_output_file ''
 expect_error "open bands without onset" "-rom_onset_open_bands needs -rom_joints onset" $J -task frf $brb -frf_force 1 -rom_joints zones -rom_onset_open_bands 2 -frf_output_file ''
 expect_error "no open bands" "-rom_onset_open_bands 0: 1 to 16 bands" $J -task frf $brb -frf_force 1 -rom_joints onset -rom_onset_open_bands 0 -frf_output_file ''
-expect_error "release fractions without shapes" "-rom_release_fractions needs -rom_joint_motion shapes" $J -task frf $brb -frf_force 1 -rom_joints zones -rom_release_fractions 0.01 -frf_output_file ''
+expect_error "release fractions without a mode field" "-rom_release_fractions needs -rom_joint_motion mode or shapes" $J -task frf $brb -frf_force 1 -rom_joints zones -rom_release_fractions 0.01 -frf_output_file ''
 expect_error "release fractions out of order" "-rom_release_fractions: 0.01: the fractions must increase, each in (0, 1)" $J -task frf $brb -frf_force 1 -rom_joints zones -rom_joint_motion shapes -rom_release_fractions 0.1,0.01 -frf_output_file ''
 expect_error "compare without joints" "-task compare needs a reduced model" $J -task compare $brb -frf_force 1 -frf_output_file ''
 # jenkins_nv with open pairs (lap3, zones, first reduction): a joint moves with the average of its members in
