@@ -340,7 +340,7 @@ PetscErrorCode JRFitModePoints(FitCtx *ctx, PetscInt j, PetscInt mj)
       for (PetscInt a = 0; a < 3; a++) P[JR_EP * g + 5 * h + a] = r[1] > 0 ? r[6 + a] / r[1] : 0;
       P[JR_EP * g + 5 * h + 3] = psi == mean || !ctx->nv ? psi : mt + sg * st;
       P[JR_EP * g + 5 * h + 4] = m + (ctn < 0 ? -sg : sg) * s;
-      for (PetscInt c = 0; nn->phir && c < JR_NREL; c++) { /* shapes: each released mode's phi_r at its kt-weighted mean and
+      for (PetscInt c = 0; nn->phir && c < JR_NREL; c++) { /* released modes: each phi_r at its kt-weighted mean and
                                                                regression on phi_t (the group's covariance kept) */
         const PetscReal xm = r[1] > 0 ? r[12 + 2 * c] / r[1] : 0, cov = r[1] > 0 ? r[13 + 2 * c] / r[1] - xm * mt : 0;
         ctx->epr[2 * JR_NREL * (ctx->cnt + g) + JR_NREL * h + c] = xm + (st > 0 ? cov / (st * st) * (P[JR_EP * g + 5 * h + 3] - mt) : 0);
@@ -386,7 +386,7 @@ PetscErrorCode JRFitOpenPoints(FitCtx *ctx, const MemberDelta *od, PetscInt no, 
       for (PetscInt a = 0; a < 3; a++) P[JR_EP * g + 5 * h + a] = sx[a] / (i1 - i0);
       P[JR_EP * g + 5 * h + 3] = st / (i1 - i0);
       P[JR_EP * g + 5 * h + 4] = h ? m + s : m - s;
-      for (PetscInt c = 0; nn->phir && c < JR_NREL; c++) { /* shapes: the members' mean released motions */
+      for (PetscInt c = 0; nn->phir && c < JR_NREL; c++) { /* released modes: the members' mean motions in them */
         PetscReal x = 0;
         for (PetscInt i = i0; i < i1; i++) x += nn->phir[JR_NREL * od[i].e + c];
         ctx->epr[2 * JR_NREL * (e0 + g) + JR_NREL * h + c] = x / (i1 - i0);

@@ -94,7 +94,7 @@ typedef struct {
   PetscInt          cnt;               /* the reduced elements of the joints before */
   PetscReal        *ek, *ef, *ekn, *en0, *emu; /* the reduced elements before the split: kt, f, kn, n0, mu */
   PetscReal        *ep, *er;           /* linear, mode: JR_EP per element (its points); mode: its ratio (JRFitModePoints) */
-  PetscReal        *epr;               /* shapes: 2 JR_NREL per element, its two points' released-mode coordinates */
+  PetscReal        *epr;               /* released modes: 2 JR_NREL per element, its two points' released-mode coordinates */
   FILE             *fp;                /* the loops' CSV (rank 0) */
   char              csv[PETSC_MAX_PATH_LEN + 32], tmp[PETSC_MAX_PATH_LEN + 48];
 } FitCtx;
