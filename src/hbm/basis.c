@@ -663,23 +663,15 @@ PetscErrorCode JRHBMMatchStickFrequency(JRHBM h, PetscInt k, PetscReal target, P
   PetscFunctionReturn(0);
 }
 
-/*
-  JRHBMStuckModeMotion - the k-th stuck mode (JRHBMStickFrequencies, M-normalised in the basis) as every element's
-  tangential relative motion u[e] (e in the model's element list, on every rank; collective) and, if v is not NULL,
-  normal relative motion v[e] (0 for elements without a normal direction)
-*/
-PetscErrorCode JRHBMStuckModeMotion(JRHBM h, PetscInt k, PetscReal u[], PetscReal v[])
+/* The modal coordinates q (in the basis) as every element's tangential relative motion u[e] and, if v is not NULL,
+   normal relative motion v[e] (0 without a normal direction), e in the model's element list, on every rank */
+static PetscErrorCode ElementMotion(JRHBM h, const PetscReal q[], PetscReal u[], PetscReal v[])
 {
   const JRElements *el;
-  PetscReal        *f, *q, *loc;
-  PetscInt          nf;
+  PetscReal        *loc;
 
   PetscFunctionBeginUser;
-  PetscCall(JRHBMSetUp(h));
   PetscCall(JRHBMGetElements(h, &el));
-  PetscCheck(k >= 0 && k < h->nm, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Stuck mode %" PetscInt_FMT ": the basis has %" PetscInt_FMT, k, h->nm);
-  PetscCall(PetscMalloc2(h->nm, &f, h->nm, &q));
-  PetscCall(StickEig(h, 1.0, &nf, f, k, q));
   PetscCall(PetscCalloc1(2 * el->n, &loc));
   for (PetscInt t = 0; t < h->ngroups; t++) {
     JRHBMGroup *g = &h->g[t];
@@ -695,6 +687,25 @@ PetscErrorCode JRHBMStuckModeMotion(JRHBM h, PetscInt k, PetscReal u[], PetscRea
   PetscCall(PetscArraycpy(u, loc, el->n));
   if (v) PetscCall(PetscArraycpy(v, loc + el->n, el->n));
   PetscCall(PetscFree(loc));
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMStuckModeMotion - the k-th stuck mode (JRHBMStickFrequencies, M-normalised in the basis) as every element's
+  tangential relative motion u[e] (e in the model's element list, on every rank; collective) and, if v is not NULL,
+  normal relative motion v[e] (0 for elements without a normal direction)
+*/
+PetscErrorCode JRHBMStuckModeMotion(JRHBM h, PetscInt k, PetscReal u[], PetscReal v[])
+{
+  PetscReal *f, *q;
+  PetscInt   nf;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCheck(k >= 0 && k < h->nm, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Stuck mode %" PetscInt_FMT ": the basis has %" PetscInt_FMT, k, h->nm);
+  PetscCall(PetscMalloc2(h->nm, &f, h->nm, &q));
+  PetscCall(StickEig(h, 1.0, &nf, f, k, q));
+  PetscCall(ElementMotion(h, q, u, v));
   PetscCall(PetscFree2(f, q));
   PetscFunctionReturn(0);
 }
@@ -707,30 +718,17 @@ PetscErrorCode JRHBMStuckModeMotion(JRHBM h, PetscInt k, PetscReal u[], PetscRea
 */
 PetscErrorCode JRHBMReleasedModeMotion(JRHBM h, PetscInt k, const PetscReal ktf[], PetscReal u[], PetscReal *freq)
 {
-  const JRElements *el;
-  PetscReal        *f, *q, *qs, *loc;
-  PetscInt          nf, kr = k;
+  PetscReal *f, *q, *qs;
+  PetscInt   nf, kr = k;
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMSetUp(h));
-  PetscCall(JRHBMGetElements(h, &el));
   PetscCheck(k >= 0 && k < h->nm, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Stuck mode %" PetscInt_FMT ": the basis has %" PetscInt_FMT, k, h->nm);
   PetscCall(PetscMalloc3(h->nm, &f, h->nm, &q, h->nm, &qs));
   PetscCall(StickEig(h, 1.0, &nf, f, k, qs));
   PetscCall(StickEigF(h, 1.0, ktf, &nf, f, &kr, q, qs));
   *freq = f[kr];
-  PetscCall(PetscCalloc1(el->n, &loc));
-  for (PetscInt t = 0; t < h->ngroups; t++) {
-    JRHBMGroup *g = &h->g[t];
-    for (PetscInt e = 0; e < g->nloc; e++) {
-      PetscReal s = 0;
-      for (PetscInt i = 0; i < h->nm; i++) s += g->R[e + i * g->nloc] * q[i];
-      loc[g->eidx[e]] = s;
-    }
-  }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, loc, (PetscMPIInt)el->n, MPIU_REAL, MPIU_SUM, h->ecomm));
-  PetscCall(PetscArraycpy(u, loc, el->n));
-  PetscCall(PetscFree(loc));
+  PetscCall(ElementMotion(h, q, u, NULL));
   PetscCall(PetscFree3(f, q, qs));
   PetscFunctionReturn(0);
 }
