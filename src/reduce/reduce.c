@@ -435,7 +435,8 @@ PetscErrorCode JRReduceSetOutput(JRReduce r, const char base[], PetscBool plot)
 /* -rom_joint_motion shapes: the members' tangential motions elj->phir in the released modes. A member in contact at
    rest starts to slip at the modal amplitude a_e = mu n0_e / (kt |u_e|) in the stuck mode of interest k (u: its
    motion in it); in that order, released mode i frees (kt = 0) the members that slip first until they hold the fraction
-   r->rel[i] of the interface's slip force mu n0 and is the mode of that structure most like mode k (largest |q^T M q_k|),
+   r->rel[i] of the interface's slip force mu n0 (with every member whose onset ties with the last one's, to 1e-6) and
+   is the mode of that structure most like mode k (largest |q^T M q_k|),
    so a joint's field spans the motion of a slip front inside it. A joint without a freed member takes no coordinate from
    that mode (0: the joint's field keeps only what it spans). Each mode is scaled to a largest member motion of 1. */
 static PetscErrorCode ReleasedModes(JRReduce r, JRHBM hbm, JRElements *elj, PetscInt k, const PetscReal u[])
@@ -460,8 +461,8 @@ static PetscErrorCode ReleasedModes(JRReduce r, JRHBM hbm, JRElements *elj, Pets
     PetscInt  nfree = 0, nj = 0;
     for (PetscInt e = 0; e < n; e++) ktf[e] = 1.0;
     for (PetscInt j = 0; j < elj->njoints; j++) has[j] = 0;
-    for (PetscInt q = 0; q < n && a[perm[q]] < PETSC_MAX_REAL && cum < r->rel[i] * tot; q++) {
-      const PetscInt e = perm[q];
+    for (PetscInt q = 0; q < n && a[perm[q]] < PETSC_MAX_REAL && (cum < r->rel[i] * tot || (q > 0 && a[perm[q]] <= a[perm[q - 1]] * (1 + 1e-6))); q++) {
+      const PetscInt e = perm[q]; /* (members whose onsets tie with the last one freed are freed too: a set that round-off cannot change) */
       ktf[e]           = 0.0;
       cum += elj->mu[e] * elj->n0[e];
       has[elj->joint[e]] = 1;
