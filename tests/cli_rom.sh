@@ -225,7 +225,7 @@ osf=$(mpiexec -n 2 $J -task compare $nv $nvl -frf_force 0.01,0.5,2 -rom_joints o
 read fs as <<< "$(worst "$osf")"
 shq=$(echo "$osf" | grep -o 'condensed onto [0-9]* joint motions' | awk '{print $3}'); shr=$(echo "$osf" | grep -c '^rom: released mode')
 shc=$(field "$(echo "$osf" | grep '^rom stiffness_correction')" rom_before_hz); shn=$(field "$(echo "$osf" | grep '^rom stiffness_correction')" n2n_hz)
-check "lt '$fs' 0.005 && lt '$as' 0.1 && [ -n '$shq' ] && [ '$shq' -lt 40 ] && [ '$shr' = 4 ] && close '$shc' '$shn' 1e-8" "jenkins_nv lap1, 4 onset joints, first reduction on the shapes field ($shr released modes, $shq rows): worst peak frequency error $fs, amplitude error $as at 0.01, 0.5, 2 N; stuck mode $shc Hz = node-to-node $shn Hz"
+check "lt '$fs' 0.005 && lt '$as' 0.1 && [ -n '$shq' ] && [ '$shq' -lt 40 ] && [ '$shr' = 5 ] && close '$shc' '$shn' 1e-8" "jenkins_nv lap1, 4 onset joints, first reduction on the shapes field ($shr released modes, $shq rows): worst peak frequency error $fs, amplitude error $as at 0.01, 0.5, 2 N; stuck mode $shc Hz = node-to-node $shn Hz"
 # its second reduction saved and loaded (the file's joint motion, and its elements' and members' released coordinates)
 # reproduces the saving run; loaded with another joint motion asked for, an error
 o=$(mpiexec -n 2 $J -task frf $nv -modes_load $tmp/nv_modes.h5 -modes_check 0 -frf_force 0.01,0.5,2 -rom_load "$tmp/shrom.h5" -frf_stability 0 -frf_output_file "$tmp/shld" 2>&1)
@@ -303,7 +303,7 @@ done
 for jm in "mode -rom_release_fractions 0.003,0.01,0.03,0.1" shapes; do
   o=$($J -options_file runs/lap3_rom.opts -model_mesh_h 0.005 -model_mesh_grade 4 $l3 -frf_force 0.001 -rom_elements 0 -rom_joint_motion $jm -cont_max_points 10 -cont_allow_partial -frf_plot 0 -cont_monitor 0 -frf_output_file '' 2>&1)
   c=$(echo "$o" | grep '^rom stiffness_correction'); fb=$(field "$c" rom_before_hz); fn=$(field "$c" n2n_hz); nr=$(echo "$o" | grep -c '^rom: released mode')
-  check "[ -n '$fb' ] && close $fb $fn 1e-8 && [ '$nr' = 4 ]" "jenkins_nv lap3, first reduction with -rom_joint_motion $jm ($nr released modes): the stuck mode of interest kept exactly, $fb Hz = node-to-node $fn Hz"
+  check "[ -n '$fb' ] && close $fb $fn 1e-8 && [ '$nr' -ge 4 ]" "jenkins_nv lap3, first reduction with -rom_joint_motion $jm ($nr released modes): the stuck mode of interest kept exactly, $fb Hz = node-to-node $fn Hz"
 done
 # lap1 (one bolt, 4 zone joints): the mean motion makes the interface a hinge in bending (stuck mode at half the
 # node-to-node one, no stiffness correction can reach it); the linear field, with each fitted element spread over

@@ -40,7 +40,7 @@ typedef struct {
   PetscReal *g, *ka, *x;
 } JRBolts;
 
-#define JR_NREL 4 /* released modes at most (-rom_release_fractions) */
+#define JR_NREL 6 /* released modes at most (-rom_release_fractions) */
 
 /* The contact elements of a model, one entry per element (the whole list, on every rank).
    Tangential relative motion u = x[dof_a] - x[dof_b], normal v = x[ndof_a] - x[ndof_b]; -1 = ground.

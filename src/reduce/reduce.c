@@ -278,11 +278,12 @@ PetscErrorCode JRReduceCreate(MPI_Comm comm, JRReduce *red)
   r->bands         = 6;
   r->obands        = 1;
   r->upto          = 0.9;
-  r->nrel          = 4;
-  r->rel[0]        = 0.003; /* released modes: from the first slip at the lap's ends to a tenth of the slip force */
+  r->nrel          = 5;
+  r->rel[0]        = 0.003; /* released modes: from the first slip at the lap's ends to a third of the slip force */
   r->rel[1]        = 0.01;
   r->rel[2]        = 0.03;
   r->rel[3]        = 0.1;
+  r->rel[4]        = 0.3;
   r->mode_weights  = PETSC_TRUE;
   r->corr_on       = PETSC_TRUE;
   r->nst           = 3;
@@ -333,7 +334,7 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
   PetscCall(PetscOptionsInt("-onset_bands", "-rom_joints onset: bands of slip onset in the stuck mode of interest (each split by bolt side)", "JRReduceAssignJoints", r->bands, &r->bands, &bdset));
   PetscCall(PetscOptionsInt("-onset_open_bands", "-rom_joints onset: bands of closing onset in the stuck mode of interest that divide the open members (each split by bolt side)", "JRReduceAssignJoints", r->obands, &r->obands, &obset));
   PetscCall(PetscOptionsReal("-onset_upto", "-rom_joints onset: the bands divide, in equal ratios, the slip onsets from the first to the one by which this fraction of the interface's slip force mu n0 slips (later onsets join the last band)", "JRReduceAssignJoints", r->upto, &r->upto, &uset));
-  PetscCall(PetscOptionsRealArray("-release_fractions", "-rom_joint_motion shapes: the released modes, each the stuck mode of interest with the members that slip first (in the order of their slip onsets in it) freed until they hold this fraction of the interface's slip force mu n0; increasing, in (0, 1), up to 4", "JRReduceSetUp", r->rel, &nrel, &relset));
+  PetscCall(PetscOptionsRealArray("-release_fractions", "-rom_joint_motion shapes (or mode): the released modes, each the stuck mode of interest with the members that slip first (in the order of their slip onsets in it) freed until they hold this fraction of the interface's slip force mu n0; increasing, in (0, 1), up to 6", "JRReduceSetUp", r->rel, &nrel, &relset));
   PetscCall(PetscOptionsBool("-split_width", "Split every strip at mid-width into two joints", "JRReduceAssignJoints", r->split_width, &r->split_width, NULL));
   PetscCall(PetscOptionsInt("-elements", "Second reduction: fit this many elements per joint to its hysteresis loops (0: the first reduction only)", "JRReduceSetUp", r->m, &r->m, NULL));
   PetscCall(PetscOptionsBool("-mode_weights", "Weight every member of a joint by its motion relative to the joint's in the stuck mode of interest (w^2 kt, |w| f; jenkins)", "JRReduceSetUp", r->mode_weights, &r->mode_weights, NULL));
