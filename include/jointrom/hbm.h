@@ -24,8 +24,8 @@ typedef enum {
   JR_JOINT_MOTION_MEAN,   /* the joint's mean motion (the thesis) */
   JR_JOINT_MOTION_LINEAR, /* a linear field over the members' positions (JRElements pos) */
   JR_JOINT_MOTION_MODE,   /* ... and over their motions in the stuck mode of interest (JRElements phi) */
-  JR_JOINT_MOTION_SHAPES  /* over their motions in the stuck mode of interest and in released modes, not their positions
-                             (JRElements phi, phir) */
+  JR_JOINT_MOTION_SHAPES  /* tangential: over their positions and tangential motions in the stuck mode of interest and
+                             in released modes; normal: over their normal motion in it (JRElements pos, phi, phir) */
 } JRJointMotion;
 PETSC_EXTERN const char *const JRJointMotions[];
 

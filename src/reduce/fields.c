@@ -42,10 +42,11 @@ static inline void FieldAt(const PetscReal *f, PetscInt nm, PetscInt q, const Pe
 }
 
 /* -rom_joint_motion shapes: whether coordinate c (x, y, z, phi_t, phi_n, then the released modes' phi_t) enters the
-   field of row set q (0 tangential, 1 normal) */
+   field of row set q (0 tangential: all but phi_n, the positions keeping the joint's turning in its plane; 1 normal:
+   phi_n) */
 static inline PetscBool ShapeCoordinate(PetscInt q, PetscInt c)
 {
-  return (PetscBool)(q ? c == 4 : (c == 3 || c >= 5));
+  return (PetscBool)(q ? c == 4 : c != 4);
 }
 
 /* First reduction (4.4): the motion field of each joint, from the rows R (and S) of this rank's elements eidx[] of el
@@ -127,9 +128,8 @@ static PetscErrorCode JointFields(JRHBM h, const JRElements *el, PetscInt nloc, 
   PetscFunctionReturn(0);
 }
 
-/* The field coordinates (JR_NF each) of elements eidx[0..nloc) of el: positions if el has them and lin (not with
-   -rom_joint_motion shapes), stuck-mode and released-mode motions if el has them (else 0); P = NULL (the mean) when
-   there are none */
+/* The field coordinates (JR_NF each) of elements eidx[0..nloc) of el: positions if el has them and lin, stuck-mode
+   and released-mode motions if el has them (else 0); P = NULL (the mean) when there are none */
 static PetscErrorCode JointCoordinates(JRHBM h, const JRElements *el, PetscInt nloc, const PetscInt eidx[], PetscBool lin, PetscReal **P)
 {
   PetscFunctionBeginUser;
@@ -138,18 +138,18 @@ static PetscErrorCode JointCoordinates(JRHBM h, const JRElements *el, PetscInt n
   PetscCheck(el->pos, h->comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion linear or mode needs the elements' positions (node-to-node elements of an FE model)");
   PetscCall(PetscCalloc1(JR_NF * nloc + 1, P));
   for (PetscInt e = 0; e < nloc; e++) {
-    for (PetscInt c = 0; c < 3 && h->jmotion != JR_JOINT_MOTION_SHAPES; c++) (*P)[JR_NF * e + c] = el->pos[3 * eidx[e] + c];
+    for (PetscInt c = 0; c < 3; c++) (*P)[JR_NF * e + c] = el->pos[3 * eidx[e] + c];
     for (PetscInt c = 0; el->phi && c < 2; c++) (*P)[JR_NF * e + 3 + c] = el->phi[2 * eidx[e] + c];
     for (PetscInt c = 0; el->phir && c < JR_NREL; c++) (*P)[JR_NF * e + 5 + c] = el->phir[JR_NREL * eidx[e] + c];
   }
   PetscFunctionReturn(0);
 }
 
-/* The field coordinates of element e of el (buffer p; no positions with shapes), or NULL */
-static inline const PetscReal *ElementCoordinates(const JRElements *el, PetscInt e, PetscBool shapes, PetscReal p[JR_NF])
+/* The field coordinates of element e of el (buffer p), or NULL */
+static inline const PetscReal *ElementCoordinates(const JRElements *el, PetscInt e, PetscReal p[JR_NF])
 {
   if (!el->pos) return NULL;
-  for (PetscInt c = 0; c < 3; c++) p[c] = shapes ? 0.0 : el->pos[3 * e + c];
+  for (PetscInt c = 0; c < 3; c++) p[c] = el->pos[3 * e + c];
   for (PetscInt c = 0; c < 2; c++) p[3 + c] = el->phi ? el->phi[2 * e + c] : 0.0;
   for (PetscInt c = 0; c < JR_NREL; c++) p[5 + c] = el->phir ? el->phir[JR_NREL * e + c] : 0.0;
   return p;
@@ -247,6 +247,6 @@ PetscErrorCode JRJointFieldRows(JRHBM h, const JRElements *el, PetscInt nloc, co
   PetscReal      pc[JR_NF]; /* an element's field coordinates */
 
   PetscFunctionBeginUser;
-  for (PetscInt e = 0; e < nloc; e++) FieldAt(field + el->joint[eidx[e]] * JR_FIELD_WIDTH(2, nm), nm, q, ElementCoordinates(el, eidx[e], (PetscBool)(h->jmotion == JR_JOINT_MOTION_SHAPES), pc), X + e, nloc);
+  for (PetscInt e = 0; e < nloc; e++) FieldAt(field + el->joint[eidx[e]] * JR_FIELD_WIDTH(2, nm), nm, q, ElementCoordinates(el, eidx[e], pc), X + e, nloc);
   PetscFunctionReturn(0);
 }

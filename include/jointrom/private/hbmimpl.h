@@ -161,8 +161,8 @@ PETSC_INTERN PetscErrorCode JRHBMCondApply(JRHBM, PetscReal, const PetscReal *, 
 /* src/reduce/fields.c: the reduced model's joint motion fields. A joint's field is linear in JR_NF coordinates of its
    members: their position x, y, z [m] (-rom_joint_motion linear, mode), their tangential and normal motions in the
    stuck mode of interest (mode, shapes; JRElements phi) and their tangential motions in the released modes (shapes;
-   JRElements phir, JR_NREL; shapes leaves the positions out and fits the tangential rows on the tangential motions,
-   the normal rows on the normal motion). Its description, fw = 1 + nr (JR_NF + (1 + JR_NF) nm) numbers per
+   JRElements phir, JR_NREL; shapes fits the tangential rows on the positions and the tangential motions, the normal
+   rows on the normal motion). Its description, fw = 1 + nr (JR_NF + (1 + JR_NF) nm) numbers per
    joint: the members fitted, then per set of rows (tangential, then normal if nr = 2) the members' mean coordinates
    cbar, the mean rows (nm) and the gradient rows B (JR_NF nm, B[JR_NF i + c]) */
 #define JR_NF (5 + JR_NREL)
