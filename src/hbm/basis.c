@@ -697,16 +697,14 @@ static PetscErrorCode ElementMotion(JRHBM h, const PetscReal q[], PetscReal u[],
 */
 PetscErrorCode JRHBMStuckModeMotion(JRHBM h, PetscInt k, PetscReal u[], PetscReal v[])
 {
-  PetscReal *f, *q;
-  PetscInt   nf;
+  PetscReal *q, omega;
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMSetUp(h));
-  PetscCheck(k >= 0 && k < h->nm, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Stuck mode %" PetscInt_FMT ": the basis has %" PetscInt_FMT, k, h->nm);
-  PetscCall(PetscMalloc2(h->nm, &f, h->nm, &q));
-  PetscCall(StickEig(h, 1.0, &nf, f, k, q));
+  PetscCall(PetscMalloc1(h->nm, &q));
+  PetscCall(JRHBMStuckMode(h, k, &omega, q));
   PetscCall(ElementMotion(h, q, u, v));
-  PetscCall(PetscFree2(f, q));
+  PetscCall(PetscFree(q));
   PetscFunctionReturn(0);
 }
 
@@ -790,15 +788,12 @@ PetscErrorCode JRHBMStuckSpringEnergy(JRHBM h, const PetscReal q[], PetscReal E[
 */
 PetscErrorCode JRHBMStuckModeBalance(JRHBM h, PetscInt k, PetscReal *omega, PetscReal *force, PetscReal *damp)
 {
-  PetscReal *f, *q, fq = 0, kq = 0, cq = 0;
-  PetscInt   nf;
+  PetscReal *q, fq = 0, kq = 0, cq = 0;
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMSetUp(h));
-  PetscCheck(k >= 0 && k < h->nm, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "Stuck mode %" PetscInt_FMT ": the basis has %" PetscInt_FMT, k, h->nm);
-  PetscCall(PetscMalloc2(h->nm, &f, h->nm, &q));
-  PetscCall(StickEig(h, 1.0, &nf, f, k, q));
-  *omega = 2 * PETSC_PI * f[k];
+  PetscCall(PetscMalloc1(h->nm, &q));
+  PetscCall(JRHBMStuckMode(h, k, omega, q));
   for (PetscInt i = 0; i < h->nm; i++) {
     fq += h->fm[i] * q[i];
     for (PetscInt j = 0; j < h->nm; j++) {
@@ -808,7 +803,7 @@ PetscErrorCode JRHBMStuckModeBalance(JRHBM h, PetscInt k, PetscReal *omega, Pets
   }
   *force = PetscAbsReal(fq);
   *damp  = PETSC_PI * (h->gamma * kq + *omega * cq);
-  PetscCall(PetscFree2(f, q));
+  PetscCall(PetscFree(q));
   PetscFunctionReturn(0);
 }
 
