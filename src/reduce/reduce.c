@@ -433,7 +433,8 @@ PetscErrorCode JRReduceSetOutput(JRReduce r, const char base[], PetscBool plot)
 
 
 
-/* -rom_joint_motion shapes: the members' tangential motions elj->phir in the released modes. A member in contact at
+/* -rom_joint_motion shapes (or mode with -rom_release_fractions): the members' tangential motions elj->phir in the
+   released modes. A member in contact at
    rest starts to slip at the modal amplitude a_e = mu n0_e / (kt |u_e|) in the stuck mode of interest k (u: its
    motion in it); in that order, released mode i frees (kt = 0) the members that slip first until they hold the fraction
    r->rel[i] of the interface's slip force mu n0 (with every member whose onset ties with the last one's, to 1e-6) and
@@ -471,7 +472,7 @@ static PetscErrorCode ReleasedModes(JRReduce r, JRHBM hbm, JRElements *elj, Pets
     }
     PetscCall(JRHBMReleasedModeMotion(hbm, k, ktf, ur, &fr));
     for (PetscInt e = 0; e < n; e++) um = PetscMax(um, PetscAbsReal(ur[e]));
-    PetscCheck(um > 0, r->comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion shapes: the interface does not move in released mode %" PetscInt_FMT, i);
+    PetscCheck(um > 0, r->comm, PETSC_ERR_ARG_WRONG, "-rom_release_fractions: the interface does not move in released mode %" PetscInt_FMT " (%g of the slip force freed)", i, (double)r->rel[i]);
     for (PetscInt e = 0; e < n; e++) elj->phir[JR_NREL * e + i] = has[elj->joint[e]] ? ur[e] / um : 0.0;
     for (PetscInt j = 0; j < elj->njoints; j++) nj += has[j];
     PetscCall(PetscPrintf(r->comm, "rom: released mode %" PetscInt_FMT ": %.6g Hz, %" PetscInt_FMT " members freed (%.3g of the slip force, the first to slip) in %" PetscInt_FMT " joints\n", i, (double)fr, nfree, (double)(tot > 0 ? cum / tot : 0), nj));
@@ -532,8 +533,8 @@ PetscErrorCode JRReduceSetUp(JRReduce r, JRModel model, JRHBM hbm, JRElements *e
     for (PetscInt j = 0; j < elj->njoints; j++) ubar[j] = cnt[2 * j] > 0 ? ubar[j] / cnt[2 * j] : ua[j] / cnt[2 * j + 1];
     if (jmotion >= JR_JOINT_MOTION_MODE) { /* -rom_joint_motion mode: each member's field coordinates are its position
                                               and its tangential and normal motions in this mode (scaled to at most 1);
-                                              shapes: also its tangential motions in the released modes, not its
-                                              position; the fit weighs the members */
+                                              shapes (and mode with -rom_release_fractions): also its tangential
+                                              motions in the released modes; the fit weighs the members */
       for (PetscInt e = 0; e < n; e++) smax = PetscMax(smax, PetscMax(PetscAbsReal(u[e]), PetscAbsReal(v[e])));
       PetscCheck(smax > 0, comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion %s: the interface does not move in stuck mode %" PetscInt_FMT " (%g Hz)", JRJointMotions[jmotion], k, (double)ft);
       PetscCall(PetscFree(elj->phi));
@@ -543,7 +544,7 @@ PetscErrorCode JRReduceSetUp(JRReduce r, JRModel model, JRHBM hbm, JRElements *e
         elj->phi[2 * e + 1] = v[e] / smax;
       }
       if (jmotion == JR_JOINT_MOTION_MODE) PetscCall(PetscPrintf(comm, "rom: joints move with a field linear in their members' positions and motions in stuck mode %" PetscInt_FMT " (%.6g Hz)\n", k, (double)ft));
-      else PetscCall(PetscPrintf(comm, "rom: joints move with a field linear in their members' motions in stuck mode %" PetscInt_FMT " (%.6g Hz) and in %" PetscInt_FMT " released modes\n", k, (double)ft, r->nrel));
+      else PetscCall(PetscPrintf(comm, "rom: joints move with a field linear in their members' positions and tangential motions in stuck mode %" PetscInt_FMT " (%.6g Hz) and in %" PetscInt_FMT " released modes (tangential rows), their normal motion in it (normal rows)\n", k, (double)ft, r->nrel));
       if (jmotion == JR_JOINT_MOTION_MODE && r->nrel) PetscCall(PetscPrintf(comm, "rom: and in %" PetscInt_FMT " released modes\n", r->nrel));
       if (r->nrel) PetscCall(ReleasedModes(r, hbm, elj, k, u));
     }
