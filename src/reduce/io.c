@@ -134,7 +134,7 @@ PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, P
       }
       PetscCall(PetscFree(p));
     }
-    if (rom->phir && mem->phir) { /* shapes: their coordinates in the released modes likewise */
+    if (rom->phir && mem->phir) { /* released modes (shapes, or mode with them): their coordinates in them likewise */
       PetscReal *p;
       PetscCall(PetscMalloc1(JR_NREL * (rom->n + mem->n), &p));
       PetscCall(PetscArraycpy(p, rom->phir, JR_NREL * rom->n));
@@ -320,7 +320,7 @@ static PetscErrorCode ROMFilePoints(MPI_Comm comm, const ROMFile *f, JRElements 
     PetscCall(PetscArraycpy(rom->phi, f->phi, 2 * ne));
     PetscCall(PetscArraycpy(mem->phi, f->phi + 2 * ne, 2 * nmem));
   }
-  if (f->phir) { /* reduced with -rom_joint_motion shapes: their coordinates in the released modes */
+  if (f->phir) { /* reduced with released modes: their coordinates in them */
     PetscCheck(f->phi && f->nphir == ne + nmem, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: /rom/released_coordinates has %" PetscInt_FMT " rows, not one per element and member (%" PetscInt_FMT ") with /rom/mode_coordinates", f->file, f->nphir, ne + nmem);
     PetscCall(PetscMalloc1(JR_NREL * ne, &rom->phir));
     PetscCall(PetscMalloc1(JR_NREL * nmem, &mem->phir));

@@ -543,9 +543,8 @@ PetscErrorCode JRReduceSetUp(JRReduce r, JRModel model, JRHBM hbm, JRElements *e
         elj->phi[2 * e]     = u[e] / smax;
         elj->phi[2 * e + 1] = v[e] / smax;
       }
-      if (jmotion == JR_JOINT_MOTION_MODE) PetscCall(PetscPrintf(comm, "rom: joints move with a field linear in their members' positions and motions in stuck mode %" PetscInt_FMT " (%.6g Hz)\n", k, (double)ft));
+      if (jmotion == JR_JOINT_MOTION_MODE) PetscCall(PetscPrintf(comm, "rom: joints move with a field linear in their members' positions and motions in stuck mode %" PetscInt_FMT " (%.6g Hz)%s\n", k, (double)ft, r->nrel ? " and their tangential motions in the released modes" : ""));
       else PetscCall(PetscPrintf(comm, "rom: joints move with a field linear in their members' positions and tangential motions in stuck mode %" PetscInt_FMT " (%.6g Hz) and in %" PetscInt_FMT " released modes (tangential rows), their normal motion in it (normal rows)\n", k, (double)ft, r->nrel));
-      if (jmotion == JR_JOINT_MOTION_MODE && r->nrel) PetscCall(PetscPrintf(comm, "rom: and in %" PetscInt_FMT " released modes\n", r->nrel));
       if (r->nrel) PetscCall(ReleasedModes(r, hbm, elj, k, u));
     }
     if (r->mode_weights || jmotion >= JR_JOINT_MOTION_MODE) {

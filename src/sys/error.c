@@ -50,7 +50,7 @@ static PetscErrorCode Handler(MPI_Comm comm, int line, const char *fun, const ch
     jr_collective = (PetscBool)(size == wsize);
     if (!rank) {
       const char *ctx = jr_ncontext ? jr_context[jr_ncontext - 1] : "", *sep = jr_ncontext ? ": " : "";
-      const char *hint = n == PETSC_ERR_MISSING_FACTOR ? " (set by a -*pc_factor_mat_solver_type option: PETSc's own LU and Cholesky factor only sequential matrices, so on more than one rank use mumps, the default)" : "";
+      const char *hint = n == PETSC_ERR_MISSING_FACTOR ? " (a -*pc_factor_mat_solver_type option chose a package that cannot factor this matrix: PETSc's own LU and Cholesky factor only sequential ones, so on more than one rank use mumps, the default)" : "";
       char        one[1024];
       snprintf(one, sizeof(one), "%s", mess ? mess : "(no message)");
       for (char *c = one; *c; c++) /* one line: PETSc's messages may carry line breaks */
