@@ -24,6 +24,11 @@ quick "output directory that cannot be made" "cannot write in the directory $tmp
 quick "missing -rom_load file" "-rom_load $tmp/none.h5: no such file" $J -task frf $brb -frf_force 1 -rom_load "$tmp/none.h5" -frf_output_file ''
 quick "element task, misspelled" "did you mean -element_kt?" $J -task element -element_ktt 1e6
 quick "modes task, unused option" "-frf_force is not used by -task modes" $J -task modes -model_type brb -frf_force 1 -modes_output_file ''
+# an option no part of the run reads is a warning at the end; -options_left and -options_view, which PETSc reads after
+# it (in PetscFinalize), are not
+o=$($J -options_file runs/oscillator_frf.opts -cont_monitor 0 -frf_plot 0 -frf_output_file '' -options_left -options_view -snes_monitr 2>&1)
+w=$(echo "$o" | grep '^jointrom: warning:')
+check "[ \"\$w\" = 'jointrom: warning: unknown option -snes_monitr' ] && echo \"\$o\" | grep -q '^#PETSc Option Table entries'" "an unread option warned about at the end ($w), not -options_left or -options_view (PETSc's, read after)"
 # a missing output directory one level down is made
 $J -options_file runs/oscillator_frf.opts -cont_monitor 0 -frf_plot 0 -frf_output_file "$tmp/new/osc" > /dev/null 2>&1
 check "[ -s '$tmp/new/osc.csv' ]" "a missing output directory (one level) is made: $tmp/new/osc.csv written"

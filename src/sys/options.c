@@ -186,7 +186,8 @@ PetscErrorCode JROptionsCheck(MPI_Comm comm, const char what[])
   PetscFunctionReturn(0);
 }
 
-/* JROptionsWarnUnused - at the end of a run: a warning for every option nothing read (nested solvers' included) */
+/* JROptionsWarnUnused - at the end of a run: a warning for every option nothing read (nested solvers' included), but
+   -options_left and -options_view, which PetscFinalize reads after it */
 PetscErrorCode JROptionsWarnUnused(MPI_Comm comm)
 {
   PetscInt n;
@@ -195,6 +196,7 @@ PetscErrorCode JROptionsWarnUnused(MPI_Comm comm)
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
   for (PetscInt i = 0; i < n; i++) {
+    if (!strcmp(names[i], "options_left") || !strcmp(names[i], "options_view")) continue;
     PetscCall(Describe(names[i], "this run", line, sizeof(line)));
     PetscCall(PetscPrintf(comm, "jointrom: warning: %s\n", line));
   }
