@@ -4,14 +4,15 @@ J=bin/jointrom
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 # JR_TEST_TIMES=FILE: each check's wall and CPU seconds (since the previous check: the commands it checks; CPU of
 # the processes run, which a loaded machine does not inflate as much) appended to FILE as "wall cpu script: check"
-jr_cpu() { awk 'NR == 2 {split($0, t, /[ms ]+/); print 60 * t[1] + t[2] + 60 * t[3] + t[4]}' "$tmp/.times"; } # after times > $tmp/.times
-[ -n "$JR_TEST_TIMES" ] && { jr_t=$EPOCHREALTIME; times > "$tmp/.times"; jr_c=$(jr_cpu); }
+jr_cpu() { awk 'NR == 2 {split($0, t, /[ms ]+/); print 60 * t[1] + t[2] + 60 * t[3] + t[4]}' "$tmp/.times.$BASHPID"; } # after times > $tmp/.times.$BASHPID
+jr_reset() { [ -z "$JR_TEST_TIMES" ] || { jr_t=$EPOCHREALTIME; times > "$tmp/.times.$BASHPID"; jr_c=$(jr_cpu); }; } # also at the start of a check run in the background
+jr_reset
 jr_time() {
   [ -n "$JR_TEST_TIMES" ] || return 0
   local t=$EPOCHREALTIME c
-  times > "$tmp/.times"; c=$(jr_cpu)
+  times > "$tmp/.times.$BASHPID"; c=$(jr_cpu)
   awk -v a="$t" -v b="$jr_t" -v c="$c" -v d="$jr_c" -v s="$(basename "$0" .sh)" -v n="$1" 'BEGIN{printf "%.1f %.1f %s: %s\n", a - b, c - d, s, n}' >> "$JR_TEST_TIMES"
-  jr_t=$EPOCHREALTIME; times > "$tmp/.times"; jr_c=$(jr_cpu)
+  jr_reset
 }
 ok() { echo "ok - $*"; jr_time "$*"; }
 bad() { echo "not ok - $*"; jr_time "$*"; }
@@ -31,13 +32,13 @@ expect_error() { # description, pattern, command...
 # (the FE model with its modes, jenkins_nv fits: a minute each) are long checks (tests/cli_long.sh), the rest quick
 run_file_long() { grep -qE '^-task (frf|compare)' "$1" && grep -q '^-model_type lap' "$1"; }
 run_file_check() { # run file
-  local f=$1 extra o rc
+  local f=$1 extra o rc out="$tmp/runfile_$(basename "$1" .opts)"
   case $(grep -m1 '^-task' "$f") in
-    "-task frf"|"-task compare") extra="-frf_output_file $tmp/runfile -frf_plot 0 -cont_monitor 0"
+    "-task frf"|"-task compare") extra="-frf_output_file $out -frf_plot 0 -cont_monitor 0"
       grep -q '^-model_type brb' "$f" && extra="$extra -model_mesh_h 0.01 -cont_max_points 40 -cont_allow_partial" # FE: a coarse mesh, the options are what is checked
       grep -q '^-model_type lap' "$f" && extra="$extra -model_mesh_h 0.005 -model_mesh_grade 4 -cont_max_points 40 -cont_allow_partial -modes_static_max 60 -modes_adapt 0" # a compressed basis (the static-complete one of some lap1 files takes minutes a level), not adapted (tests/cli_long.sh checks the adaptation)
       grep -q '^-rom_fit_select first' "$f" && extra="$extra -rom_fit_select_total 1000 -rom_fit_select_case 0" ;; # one pair: the selection runs, quickly (its own checks: cli_rom.sh)
-    "-task nlmodes") extra="-nlm_output_file $tmp/runfile -nlm_plot 0 -nlm_points 6"
+    "-task nlmodes") extra="-nlm_output_file $out -nlm_plot 0 -nlm_points 6"
       grep -q '^-model_type brb' "$f" && extra="$extra -model_mesh_h 0.01" ;; # a coarse mesh: the options are what is checked
     "-task modes") extra="-modes_output_file '' -model_mesh_h 0.01" ;; # a coarse mesh: the options are what is checked
     "-task preload") extra="-preload_output_file '' -model_mesh_h 0.005 -model_mesh_grade 4"

@@ -14,10 +14,19 @@ worst() { echo "$1" | awk '/^compare worst/{print $4, $6}'; }
 lt() { awk -v a="$1" -v b="$2" 'BEGIN{exit !(a != "" && a < b)}'; }
 same() { awk -F, 'NR == FNR {if (FNR > 1) a[$1 " " $4] = $5; next} FNR > 1 && ($1 " " $4) in a {d = $5 / a[$1 " " $4] - 1; if (d < 0) d = -d; n++; if (d > m) m = d} END{printf "%d %.2e\n", n, m}' "$1" "$2"; }
 
-# run files on the lap models: every option used, no typo (coarse meshes; the others: tests/cli.sh)
-for f in runs/*.opts; do
-  run_file_long "$f" && run_file_check "$f"
+# run files on the lap models: every option used, no typo (coarse meshes; the others: tests/cli.sh). Each runs on one
+# rank, two at a time (the machine's two cores); their lines in the files' order
+files=()
+for f in runs/*.opts; do run_file_long "$f" && files+=("$f"); done
+nrun=0
+for f in "${files[@]}"; do
+  [ $nrun -ge 2 ] && { wait -n; nrun=$((nrun - 1)); }
+  nrun=$((nrun + 1))
+  (jr_reset; run_file_check "$f") > "$tmp/rf_$(basename "$f" .opts).out" 2>&1 &
 done
+wait
+for f in "${files[@]}"; do cat "$tmp/rf_$(basename "$f" .opts).out"; done
+jr_reset
 
 # the first reduction's mode-shape weights against the plain average (4.4): the amplitude error smaller (the weights'
 # own error: tests/cli_rom.sh)
