@@ -4,13 +4,14 @@ J=bin/jointrom
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 # JR_TEST_TIMES=FILE: each check's wall and CPU seconds (since the previous check: the commands it checks; CPU of
 # the processes run, which a loaded machine does not inflate as much) appended to FILE as "wall cpu script: check"
-jr_cpu() { awk 'NR == 2 {split($0, t, /[ms ]+/); print 60 * t[1] + t[2] + 60 * t[3] + t[4]}' "$tmp/.times.$BASHPID"; } # after times > $tmp/.times.$BASHPID
-jr_reset() { [ -z "$JR_TEST_TIMES" ] || { jr_t=$EPOCHREALTIME; times > "$tmp/.times.$BASHPID"; jr_c=$(jr_cpu); }; } # also at the start of a check run in the background
+jr_cpu() { awk 'NR == 2 {split($0, t, /[ms ]+/); print 60 * t[1] + t[2] + 60 * t[3] + t[4]}' "$1"; } # FILE: the output of times
+# (a file per shell: a check may run in the background; $BASHPID read here, not in the $(...) subshell)
+jr_reset() { [ -z "$JR_TEST_TIMES" ] || { local f="$tmp/.times.$BASHPID"; jr_t=$EPOCHREALTIME; times > "$f"; jr_c=$(jr_cpu "$f"); }; } # also at the start of a check run in the background
 jr_reset
 jr_time() {
   [ -n "$JR_TEST_TIMES" ] || return 0
-  local t=$EPOCHREALTIME c
-  times > "$tmp/.times.$BASHPID"; c=$(jr_cpu)
+  local t=$EPOCHREALTIME c f="$tmp/.times.$BASHPID"
+  times > "$f"; c=$(jr_cpu "$f")
   awk -v a="$t" -v b="$jr_t" -v c="$c" -v d="$jr_c" -v s="$(basename "$0" .sh)" -v n="$1" 'BEGIN{printf "%.1f %.1f %s: %s\n", a - b, c - d, s, n}' >> "$JR_TEST_TIMES"
   jr_reset
 }
