@@ -28,6 +28,8 @@ typedef struct {
   PetscInt  jmotion; /* -rom_joint_motion: 0 mean, 1 linear, 2 mode */
   PetscBool resid;   /* -rom_joint_residual: the members' stuck springs kept on their motion outside the joints' fields */
   PetscBool search;  /* -rom_fit_search */
+  PetscInt  mmax;    /* -rom_fit_elements_max: a joint's elements grown to this while its loops fit worse than looptol (0: off) */
+  PetscReal looptol; /* -rom_fit_loop_tol */
 } JRROMFit;
 PETSC_EXTERN PetscErrorCode JRROMFitSetFromOptions(MPI_Comm, JRROMFit *);
 PETSC_EXTERN PetscErrorCode JRROMReduce(MPI_Comm, const JRElements *, PetscInt, const PetscReal[], const JRROMCase *, const JRROMFit *, const char[], PetscBool, PetscBool, JRElements *);

@@ -409,7 +409,7 @@ static PetscErrorCode CoupledSetUp(FitCtx *ctx, CoupledFit *cf, PetscReal **y, P
   cf->off[0] = cf->roff[0] = 0;
   for (PetscInt j = 0, k = 0; j < ctx->nj; j++) {
     const JointFit *f = &ctx->jf[j];
-    if (!(ctx->jn[j] > ctx->m)) continue;
+    if (!(ctx->jn[j] > ctx->jm[j])) continue;
     cf->jl[k]       = j;
     cf->u[k]        = PetscAbsReal(ctx->cs->ujoint[j]);
     (*dl)[k]        = f->dlo;
@@ -449,9 +449,9 @@ static void CoupledTargets(const FitCtx *ctx, CoupledFit *cf)
     cf->En[l] = cs->damp * am * am + D;
     cf->Et[l] = D;
     for (PetscInt e = 0; e < nn->n; e++)
-      if (!(ctx->jn[nn->joint[e]] > ctx->m) && mk[e] > 0 && mf[e] > 0) cf->Et[l] -= JRFitJenkinsEnergy(mk[e], mf[e], PetscAbsReal(cs->ujoint[nn->joint[e]]) * am, NULL, NULL);
+      if (!(ctx->jn[nn->joint[e]] > ctx->jm[nn->joint[e]]) && mk[e] > 0 && mf[e] > 0) cf->Et[l] -= JRFitJenkinsEnergy(mk[e], mf[e], PetscAbsReal(cs->ujoint[nn->joint[e]]) * am, NULL, NULL);
     for (PetscInt j = 0; ctx->nvin && j < ctx->nj; j++) /* the normal-load variation (JRFitNormalVariation) */
-      if (ctx->jn[j] > ctx->m) cf->Et[l] += ctx->nvin[j * NCASE + l];
+      if (ctx->jn[j] > ctx->jm[j]) cf->Et[l] += ctx->nvin[j * NCASE + l];
     if (!(cf->En[l] > 0)) cf->En[l] = 1;
   }
 }
@@ -486,7 +486,7 @@ static PetscErrorCode FitCoupled(FitCtx *ctx)
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(&cf, sizeof(cf)));
-  for (PetscInt j = 0; j < ctx->nj; j++) cf.nj += ctx->jn[j] > ctx->m;
+  for (PetscInt j = 0; j < ctx->nj; j++) cf.nj += ctx->jn[j] > ctx->jm[j];
   if (!cf.nj) PetscFunctionReturn(0);
   PetscCall(CoupledSetUp(ctx, &cf, &y, &dl, &dh));
   CoupledTargets(ctx, &cf);
@@ -588,7 +588,7 @@ PetscErrorCode JRROMFitSetFromOptions(MPI_Comm comm, JRROMFit *f)
 {
   PetscReal fr[3] = {0.25, 0.6, 0.95};
   PetscInt  nfr = 3;
-  PetscBool frset;
+  PetscBool frset, tolset;
 
   PetscFunctionBeginUser;
   f->efrom   = 0.02;
@@ -603,6 +603,8 @@ PetscErrorCode JRROMFitSetFromOptions(MPI_Comm comm, JRROMFit *f)
   f->jmotion = 0;
   f->resid   = PETSC_FALSE;
   f->search  = PETSC_TRUE;
+  f->mmax    = 0;
+  f->looptol = 0.1;
   PetscOptionsBegin(comm, "rom_", "Second reduction: m elements per joint fitted to its hysteresis loops (prefix rom_)", "JRROMReduce");
   PetscCall(PetscOptionsRealArray("-fit_fractions", "Loop amplitudes: the slip displacements below which these fractions of the joint's slip force lie (microslip to gross slip)", "JRROMReduce", fr, &nfr, &frset));
   PetscCall(PetscOptionsReal("-fit_energy_from", "Energy per cycle matched from the amplitude where this fraction of the slip force has slipped", "JRROMReduce", f->efrom, &f->efrom, NULL));
@@ -618,6 +620,8 @@ PetscErrorCode JRROMFitSetFromOptions(MPI_Comm comm, JRROMFit *f)
     PetscCall(PetscOptionsEList("-joint_motion", "How a joint's members move: mean (4.4), linear (a field over their positions: each fitted element is spread over three points of its members' spread), mode (a field over their positions and motions in the stuck mode of interest: each fitted element sits at its members' motion) or shapes (the tangential rows over their positions and tangential motions in the stuck mode of interest and in released modes, -rom_release_fractions; the normal rows over their normal motion in it)", "JRROMReduce", JRJointMotions, 4, JRJointMotions[f->jmotion], &f->jmotion, NULL));
   }
   PetscCall(PetscOptionsBool("-joint_residual", "Keep each member's stuck springs, linear, on its motion outside its joint's field (the residual of the field's fit); the joints' elements replace only those on the field's motion, so the reduced model stuck is node-to-node stuck", "JRROMReduce", f->resid, &f->resid, NULL));
+  PetscCall(PetscOptionsInt("-fit_elements_max", "A joint whose members' loops its -rom_elements elements fit worse than -rom_fit_loop_tol (its loop_residual) gets one element more, and again, up to this many (0: every joint -rom_elements)", "JRROMReduce", f->mmax, &f->mmax, NULL));
+  PetscCall(PetscOptionsReal("-fit_loop_tol", "-rom_fit_elements_max: the loop residual a joint's elements are grown to reach", "JRROMReduce", f->looptol, &f->looptol, &tolset));
   PetscCall(PetscOptionsBool("-fit_search", "Choose the slip displacements among a grid over the members' range (best non-negative least squares of the forces); else those of the log-width groups of members", "JRROMReduce", f->search, &f->search, NULL));
   PetscOptionsEnd();
   PetscCheck(f->wgross >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_gross_weight %g: the weight must be non-negative", (double)f->wgross);
@@ -627,6 +631,9 @@ PetscErrorCode JRROMFitSetFromOptions(MPI_Comm comm, JRROMFit *f)
   PetscCheck(f->wcase >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_case_weight %g: the weight must be non-negative (0: the case is not fitted)", (double)f->wcase);
   if (!frset) nfr = 3;
   PetscCheck(nfr == 3 && fr[0] > 0 && fr[1] > fr[0] && fr[2] > fr[1] && fr[2] <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_fractions: three increasing fractions in (0, 1] (default 0.25,0.6,0.95)");
+  PetscCheck(f->mmax >= 0 && f->mmax <= 8, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_elements_max %" PetscInt_FMT ": 0 (off) or up to 8 elements per joint", f->mmax);
+  PetscCheck(!tolset || f->mmax, comm, PETSC_ERR_ARG_INCOMP, "-rom_fit_loop_tol needs -rom_fit_elements_max (the most elements a joint may grow to)");
+  PetscCheck(f->looptol > 0 && f->looptol < 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_loop_tol %g: a residual in (0, 1)", (double)f->looptol);
   PetscCheck(f->ns >= 8, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_fit_samples %" PetscInt_FMT ": at least 8", f->ns);
   for (PetscInt i = 0; i < 3; i++) f->fr[i] = fr[i];
   PetscFunctionReturn(0);
@@ -739,7 +746,7 @@ static PetscErrorCode FitAllocate(FitCtx *ctx)
   PetscInt       cnt = 0, nmax;
 
   PetscFunctionBeginUser;
-  for (PetscInt j = 0; j < nj; j++) cnt += PetscMin(ctx->m, ctx->jn[j]);
+  for (PetscInt j = 0; j < nj; j++) cnt += PetscMin(PetscMax(ctx->m, ctx->fit->mmax), ctx->jn[j]);
   nmax = cnt + (ctx->modef && ctx->nv ? nj * ctx->m : 0); /* mode, jenkins_nv: up to m elements more per joint for its open members */
   PetscCall(PetscMalloc5(nmax, &ctx->ek, nmax, &ctx->ef, nmax, &ctx->ekn, nmax, &ctx->en0, nmax, &ctx->emu));
   if (ctx->spread || ctx->modef) PetscCall(PetscMalloc2(JR_EP * nmax + 1, &ctx->ep, nmax + 1, &ctx->er));
@@ -749,7 +756,8 @@ static PetscErrorCode FitAllocate(FitCtx *ctx)
     PetscCall(JRFileOpenTemp(ctx->comm, ctx->csv, &ctx->fp, ctx->tmp, sizeof(ctx->tmp)));
     if (ctx->fp) fprintf(ctx->fp, "joint,amplitude,u_m,f_first_reduction_N,f_rom_N\n");
   }
-  PetscCall(PetscCalloc2(nj, &ctx->jf, nj, &ctx->nel));
+  PetscCall(PetscCalloc3(nj, &ctx->jf, nj, &ctx->nel, nj, &ctx->jm));
+  for (PetscInt j = 0; j < nj; j++) ctx->jm[j] = ctx->m;
   ctx->cnt = 0;
   PetscFunctionReturn(0);
 }
@@ -842,7 +850,7 @@ static PetscErrorCode FitCtxReset(FitCtx *ctx)
 {
   PetscFunctionBeginUser;
   for (PetscInt j = 0; ctx->jf && j < ctx->nj; j++) PetscCall(JRFitJointFitDestroy(&ctx->jf[j]));
-  PetscCall(PetscFree2(ctx->jf, ctx->nel));
+  PetscCall(PetscFree3(ctx->jf, ctx->nel, ctx->jm));
   PetscCall(PetscFree5(ctx->ek, ctx->ef, ctx->ekn, ctx->en0, ctx->emu));
   PetscCall(PetscFree2(ctx->ep, ctx->er));
   PetscCall(PetscFree(ctx->epr));

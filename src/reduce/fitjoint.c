@@ -12,7 +12,7 @@ static PetscErrorCode JointSetUp(FitCtx *ctx, PetscInt j)
 {
   const JRElements  *nn = ctx->nn;
   const MemberDelta *d  = ctx->md + ctx->joff[j];
-  const PetscInt     nm = ctx->jn[j], mj = PetscMin(ctx->m, nm);
+  const PetscInt     nm = ctx->jn[j], mj = PetscMin(ctx->jm[j], nm);
   JointFit          *f  = &ctx->jf[j];
   TangentFit        *t  = &f->t;
   PetscReal          ftot = 0, ktot = 0, mu = 0, n0s = 0, knsum = 0, c = 0;
@@ -130,7 +130,7 @@ static PetscErrorCode TangentStart(FitCtx *ctx, PetscInt j)
     const PetscInt e = d[i].e;
     PetscInt       g = l1 > l0 ? (PetscInt)(mj * (PetscLogReal(d[i].delta) - l0) / (l1 - l0)) : (mj * i) / nm;
     g                = PetscMin(PetscMax(g, 0), mj - 1);
-    if (nm <= ctx->m) g = i;
+    if (nm <= ctx->jm[j]) g = i;
     x[g] += ctx->mk[e] / t->ks;
     x[mj + g] += ctx->mf[e] / t->fs;
   }
@@ -252,14 +252,20 @@ static PetscErrorCode FitExact(FitCtx *ctx, PetscInt j)
 PetscErrorCode JRFitJoint(FitCtx *ctx, PetscInt j)
 {
   PetscFunctionBeginUser;
-  PetscCall(JointSetUp(ctx, j));
-  PetscCall(TangentEnergyRows(ctx, j));
-  PetscCall(TangentLoops(ctx, j));
-  PetscCall(TangentStart(ctx, j));
-  if (ctx->jn[j] > ctx->m) {
-    PetscCall(FitConvex(ctx, j));
-    if (ctx->fit->refine) PetscCall(FitRefine(ctx, j));
-  } else PetscCall(FitExact(ctx, j));
+  for (;;) {
+    PetscCall(JointSetUp(ctx, j));
+    PetscCall(TangentEnergyRows(ctx, j));
+    PetscCall(TangentLoops(ctx, j));
+    PetscCall(TangentStart(ctx, j));
+    if (ctx->jn[j] > ctx->jm[j]) {
+      PetscCall(FitConvex(ctx, j));
+      if (ctx->fit->refine) PetscCall(FitRefine(ctx, j));
+    } else PetscCall(FitExact(ctx, j));
+    /* -rom_fit_elements_max: one element more while the loops fit worse than -rom_fit_loop_tol */
+    if (!(ctx->jf[j].rms > ctx->fit->looptol && ctx->jm[j] < ctx->fit->mmax && ctx->jm[j] < ctx->jn[j])) break;
+    PetscCall(JRFitJointFitDestroy(&ctx->jf[j]));
+    ctx->jm[j]++;
+  }
   PetscFunctionReturn(0);
 }
 

@@ -375,6 +375,7 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
     PetscCall(JRFileCheckHDF5(comm, "-rom_load", r->load, "/rom", "write one with -rom_save"));
   }
   PetscCall(JRROMFitSetFromOptions(comm, &r->fit));
+  PetscCheck(!r->fit.mmax || (r->m > 0 && r->fit.mmax >= r->m), comm, PETSC_ERR_ARG_INCOMP, "-rom_fit_elements_max %" PetscInt_FMT ": at least -rom_elements (%" PetscInt_FMT "), the elements every joint starts with", r->fit.mmax, r->m);
   if (relset) r->nrel = nrel;
   else if (r->fit.jmotion != JR_JOINT_MOTION_SHAPES) r->nrel = 0; /* mode: released modes only when asked for */
   PetscCheck(!relset || r->fit.jmotion >= JR_JOINT_MOTION_MODE, comm, PETSC_ERR_ARG_INCOMP, "-rom_release_fractions needs -rom_joint_motion mode or shapes");

@@ -91,6 +91,7 @@ typedef struct {
   PetscInt         *jn, *joff;
   JointFit         *jf;                /* per joint */
   PetscInt         *nel;               /* per joint: its reduced elements (JRFitJointElements) */
+  PetscInt         *jm;                /* per joint: the elements it is fitted with (-rom_elements, grown by JRFitJoint) */
   PetscInt          cnt;               /* the reduced elements of the joints before */
   PetscReal        *ek, *ef, *ekn, *en0, *emu; /* the reduced elements before the split: kt, f, kn, n0, mu */
   PetscReal        *ep, *er;           /* linear, mode: JR_EP per element (its points); mode: its ratio (JRFitModePoints) */
