@@ -249,8 +249,24 @@ static PetscErrorCode FitExact(FitCtx *ctx, PetscInt j)
 }
 
 /* Joint j's own fit (JointFit): kt_i, f_i of its elements */
+/* The distinct slip displacements among joint j's members (sorted; equal to 1e-6): more elements than these would share
+   slip displacements, and the split of force between such elements is not unique */
+static PetscInt DistinctDeltas(const FitCtx *ctx, PetscInt j)
+{
+  const MemberDelta *d = ctx->md + ctx->joff[j];
+  PetscInt           k = ctx->jn[j] > 0;
+  for (PetscInt i = 1, l = 0; i < ctx->jn[j]; i++)
+    if (d[i].delta > (1 + 1e-6) * d[l].delta) {
+      l = i;
+      k++;
+    }
+  return k;
+}
+
 PetscErrorCode JRFitJoint(FitCtx *ctx, PetscInt j)
 {
+  const PetscInt nd = ctx->fit->mmax ? DistinctDeltas(ctx, j) : 0;
+
   PetscFunctionBeginUser;
   for (;;) {
     PetscCall(JointSetUp(ctx, j));
@@ -261,8 +277,9 @@ PetscErrorCode JRFitJoint(FitCtx *ctx, PetscInt j)
       PetscCall(FitConvex(ctx, j));
       if (ctx->fit->refine) PetscCall(FitRefine(ctx, j));
     } else PetscCall(FitExact(ctx, j));
-    /* -rom_fit_elements_max: one element more while the loops fit worse than -rom_fit_loop_tol */
-    if (!(ctx->jf[j].rms > ctx->fit->looptol && ctx->jm[j] < ctx->fit->mmax && ctx->jm[j] < ctx->jn[j])) break;
+    /* -rom_fit_elements_max: one element more while the loops fit worse than -rom_fit_loop_tol, up to the members'
+       distinct slip displacements */
+    if (!(ctx->jf[j].rms > ctx->fit->looptol && ctx->jm[j] < ctx->fit->mmax && ctx->jm[j] < nd)) break;
     PetscCall(JRFitJointFitDestroy(&ctx->jf[j]));
     ctx->jm[j]++;
   }
