@@ -65,6 +65,16 @@ PETSC_EXTERN PetscErrorCode JRViewerHDF5WriteRank0(MPI_Comm, PetscViewer, const 
 #define SNESNEWTONDENSE "newtondense"
 PETSC_EXTERN PetscErrorCode SNESCreate_NewtonDense(SNES);
 PETSC_EXTERN PetscErrorCode JRDenseSolve(PetscInt, const PetscScalar *, PetscInt, PetscScalar *, PetscBLASInt *, PetscScalar *, PetscBool *);
+/* A dense solver for a sequence of nearby matrices: GMRES preconditioned by an earlier one's LU, a new LU when it
+   would cost more (src/hbm/newtondense.c) */
+typedef struct _n_JRDenseLU *JRDenseLU;
+PETSC_EXTERN PetscErrorCode JRDenseLUCreate(JRDenseLU *);
+PETSC_EXTERN PetscErrorCode JRDenseLUDestroy(JRDenseLU *);
+PETSC_EXTERN PetscErrorCode JRDenseLUSetReuse(JRDenseLU, PetscInt);
+PETSC_EXTERN PetscErrorCode JRDenseLUForget(JRDenseLU);
+PETSC_EXTERN PetscErrorCode JRDenseLUSolve(JRDenseLU, PetscInt, const PetscScalar *, PetscInt, PetscScalar *, PetscBool *);
+PETSC_EXTERN PetscErrorCode JRDenseLUGetCounts(JRDenseLU, PetscInt *, PetscInt *, PetscInt *);
+PETSC_EXTERN PetscErrorCode SNESNewtonDenseGetDenseLU(SNES, JRDenseLU *);
 
 /* A dense matrix written through its array: assembled once; later writes only raise its state (MatDenseRestoreArray),
    which is what a factorisation checks (MatAssemblyEnd's per-call options lookups cost more than a 19 x 19 LU) */

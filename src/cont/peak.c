@@ -50,6 +50,7 @@ struct _JRContPlaneWork {
   PetscReal    *B, *lu, *dx, *W; /* (n+1)^2, (n+1)^2, n+1, n+1 (the scaling's weights) */
   PetscBLASInt *piv;
   PetscReal    *x0, *d, *xm;     /* the plane family's origin and normal; a point (n+1 each) */
+  JRDenseLU     dlu;             /* the solves on planes: the last factors precondition the next (nearby) ones */
 };
 typedef struct _JRContPlaneWork PeakWork;
 
@@ -67,6 +68,7 @@ PetscErrorCode JRContPlaneWorkCreate(JRCont c)
   PetscCall(VecDuplicate(pw->a, &pw->Rw));
   PetscCall(PetscMalloc6((c->n + 1) * (c->n + 1), &pw->B, (c->n + 1) * (c->n + 1), &pw->lu, c->n + 1, &pw->dx, c->n + 1, &pw->W, c->n + 1, &pw->x0, c->n + 1, &pw->d));
   PetscCall(PetscMalloc2(c->n + 1, &pw->piv, c->n + 1, &pw->xm));
+  PetscCall(JRDenseLUCreate(&pw->dlu));
   c->pw = pw;
   PetscFunctionReturn(0);
 }
@@ -79,6 +81,7 @@ PetscErrorCode JRContPlaneWorkDestroy(JRCont c)
   if (!pw) PetscFunctionReturn(0);
   PetscCall(PetscFree6(pw->B, pw->lu, pw->dx, pw->W, pw->x0, pw->d));
   PetscCall(PetscFree2(pw->piv, pw->xm));
+  PetscCall(JRDenseLUDestroy(&pw->dlu));
   PetscCall(VecDestroy(&pw->a));
   PetscCall(VecDestroy(&pw->R));
   PetscCall(VecDestroy(&pw->Rw));
@@ -147,7 +150,7 @@ static PetscErrorCode SolveOnPlane(JRCont c, PeakWork *pw, PetscReal s, PetscRea
     PetscCall(VecRestoreArrayRead(pw->R, &r));
     PetscCall(VecRestoreArrayRead(pw->Rw, &rw));
     PetscCall(MatDenseRestoreArrayRead(pw->J, &j));
-    PetscCall(JRDenseSolve(m, pw->B, m, pw->lu, pw->piv, pw->dx, &singular));
+    PetscCall(JRDenseLUSolve(pw->dlu, m, pw->B, m, pw->dx, &singular));
     if (singular) break;
     step = 0;
     for (PetscInt i = 0; i <= n; i++) {

@@ -13,22 +13,15 @@
 */
 #include <jointrom/private/hbmimpl.h>
 
-/* G_h, dG_h/dw, xF_h, dxF_h/dw (re, im; column-major, symmetric) and 1/z_k at frequency w, kept: each block
-   (Q V) diag(d) (Q V)^T by BLAS (d = re, im of 1/z_k and of its derivative) */
-static PetscErrorCode CondBlocks(JRHBM h, PetscReal w)
+/* 1/z_k and d(1/z_k)/dw (re, im) per harmonic at frequency w, kept */
+static PetscErrorCode CondInverse(JRHBM h, PetscReal w)
 {
-  const PetscInt nq = h->nq, nm = h->nm, bs = 4 * nq * nq + 4 * nq;
-  PetscReal     *dr, *di, *W;
+  const PetscInt nm = h->nm;
 
   PetscFunctionBeginUser;
-  if (h->wq_ok && h->wq == w) PetscFunctionReturn(0);
-  if (!h->QQ) PetscCall(PetscMalloc2(nm * nq + 1, &h->QQ, 2 * nm, &h->cb));
-  W  = h->QQ; /* (Q V)^T scaled by d, nm x nq */
-  dr = h->cb;
-  di = dr + nm;
+  if (h->wi_ok && h->wi == w) PetscFunctionReturn(0);
   for (PetscInt hh = 1; hh <= h->H; hh++) {
-    PetscReal      *Gr = h->Gb + (hh - 1) * bs, *xF = Gr + 4 * nq * nq;
-    PetscReal      *ir = h->inv + 2 * (hh - 1) * nm, *ii = ir + nm;
+    PetscReal      *ir = h->inv + 4 * (hh - 1) * nm, *ii = ir + nm, *dr = ii + nm, *di = dr + nm;
     const PetscReal s  = hh * w;
     for (PetscInt k = 0; k < nm; k++) {
       const PetscReal zr = h->lamv[k] - s * s, zi = h->gamma * h->lamv[k] + s * h->cv[k], den = zr * zr + zi * zi;
@@ -41,34 +34,49 @@ static PetscErrorCode CondBlocks(JRHBM h, PetscReal w)
       dr[k] = -(sr * dzr - si * dzi); /* d(1/z)/dw = -(1/z)^2 dz/dw */
       di[k] = -(sr * dzi + si * dzr);
     }
-    for (PetscInt q = 0; q < 4; q++) { /* Gr, Gi, dGr, dGi; then xFr, xFi, dxFr, dxFi (the force: first harmonic only) */
-      const PetscReal *d = q == 0 ? ir : q == 1 ? ii : q == 2 ? dr : di;
+  }
+  h->wi    = w;
+  h->wi_ok = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* G_h = (Q V) diag(1/z_k) (Q V)^T (re, im; column-major, symmetric) at frequency w, kept: the Jacobian's blocks */
+static PetscErrorCode CondBlocks(JRHBM h, PetscReal w)
+{
+  const PetscInt nq = h->nq, nm = h->nm;
+  PetscReal     *W;
+
+  PetscFunctionBeginUser;
+  if (h->wq_ok && h->wq == w) PetscFunctionReturn(0);
+  PetscCall(CondInverse(h, w));
+  if (!h->QQ) PetscCall(PetscMalloc2(nm * nq + 1, &h->QQ, 6 * nm + 4 * nq, &h->cb));
+  W = h->QQ; /* (Q V)^T scaled by 1/z_k, nm x nq */
+  for (PetscInt hh = 1; hh <= h->H; hh++) {
+    PetscReal *Gr = h->Gb + 2 * (hh - 1) * nq * nq;
+    for (PetscInt q = 0; q < 2; q++) {
+      const PetscReal *d = h->inv + 4 * (hh - 1) * nm + q * nm;
       for (PetscInt r = 0; r < nq; r++)
         for (PetscInt k = 0; k < nm; k++) W[k + r * nm] = d[k] * h->QV[r * nm + k];
       PetscCall(JRGemm("T", "N", nq, nq, nm, 1.0, h->QV, nm, W, nm, 0.0, Gr + q * nq * nq, nq));
-      for (PetscInt r = 0; r < nq; r++) {
-        PetscReal v = 0.0;
-        if (hh == 1)
-          for (PetscInt k = 0; k < nm; k++) v += W[k + r * nm] * h->VF[k];
-        xF[q * nq + r] = v;
-      }
     }
   }
-  PetscCall(PetscLogFlops(8.0 * h->H * nm * nq * (nq + 2)));
+  PetscCall(PetscLogFlops(4.0 * h->H * nm * nq * nq));
   h->wq    = w;
   h->wq_ok = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
 /* Condensed: res holds g(x) on entry and r(x) on exit; jac (if not NULL) dg/dx on entry and I + G dg/dx on exit;
-   dw (if not NULL) gets dr/dw */
+   dw (if not NULL) gets dr/dw. The residual and dr/dw through the modes, (Q V) (d_k ((Q V)^T g_h)) (a few products
+   of the nq x nm rows with vectors); the blocks G_h only for the Jacobian. */
 PetscErrorCode JRHBMCondApply(JRHBM h, PetscReal w, const PetscReal *x, PetscReal *res, PetscReal *jac, PetscReal *dw)
 {
-  const PetscInt nq = h->nq, ns = h->ns, bs = 4 * nq * nq + 4 * nq;
+  const PetscInt nq = h->nq, nm = h->nm, ns = h->ns;
   PetscReal     *t = h->ctmp, *T = h->ctmp + ns;
 
   PetscFunctionBeginUser;
-  PetscCall(CondBlocks(h, w));
+  PetscCall(CondInverse(h, w));
+  if (!h->QQ) PetscCall(PetscMalloc2(nm * nq + 1, &h->QQ, 6 * nm + 4 * nq, &h->cb));
   for (PetscInt r = 0; r < nq; r++) { /* the mean */
     PetscReal v = x[r];
     for (PetscInt c = 0; c < nq; c++) v += h->G0[r + c * nq] * res[c];
@@ -76,28 +84,38 @@ PetscErrorCode JRHBMCondApply(JRHBM h, PetscReal w, const PetscReal *x, PetscRea
     if (dw) dw[r] = 0.0;
   }
   for (PetscInt hh = 1; hh <= h->H; hh++) {
-    const PetscReal *Gr = h->Gb + (hh - 1) * bs, *Gi = Gr + nq * nq, *dGr = Gi + nq * nq, *dGi = dGr + nq * nq;
-    const PetscReal *xFr = dGi + nq * nq, *xFi = xFr + nq, *dxFr = xFi + nq, *dxFi = dxFr + nq;
-    const PetscInt   os = (2 * hh - 1) * nq, oc = 2 * hh * nq;
-    const PetscReal *gs = res + os, *gc = res + oc;
+    const PetscReal *ir = h->inv + 4 * (hh - 1) * nm, *ii = ir + nm, *dr = ii + nm, *di = dr + nm;
+    const PetscInt   os = (2 * hh - 1) * nq, oc = 2 * hh * nq, nv = dw ? 4 : 2;
+    PetscReal       *b = h->cb, *C = b + 2 * nm, *y = C + 4 * nm, *gg = y; /* (Q V)^T [gs gc]; coefficients; (Q V) C */
+    const PetscReal  F = h->level;
     for (PetscInt r = 0; r < nq; r++) {
-      PetscReal vs = x[os + r] - h->level * xFr[r], vc = x[oc + r] - h->level * xFi[r], ds = -h->level * dxFr[r], dc = -h->level * dxFi[r];
-      for (PetscInt c = 0; c < nq; c++) {
-        vs += Gr[r + c * nq] * gs[c] - Gi[r + c * nq] * gc[c];
-        vc += Gi[r + c * nq] * gs[c] + Gr[r + c * nq] * gc[c];
-        ds += dGr[r + c * nq] * gs[c] - dGi[r + c * nq] * gc[c];
-        dc += dGi[r + c * nq] * gs[c] + dGr[r + c * nq] * gc[c];
-      }
-      t[os + r] = vs;
-      t[oc + r] = vc;
+      gg[r]      = res[os + r];
+      gg[nq + r] = res[oc + r];
+    }
+    PetscCall(JRGemm("N", "N", nm, 2, nq, 1.0, h->QV, nm, gg, nq, 0.0, b, nm));
+    for (PetscInt k = 0; k < nm; k++) { /* (1/z) (bs + i bc) - F (1/z) VF on the first harmonic; and d/dw of both */
+      const PetscReal bs = b[k], bc = b[nm + k], f = hh == 1 ? F * h->VF[k] : 0.0;
+      C[k]      = ir[k] * (bs - f) - ii[k] * bc;
+      C[nm + k] = ii[k] * (bs - f) + ir[k] * bc;
       if (dw) {
-        dw[os + r] = ds;
-        dw[oc + r] = dc;
+        C[2 * nm + k] = dr[k] * (bs - f) - di[k] * bc;
+        C[3 * nm + k] = di[k] * (bs - f) + dr[k] * bc;
+      }
+    }
+    PetscCall(JRGemm("T", "N", nq, nv, nm, 1.0, h->QV, nm, C, nm, 0.0, y, nq));
+    for (PetscInt r = 0; r < nq; r++) {
+      t[os + r] = x[os + r] + y[r];
+      t[oc + r] = x[oc + r] + y[nq + r];
+      if (dw) {
+        dw[os + r] = y[2 * nq + r];
+        dw[oc + r] = y[3 * nq + r];
       }
     }
   }
+  PetscCall(PetscLogFlops(4.0 * h->H * nm * nq * (dw ? 3 : 2)));
   if (jac) { /* T = I + blockdiag(G) dg/dx, row blocks of dg/dx (leading dimension ns); blocks of a few joints:
                 plain loops, the inner one over the rows (a BLAS call costs more than its 6 x 6 product) */
+    PetscCall(CondBlocks(h, w));
     for (PetscInt j = 0; j < ns; j++) {
       const PetscReal *jc = jac + j * ns;
       PetscReal       *tc = T + j * ns;
@@ -108,7 +126,7 @@ PetscErrorCode JRHBMCondApply(JRHBM h, PetscReal w, const PetscReal *x, PetscRea
           for (PetscInt r = 0; r < nq; r++) tc[r] += h->G0[r + c * nq] * v;
       }
       for (PetscInt hh = 1; hh <= h->H; hh++) {
-        const PetscReal *Gr = h->Gb + (hh - 1) * bs, *Gi = Gr + nq * nq;
+        const PetscReal *Gr = h->Gb + 2 * (hh - 1) * nq * nq, *Gi = Gr + nq * nq;
         const PetscInt   os = (2 * hh - 1) * nq, oc = 2 * hh * nq;
         for (PetscInt r = 0; r < nq; r++) tc[os + r] = tc[oc + r] = 0.0;
         for (PetscInt c = 0; c < nq; c++) {
@@ -136,6 +154,7 @@ static PetscErrorCode CondenseReset(JRHBM h)
   h->cond        = PETSC_FALSE;
   h->ns          = h->n;
   h->wq_ok       = PETSC_FALSE;
+  h->wi_ok       = PETSC_FALSE;
   h->condinfo[0] = 0;
   PetscCall(PetscFree3(h->Q, h->QV, h->VF));
   PetscCall(PetscFree4(h->V, h->lamv, h->cv, h->G0));
@@ -355,7 +374,7 @@ PetscErrorCode JRHBMCondenseSetUp(JRHBM h, const JRElements *el)
     PetscFunctionReturn(0);
   }
   h->ns = h->nq * nc;
-  PetscCall(PetscMalloc3(h->H * (4 * h->nq * h->nq + 4 * h->nq), &h->Gb, 2 * h->H * nm, &h->inv, h->ns + h->ns * h->ns, &h->ctmp));
+  PetscCall(PetscMalloc3(2 * h->H * h->nq * h->nq, &h->Gb, 4 * h->H * nm, &h->inv, h->ns + h->ns * h->ns, &h->ctmp));
   h->cond = PETSC_TRUE;
   PetscCall(PetscSNPrintf(h->condinfo, sizeof(h->condinfo), "condensed onto %" PetscInt_FMT " joint motions: %" PetscInt_FMT " unknowns instead of %" PetscInt_FMT, h->nq, h->ns, h->n));
   PetscFunctionReturn(0);
@@ -369,7 +388,7 @@ static PetscErrorCode CondExpand(JRHBM h, PetscReal w, const PetscReal *x, Petsc
   PetscBLASInt   bn, one = 1, info;
 
   PetscFunctionBeginUser;
-  PetscCall(CondBlocks(h, w));
+  PetscCall(CondInverse(h, w));
   PetscCall(PetscMalloc3(h->ns, &g, nm, &br, nm, &bi));
   PetscCall(JRHBMNonlinear(h, x, g, NULL));
   for (PetscInt i = 0; i < nm; i++) { /* the mean: Z0 a0 = -Q^T g0 */
@@ -381,7 +400,7 @@ static PetscErrorCode CondExpand(JRHBM h, PetscReal w, const PetscReal *x, Petsc
   PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bn, &one, h->Z0, &bn, h->piv0, a, &bn, &info));
   for (PetscInt hh = 1; hh <= h->H; hh++) {
     const PetscInt   os = (2 * hh - 1) * nq, oc = 2 * hh * nq;
-    const PetscReal *ir = h->inv + 2 * (hh - 1) * nm, *ii = ir + nm;
+    const PetscReal *ir = h->inv + 4 * (hh - 1) * nm, *ii = ir + nm;
     for (PetscInt k = 0; k < nm; k++) { /* b = V^T (F fm - Q^T g), then z = b / z_k */
       PetscReal vr = hh == 1 ? h->level * h->VF[k] : 0.0, vi = 0.0;
       for (PetscInt r = 0; r < nq; r++) {

@@ -7,15 +7,209 @@
    on ||F||^2 (sufficient decrease 1e-4, quadratic interpolation, as newtonls's default "bt"), and uses SNES's own
    tolerances, convergence test, monitors and reasons. -hbm_snes_type newtonls gives PETSc's Newton with its KSP/PC
    and line-search options; -hbm_snes_test_jacobian and -hbm_snes_compare_* route the Jacobian through
-   SNESComputeJacobian, which runs them. */
+   SNESComputeJacobian, which runs them.
+
+   The LU of one iteration's Jacobian stays as the preconditioner of the next solves (JRDenseLU, below): GMRES with
+   it solves a later Jacobian to 1e-12 in a few matrix-vector products where the Jacobian has changed little (the
+   next iterations, the next points of a continuation) at a fraction of a new LU; it refactors when GMRES needs more
+   than -snes_newtondense_reuse_its iterations (default 12, never more than n/16: the products then cost as much as
+   the LU; 0: a new LU at every iteration). Every step is still an exact Newton step to that tolerance. */
 #include <petsc/private/snesimpl.h>
 #include <petscblaslapack.h>
 #include <jointrom.h>
 
-typedef struct {
-  PetscScalar  *lu;       /* n x n, the LU factors of the Jacobian */
+struct _n_JRDenseLU {
+  PetscInt      n;        /* the size the arrays are allocated for */
+  PetscScalar  *lu;       /* n x n, the LU factors of an earlier matrix */
   PetscBLASInt *piv;      /* n, LAPACK's pivots */
-  PetscInt      n;        /* the size they are allocated for */
+  PetscBool     factored; /* lu holds factors of an n x n matrix */
+  PetscInt      maxit;    /* GMRES iterations before a new LU (0: a new LU every solve) */
+  PetscReal     rtol;     /* GMRES's relative residual */
+  PetscScalar  *V, *Hs, *g, *cs, *sn, *b, *w; /* Krylov basis n x (maxit + 1), Hessenberg, rotations, rhs, work */
+  PetscInt      vit;      /* the maxit V is allocated for */
+  PetscInt      factorizations, solves, its;
+};
+
+/* A dense solver for a sequence of slowly changing n x n matrices */
+PetscErrorCode JRDenseLUCreate(JRDenseLU *d)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscNew(d));
+  (*d)->maxit = 12;
+  (*d)->rtol  = 1e-12;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode JRDenseLUDestroy(JRDenseLU *d)
+{
+  PetscFunctionBegin;
+  if (!*d) PetscFunctionReturn(0);
+  if (getenv("JR_DBG_LU")) PetscCall(PetscPrintf(PETSC_COMM_SELF, "denselu n %d fact %d solves %d its %d\n", (int)(*d)->n, (int)(*d)->factorizations, (int)(*d)->solves, (int)(*d)->its));
+  PetscCall(PetscFree2((*d)->lu, (*d)->piv));
+  PetscCall(PetscFree7((*d)->V, (*d)->Hs, (*d)->g, (*d)->cs, (*d)->sn, (*d)->b, (*d)->w));
+  PetscCall(PetscFree(*d));
+  PetscFunctionReturn(0);
+}
+
+/* GMRES iterations with the old factors before a new LU (0: a new LU at every solve) */
+PetscErrorCode JRDenseLUSetReuse(JRDenseLU d, PetscInt maxit)
+{
+  PetscFunctionBegin;
+  d->maxit = maxit;
+  PetscFunctionReturn(0);
+}
+
+/* Factorizations, solves and GMRES iterations so far */
+PetscErrorCode JRDenseLUGetCounts(JRDenseLU d, PetscInt *factorizations, PetscInt *solves, PetscInt *its)
+{
+  PetscFunctionBegin;
+  if (factorizations) *factorizations = d->factorizations;
+  if (solves) *solves = d->solves;
+  if (its) *its = d->its;
+  PetscFunctionReturn(0);
+}
+
+/* The factors are of no use for the next matrix (a different problem) */
+PetscErrorCode JRDenseLUForget(JRDenseLU d)
+{
+  PetscFunctionBegin;
+  d->factored = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* Right-preconditioned GMRES (classical Gram-Schmidt twice) on A y = b from y = 0 with the factors as
+   preconditioner, at most m iterations: y = M^-1 V_k z; *conv when the true residual is within rtol ||b|| */
+static PetscErrorCode DenseGMRES(JRDenseLU d, PetscInt n, const PetscScalar *A, PetscInt lda, PetscInt m, const PetscScalar *b, PetscScalar *y, PetscBool *conv, PetscInt *its)
+{
+  PetscBLASInt    bn, blda, one = 1, info, bk;
+  PetscReal       bnorm;
+  PetscScalar     sone = 1.0, szero = 0.0, smone = -1.0;
+  PetscScalar    *V = d->V, *H = d->Hs, *g = d->g, *w = d->w;
+  const PetscInt  ldh = m + 1;
+  PetscInt        k = 0;
+
+  PetscFunctionBegin;
+  *conv = PETSC_FALSE;
+  *its  = 0;
+  PetscCall(PetscBLASIntCast(n, &bn));
+  PetscCall(PetscBLASIntCast(lda, &blda));
+  bnorm = BLASnrm2_(&bn, b, &one);
+  if (bnorm == 0) {
+    PetscCall(PetscArrayzero(y, n));
+    *conv = PETSC_TRUE;
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt i = 0; i < n; i++) V[i] = b[i] / bnorm;
+  PetscCall(PetscArrayzero(g, m + 1));
+  g[0] = bnorm;
+  for (k = 0; k < m; k++) {
+    PetscScalar *vk = V + k * n, *vn = V + (k + 1) * n, *h = H + k * ldh;
+    PetscReal    hn;
+    /* vn = A M^-1 vk */
+    PetscCall(PetscArraycpy(w, vk, n));
+    PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bn, &one, d->lu, &bn, d->piv, w, &bn, &info));
+    PetscCallBLAS("BLASgemv", BLASgemv_("N", &bn, &bn, &sone, A, &blda, w, &one, &szero, vn, &one));
+    /* orthogonalised against V_k twice */
+    PetscCall(PetscBLASIntCast(k + 1, &bk));
+    PetscCall(PetscArrayzero(h, k + 2));
+    for (PetscInt pass = 0; pass < 2; pass++) {
+      PetscScalar c[64];
+      PetscCallBLAS("BLASgemv", BLASgemv_("T", &bn, &bk, &sone, V, &bn, vn, &one, &szero, c, &one));
+      PetscCallBLAS("BLASgemv", BLASgemv_("N", &bn, &bk, &smone, V, &bn, c, &one, &sone, vn, &one));
+      for (PetscInt i = 0; i <= k; i++) h[i] += c[i];
+    }
+    hn       = BLASnrm2_(&bn, vn, &one);
+    h[k + 1] = hn;
+    if (hn > 0) for (PetscInt i = 0; i < n; i++) vn[i] /= hn;
+    /* the earlier rotations on the new column, then one that zeroes h[k+1] */
+    for (PetscInt i = 0; i < k; i++) {
+      const PetscScalar t = d->cs[i] * h[i] + d->sn[i] * h[i + 1];
+      h[i + 1]            = -d->sn[i] * h[i] + d->cs[i] * h[i + 1];
+      h[i]                = t;
+    }
+    {
+      const PetscReal r = PetscSqrtReal(h[k] * h[k] + h[k + 1] * h[k + 1]);
+      if (r == 0) break; /* A M^-1 singular on the Krylov space */
+      d->cs[k] = h[k] / r;
+      d->sn[k] = h[k + 1] / r;
+      h[k]     = r;
+      h[k + 1] = 0;
+      g[k + 1] = -d->sn[k] * g[k];
+      g[k]     = d->cs[k] * g[k];
+    }
+    if (PetscAbsScalar(g[k + 1]) <= 0.1 * d->rtol * bnorm || hn == 0) {
+      k++;
+      break;
+    }
+    if (k >= 2) { /* at the mean rate so far it would not converge within m: a new LU costs less than going on */
+      const PetscReal rate = PetscPowReal(PetscAbsScalar(g[k + 1]) / bnorm, 1.0 / (k + 1));
+      if (PetscAbsScalar(g[k + 1]) * PetscPowReal(rate, (PetscReal)(m - k - 1)) > 10.0 * d->rtol * bnorm) {
+        *its = k + 1;
+        PetscCall(PetscLogFlops((4.0 * n * n + 8.0 * n * k) * k));
+        PetscFunctionReturn(0);
+      }
+    }
+  }
+  *its = k;
+  if (!k) PetscFunctionReturn(0);
+  /* z = R^-1 g, y = M^-1 V_k z */
+  for (PetscInt i = k - 1; i >= 0; i--) {
+    for (PetscInt j = i + 1; j < k; j++) g[i] -= H[i + j * ldh] * g[j];
+    g[i] /= H[i + i * ldh];
+  }
+  PetscCall(PetscBLASIntCast(k, &bk));
+  PetscCallBLAS("BLASgemv", BLASgemv_("N", &bn, &bk, &sone, V, &bn, g, &one, &szero, y, &one));
+  PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bn, &one, d->lu, &bn, d->piv, y, &bn, &info));
+  /* the true residual decides */
+  PetscCall(PetscArraycpy(w, b, n));
+  PetscCallBLAS("BLASgemv", BLASgemv_("N", &bn, &bn, &smone, A, &blda, y, &one, &sone, w, &one));
+  *conv = BLASnrm2_(&bn, w, &one) <= d->rtol * bnorm ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PetscLogFlops((4.0 * n * n + 8.0 * n * k) * k + 4.0 * n * n));
+  PetscFunctionReturn(0);
+}
+
+/* x <- A^-1 x for a dense n x n A (column-major, leading dimension lda): by GMRES with the factors of an earlier
+   matrix where it converges within the iterations allowed (at most n/16: beyond, a new LU costs less), else by a new
+   LU, which the next solves then use; *singular on an exactly zero pivot (x is then unchanged) */
+PetscErrorCode JRDenseLUSolve(JRDenseLU d, PetscInt n, const PetscScalar *A, PetscInt lda, PetscScalar *x, PetscBool *singular)
+{
+  const PetscInt m = PetscMin(PetscMin(d->maxit, n / 16), 60);
+
+  PetscFunctionBegin;
+  *singular = PETSC_FALSE;
+  d->solves++;
+  if (n != d->n) {
+    PetscCall(PetscFree2(d->lu, d->piv));
+    PetscCall(PetscFree7(d->V, d->Hs, d->g, d->cs, d->sn, d->b, d->w));
+    PetscCall(PetscMalloc2(n * n, &d->lu, n, &d->piv));
+    d->n        = n;
+    d->vit      = -1;
+    d->factored = PETSC_FALSE;
+  }
+  if (m > 0 && m != d->vit) {
+    PetscCall(PetscFree7(d->V, d->Hs, d->g, d->cs, d->sn, d->b, d->w));
+    PetscCall(PetscMalloc7(n * (m + 1), &d->V, (m + 1) * m, &d->Hs, m + 1, &d->g, m, &d->cs, m, &d->sn, n, &d->b, n, &d->w));
+    d->vit = m;
+  }
+  if (d->factored && m > 0) {
+    PetscBool conv;
+    PetscInt  its;
+    PetscCall(PetscArraycpy(d->b, x, n));
+    PetscCall(DenseGMRES(d, n, A, lda, m, d->b, x, &conv, &its));
+    d->its += its;
+    if (conv) PetscFunctionReturn(0);
+    PetscCall(PetscArraycpy(x, d->b, n));
+  }
+  d->factored = PETSC_FALSE;
+  d->factorizations++;
+  PetscCall(JRDenseSolve(n, A, lda, d->lu, d->piv, x, singular));
+  d->factored = !*singular;
+  PetscFunctionReturn(0);
+}
+
+typedef struct {
+  JRDenseLU     lu;       /* the Jacobian's factors, kept as the next solves' preconditioner */
+  PetscInt      n;        /* the size of the last solve */
   PetscBool     standard; /* the Jacobian through SNESComputeJacobian (its test and compare options) */
   PetscReal     alpha;    /* sufficient decrease of ||F||^2 / 2 per unit step */
   PetscReal     minlambda;
@@ -40,11 +234,7 @@ static PetscErrorCode SNESSetUp_NewtonDense(SNES snes)
   }
   PetscCall(SNESSetWorkVecs(snes, 3)); /* the trial point, its residual, the Newton step */
   PetscCall(VecGetSize(snes->vec_sol, &n));
-  if (n != nd->n) {
-    PetscCall(PetscFree2(nd->lu, nd->piv));
-    PetscCall(PetscMalloc2(n * n, &nd->lu, n, &nd->piv));
-    nd->n = n;
-  }
+  nd->n = n;
   PetscFunctionReturn(0);
 }
 
@@ -78,7 +268,7 @@ static PetscErrorCode NewtonStep(SNES_NewtonDense *nd, Mat A, Vec F, Vec Y, Pets
   PetscCall(MatDenseGetLDA(A, &lda));
   PetscCall(MatDenseGetArrayRead(A, &a));
   PetscCall(VecGetArray(Y, &y));
-  PetscCall(JRDenseSolve(nd->n, a, lda, nd->lu, nd->piv, y, singular));
+  PetscCall(JRDenseLUSolve(nd->lu, nd->n, a, lda, y, singular));
   PetscCall(VecRestoreArray(Y, &y));
   PetscCall(MatDenseRestoreArrayRead(A, &a));
   PetscFunctionReturn(0);
@@ -190,11 +380,13 @@ static PetscErrorCode SNESSetFromOptions_NewtonDense(SNES snes, PetscOptionItems
   PetscOptionsHeadBegin(PetscOptionsObject, "SNES newtondense (dense LU, backtracking) options");
   PetscCall(PetscOptionsReal("-snes_newtondense_alpha", "Sufficient decrease of ||F||^2/2 per unit step", "SNESNEWTONDENSE", nd->alpha, &nd->alpha, NULL));
   PetscCall(PetscOptionsReal("-snes_newtondense_minlambda", "Smallest step length before the line search fails", "SNESNEWTONDENSE", nd->minlambda, &nd->minlambda, NULL));
+  PetscCall(PetscOptionsInt("-snes_newtondense_reuse_its", "GMRES iterations preconditioned by an earlier Jacobian's LU before a new LU (0: a new LU at every iteration)", "SNESNEWTONDENSE", nd->lu->maxit, &nd->lu->maxit, NULL));
   PetscOptionsHeadEnd();
   {
     const char *pre = ((PetscObject)snes)->prefix ? ((PetscObject)snes)->prefix : "";
     PetscCheck(nd->alpha > 0 && nd->alpha < 0.5, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-%ssnes_newtondense_alpha %g: give a value in (0, 0.5)", pre, (double)nd->alpha);
     PetscCheck(nd->minlambda > 0 && nd->minlambda < 1, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-%ssnes_newtondense_minlambda %g: give a value in (0, 1)", pre, (double)nd->minlambda);
+    PetscCheck(nd->lu->maxit >= 0 && nd->lu->maxit <= 60, PetscObjectComm((PetscObject)snes), PETSC_ERR_ARG_OUTOFRANGE, "-%ssnes_newtondense_reuse_its %" PetscInt_FMT ": give 0 (a new LU at every iteration) to 60", pre, nd->lu->maxit);
   }
   nd->standard = PETSC_FALSE;
   for (size_t i = 0; i < sizeof(standard) / sizeof(standard[0]); i++) {
@@ -212,7 +404,10 @@ static PetscErrorCode SNESView_NewtonDense(SNES snes, PetscViewer viewer)
 
   PetscFunctionBegin;
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &iascii));
-  if (iascii) PetscCall(PetscViewerASCIIPrintf(viewer, "  dense LU (LAPACK getrf) of the Jacobian's array; backtracking on ||F||^2/2: alpha %g, min step %g%s\n", (double)nd->alpha, (double)nd->minlambda, nd->standard ? "; Jacobian through SNESComputeJacobian" : ""));
+  if (iascii) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  dense LU (LAPACK getrf) of the Jacobian's array; backtracking on ||F||^2/2: alpha %g, min step %g%s\n", (double)nd->alpha, (double)nd->minlambda, nd->standard ? "; Jacobian through SNESComputeJacobian" : ""));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  the LU kept for GMRES on the next Jacobians: up to %" PetscInt_FMT " iterations (at most n/16); %" PetscInt_FMT " LU for %" PetscInt_FMT " solves so far, %" PetscInt_FMT " GMRES iterations\n", nd->lu->maxit, nd->lu->factorizations, nd->lu->solves, nd->lu->its));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -221,16 +416,31 @@ static PetscErrorCode SNESReset_NewtonDense(SNES snes)
   SNES_NewtonDense *nd = (SNES_NewtonDense *)snes->data;
 
   PetscFunctionBegin;
-  PetscCall(PetscFree2(nd->lu, nd->piv));
+  PetscCall(JRDenseLUForget(nd->lu));
   nd->n = 0;
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode SNESDestroy_NewtonDense(SNES snes)
 {
+  SNES_NewtonDense *nd = (SNES_NewtonDense *)snes->data;
+
   PetscFunctionBegin;
   PetscCall(SNESReset_NewtonDense(snes));
+  PetscCall(JRDenseLUDestroy(&nd->lu));
   PetscCall(PetscFree(snes->data));
+  PetscFunctionReturn(0);
+}
+
+/* The dense solver of a newtondense SNES, to share its factors with solves of nearby matrices (the continuation's
+   tangent); NULL for another type */
+PetscErrorCode SNESNewtonDenseGetDenseLU(SNES snes, JRDenseLU *lu)
+{
+  PetscBool is;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESNEWTONDENSE, &is));
+  *lu = is ? ((SNES_NewtonDense *)snes->data)->lu : NULL;
   PetscFunctionReturn(0);
 }
 
@@ -251,6 +461,7 @@ PetscErrorCode SNESCreate_NewtonDense(SNES snes)
   PetscCall(PetscNew(&nd));
   nd->alpha     = 1e-4;
   nd->minlambda = 1e-12;
-  snes->data    = (void *)nd;
+  PetscCall(JRDenseLUCreate(&nd->lu));
+  snes->data = (void *)nd;
   PetscFunctionReturn(0);
 }

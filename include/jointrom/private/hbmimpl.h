@@ -104,12 +104,12 @@ struct _p_JRHBM {
                                                      V^T Cm V (diagonal); Q V (nq x nm row-major); V^T fm */
   PetscReal        *Z0, *G0;      /* the mean block Kg + pin, LU-factored (nm x nm); Q Z0^-1 Q^T (nq x nq) */
   PetscBLASInt     *piv0;
-  PetscReal        *Gb, *inv;     /* per harmonic at frequency wq: G, dG/dw (re, im), xF, dxF/dw; 1/z_k (re, im) */
-  PetscReal        *QQ, *cb;      /* CondBlocks work: (Q V)^T scaled (nm x nq), d(1/z_k)/dw (re, im) */
+  PetscReal        *Gb, *inv;     /* per harmonic: G (re, im) at frequency wq; 1/z_k and d(1/z_k)/dw (re, im) at wi */
+  PetscReal        *QQ, *cb;      /* CondBlocks work: (Q V)^T scaled (nm x nq); JRHBMCondApply's products (6 nm + 4 nq) */
   PetscReal        *jres;         /* JRHBMComputeJacobian: the residual it also computes (ns) */
   PetscReal        *pptab;        /* JRHBMResponse: sin, cos of each harmonic at 16 nc samples of a cycle */
-  PetscReal         wq;
-  PetscBool         wq_ok;
+  PetscReal         wq, wi;
+  PetscBool         wq_ok, wi_ok;
   char              condinfo[256];
   PetscReal        *ctmp;         /* ns + ns^2 work */
   PetscReal        *llu;          /* JRHBMLinearSolution(): LU of the Jacobian (ns x ns) and its pivots */

@@ -21,8 +21,9 @@ typedef struct {
   Vec              a, r, Rw;                /* work, size n: the unknowns, R, dR/dw */
   Vec              G, xpred, xk, tk, d;     /* size n + 1: the bordered residual, the predictor, the last point and its tangent, work */
   PetscReal        aref, wref, ds, aunit;   /* aunit: the linearised response scale per unit level */
-  PetscScalar     *tb, *tlu;                /* the tangent's bordered matrix and its LU ((n+1) x (n+1)) */
-  PetscBLASInt    *tpiv;
+  PetscScalar     *tb;                      /* the tangent's bordered matrix ((n+1) x (n+1)) */
+  JRDenseLU        tlu;                     /* its solver: the corrector's, whose last factors are of a nearby matrix */
+  PetscBool        towns;                   /* tlu is the tangent's own (the corrector is not newtondense) */
   PetscReal        dAk;                     /* d(amplitude at response 1)/d(scaled arclength) at x_k along t_k */
   PetscReal        Anew;                    /* the amplitude at response 1 of the candidate point */
 } JRCont_Arclength;
@@ -151,7 +152,7 @@ static PetscErrorCode Tangent(JRCont c, Vec x, Vec tprev, Vec t)
   PetscFunctionBeginUser;
   PetscCall(Split(c, x, arc->a, &w));
   PetscCall(JRHBMComputeJacobian(c->hbm, w, arc->a, arc->J, arc->Rw));
-  if (!arc->tb) PetscCall(PetscMalloc3(m * m, &arc->tb, m * m, &arc->tlu, m, &arc->tpiv)); /* kept for the whole solve */
+  if (!arc->tb) PetscCall(PetscMalloc1(m * m, &arc->tb)); /* kept for the whole solve */
   b = arc->tb;
   PetscCall(MatDenseGetArrayRead(arc->J, &j));
   PetscCall(VecGetArrayRead(arc->Rw, &rw));
@@ -168,7 +169,7 @@ static PetscErrorCode Tangent(JRCont c, Vec x, Vec tprev, Vec t)
   PetscCall(VecZeroEntries(t));
   PetscCall(VecGetArray(t, &tt));
   tt[n] = 1.0;
-  PetscCall(JRDenseSolve(m, b, m, arc->tlu, arc->tpiv, tt, &singular));
+  PetscCall(JRDenseLUSolve(arc->tlu, m, b, m, tt, &singular));
   PetscCall(VecRestoreArray(t, &tt));
   PetscCheck(!singular, PETSC_COMM_SELF, PETSC_ERR_MAT_LU_ZRPVT, "Continuation: the bordered tangent system is singular at %g Hz (a zero pivot)", (double)(w / (2 * PETSC_PI)));
   PetscCall(ScaledDot(c, t, t, &nrm));
@@ -524,6 +525,11 @@ static PetscErrorCode CreateCorrector(JRCont c)
   PetscCall(SNESSetFromOptions(arc->snes));
   PetscCall(JRHBMGetJacobianType(c->hbm, &jt));
   if (jt == JR_HBM_JACOBIAN_FD) PetscCall(SNESSetJacobian(arc->snes, arc->BJ, arc->BJ, SNESComputeJacobianDefault, c));
+  PetscCall(SNESNewtonDenseGetDenseLU(arc->snes, &arc->tlu));
+  if (!arc->tlu) {
+    PetscCall(JRDenseLUCreate(&arc->tlu));
+    arc->towns = PETSC_TRUE;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -534,7 +540,10 @@ static PetscErrorCode Reset(JRCont_Arclength *arc)
   PetscCall(SNESDestroy(&arc->snes));
   PetscCall(MatDestroy(&arc->BJ));
   PetscCall(MatDestroy(&arc->J));
-  PetscCall(PetscFree3(arc->tb, arc->tlu, arc->tpiv));
+  PetscCall(PetscFree(arc->tb));
+  if (arc->towns) PetscCall(JRDenseLUDestroy(&arc->tlu));
+  arc->tlu   = NULL;
+  arc->towns = PETSC_FALSE;
   PetscCall(VecDestroy(&arc->a));
   PetscCall(VecDestroy(&arc->r));
   PetscCall(VecDestroy(&arc->Rw));
