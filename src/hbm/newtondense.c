@@ -44,7 +44,6 @@ PetscErrorCode JRDenseLUDestroy(JRDenseLU *d)
 {
   PetscFunctionBegin;
   if (!*d) PetscFunctionReturn(0);
-  if (getenv("JR_DBG_LU")) PetscCall(PetscPrintf(PETSC_COMM_SELF, "denselu n %d fact %d solves %d its %d\n", (int)(*d)->n, (int)(*d)->factorizations, (int)(*d)->solves, (int)(*d)->its));
   PetscCall(PetscFree2((*d)->lu, (*d)->piv));
   PetscCall(PetscFree7((*d)->V, (*d)->Hs, (*d)->g, (*d)->cs, (*d)->sn, (*d)->b, (*d)->w));
   PetscCall(PetscFree(*d));
