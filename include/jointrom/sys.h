@@ -19,7 +19,7 @@ PETSC_EXTERN PetscLogStage  JR_StageModel, JR_StagePreload, JR_StageInterface, J
 PETSC_EXTERN PetscLogEvent  JR_InterfaceSetUp, JR_ReduceJoints, JR_ReduceSelect, JR_ReduceFit, JR_ReduceHBM, JR_Verify, JR_NLModesSolve;
 PETSC_EXTERN PetscErrorCode JRLogRegister(void);
 PETSC_EXTERN PetscClassId  JR_CONTACT_CLASSID, JR_MODEL_CLASSID, JR_HBM_CLASSID;
-PETSC_EXTERN PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_ModesStatic, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep;
+PETSC_EXTERN PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_ModesStatic, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep, JR_DenseLU, JR_DenseGMRES;
 PETSC_EXTERN PetscLogEvent JR_HBMHill; /* Floquet exponents by Hill's method (src/hbm/hill.c) */
 PETSC_EXTERN PetscLogEvent JR_HBMFloquetTime; /* Floquet exponents from the monodromy matrix (src/hbm/floquet.c) */
 
@@ -72,7 +72,7 @@ PETSC_EXTERN PetscErrorCode JRDenseLUCreate(JRDenseLU *);
 PETSC_EXTERN PetscErrorCode JRDenseLUDestroy(JRDenseLU *);
 PETSC_EXTERN PetscErrorCode JRDenseLUSetReuse(JRDenseLU, PetscInt);
 PETSC_EXTERN PetscErrorCode JRDenseLUForget(JRDenseLU);
-PETSC_EXTERN PetscErrorCode JRDenseLUSolve(JRDenseLU, PetscInt, const PetscScalar *, PetscInt, PetscScalar *, PetscBool *);
+PETSC_EXTERN PetscErrorCode JRDenseLUSolve(JRDenseLU, PetscInt, const PetscScalar *, PetscInt, PetscReal, PetscScalar *, PetscBool *);
 PETSC_EXTERN PetscErrorCode JRDenseLUGetCounts(JRDenseLU, PetscInt *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode SNESNewtonDenseGetDenseLU(SNES, JRDenseLU *);
 

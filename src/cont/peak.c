@@ -150,7 +150,7 @@ static PetscErrorCode SolveOnPlane(JRCont c, PeakWork *pw, PetscReal s, PetscRea
     PetscCall(VecRestoreArrayRead(pw->R, &r));
     PetscCall(VecRestoreArrayRead(pw->Rw, &rw));
     PetscCall(MatDenseRestoreArrayRead(pw->J, &j));
-    PetscCall(JRDenseLUSolve(pw->dlu, m, pw->B, m, pw->dx, &singular));
+    PetscCall(JRDenseLUSolve(pw->dlu, m, pw->B, m, PetscMax(1e-3 * rtol / rel, 1e-12), pw->dx, &singular)); /* to 1e-3 of the residual sought */
     if (singular) break;
     step = 0;
     for (PetscInt i = 0; i <= n; i++) {

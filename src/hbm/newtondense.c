@@ -10,10 +10,12 @@
    SNESComputeJacobian, which runs them.
 
    The LU of one iteration's Jacobian stays as the preconditioner of the next solves (JRDenseLU, below): GMRES with
-   it solves a later Jacobian to 1e-12 in a few matrix-vector products where the Jacobian has changed little (the
-   next iterations, the next points of a continuation) at a fraction of a new LU; it refactors when GMRES needs more
+   it solves a later Jacobian in a few matrix-vector products where the Jacobian has changed little (the next
+   iterations, the next points of a continuation) at a fraction of a new LU; it refactors when GMRES would need more
    than -snes_newtondense_reuse_its iterations (default 12, never more than n/16: the products then cost as much as
-   the LU; 0: a new LU at every iteration). Every step is still an exact Newton step to that tolerance. */
+   the LU; 0: a new LU at every iteration). Each step is solved to 1e-3 of the residual at which the iteration stops,
+   relative to the current one (at most 1e-2, at least 1e-12): its error is below anything the convergence test
+   sees, so the iterations are those of the exact Newton method. */
 #include <petsc/private/snesimpl.h>
 #include <petscblaslapack.h>
 #include <jointrom.h>
@@ -24,7 +26,7 @@ struct _n_JRDenseLU {
   PetscBLASInt *piv;      /* n, LAPACK's pivots */
   PetscBool     factored; /* lu holds factors of an n x n matrix */
   PetscInt      maxit;    /* GMRES iterations before a new LU (0: a new LU every solve) */
-  PetscReal     rtol;     /* GMRES's relative residual */
+  PetscReal     rtol;     /* GMRES's relative residual for the current solve */
   PetscScalar  *V, *Hs, *g, *cs, *sn, *b, *w; /* Krylov basis n x (maxit + 1), Hessenberg, rotations, rhs, work */
   PetscInt      vit;      /* the maxit V is allocated for */
   PetscInt      factorizations, solves, its;
@@ -36,7 +38,6 @@ PetscErrorCode JRDenseLUCreate(JRDenseLU *d)
   PetscFunctionBegin;
   PetscCall(PetscNew(d));
   (*d)->maxit = 12;
-  (*d)->rtol  = 1e-12;
   PetscFunctionReturn(0);
 }
 
@@ -168,14 +169,16 @@ static PetscErrorCode DenseGMRES(JRDenseLU d, PetscInt n, const PetscScalar *A, 
 }
 
 /* x <- A^-1 x for a dense n x n A (column-major, leading dimension lda): by GMRES with the factors of an earlier
-   matrix where it converges within the iterations allowed (at most n/16: beyond, a new LU costs less), else by a new
-   LU, which the next solves then use; *singular on an exactly zero pivot (x is then unchanged) */
-PetscErrorCode JRDenseLUSolve(JRDenseLU d, PetscInt n, const PetscScalar *A, PetscInt lda, PetscScalar *x, PetscBool *singular)
+   matrix to the relative residual rtol (at most 1e-2; 0: 1e-12) where it gets there within the iterations allowed
+   (at most n/16: beyond, a new LU costs less), else by a new LU, which the next solves then use; *singular on an
+   exactly zero pivot (x is then unchanged) */
+PetscErrorCode JRDenseLUSolve(JRDenseLU d, PetscInt n, const PetscScalar *A, PetscInt lda, PetscReal rtol, PetscScalar *x, PetscBool *singular)
 {
   const PetscInt m = PetscMin(PetscMin(d->maxit, n / 16), 60);
 
   PetscFunctionBegin;
   *singular = PETSC_FALSE;
+  d->rtol   = rtol > 0 ? PetscMin(rtol, 1e-2) : 1e-12;
   d->solves++;
   if (n != d->n) {
     PetscCall(PetscFree2(d->lu, d->piv));
@@ -194,14 +197,18 @@ PetscErrorCode JRDenseLUSolve(JRDenseLU d, PetscInt n, const PetscScalar *A, Pet
     PetscBool conv;
     PetscInt  its;
     PetscCall(PetscArraycpy(d->b, x, n));
+    PetscCall(PetscLogEventBegin(JR_DenseGMRES, 0, 0, 0, 0));
     PetscCall(DenseGMRES(d, n, A, lda, m, d->b, x, &conv, &its));
+    PetscCall(PetscLogEventEnd(JR_DenseGMRES, 0, 0, 0, 0));
     d->its += its;
     if (conv) PetscFunctionReturn(0);
     PetscCall(PetscArraycpy(x, d->b, n));
   }
   d->factored = PETSC_FALSE;
   d->factorizations++;
+  PetscCall(PetscLogEventBegin(JR_DenseLU, 0, 0, 0, 0));
   PetscCall(JRDenseSolve(n, A, lda, d->lu, d->piv, x, singular));
+  PetscCall(PetscLogEventEnd(JR_DenseLU, 0, 0, 0, 0));
   d->factored = !*singular;
   PetscFunctionReturn(0);
 }
@@ -255,8 +262,8 @@ PetscErrorCode JRDenseSolve(PetscInt n, const PetscScalar *A, PetscInt lda, Pets
   PetscFunctionReturn(0);
 }
 
-/* Y = J^-1 F with J in A (dense) */
-static PetscErrorCode NewtonStep(SNES_NewtonDense *nd, Mat A, Vec F, Vec Y, PetscBool *singular)
+/* Y = J^-1 F with J in A (dense), to the relative residual rtol */
+static PetscErrorCode NewtonStep(SNES_NewtonDense *nd, Mat A, Vec F, PetscReal rtol, Vec Y, PetscBool *singular)
 {
   const PetscScalar *a;
   PetscScalar       *y;
@@ -267,7 +274,7 @@ static PetscErrorCode NewtonStep(SNES_NewtonDense *nd, Mat A, Vec F, Vec Y, Pets
   PetscCall(MatDenseGetLDA(A, &lda));
   PetscCall(MatDenseGetArrayRead(A, &a));
   PetscCall(VecGetArray(Y, &y));
-  PetscCall(JRDenseLUSolve(nd->lu, nd->n, a, lda, y, singular));
+  PetscCall(JRDenseLUSolve(nd->lu, nd->n, a, lda, rtol, y, singular));
   PetscCall(VecRestoreArray(Y, &y));
   PetscCall(MatDenseRestoreArrayRead(A, &a));
   PetscFunctionReturn(0);
@@ -279,7 +286,7 @@ static PetscErrorCode SNESSolve_NewtonDense(SNES snes)
   Vec               X = snes->vec_sol, F = snes->vec_func, W = snes->work[0], G = snes->work[1], Y = snes->work[2];
   Mat               A, P;
   void             *jctx;
-  PetscReal         fnorm, gnorm = 0, ynorm, xnorm;
+  PetscReal         fnorm, gnorm = 0, ynorm, xnorm, stop;
   PetscErrorCode (*jac)(SNES, Vec, Mat, Mat, void *);
 
   PetscFunctionBegin;
@@ -299,12 +306,15 @@ static PetscErrorCode SNESSolve_NewtonDense(SNES snes)
   if (snes->reason) PetscFunctionReturn(0);
   PetscCall(SNESGetJacobian(snes, &A, &P, &jac, &jctx));
   PetscCheck(jac, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONGSTATE, "-snes_type newtondense: set the Jacobian with SNESSetJacobian()");
+  stop = PetscMax(snes->abstol, snes->rtol * fnorm);
   for (PetscInt it = 0; it < snes->max_its; it++) {
     PetscReal lambda = 1.0;
     PetscBool singular;
     if (nd->standard) PetscCall(SNESComputeJacobian(snes, X, A, P));
     else PetscCall((*jac)(snes, X, A, P, jctx));
-    PetscCall(NewtonStep(nd, A, F, Y, &singular));
+    /* the step to 1e-3 of the residual that stops the iteration, relative to this one (an inexact Newton step whose
+       error is below what the convergence test sees), at most 1e-2 */
+    PetscCall(NewtonStep(nd, A, F, PetscMax(1e-3 * stop / fnorm, 1e-12), Y, &singular));
     if (singular) {
       snes->reason = SNES_DIVERGED_LINEAR_SOLVE;
       break;

@@ -3,7 +3,7 @@
 #include <jointrom/private/modelimpl.h>
 
 PetscClassId  JR_CONTACT_CLASSID, JR_MODEL_CLASSID, JR_HBM_CLASSID;
-PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_ModesStatic, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep;
+PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_ModesStatic, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep, JR_DenseLU, JR_DenseGMRES;
 PetscLogEvent JR_HBMHill;
 PetscLogEvent JR_HBMFloquetTime;
 
@@ -32,6 +32,8 @@ PetscErrorCode JRInitializePackage(void)
   PetscCall(PetscLogEventRegister("JR_FloquetTime", JR_HBM_CLASSID, &JR_HBMFloquetTime));
   PetscCall(PetscLogEventRegister("JR_HBMSolve", JR_HBM_CLASSID, &JR_HBMSolve));
   PetscCall(PetscLogEventRegister("JR_ContStep", JR_HBM_CLASSID, &JR_ContStep));
+  PetscCall(PetscLogEventRegister("JR_DenseLU", JR_HBM_CLASSID, &JR_DenseLU));
+  PetscCall(PetscLogEventRegister("JR_DenseGMRES", JR_HBM_CLASSID, &JR_DenseGMRES));
   PetscCall(JRLogRegister());
   PetscCall(SNESRegister(SNESNEWTONDENSE, SNESCreate_NewtonDense));
   PetscCall(JRModelRegisterAll());

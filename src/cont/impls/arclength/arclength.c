@@ -169,7 +169,7 @@ static PetscErrorCode Tangent(JRCont c, Vec x, Vec tprev, Vec t)
   PetscCall(VecZeroEntries(t));
   PetscCall(VecGetArray(t, &tt));
   tt[n] = 1.0;
-  PetscCall(JRDenseLUSolve(arc->tlu, m, b, m, tt, &singular));
+  PetscCall(JRDenseLUSolve(arc->tlu, m, b, m, 1e-8, tt, &singular)); /* a predictor's direction */
   PetscCall(VecRestoreArray(t, &tt));
   PetscCheck(!singular, PETSC_COMM_SELF, PETSC_ERR_MAT_LU_ZRPVT, "Continuation: the bordered tangent system is singular at %g Hz (a zero pivot)", (double)(w / (2 * PETSC_PI)));
   PetscCall(ScaledDot(c, t, t, &nrm));
