@@ -6,13 +6,19 @@
       1.39), the backtracking line search brings it to c;
    3. tolerances 0 (-snes_atol 0 -snes_rtol 0): the solve stops at round-off as converged, not as a failed
       line search;
-   4. F = x^2 + 1 from 0 (singular Jacobian, no real root): DIVERGED_LINEAR_SOLVE, not an error.
+   4. F = x^2 + 1 from 0 (singular Jacobian, no real root): DIVERGED_LINEAR_SOLVE, not an error;
+   5. the LU kept as GMRES's preconditioner (JRDenseLU): on a random well-conditioned 160 x 160 matrix and its
+      changes, every solution's residual, computed here, within the tolerance asked; a rank-1 change solved in at
+      most 2 GMRES iterations (A M^-1 = I + u (M^-T v)^T has a minimal polynomial of degree 2) without a new LU;
+      an unrelated matrix gets a new LU;
+   6. the cubic system with 96 unknowns: the same root and the same number of iterations with the LU kept as
+      with a new LU at every iteration (-snes_newtondense_reuse_its 0), and fewer LU than iterations.
 */
 #include "jrtest.h"
 
 typedef struct {
   PetscInt  kind, n;
-  PetscReal A[19 * 19], b[19], c[19];
+  PetscReal A[96 * 96], b[96], c[96];
 } Prob;
 
 static PetscErrorCode Func(SNES snes, Vec X, Vec F, void *ctx)
@@ -61,8 +67,9 @@ static PetscErrorCode Jac(SNES snes, Vec X, Mat J, Mat P, void *ctx)
   PetscFunctionReturn(0);
 }
 
-/* solve from x0 (n values) with the given type and options prefix; x (n), iterations, reason */
-static PetscErrorCode Solve(Prob *p, const char *type, const char *prefix, const PetscReal *x0, PetscReal *xout, PetscInt *its, SNESConvergedReason *reason)
+/* solve from x0 (n values) with the given type and options prefix; x (n), iterations, reason; nlu (may be NULL): the
+   LU factorizations of a newtondense solve */
+static PetscErrorCode SolveLU(Prob *p, const char *type, const char *prefix, const PetscReal *x0, PetscReal *xout, PetscInt *its, SNESConvergedReason *reason, PetscInt *nlu)
 {
   SNES               snes;
   Vec                x, r;
@@ -95,10 +102,99 @@ static PetscErrorCode Solve(Prob *p, const char *type, const char *prefix, const
   PetscCall(VecGetArrayRead(x, &xa));
   for (PetscInt i = 0; i < p->n; i++) xout[i] = xa[i];
   PetscCall(VecRestoreArrayRead(x, &xa));
+  if (nlu) {
+    JRDenseLU lu;
+    PetscCall(SNESNewtonDenseGetDenseLU(snes, &lu));
+    *nlu = -1;
+    if (lu) PetscCall(JRDenseLUGetCounts(lu, nlu, NULL, NULL));
+  }
   PetscCall(SNESDestroy(&snes));
   PetscCall(MatDestroy(&J));
   PetscCall(VecDestroy(&r));
   PetscCall(VecDestroy(&x));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Solve(Prob *p, const char *type, const char *prefix, const PetscReal *x0, PetscReal *xout, PetscInt *its, SNESConvergedReason *reason)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SolveLU(p, type, prefix, x0, xout, its, reason, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* ||b - A x|| / ||b|| for a dense n x n A (column-major) */
+static PetscReal Residual(PetscInt n, const PetscReal *A, const PetscReal *x, const PetscReal *b)
+{
+  PetscReal r2 = 0, b2 = 0;
+  for (PetscInt i = 0; i < n; i++) {
+    PetscReal v = b[i];
+    for (PetscInt j = 0; j < n; j++) v -= A[i + j * n] * x[j];
+    r2 += v * v;
+    b2 += b[i] * b[i];
+  }
+  return PetscSqrtReal(r2 / b2);
+}
+
+/* 5. JRDenseLU on a sequence of matrices */
+static PetscErrorCode DenseLUChecks(void)
+{
+  const PetscInt n = 160;
+  PetscReal     *A, *B, *b, *x, *u, *v;
+  PetscRandom    rnd;
+  JRDenseLU      d;
+  PetscBool      singular;
+  PetscInt       f0, f1, s1, i0, i1;
+  PetscReal      res;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc6(n * n, &A, n * n, &B, n, &b, n, &x, n, &u, n, &v));
+  PetscCall(PetscRandomCreate(PETSC_COMM_SELF, &rnd));
+  PetscCall(PetscRandomSetInterval(rnd, -1.0, 1.0));
+  PetscCall(PetscRandomSetSeed(rnd, 7));
+  PetscCall(PetscRandomSeed(rnd));
+  for (PetscInt i = 0; i < n * n; i++) PetscCall(PetscRandomGetValueReal(rnd, &A[i]));
+  for (PetscInt i = 0; i < n; i++) {
+    A[i + i * n] += 2.0 * PetscSqrtReal((PetscReal)n); /* well conditioned */
+    PetscCall(PetscRandomGetValueReal(rnd, &b[i]));
+    PetscCall(PetscRandomGetValueReal(rnd, &u[i]));
+    PetscCall(PetscRandomGetValueReal(rnd, &v[i]));
+  }
+  PetscCall(JRDenseLUCreate(&d));
+  PetscCall(PetscArraycpy(x, b, n));
+  PetscCall(JRDenseLUSolve(d, n, A, n, 0, x, &singular));
+  res = Residual(n, A, x, b);
+  PetscCall(JRDenseLUGetCounts(d, &f0, NULL, &i0));
+  CHECK(!singular && f0 == 1 && res < 1e-13, "JRDenseLU: the first solve is an LU (%d), residual %.1e", (int)f0, (double)res);
+  /* a rank-1 change: at most 2 GMRES iterations, no new LU */
+  for (PetscInt j = 0; j < n; j++)
+    for (PetscInt i = 0; i < n; i++) B[i + j * n] = A[i + j * n] + 0.5 * u[i] * v[j];
+  PetscCall(PetscArraycpy(x, b, n));
+  PetscCall(JRDenseLUSolve(d, n, B, n, 0, x, &singular));
+  res = Residual(n, B, x, b);
+  PetscCall(JRDenseLUGetCounts(d, &f1, &s1, &i1));
+  CHECK(!singular && f1 == 1 && i1 - i0 <= 2 && res < 1e-12, "JRDenseLU: a rank-1 change solved by GMRES on the kept LU in %d iterations (<= 2), residual %.1e (< 1e-12), no new LU (%d in all)", (int)(i1 - i0), (double)res, (int)f1);
+  /* a small dense change, to a loose tolerance: the residual within it */
+  for (PetscInt i = 0; i < n * n; i++) {
+    PetscReal e;
+    PetscCall(PetscRandomGetValueReal(rnd, &e));
+    B[i] = A[i] * (1.0 + 1e-3 * e);
+  }
+  PetscCall(PetscArraycpy(x, b, n));
+  PetscCall(JRDenseLUSolve(d, n, B, n, 1e-6, x, &singular));
+  res = Residual(n, B, x, b);
+  PetscCall(JRDenseLUGetCounts(d, &f1, NULL, &i0));
+  CHECK(!singular && f1 == 1 && res < 1e-6, "JRDenseLU: a 1e-3 change of every entry to 1e-6: residual %.1e in %d GMRES iterations, no new LU", (double)res, (int)(i0 - i1));
+  /* an unrelated matrix: a new LU, exact */
+  for (PetscInt i = 0; i < n * n; i++) PetscCall(PetscRandomGetValueReal(rnd, &B[i]));
+  for (PetscInt i = 0; i < n; i++) B[i + i * n] += 2.0 * PetscSqrtReal((PetscReal)n);
+  PetscCall(PetscArraycpy(x, b, n));
+  PetscCall(JRDenseLUSolve(d, n, B, n, 0, x, &singular));
+  res = Residual(n, B, x, b);
+  PetscCall(JRDenseLUGetCounts(d, &f1, NULL, NULL));
+  CHECK(!singular && f1 == 2 && res < 1e-13, "JRDenseLU: an unrelated matrix gets a new LU (%d in all), residual %.1e", (int)f1, (double)res);
+  PetscCall(JRDenseLUDestroy(&d));
+  PetscCall(PetscRandomDestroy(&rnd));
+  PetscCall(PetscFree6(A, B, b, x, u, v));
   PetscFunctionReturn(0);
 }
 
@@ -151,6 +247,30 @@ int main(int argc, char **argv)
   x0[0] = x0[1] = 0.0;
   PetscCall(Solve(&p, SNESNEWTONDENSE, "e_", x0, x1, &it1, &r1));
   CHECK(r1 == SNES_DIVERGED_LINEAR_SOLVE, "x^2 + 1 from 0 (zero Jacobian): %s", SNESConvergedReasons[r1]);
+  PetscCall(DenseLUChecks());
+  /* 6. the cubic system with 96 unknowns: the LU kept against a new one at every iteration */
+  p.kind = 1;
+  p.n    = 96;
+  {
+    PetscReal *ys, *y0, *y1, *y2;
+    PetscInt   l1, l2;
+    PetscCall(PetscMalloc4(p.n, &ys, p.n, &y0, p.n, &y1, p.n, &y2));
+    for (PetscInt i = 0; i < p.n; i++) {
+      ys[i] = 0.5 + 0.1 * (i % 19) * PetscPowRealInt(-1.0, i);
+      y0[i] = 0.0;
+      for (PetscInt j = 0; j < p.n; j++) p.A[i + j * p.n] = i == j ? 4.0 : 0.3 / (1.0 + i + 2.0 * j);
+    }
+    for (PetscInt i = 0; i < p.n; i++) {
+      p.b[i] = ys[i] * ys[i] * ys[i];
+      for (PetscInt j = 0; j < p.n; j++) p.b[i] += p.A[i + j * p.n] * ys[j];
+    }
+    PetscCall(PetscOptionsSetValue(NULL, "-g_snes_newtondense_reuse_its", "0"));
+    PetscCall(SolveLU(&p, SNESNEWTONDENSE, "f_", y0, y1, &it1, &r1, &l1));
+    PetscCall(SolveLU(&p, SNESNEWTONDENSE, "g_", y0, y2, &it2, &r2, &l2));
+    CHECK(r1 > 0 && r2 > 0 && it1 == it2 && RelDiff(p.n, y1, ys, MaxAbs(p.n, ys)) < 1e-13 && RelDiff(p.n, y2, ys, MaxAbs(p.n, ys)) < 1e-13, "cubic system (96 unknowns): the LU kept and a new LU each iteration reach the root (errors %.1e, %.1e) in the same %d and %d iterations", RelDiff(p.n, y1, ys, MaxAbs(p.n, ys)), RelDiff(p.n, y2, ys, MaxAbs(p.n, ys)), (int)it1, (int)it2);
+    CHECK(l2 == it2 && l1 < l2, "cubic system (96 unknowns): %d LU with the LU kept, %d with a new one each iteration", (int)l1, (int)l2);
+    PetscCall(PetscFree4(ys, y0, y1, y2));
+  }
   PetscCall(PetscFinalize());
   return TestSummary("test_newtondense");
 }
