@@ -50,6 +50,9 @@ done
 check "[ -z '$miss' ] && echo \"\$h\" | grep -q 'SI units' && echo \"\$h\" | grep -q 'modulus \[Pa\]'" "-help lists the FE model and modes options with units${miss:+ (missing:$miss)}"
 
 # bad input
+# a sparse factorisation package that cannot factor the distributed matrix (PETSc's own is sequential), or no package
+expect_error "sequential factorisation package on 2 ranks" "-modes_st_pc_factor_mat_solver_type petsc: no Cholesky factorisation of this mpi" mpiexec -n 2 $J $lap -modes_output_file '' -modes_st_pc_factor_mat_solver_type petsc
+expect_error "unknown factorisation package" "-modes_st_pc_factor_mat_solver_type mumsp: no Cholesky factorisation" $J $lap -modes_output_file '' -modes_st_pc_factor_mat_solver_type mumsp
 printf 'this is not a mesh\n' > "$tmp/junk.msh"
 expect_error "missing mesh file" "Cannot open the Gmsh file $tmp/none.msh" $J -task modes -model_type gmsh -model_file "$tmp/none.msh"
 expect_error "invalid mesh file" "junk.msh" $J -task modes -model_type gmsh -model_file "$tmp/junk.msh"

@@ -97,6 +97,7 @@ PETSC_EXTERN PetscErrorCode JRErrorCatchPop(char[], size_t);
 /* Options nothing read: an error before the work (jointrom's own), a warning at the end (src/sys/options.c) */
 PETSC_EXTERN PetscErrorCode JROptionsCheck(MPI_Comm, const char[]);
 PETSC_EXTERN PetscErrorCode JROptionsCheckValues(MPI_Comm);
+PETSC_EXTERN PetscErrorCode JRCheckFactorSolverType(PC, Mat, const char[]);
 PETSC_EXTERN PetscErrorCode JROptionsWarnUnused(MPI_Comm);
 PETSC_EXTERN PetscErrorCode JROptionsHelpSolvers(MPI_Comm, PetscBool, PetscBool, PetscBool, PetscBool);
 /* The directory of an output base name exists (created if missing) and is writable, else an error naming option */

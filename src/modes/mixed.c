@@ -168,6 +168,7 @@ static PetscErrorCode StaticSolver(JRModes md, KSP *ksp, Mat *A, PetscReal *shif
   PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
 #endif
   PetscCall(KSPSetFromOptions(*ksp));
+  PetscCall(JRCheckFactorSolverType(pc, *A, "modes_static_"));
   PetscCall(KSPSetUp(*ksp));
   PetscFunctionReturn(0);
 }

@@ -243,6 +243,12 @@ static PetscErrorCode SetUpEPS(JRModes md, PetscInt n, PetscInt nrb, PetscBool d
     if (factor && !set) PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   }
 #endif
+  if (!dense) {
+    PetscCall(EPSGetST(md->eps, &st));
+    PetscCall(STGetKSP(st, &ksp));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(JRCheckFactorSolverType(pc, md->K, "modes_st_"));
+  }
   PetscFunctionReturn(0);
 }
 

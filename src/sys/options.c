@@ -236,3 +236,27 @@ PetscErrorCode JROptionsHelpSolvers(MPI_Comm comm, PetscBool hbm, PetscBool prel
   }
   PetscFunctionReturn(0);
 }
+
+/* A factorisation preconditioner (LU or Cholesky, options prefix prefix) whose -pc_factor_mat_solver_type names a
+   package that cannot factor A (a sequential one on several ranks, or an unknown name): one message naming the
+   option, before the factorisation's own error deep in a solve */
+PetscErrorCode JRCheckFactorSolverType(PC pc, Mat A, const char prefix[])
+{
+  PetscBool   factor, chol, set, avail = PETSC_FALSE;
+  char        type[64];
+  MatType     mt;
+  PetscMPIInt size;
+
+  PetscFunctionBeginUser;
+  if (!A) PetscFunctionReturn(0);
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, ""));
+  if (!factor) PetscFunctionReturn(0);
+  PetscCall(PetscOptionsGetString(NULL, prefix, "-pc_factor_mat_solver_type", type, sizeof(type), &set));
+  if (!set) PetscFunctionReturn(0);
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &chol));
+  PetscCall(MatGetFactorAvailable(A, type, chol ? MAT_FACTOR_CHOLESKY : MAT_FACTOR_LU, &avail));
+  PetscCall(MatGetType(A, &mt));
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)A), &size));
+  PetscCheck(avail, PetscObjectComm((PetscObject)A), PETSC_ERR_USER_INPUT, "-%spc_factor_mat_solver_type %s: no %s factorisation of this %s matrix by '%s' on %d rank%s; mumps (the default) has one%s", prefix, type, chol ? "Cholesky" : "LU", mt, type, (int)size, size > 1 ? "s" : "", size > 1 ? ", or run on 1 rank" : "");
+  PetscFunctionReturn(0);
+}

@@ -5,6 +5,8 @@
 # 0.8-1.2 of the first natural frequency, force 50 N at the free end (microslip: about 2 Newton iterations per point). Time = the solve stage only
 # (HBM + continuation, from the program's own per-level timer).
 # Targets: analytic >= 20x faster than fd at 10^4 elements; 2 ranks >= 1.7x faster at 10^5.
+# Then the dense Newton's LU kept as GMRES's preconditioner against a new LU at every iteration, side by side on
+# the BRB, lap1 node-to-node and reduced models (the solve stage; the LU and GMRES solves counted).
 cd "$(dirname "$0")/../.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export OPENBLAS_NUM_THREADS=1
@@ -46,3 +48,38 @@ for H in 1 3; do
     echo "2 ranks vs 1 rank, $E elements, H = $H: $(awk -v a=$t1 -v b=$t2 'BEGIN{printf "%.2fx faster", b/a}')"
   done
 done
+echo
+# The dense Newton's LU kept as GMRES's preconditioner (default) against a new LU at every iteration
+# (-hbm_snes_newtondense_reuse_its 0): the solve stage (harmonic balance, continuation, peaks; stability off),
+# interleaved runs, median; the unknowns of each solve and the LU and GMRES counts of the default's run.
+lap1="-task frf -model_type lap1 -model_mesh_h 0.008 -preload_force 10000 -interface_element jenkins_nv -interface_kt 1e8 -interface_mu 0.1 -hbm_basis free -hbm_modes 30 -hbm_gamma 0.002 -frf_force 0.0001,0.01,1 -frf_fmin 120 -frf_fmax 160 -cont_monitor 0 -frf_stability 0"
+stage() { # np args... -> "solve_seconds lu_count gmres_count unknowns"
+  local np=$1
+  shift
+  mpiexec -n "$np" bin/jointrom "$@" -frf_output_file '' -frf_plot 0 -log_view < /dev/null 2>&1 |
+    awk '/JR 6 solve:/{t=$5} /--- Event Stage/{s6=($4=="6:")} s6&&/^JR_DenseLU /{l+=$2} s6&&/^JR_DenseGMRES /{g+=$2} /unknowns instead of/{for(i=1;i<=NF;i++) if($i=="unknowns") u=$(i-1)} /harmonics \+ mean, [0-9]+ unknowns/{for(i=1;i<=NF;i++) if($i=="unknowns;") v=$(i-1)} END{printf "%s %d %d %s\n", t, l, g, u != "" ? u : v}'
+}
+median() { sort -g | awk '{a[NR]=$1} END{print a[int((NR+1)/2)]}'; }
+echo "== dense Newton: the LU kept for GMRES against a new LU every iteration, solve stage [s], median of interleaved runs =="
+printf "%-46s %-5s %8s %10s %10s %7s %6s %7s\n" case ranks unknowns "new LU" kept speedup LU GMRES
+while IFS='|' read -r name np reps args; do
+  : > /tmp/jr_bench_new.$$
+  : > /tmp/jr_bench_kept.$$
+  for r in $(seq "$reps"); do
+    stage "$np" $args -hbm_snes_newtondense_reuse_its 0 >> /tmp/jr_bench_new.$$
+    stage "$np" $args >> /tmp/jr_bench_kept.$$
+  done
+  new=$(awk '{print $1}' /tmp/jr_bench_new.$$ | median)
+  kept=$(awk '{print $1}' /tmp/jr_bench_kept.$$ | median)
+  read -r _ lu gm un < /tmp/jr_bench_kept.$$
+  printf "%-46s %-5s %8s %10.4g %10.4g %7.2f %6s %7s\n" "$name" "$np" "$un" "$new" "$kept" "$(awk -v a=$new -v b=$kept 'BEGIN{print a/b}')" "$lu" "$gm"
+done <<LIST
+runs/default.opts (BRB, node-to-node)|2|3|-options_file runs/default.opts -task frf -frf_stability 0
+lap1 8 mm, 132 jenkins_nv, 30 modes|1|3|$lap1
+lap1 8 mm, 132 jenkins_nv, 30 modes|2|3|$lap1
+lap1 8 mm, 4 zone joints x 3, linear field|1|3|$lap1 -rom_joints zones -rom_joint_motion linear -rom_elements 3
+runs/lap1_rom.opts reduced (24 rows, 109 modes)|2|1|-options_file runs/lap1_rom.opts -task frf -frf_stability 0
+runs/lap3_n2n.opts (506 jenkins_nv, adapted basis)|2|1|-options_file runs/lap3_n2n.opts -frf_stability 0
+runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|2|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
+LIST
+rm -f /tmp/jr_bench_new.$$ /tmp/jr_bench_kept.$$

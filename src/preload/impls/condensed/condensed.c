@@ -147,6 +147,7 @@ static PetscErrorCode Flexibility(JRPreload p, const JRPairs *P)
   PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
 #endif
   PetscCall(KSPSetFromOptions(c->ksp0));
+  PetscCall(JRCheckFactorSolverType(pc, p->J, "preload_"));
   PetscCall(KSPSetUp(c->ksp0));
   p->factorisations++;
   PetscCall(PetscMalloc2((size_t)n * n, &c->G, n, &c->yf));

@@ -111,6 +111,8 @@ static PetscErrorCode JRPreloadSetUp_Full(JRPreload p)
   PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
 #endif
   PetscCall(SNESSetFromOptions(full->snes));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(JRCheckFactorSolverType(pc, p->J, "preload_"));
   PetscFunctionReturn(0);
 }
 
