@@ -51,8 +51,8 @@ check "[ -z '$miss' ] && echo \"\$h\" | grep -q 'SI units' && echo \"\$h\" | gre
 
 # bad input
 # a sparse factorisation package that cannot factor the distributed matrix (PETSc's own is sequential), or no package
-expect_error "sequential factorisation package on 2 ranks" "-modes_st_pc_factor_mat_solver_type petsc: no Cholesky factorisation of this mpi" mpiexec -n 2 $J $lap -modes_output_file '' -modes_st_pc_factor_mat_solver_type petsc
-expect_error "unknown factorisation package" "-modes_st_pc_factor_mat_solver_type mumsp: no Cholesky factorisation" $J $lap -modes_output_file '' -modes_st_pc_factor_mat_solver_type mumsp
+expect_error "sequential factorisation package on 2 ranks" "-modes_st_pc_factor_mat_solver_type petsc: 'petsc' has no Cholesky factorisation of this mpiaij matrix: PETSc's own LU and Cholesky factor only sequential matrices, so on more than one rank use mumps" mpiexec -n 2 $J $lap -modes_output_file '' -modes_st_pc_factor_mat_solver_type petsc
+expect_error "unknown factorisation package" "-modes_st_pc_factor_mat_solver_type mumsp: no such factorisation package in this PETSc; use mumps" $J $lap -modes_output_file '' -modes_st_pc_factor_mat_solver_type mumsp
 printf 'this is not a mesh\n' > "$tmp/junk.msh"
 expect_error "missing mesh file" "Cannot open the Gmsh file $tmp/none.msh" $J -task modes -model_type gmsh -model_file "$tmp/none.msh"
 expect_error "invalid mesh file" "junk.msh" $J -task modes -model_type gmsh -model_file "$tmp/junk.msh"

@@ -242,7 +242,7 @@ PetscErrorCode JROptionsHelpSolvers(MPI_Comm comm, PetscBool hbm, PetscBool prel
    option, before the factorisation's own error deep in a solve */
 PetscErrorCode JRCheckFactorSolverType(PC pc, Mat A, const char prefix[])
 {
-  PetscBool   factor, chol, set, avail = PETSC_FALSE;
+  PetscBool   factor, chol, set, avail = PETSC_FALSE, known = PETSC_FALSE;
   char        type[64];
   MatType     mt;
   PetscMPIInt size;
@@ -255,8 +255,11 @@ PetscErrorCode JRCheckFactorSolverType(PC pc, Mat A, const char prefix[])
   if (!set) PetscFunctionReturn(0);
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &chol));
   PetscCall(MatGetFactorAvailable(A, type, chol ? MAT_FACTOR_CHOLESKY : MAT_FACTOR_LU, &avail));
+  if (avail) PetscFunctionReturn(0);
   PetscCall(MatGetType(A, &mt));
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)A), &size));
-  PetscCheck(avail, PetscObjectComm((PetscObject)A), PETSC_ERR_USER_INPUT, "-%spc_factor_mat_solver_type %s: no %s factorisation of this %s matrix by '%s' on %d rank%s; mumps (the default) has one%s", prefix, type, chol ? "Cholesky" : "LU", mt, type, (int)size, size > 1 ? "s" : "", size > 1 ? ", or run on 1 rank" : "");
+  PetscCall(MatSolverTypeGet(type, mt, chol ? MAT_FACTOR_CHOLESKY : MAT_FACTOR_LU, &known, NULL, NULL));
+  PetscCheck(known, PetscObjectComm((PetscObject)A), PETSC_ERR_USER_INPUT, "-%spc_factor_mat_solver_type %s: no such factorisation package in this PETSc; use mumps, the default", prefix, type);
+  SETERRQ(PetscObjectComm((PetscObject)A), PETSC_ERR_USER_INPUT, "-%spc_factor_mat_solver_type %s: '%s' has no %s factorisation of this %s matrix%s", prefix, type, type, chol ? "Cholesky" : "LU", mt, size > 1 ? ": PETSc's own LU and Cholesky factor only sequential matrices, so on more than one rank use mumps, the default" : "; use mumps, the default");
   PetscFunctionReturn(0);
 }
