@@ -70,7 +70,6 @@ PETSC_EXTERN PetscErrorCode JRDenseSolve(PetscInt, const PetscScalar *, PetscInt
 typedef struct _n_JRDenseLU *JRDenseLU;
 PETSC_EXTERN PetscErrorCode JRDenseLUCreate(JRDenseLU *);
 PETSC_EXTERN PetscErrorCode JRDenseLUDestroy(JRDenseLU *);
-PETSC_EXTERN PetscErrorCode JRDenseLUSetReuse(JRDenseLU, PetscInt);
 PETSC_EXTERN PetscErrorCode JRDenseLUForget(JRDenseLU);
 PETSC_EXTERN PetscErrorCode JRDenseLUSolve(JRDenseLU, PetscInt, const PetscScalar *, PetscInt, PetscReal, PetscScalar *, PetscBool *);
 PETSC_EXTERN PetscErrorCode JRDenseLUGetCounts(JRDenseLU, PetscInt *, PetscInt *, PetscInt *);

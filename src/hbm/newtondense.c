@@ -51,14 +51,6 @@ PetscErrorCode JRDenseLUDestroy(JRDenseLU *d)
   PetscFunctionReturn(0);
 }
 
-/* GMRES iterations with the old factors before a new LU (0: a new LU at every solve) */
-PetscErrorCode JRDenseLUSetReuse(JRDenseLU d, PetscInt maxit)
-{
-  PetscFunctionBegin;
-  d->maxit = maxit;
-  PetscFunctionReturn(0);
-}
-
 /* Factorizations, solves and GMRES iterations so far */
 PetscErrorCode JRDenseLUGetCounts(JRDenseLU d, PetscInt *factorizations, PetscInt *solves, PetscInt *its)
 {
