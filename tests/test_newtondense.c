@@ -68,7 +68,7 @@ static PetscErrorCode Jac(SNES snes, Vec X, Mat J, Mat P, void *ctx)
 }
 
 /* solve from x0 (n values) with the given type and options prefix; x (n), iterations, reason; nlu (may be NULL): the
-   LU factorizations of a newtondense solve */
+   LU factorisations of a newtondense solve */
 static PetscErrorCode SolveLU(Prob *p, const char *type, const char *prefix, const PetscReal *x0, PetscReal *xout, PetscInt *its, SNESConvergedReason *reason, PetscInt *nlu)
 {
   SNES               snes;

@@ -29,7 +29,7 @@ struct _n_JRDenseLU {
   PetscReal     rtol;     /* GMRES's relative residual for the current solve */
   PetscScalar  *V, *Hs, *g, *cs, *sn, *b, *w; /* Krylov basis n x (maxit + 1), Hessenberg, rotations, rhs, work */
   PetscInt      vit;      /* the maxit V is allocated for */
-  PetscInt      factorizations, solves, its;
+  PetscInt      factorisations, solves, its;
 };
 
 /* A dense solver for a sequence of slowly changing n x n matrices */
@@ -51,11 +51,11 @@ PetscErrorCode JRDenseLUDestroy(JRDenseLU *d)
   PetscFunctionReturn(0);
 }
 
-/* Factorizations, solves and GMRES iterations so far */
-PetscErrorCode JRDenseLUGetCounts(JRDenseLU d, PetscInt *factorizations, PetscInt *solves, PetscInt *its)
+/* Factorisations, solves and GMRES iterations so far */
+PetscErrorCode JRDenseLUGetCounts(JRDenseLU d, PetscInt *factorisations, PetscInt *solves, PetscInt *its)
 {
   PetscFunctionBegin;
-  if (factorizations) *factorizations = d->factorizations;
+  if (factorisations) *factorisations = d->factorisations;
   if (solves) *solves = d->solves;
   if (its) *its = d->its;
   PetscFunctionReturn(0);
@@ -197,7 +197,7 @@ PetscErrorCode JRDenseLUSolve(JRDenseLU d, PetscInt n, const PetscScalar *A, Pet
     PetscCall(PetscArraycpy(x, d->b, n));
   }
   d->factored = PETSC_FALSE;
-  d->factorizations++;
+  d->factorisations++;
   PetscCall(PetscLogEventBegin(JR_DenseLU, 0, 0, 0, 0));
   PetscCall(JRDenseSolve(n, A, lda, d->lu, d->piv, x, singular));
   PetscCall(PetscLogEventEnd(JR_DenseLU, 0, 0, 0, 0));
@@ -407,7 +407,7 @@ static PetscErrorCode SNESView_NewtonDense(SNES snes, PetscViewer viewer)
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &iascii));
   if (iascii) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "  dense LU (LAPACK getrf) of the Jacobian's array; backtracking on ||F||^2/2: alpha %g, min step %g%s\n", (double)nd->alpha, (double)nd->minlambda, nd->standard ? "; Jacobian through SNESComputeJacobian" : ""));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  the LU kept for GMRES on the next Jacobians: up to %" PetscInt_FMT " iterations (at most n/16); %" PetscInt_FMT " LU for %" PetscInt_FMT " solves so far, %" PetscInt_FMT " GMRES iterations\n", nd->lu->maxit, nd->lu->factorizations, nd->lu->solves, nd->lu->its));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  the LU kept for GMRES on the next Jacobians: up to %" PetscInt_FMT " iterations (at most n/16); %" PetscInt_FMT " LU for %" PetscInt_FMT " solves so far, %" PetscInt_FMT " GMRES iterations\n", nd->lu->maxit, nd->lu->factorisations, nd->lu->solves, nd->lu->its));
   }
   PetscFunctionReturn(0);
 }
