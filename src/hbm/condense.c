@@ -49,7 +49,6 @@ static PetscErrorCode CondBlocks(JRHBM h, PetscReal w)
   PetscFunctionBeginUser;
   if (h->wq_ok && h->wq == w) PetscFunctionReturn(0);
   PetscCall(CondInverse(h, w));
-  if (!h->QQ) PetscCall(PetscMalloc2(nm * nq + 1, &h->QQ, 6 * nm + 4 * nq, &h->cb));
   W = h->QQ; /* (Q V)^T scaled by 1/z_k, nm x nq */
   for (PetscInt hh = 1; hh <= h->H; hh++) {
     PetscReal *Gr = h->Gb + 2 * (hh - 1) * nq * nq;
@@ -76,7 +75,6 @@ PetscErrorCode JRHBMCondApply(JRHBM h, PetscReal w, const PetscReal *x, PetscRea
 
   PetscFunctionBeginUser;
   PetscCall(CondInverse(h, w));
-  if (!h->QQ) PetscCall(PetscMalloc2(nm * nq + 1, &h->QQ, 6 * nm + 4 * nq, &h->cb));
   for (PetscInt r = 0; r < nq; r++) { /* the mean */
     PetscReal v = x[r];
     for (PetscInt c = 0; c < nq; c++) v += h->G0[r + c * nq] * res[c];
@@ -375,6 +373,7 @@ PetscErrorCode JRHBMCondenseSetUp(JRHBM h, const JRElements *el)
   }
   h->ns = h->nq * nc;
   PetscCall(PetscMalloc3(2 * h->H * h->nq * h->nq, &h->Gb, 4 * h->H * nm, &h->inv, h->ns + h->ns * h->ns, &h->ctmp));
+  PetscCall(PetscMalloc2(nm * h->nq, &h->QQ, 6 * nm + 4 * h->nq, &h->cb)); /* CondBlocks's and JRHBMCondApply's work */
   h->cond = PETSC_TRUE;
   PetscCall(PetscSNPrintf(h->condinfo, sizeof(h->condinfo), "condensed onto %" PetscInt_FMT " joint motions: %" PetscInt_FMT " unknowns instead of %" PetscInt_FMT, h->nq, h->ns, h->n));
   PetscFunctionReturn(0);
