@@ -72,8 +72,18 @@ PETSC_EXTERN PetscErrorCode JRDenseLUCreate(JRDenseLU *);
 PETSC_EXTERN PetscErrorCode JRDenseLUDestroy(JRDenseLU *);
 PETSC_EXTERN PetscErrorCode JRDenseLUForget(JRDenseLU);
 PETSC_EXTERN PetscErrorCode JRDenseLUSolve(JRDenseLU, PetscInt, const PetscScalar *, PetscInt, PetscReal, PetscScalar *, PetscBool *);
+/* A matrix by its products y = A x, and (form, may be NULL) a function that writes it into a dense array (leading
+   dimension given) when it is factored */
+typedef struct {
+  PetscErrorCode (*mult)(void *, const PetscScalar *, PetscScalar *);
+  PetscErrorCode (*form)(void *, PetscScalar *, PetscInt);
+  void *ctx;
+} JRDenseOp;
+PETSC_EXTERN PetscErrorCode JRDenseLUSolveOp(JRDenseLU, PetscInt, const JRDenseOp *, PetscScalar *, PetscInt, PetscReal, PetscScalar *, PetscBool *);
 PETSC_EXTERN PetscErrorCode JRDenseLUGetCounts(JRDenseLU, PetscInt *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode SNESNewtonDenseGetDenseLU(SNES, JRDenseLU *);
+PETSC_EXTERN PetscErrorCode SNESNewtonDenseSetOperator(SNES, const JRDenseOp *);
+PETSC_EXTERN PetscErrorCode SNESNewtonDenseUsesOperator(SNES, PetscBool *);
 
 /* A dense matrix written through its array: assembled once; later writes only raise its state (MatDenseRestoreArray),
    which is what a factorisation checks (MatAssemblyEnd's per-call options lookups cost more than a 19 x 19 LU) */

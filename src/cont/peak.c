@@ -51,6 +51,8 @@ struct _JRContPlaneWork {
   PetscBLASInt *piv;
   PetscReal    *x0, *d, *xm;     /* the plane family's origin and normal; a point (n+1 each) */
   JRDenseLU     dlu;             /* the solves on planes: the last factors precondition the next (nearby) ones */
+  PetscReal    *row;             /* the bordered matrix's last row W d (n+1) */
+  JRContBordered bo;             /* the bordered matrix [J Rw; (W d)^T] by its products, B written for an LU only */
 };
 typedef struct _JRContPlaneWork PeakWork;
 
@@ -67,8 +69,9 @@ PetscErrorCode JRContPlaneWorkCreate(JRCont c)
   PetscCall(VecDuplicate(pw->a, &pw->R));
   PetscCall(VecDuplicate(pw->a, &pw->Rw));
   PetscCall(PetscMalloc6((c->n + 1) * (c->n + 1), &pw->B, (c->n + 1) * (c->n + 1), &pw->lu, c->n + 1, &pw->dx, c->n + 1, &pw->W, c->n + 1, &pw->x0, c->n + 1, &pw->d));
-  PetscCall(PetscMalloc2(c->n + 1, &pw->piv, c->n + 1, &pw->xm));
+  PetscCall(PetscMalloc3(c->n + 1, &pw->piv, c->n + 1, &pw->xm, c->n + 1, &pw->row));
   PetscCall(JRDenseLUCreate(&pw->dlu));
+  pw->bo = (JRContBordered){c->hbm, pw->J, pw->Rw, pw->row, c->n};
   c->pw = pw;
   PetscFunctionReturn(0);
 }
@@ -80,7 +83,7 @@ PetscErrorCode JRContPlaneWorkDestroy(JRCont c)
   PetscFunctionBeginUser;
   if (!pw) PetscFunctionReturn(0);
   PetscCall(PetscFree6(pw->B, pw->lu, pw->dx, pw->W, pw->x0, pw->d));
-  PetscCall(PetscFree2(pw->piv, pw->xm));
+  PetscCall(PetscFree3(pw->piv, pw->xm, pw->row));
   PetscCall(JRDenseLUDestroy(&pw->dlu));
   PetscCall(VecDestroy(&pw->a));
   PetscCall(VecDestroy(&pw->R));
@@ -115,8 +118,9 @@ static PetscReal PlaneCoordinate(PeakWork *pw, const PetscReal *x)
    residual is below rtol, or below the acceptance tolerance with the last step negligible */
 static PetscErrorCode SolveOnPlane(JRCont c, PeakWork *pw, PetscReal s, PetscReal rtol, PetscReal *x, PetscReal *res, PetscInt *its, PetscBool *ok)
 {
-  const PetscInt n = pw->n, m = n + 1;
-  PetscReal      tol, rel = PETSC_INFINITY, step = PETSC_INFINITY;
+  const PetscInt  n = pw->n, m = n + 1;
+  PetscReal       tol, rel = PETSC_INFINITY, step = PETSC_INFINITY;
+  const JRDenseOp op = {JRContBorderedMult, JRContBorderedForm, &pw->bo};
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMGetResidualTolerance(c->hbm, &tol));
@@ -124,7 +128,7 @@ static PetscErrorCode SolveOnPlane(JRCont c, PeakWork *pw, PetscReal s, PetscRea
   *its = 0;
   for (PetscInt it = 0; it < 30; it++) {
     PetscReal          w, g;
-    const PetscScalar *r, *j, *rw;
+    const PetscScalar *r;
     PetscBool          singular;
     PetscCall(Load(pw, x, &w));
     PetscCall(JRHBMComputeResidual(c->hbm, w, pw->a, pw->R));
@@ -135,22 +139,13 @@ static PetscErrorCode SolveOnPlane(JRCont c, PeakWork *pw, PetscReal s, PetscRea
       break;
     }
     if (PetscIsInfOrNanReal(rel)) break;
-    PetscCall(JRHBMComputeJacobian(c->hbm, w, pw->a, pw->J, pw->Rw));
-    PetscCall(MatDenseGetArrayRead(pw->J, &j));
-    PetscCall(VecGetArrayRead(pw->Rw, &rw));
+    PetscCall(JRHBMJacobianSetPoint(c->hbm, w, pw->a, pw->J, pw->Rw));
+    for (PetscInt i = 0; i <= n; i++) pw->row[i] = pw->W[i] * pw->d[i];
     PetscCall(VecGetArrayRead(pw->R, &r));
-    for (PetscInt col = 0; col < n; col++) {
-      for (PetscInt row = 0; row < n; row++) pw->B[row + col * m] = j[row + col * n];
-      pw->B[n + col * m] = pw->W[col] * pw->d[col];
-    }
-    for (PetscInt row = 0; row < n; row++) pw->B[row + n * m] = rw[row];
-    pw->B[n + n * m] = pw->W[n] * pw->d[n];
     for (PetscInt i = 0; i < n; i++) pw->dx[i] = r[i];
-    pw->dx[n] = g;
     PetscCall(VecRestoreArrayRead(pw->R, &r));
-    PetscCall(VecRestoreArrayRead(pw->Rw, &rw));
-    PetscCall(MatDenseRestoreArrayRead(pw->J, &j));
-    PetscCall(JRDenseLUSolve(pw->dlu, m, pw->B, m, PetscMax(1e-3 * rtol / rel, 1e-12), pw->dx, &singular)); /* to 1e-3 of the residual sought */
+    pw->dx[n] = g;
+    PetscCall(JRDenseLUSolveOp(pw->dlu, m, &op, pw->B, m, PetscMax(1e-3 * rtol / rel, 1e-12), pw->dx, &singular)); /* to 1e-3 of the residual sought */
     if (singular) break;
     step = 0;
     for (PetscInt i = 0; i <= n; i++) {

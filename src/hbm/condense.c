@@ -65,6 +65,42 @@ static PetscErrorCode CondBlocks(JRHBM h, PetscReal w)
   PetscFunctionReturn(0);
 }
 
+/* T = I + blockdiag(G) D (T: leading dimension ldt) with the blocks G_h of CondBlocks, D the elements' dg/dx (ns x ns)
+   in row blocks of a few joints: plain loops, the inner one over the rows (a BLAS call costs more than its 6 x 6
+   product) */
+static PetscErrorCode CondJacobian(JRHBM h, const PetscReal *D, PetscReal *T, PetscInt ldt)
+{
+  const PetscInt nq = h->nq, ns = h->ns;
+
+  PetscFunctionBeginUser;
+  for (PetscInt j = 0; j < ns; j++) {
+    const PetscReal *jc = D + j * ns;
+    PetscReal       *tc = T + j * ldt;
+    for (PetscInt r = 0; r < nq; r++) tc[r] = 0.0;
+    for (PetscInt c = 0; c < nq; c++) {
+      const PetscReal v = jc[c];
+      if (v != 0.0)
+        for (PetscInt r = 0; r < nq; r++) tc[r] += h->G0[r + c * nq] * v;
+    }
+    for (PetscInt hh = 1; hh <= h->H; hh++) {
+      const PetscReal *Gr = h->Gb + 2 * (hh - 1) * nq * nq, *Gi = Gr + nq * nq;
+      const PetscInt   os = (2 * hh - 1) * nq, oc = 2 * hh * nq;
+      for (PetscInt r = 0; r < nq; r++) tc[os + r] = tc[oc + r] = 0.0;
+      for (PetscInt c = 0; c < nq; c++) {
+        const PetscReal vs = jc[os + c], vc = jc[oc + c];
+        if (vs == 0.0 && vc == 0.0) continue;
+        for (PetscInt r = 0; r < nq; r++) {
+          tc[os + r] += Gr[r + c * nq] * vs - Gi[r + c * nq] * vc;
+          tc[oc + r] += Gi[r + c * nq] * vs + Gr[r + c * nq] * vc;
+        }
+      }
+    }
+    tc[j] += 1.0;
+  }
+  PetscCall(PetscLogFlops(4.0 * ns * nq * ns));
+  PetscFunctionReturn(0);
+}
+
 /* Condensed: res holds g(x) on entry and r(x) on exit; jac (if not NULL) dg/dx on entry and I + G dg/dx on exit;
    dw (if not NULL) gets dr/dw. The residual and dr/dw through the modes, (Q V) (d_k ((Q V)^T g_h)) (a few products
    of the nq x nm rows with vectors); the blocks G_h only for the Jacobian. */
@@ -111,37 +147,77 @@ PetscErrorCode JRHBMCondApply(JRHBM h, PetscReal w, const PetscReal *x, PetscRea
     }
   }
   PetscCall(PetscLogFlops(4.0 * h->H * nm * nq * (dw ? 3 : 2)));
-  if (jac) { /* T = I + blockdiag(G) dg/dx, row blocks of dg/dx (leading dimension ns); blocks of a few joints:
-                plain loops, the inner one over the rows (a BLAS call costs more than its 6 x 6 product) */
+  if (jac) {
     PetscCall(CondBlocks(h, w));
-    for (PetscInt j = 0; j < ns; j++) {
-      const PetscReal *jc = jac + j * ns;
-      PetscReal       *tc = T + j * ns;
-      for (PetscInt r = 0; r < nq; r++) tc[r] = 0.0;
-      for (PetscInt c = 0; c < nq; c++) {
-        const PetscReal v = jc[c];
-        if (v != 0.0)
-          for (PetscInt r = 0; r < nq; r++) tc[r] += h->G0[r + c * nq] * v;
-      }
-      for (PetscInt hh = 1; hh <= h->H; hh++) {
-        const PetscReal *Gr = h->Gb + 2 * (hh - 1) * nq * nq, *Gi = Gr + nq * nq;
-        const PetscInt   os = (2 * hh - 1) * nq, oc = 2 * hh * nq;
-        for (PetscInt r = 0; r < nq; r++) tc[os + r] = tc[oc + r] = 0.0;
-        for (PetscInt c = 0; c < nq; c++) {
-          const PetscReal vs = jc[os + c], vc = jc[oc + c];
-          if (vs == 0.0 && vc == 0.0) continue;
-          for (PetscInt r = 0; r < nq; r++) {
-            tc[os + r] += Gr[r + c * nq] * vs - Gi[r + c * nq] * vc;
-            tc[oc + r] += Gi[r + c * nq] * vs + Gr[r + c * nq] * vc;
-          }
-        }
-      }
-    }
-    PetscCall(PetscLogFlops(4.0 * ns * nq * ns));
-    for (PetscInt i = 0; i < ns; i++) T[i + i * ns] += 1.0;
+    PetscCall(CondJacobian(h, jac, T, ns));
     PetscCall(PetscArraycpy(jac, T, ns * ns));
   }
   PetscCall(PetscArraycpy(res, t, ns));
+  PetscFunctionReturn(0);
+}
+
+/* The Jacobian at a point (JRHBMJacobianSetPoint): the elements' dg/dx at x kept, with its joints' blocks, and the
+   residual's dr/dw into dw (may be NULL) */
+PetscErrorCode JRHBMCondJacobianPoint(JRHBM h, PetscReal w, const PetscReal *x, PetscReal *dw)
+{
+  const PetscInt ns = h->ns;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMNonlinear(h, x, h->jres, h->jd));
+  for (PetscInt j = 0; j < h->njb; j++) { /* dg/dx is block diagonal by joint: an element's force moves with its joint's rows */
+    const PetscInt *ix = h->jidx + h->jio[j], b = h->jio[j + 1] - h->jio[j];
+    PetscReal      *D  = h->Db + h->dbo[j];
+    for (PetscInt c = 0; c < b; c++)
+      for (PetscInt r = 0; r < b; r++) D[r + c * b] = h->jd[ix[r] + ix[c] * ns];
+  }
+  PetscCall(JRHBMCondApply(h, w, x, h->jres, NULL, dw));
+  h->jw = w;
+  PetscFunctionReturn(0);
+}
+
+/* y = J x at the point of JRHBMCondJacobianPoint, J = I + G dg/dx: dg/dx by its joints' blocks, G through the modes,
+   (Q V) (d_k ((Q V)^T u_h)) per harmonic, as the residual */
+PetscErrorCode JRHBMCondJacobianMult(JRHBM h, const PetscReal *x, PetscReal *y)
+{
+  const PetscInt nq = h->nq, nm = h->nm, ns = h->ns;
+  PetscReal     *u = h->ju, *bb = h->cb, *C = bb + 2 * nm;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArrayzero(u, ns));
+  for (PetscInt j = 0; j < h->njb; j++) {
+    const PetscInt  *ix = h->jidx + h->jio[j], b = h->jio[j + 1] - h->jio[j];
+    const PetscReal *D  = h->Db + h->dbo[j];
+    for (PetscInt c = 0; c < b; c++) {
+      const PetscReal v = x[ix[c]];
+      if (v != 0.0)
+        for (PetscInt r = 0; r < b; r++) u[ix[r]] += D[r + c * b] * v;
+    }
+    PetscCall(PetscLogFlops(2.0 * b * b));
+  }
+  PetscCall(CondInverse(h, h->jw));
+  PetscCall(JRGemm("N", "N", nq, 1, nq, 1.0, h->G0, nq, u, nq, 0.0, y, nq));
+  for (PetscInt hh = 1; hh <= h->H; hh++) {
+    const PetscReal *ir = h->inv + 4 * (hh - 1) * nm, *ii = ir + nm;
+    const PetscInt   os = (2 * hh - 1) * nq; /* the sin then the cos block: an nq x 2 array */
+    PetscCall(JRGemm("N", "N", nm, 2, nq, 1.0, h->QV, nm, u + os, nq, 0.0, bb, nm));
+    for (PetscInt k = 0; k < nm; k++) {
+      const PetscReal bs = bb[k], bc = bb[nm + k];
+      C[k]      = ir[k] * bs - ii[k] * bc;
+      C[nm + k] = ii[k] * bs + ir[k] * bc;
+    }
+    PetscCall(JRGemm("T", "N", nq, 2, nm, 1.0, h->QV, nm, C, nm, 0.0, y + os, nq));
+  }
+  for (PetscInt i = 0; i < ns; i++) y[i] += x[i];
+  PetscCall(PetscLogFlops(2.0 * nq * nq + 8.0 * h->H * nm * nq));
+  PetscFunctionReturn(0);
+}
+
+/* The Jacobian I + G dg/dx at the point of JRHBMCondJacobianPoint into A (leading dimension lda) */
+PetscErrorCode JRHBMCondJacobianForm(JRHBM h, PetscReal *A, PetscInt lda)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CondBlocks(h, h->jw));
+  PetscCall(CondJacobian(h, h->jd, A, lda));
   PetscFunctionReturn(0);
 }
 
@@ -159,6 +235,9 @@ static PetscErrorCode CondenseReset(JRHBM h)
   PetscCall(PetscFree2(h->Z0, h->piv0));
   PetscCall(PetscFree3(h->Gb, h->inv, h->ctmp));
   PetscCall(PetscFree2(h->QQ, h->cb)); /* products of the rows: rebuilt from the new ones */
+  PetscCall(PetscFree4(h->jidx, h->jio, h->dbo, h->Db));
+  PetscCall(PetscFree2(h->jd, h->ju));
+  h->njb = 0;
   PetscCall(PetscFree(h->jres));       /* sized by the solve space */
   PetscCall(PetscFree2(h->llu, h->lpiv));
   PetscFunctionReturn(0);
@@ -335,6 +414,28 @@ static PetscErrorCode CondenseOperators(JRHBM h, PetscInt nq, const char **why)
   PetscFunctionReturn(0);
 }
 
+/* The solve space's unknowns joint by joint (jidx, jio) and the offsets of the joints' blocks of dg/dx (dbo, Db):
+   joint j's rows are off[2 j] .. off[2 j + 2] (tangential, then normal) in the mean and in each harmonic's sin and cos */
+static PetscErrorCode JointBlocks(JRHBM h, PetscInt nj, const PetscInt off[])
+{
+  const PetscInt nq = h->nq, nc = h->nc;
+  PetscInt       k = 0, nd = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt j = 0; j < nj; j++) nd += PetscSqr(nc * (off[2 * j + 2] - off[2 * j]));
+  PetscCall(PetscMalloc4(nc * nq, &h->jidx, nj + 1, &h->jio, nj + 1, &h->dbo, nd, &h->Db));
+  h->njb    = nj;
+  h->jio[0] = h->dbo[0] = 0;
+  for (PetscInt j = 0; j < nj; j++) {
+    const PetscInt wj = off[2 * j + 2] - off[2 * j];
+    for (PetscInt c = 0; c < nc; c++)
+      for (PetscInt r = 0; r < wj; r++) h->jidx[k++] = c * nq + off[2 * j] + r;
+    h->jio[j + 1] = k;
+    h->dbo[j + 1] = h->dbo[j] + PetscSqr(nc * wj);
+  }
+  PetscFunctionReturn(0);
+}
+
 /*
   JRHBMCondenseSetUp - decide on condensation (-hbm_condense auto: a reduced model whose elements all move with their
   joint's rows, fewer rows than modes, and damping diagonal with Kg) and build its operators (collective)
@@ -354,6 +455,7 @@ PetscErrorCode JRHBMCondenseSetUp(JRHBM h, const JRElements *el)
   for (PetscInt t = 0; t < h->ngroups; t++) anyn = (PetscBool)(anyn || h->g[t].normal);
   PetscCall(JointRowSpace(h, el, anyn, &off, &scale));
   PetscCall(ElementCoefficients(h, el, off, scale, &exact));
+  if (exact) PetscCall(JointBlocks(h, el->njoints, off));
   PetscCall(PetscFree2(off, scale));
   if (!exact) why = "the elements of a joint do not all move with the joint's rows";
   else if (h->nq >= nm && !want) why = "at least as many joint rows as modes (nothing to gain; -hbm_condense yes forces it)";
@@ -368,12 +470,15 @@ PetscErrorCode JRHBMCondenseSetUp(JRHBM h, const JRElements *el)
       PetscCall(PetscFree2(h->g[t].qo, h->g[t].qw));
       PetscCall(PetscFree2(h->g[t].Ct, h->g[t].Cn));
     }
-    h->nq = 0;
+    PetscCall(PetscFree4(h->jidx, h->jio, h->dbo, h->Db));
+    h->njb = 0;
+    h->nq  = 0;
     PetscFunctionReturn(0);
   }
   h->ns = h->nq * nc;
   PetscCall(PetscMalloc3(2 * h->H * h->nq * h->nq, &h->Gb, 4 * h->H * nm, &h->inv, h->ns + h->ns * h->ns, &h->ctmp));
   PetscCall(PetscMalloc2(nm * h->nq, &h->QQ, 6 * nm + 4 * h->nq, &h->cb)); /* CondBlocks's and JRHBMCondApply's work */
+  PetscCall(PetscMalloc2(h->ns * h->ns, &h->jd, h->ns, &h->ju));
   h->cond = PETSC_TRUE;
   PetscCall(PetscSNPrintf(h->condinfo, sizeof(h->condinfo), "condensed onto %" PetscInt_FMT " joint motions: %" PetscInt_FMT " unknowns instead of %" PetscInt_FMT, h->nq, h->ns, h->n));
   PetscFunctionReturn(0);

@@ -27,7 +27,7 @@ struct _n_JRDenseLU {
   PetscBool     factored; /* lu holds factors of an n x n matrix */
   PetscInt      maxit;    /* GMRES iterations before a new LU (0: a new LU every solve) */
   PetscReal     rtol;     /* GMRES's relative residual for the current solve */
-  PetscScalar  *V, *Hs, *g, *cs, *sn, *b, *w; /* Krylov basis n x (maxit + 1), Hessenberg, rotations, rhs, work */
+  PetscScalar  *V, *Hs, *g, *cs, *sn, *b, *w, *z; /* Krylov basis n x (maxit + 1), Hessenberg, rotations, rhs, work (w: 2 n, z its second half) */
   PetscInt      vit;      /* the maxit V is allocated for */
   PetscInt      factorisations, solves, its;
 };
@@ -69,11 +69,11 @@ PetscErrorCode JRDenseLUForget(JRDenseLU d)
   PetscFunctionReturn(0);
 }
 
-/* Right-preconditioned GMRES (classical Gram-Schmidt twice) on A y = b from y = 0 with the factors as
-   preconditioner, at most m iterations: y = M^-1 V_k z; *conv when the true residual is within rtol ||b|| */
-static PetscErrorCode DenseGMRES(JRDenseLU d, PetscInt n, const PetscScalar *A, PetscInt lda, PetscInt m, const PetscScalar *b, PetscScalar *y, PetscBool *conv, PetscInt *its)
+/* Right-preconditioned GMRES (classical Gram-Schmidt twice) on A y = b from y = 0, A applied by op, with the factors
+   as preconditioner, at most m iterations: y = M^-1 V_k z; *conv when the true residual is within rtol ||b|| */
+static PetscErrorCode DenseGMRES(JRDenseLU d, PetscInt n, const JRDenseOp *op, PetscInt m, const PetscScalar *b, PetscScalar *y, PetscBool *conv, PetscInt *its)
 {
-  PetscBLASInt    bn, blda, one = 1, info, bk;
+  PetscBLASInt    bn, one = 1, info, bk;
   PetscReal       bnorm;
   PetscScalar     sone = 1.0, szero = 0.0, smone = -1.0;
   PetscScalar    *V = d->V, *H = d->Hs, *g = d->g, *w = d->w;
@@ -84,7 +84,6 @@ static PetscErrorCode DenseGMRES(JRDenseLU d, PetscInt n, const PetscScalar *A, 
   *conv = PETSC_FALSE;
   *its  = 0;
   PetscCall(PetscBLASIntCast(n, &bn));
-  PetscCall(PetscBLASIntCast(lda, &blda));
   bnorm = BLASnrm2_(&bn, b, &one);
   if (bnorm == 0) {
     PetscCall(PetscArrayzero(y, n));
@@ -100,7 +99,7 @@ static PetscErrorCode DenseGMRES(JRDenseLU d, PetscInt n, const PetscScalar *A, 
     /* vn = A M^-1 vk */
     PetscCall(PetscArraycpy(w, vk, n));
     PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bn, &one, d->lu, &bn, d->piv, w, &bn, &info));
-    PetscCallBLAS("BLASgemv", BLASgemv_("N", &bn, &bn, &sone, A, &blda, w, &one, &szero, vn, &one));
+    PetscCall((*op->mult)(op->ctx, w, vn));
     /* orthogonalised against V_k twice */
     PetscCall(PetscBLASIntCast(k + 1, &bk));
     PetscCall(PetscArrayzero(h, k + 2));
@@ -137,7 +136,7 @@ static PetscErrorCode DenseGMRES(JRDenseLU d, PetscInt n, const PetscScalar *A, 
       const PetscReal rate = PetscPowReal(PetscAbsScalar(g[k + 1]) / bnorm, 1.0 / (k + 1));
       if (PetscAbsScalar(g[k + 1]) * PetscPowReal(rate, (PetscReal)(m - k - 1)) > 10.0 * d->rtol * bnorm) {
         *its = k + 1;
-        PetscCall(PetscLogFlops((4.0 * n * n + 8.0 * n * k) * k));
+        PetscCall(PetscLogFlops((2.0 * n * n + 8.0 * n * k) * k));
         PetscFunctionReturn(0);
       }
     }
@@ -153,10 +152,27 @@ static PetscErrorCode DenseGMRES(JRDenseLU d, PetscInt n, const PetscScalar *A, 
   PetscCallBLAS("BLASgemv", BLASgemv_("N", &bn, &bk, &sone, V, &bn, g, &one, &szero, y, &one));
   PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bn, &one, d->lu, &bn, d->piv, y, &bn, &info));
   /* the true residual decides */
-  PetscCall(PetscArraycpy(w, b, n));
-  PetscCallBLAS("BLASgemv", BLASgemv_("N", &bn, &bn, &smone, A, &blda, y, &one, &sone, w, &one));
+  PetscCall((*op->mult)(op->ctx, y, d->z));
+  for (PetscInt i = 0; i < n; i++) w[i] = b[i] - d->z[i];
   *conv = BLASnrm2_(&bn, w, &one) <= d->rtol * bnorm ? PETSC_TRUE : PETSC_FALSE;
-  PetscCall(PetscLogFlops((4.0 * n * n + 8.0 * n * k) * k + 4.0 * n * n));
+  PetscCall(PetscLogFlops((2.0 * n * n + 8.0 * n * k) * k + 2.0 * n * n));
+  PetscFunctionReturn(0);
+}
+
+/* The products of a dense matrix held as an array */
+typedef struct {
+  const PetscScalar *A;
+  PetscBLASInt       n, lda;
+} DenseArray;
+
+static PetscErrorCode DenseArrayMult(void *ctx, const PetscScalar *x, PetscScalar *y)
+{
+  DenseArray  *da  = (DenseArray *)ctx;
+  PetscScalar  one = 1.0, zero = 0.0;
+  PetscBLASInt ione = 1;
+
+  PetscFunctionBegin;
+  PetscCallBLAS("BLASgemv", BLASgemv_("N", &da->n, &da->n, &one, da->A, &da->lda, x, &ione, &zero, y, &ione));
   PetscFunctionReturn(0);
 }
 
@@ -165,6 +181,21 @@ static PetscErrorCode DenseGMRES(JRDenseLU d, PetscInt n, const PetscScalar *A, 
    (at most n/16: beyond, a new LU costs less), else by a new LU, which the next solves then use; *singular on an
    exactly zero pivot (x is then unchanged) */
 PetscErrorCode JRDenseLUSolve(JRDenseLU d, PetscInt n, const PetscScalar *A, PetscInt lda, PetscReal rtol, PetscScalar *x, PetscBool *singular)
+{
+  DenseArray da;
+  JRDenseOp  op = {DenseArrayMult, NULL, &da};
+
+  PetscFunctionBegin;
+  da.A = A;
+  PetscCall(PetscBLASIntCast(n, &da.n));
+  PetscCall(PetscBLASIntCast(lda, &da.lda));
+  PetscCall(JRDenseLUSolveOp(d, n, &op, (PetscScalar *)A, lda, rtol, x, singular));
+  PetscFunctionReturn(0);
+}
+
+/* JRDenseLUSolve() for a matrix given by its products (op->mult) and written into A (leading dimension lda) by
+   op->form only when a new LU is needed; op->form NULL: A holds the matrix already */
+PetscErrorCode JRDenseLUSolveOp(JRDenseLU d, PetscInt n, const JRDenseOp *op, PetscScalar *A, PetscInt lda, PetscReal rtol, PetscScalar *x, PetscBool *singular)
 {
   const PetscInt m = PetscMin(PetscMin(d->maxit, n / 16), 60);
 
@@ -182,7 +213,8 @@ PetscErrorCode JRDenseLUSolve(JRDenseLU d, PetscInt n, const PetscScalar *A, Pet
   }
   if (m > 0 && m != d->vit) {
     PetscCall(PetscFree7(d->V, d->Hs, d->g, d->cs, d->sn, d->b, d->w));
-    PetscCall(PetscMalloc7(n * (m + 1), &d->V, (m + 1) * m, &d->Hs, m + 1, &d->g, m, &d->cs, m, &d->sn, n, &d->b, n, &d->w));
+    PetscCall(PetscMalloc7(n * (m + 1), &d->V, (m + 1) * m, &d->Hs, m + 1, &d->g, m, &d->cs, m, &d->sn, n, &d->b, 2 * n, &d->w));
+    d->z = d->w + n;
     d->vit = m;
   }
   if (d->factored && m > 0) {
@@ -190,7 +222,7 @@ PetscErrorCode JRDenseLUSolve(JRDenseLU d, PetscInt n, const PetscScalar *A, Pet
     PetscInt  its;
     PetscCall(PetscArraycpy(d->b, x, n));
     PetscCall(PetscLogEventBegin(JR_DenseGMRES, 0, 0, 0, 0));
-    PetscCall(DenseGMRES(d, n, A, lda, m, d->b, x, &conv, &its));
+    PetscCall(DenseGMRES(d, n, op, m, d->b, x, &conv, &its));
     PetscCall(PetscLogEventEnd(JR_DenseGMRES, 0, 0, 0, 0));
     d->its += its;
     if (conv) PetscFunctionReturn(0);
@@ -198,6 +230,7 @@ PetscErrorCode JRDenseLUSolve(JRDenseLU d, PetscInt n, const PetscScalar *A, Pet
   }
   d->factored = PETSC_FALSE;
   d->factorisations++;
+  if (op->form) PetscCall((*op->form)(op->ctx, A, lda));
   PetscCall(PetscLogEventBegin(JR_DenseLU, 0, 0, 0, 0));
   PetscCall(JRDenseSolve(n, A, lda, d->lu, d->piv, x, singular));
   PetscCall(PetscLogEventEnd(JR_DenseLU, 0, 0, 0, 0));
@@ -207,6 +240,7 @@ PetscErrorCode JRDenseLUSolve(JRDenseLU d, PetscInt n, const PetscScalar *A, Pet
 
 typedef struct {
   JRDenseLU     lu;       /* the Jacobian's factors, kept as the next solves' preconditioner */
+  JRDenseOp     op;       /* SNESNewtonDenseSetOperator(): the Jacobian's products, and its array written only for an LU */
   PetscInt      n;        /* the size of the last solve */
   PetscBool     standard; /* the Jacobian through SNESComputeJacobian (its test and compare options) */
   PetscReal     alpha;    /* sufficient decrease of ||F||^2 / 2 per unit step */
@@ -254,21 +288,27 @@ PetscErrorCode JRDenseSolve(PetscInt n, const PetscScalar *A, PetscInt lda, Pets
   PetscFunctionReturn(0);
 }
 
-/* Y = J^-1 F with J in A (dense), to the relative residual rtol */
+/* Y = J^-1 F with J in A (dense), or given by the operator (A then written only for an LU), to the relative
+   residual rtol */
 static PetscErrorCode NewtonStep(SNES_NewtonDense *nd, Mat A, Vec F, PetscReal rtol, Vec Y, PetscBool *singular)
 {
-  const PetscScalar *a;
-  PetscScalar       *y;
-  PetscInt           lda;
+  PetscScalar *a, *y;
+  PetscInt     lda;
 
   PetscFunctionBegin;
   PetscCall(VecCopy(F, Y));
   PetscCall(MatDenseGetLDA(A, &lda));
-  PetscCall(MatDenseGetArrayRead(A, &a));
   PetscCall(VecGetArray(Y, &y));
-  PetscCall(JRDenseLUSolve(nd->lu, nd->n, a, lda, rtol, y, singular));
+  if (nd->op.mult && !nd->standard) {
+    PetscCall(MatDenseGetArray(A, &a));
+    PetscCall(JRDenseLUSolveOp(nd->lu, nd->n, &nd->op, a, lda, rtol, y, singular));
+    PetscCall(MatDenseRestoreArray(A, &a));
+  } else {
+    PetscCall(MatDenseGetArrayRead(A, (const PetscScalar **)&a));
+    PetscCall(JRDenseLUSolve(nd->lu, nd->n, a, lda, rtol, y, singular));
+    PetscCall(MatDenseRestoreArrayRead(A, (const PetscScalar **)&a));
+  }
   PetscCall(VecRestoreArray(Y, &y));
-  PetscCall(MatDenseRestoreArrayRead(A, &a));
   PetscFunctionReturn(0);
 }
 
@@ -442,6 +482,33 @@ PetscErrorCode SNESNewtonDenseGetDenseLU(SNES snes, JRDenseLU *lu)
   PetscFunctionBegin;
   PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESNEWTONDENSE, &is));
   *lu = is ? ((SNES_NewtonDense *)snes->data)->lu : NULL;
+  PetscFunctionReturn(0);
+}
+
+/* SNESNewtonDenseSetOperator - the Jacobian of the next iterations by its products and a function that writes it into
+   the Jacobian matrix's array when a new LU is needed: the Jacobian callback then only sets the point (it may leave
+   the matrix unwritten when SNESNewtonDenseUsesOperator() says so). NULL: the matrix as the callback writes it. */
+PetscErrorCode SNESNewtonDenseSetOperator(SNES snes, const JRDenseOp *op)
+{
+  PetscBool is;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESNEWTONDENSE, &is));
+  if (!is) PetscFunctionReturn(0);
+  if (op) ((SNES_NewtonDense *)snes->data)->op = *op;
+  else PetscCall(PetscMemzero(&((SNES_NewtonDense *)snes->data)->op, sizeof(JRDenseOp)));
+  PetscFunctionReturn(0);
+}
+
+/* SNESNewtonDenseUsesOperator - whether the Newton steps take the Jacobian from the operator set by
+   SNESNewtonDenseSetOperator() (not when another type, or -snes_test_jacobian and the like, which read the matrix) */
+PetscErrorCode SNESNewtonDenseUsesOperator(SNES snes, PetscBool *uses)
+{
+  PetscBool is;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)snes, SNESNEWTONDENSE, &is));
+  *uses = is && ((SNES_NewtonDense *)snes->data)->op.mult && !((SNES_NewtonDense *)snes->data)->standard ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 

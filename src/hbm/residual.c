@@ -372,6 +372,72 @@ PetscErrorCode JRHBMComputeJacobian(JRHBM h, PetscReal w, Vec a, Mat J, Vec Rw)
   PetscFunctionReturn(0);
 }
 
+/* JRHBMJacobianSetPoint - the Jacobian J = dR/da at (w, a) for JRHBMJacobianMult() and JRHBMJacobianForm(), and, if
+   Rw is not NULL, dR/dw: written into J (JRHBMComputeJacobian), except for a model condensed onto its joints, whose
+   J = I + G dg/dx is kept as the elements' derivatives, block diagonal by joint, and applied through the modes: it is
+   formed only when it is factored (collective) */
+PetscErrorCode JRHBMJacobianSetPoint(JRHBM h, PetscReal w, Vec a, Mat J, Vec Rw)
+{
+  const PetscScalar *x;
+  PetscScalar       *rw = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  if (!h->cond) {
+    PetscCall(JRHBMComputeJacobian(h, w, a, J, Rw));
+    PetscFunctionReturn(0);
+  }
+  if (!h->jres) PetscCall(PetscMalloc1(h->ns, &h->jres));
+  PetscCall(VecGetArrayRead(a, &x));
+  if (Rw) PetscCall(VecGetArray(Rw, &rw));
+  PetscCall(JRHBMCondJacobianPoint(h, w, x, rw));
+  if (Rw) PetscCall(VecRestoreArray(Rw, &rw));
+  PetscCall(VecRestoreArrayRead(a, &x));
+  PetscFunctionReturn(0);
+}
+
+/* JRHBMJacobianMult - y = J x with the Jacobian of the last JRHBMJacobianSetPoint() (J: the matrix given to it; not
+   collective) */
+PetscErrorCode JRHBMJacobianMult(JRHBM h, Mat J, const PetscScalar *x, PetscScalar *y)
+{
+  const PetscScalar *j;
+  PetscInt           lda;
+  PetscBLASInt       bn, blda, one = 1;
+  PetscScalar        sone = 1.0, szero = 0.0;
+
+  PetscFunctionBeginUser;
+  if (h->cond) {
+    PetscCall(JRHBMCondJacobianMult(h, x, y));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(MatDenseGetLDA(J, &lda));
+  PetscCall(PetscBLASIntCast(h->ns, &bn));
+  PetscCall(PetscBLASIntCast(lda, &blda));
+  PetscCall(MatDenseGetArrayRead(J, &j));
+  PetscCallBLAS("BLASgemv", BLASgemv_("N", &bn, &bn, &sone, j, &blda, x, &one, &szero, y, &one));
+  PetscCall(MatDenseRestoreArrayRead(J, &j));
+  PetscCall(PetscLogFlops(2.0 * h->ns * h->ns));
+  PetscFunctionReturn(0);
+}
+
+/* JRHBMJacobianForm - the Jacobian of the last JRHBMJacobianSetPoint() into A (leading dimension lda; not collective) */
+PetscErrorCode JRHBMJacobianForm(JRHBM h, Mat J, PetscScalar *A, PetscInt lda)
+{
+  const PetscScalar *j;
+  PetscInt           ldj;
+
+  PetscFunctionBeginUser;
+  if (h->cond) {
+    PetscCall(JRHBMCondJacobianForm(h, A, lda));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(MatDenseGetLDA(J, &ldj));
+  PetscCall(MatDenseGetArrayRead(J, &j));
+  for (PetscInt c = 0; c < h->ns; c++) PetscCall(PetscArraycpy(A + c * lda, j + c * ldj, h->ns));
+  PetscCall(MatDenseRestoreArrayRead(J, &j));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode FormFunction(SNES snes, Vec a, Vec R, void *ctx)
 {
   JRHBM h = (JRHBM)ctx;

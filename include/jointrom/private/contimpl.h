@@ -87,6 +87,17 @@ PETSC_INTERN PetscErrorCode JRContOutputAmplitude(JRCont, PetscReal, Vec, PetscI
 PETSC_INTERN PetscErrorCode JRContInterpolationError(JRCont, PetscReal, PetscReal, PetscReal, PetscReal, PetscReal, PetscReal, PetscReal, PetscReal, PetscReal *);
 PETSC_INTERN PetscErrorCode JRContRefinePeaks(JRCont, JRContBranch *);
 PETSC_INTERN PetscErrorCode JRContChordError(JRCont, JRContBranch *, Vec, PetscReal, PetscReal, PetscReal, PetscReal *, PetscInt *);
+/* The bordered matrix [J Rw; row^T] ((n + 1) x (n + 1)) of the continuation's solves, J and Rw from
+   JRHBMJacobianSetPoint(): applied by its products, written out only for an LU (a JRDenseOp's context) */
+typedef struct {
+  JRHBM        hbm;
+  Mat          J;
+  Vec          Rw;
+  PetscScalar *row; /* n + 1 */
+  PetscInt     n;
+} JRContBordered;
+PETSC_INTERN PetscErrorCode JRContBorderedMult(void *, const PetscScalar *, PetscScalar *);
+PETSC_INTERN PetscErrorCode JRContBorderedForm(void *, PetscScalar *, PetscInt);
 PETSC_INTERN PetscErrorCode JRContPlaneWorkCreate(JRCont);
 PETSC_INTERN PetscErrorCode JRContPlaneWorkDestroy(JRCont);
 PETSC_INTERN PetscErrorCode JRContPlaneScale(JRCont, JRContBranch *);

@@ -107,6 +107,11 @@ struct _p_JRHBM {
   PetscReal        *Gb, *inv;     /* per harmonic: G (re, im) at frequency wq; 1/z_k and d(1/z_k)/dw (re, im) at wi */
   PetscReal        *QQ, *cb;      /* CondBlocks work: (Q V)^T scaled (nm x nq); JRHBMCondApply's products (6 nm + 4 nq) */
   PetscReal        *jres;         /* JRHBMComputeJacobian: the residual it also computes (ns) */
+  PetscInt          njb, *jidx, *jio, *dbo; /* condensed: the joints; their unknowns joint by joint (each joint's rows in
+                                     the mean, then in the sin and cos of each harmonic), jidx[jio[j]..jio[j+1]) joint j's;
+                                     its block's offset in Db (njb + 1 each) */
+  PetscReal        *jd, *Db, *ju, jw; /* JRHBMJacobianSetPoint(), condensed: dg/dx (ns x ns), its joints' blocks, work (ns),
+                                     the point's frequency */
   PetscReal        *pptab;        /* JRHBMResponse: sin, cos of each harmonic at 16 nc samples of a cycle */
   PetscReal         wq, wi;
   PetscBool         wq_ok, wi_ok;
@@ -157,6 +162,9 @@ PETSC_INTERN PetscErrorCode JRHBMMonodromyDestroy(JRHBM);
 /* src/hbm/condense.c: the condensation onto the joints */
 PETSC_INTERN PetscErrorCode JRHBMCondenseSetUp(JRHBM, const JRElements *);
 PETSC_INTERN PetscErrorCode JRHBMCondApply(JRHBM, PetscReal, const PetscReal *, PetscReal *, PetscReal *, PetscReal *);
+PETSC_INTERN PetscErrorCode JRHBMCondJacobianPoint(JRHBM, PetscReal, const PetscReal *, PetscReal *);
+PETSC_INTERN PetscErrorCode JRHBMCondJacobianMult(JRHBM, const PetscReal *, PetscReal *);
+PETSC_INTERN PetscErrorCode JRHBMCondJacobianForm(JRHBM, PetscReal *, PetscInt);
 
 /* src/reduce/fields.c: the reduced model's joint motion fields. A joint's field is linear in JR_NF coordinates of its
    members: their position x, y, z [m] (-rom_joint_motion linear, mode), their tangential and normal motions in the

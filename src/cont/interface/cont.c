@@ -273,6 +273,41 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
   PetscFunctionReturn(0);
 }
 
+/* y = [J Rw; row^T] x (a JRContBordered) */
+PetscErrorCode JRContBorderedMult(void *ctx, const PetscScalar *x, PetscScalar *y)
+{
+  JRContBordered    *bo = (JRContBordered *)ctx;
+  const PetscInt     n  = bo->n;
+  const PetscScalar *rw;
+  PetscScalar        s = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMJacobianMult(bo->hbm, bo->J, x, y));
+  PetscCall(VecGetArrayRead(bo->Rw, &rw));
+  for (PetscInt i = 0; i < n; i++) y[i] += rw[i] * x[n];
+  PetscCall(VecRestoreArrayRead(bo->Rw, &rw));
+  for (PetscInt i = 0; i <= n; i++) s += bo->row[i] * x[i];
+  y[n] = s;
+  PetscCall(PetscLogFlops(4.0 * n));
+  PetscFunctionReturn(0);
+}
+
+/* [J Rw; row^T] into A (leading dimension lda) */
+PetscErrorCode JRContBorderedForm(void *ctx, PetscScalar *A, PetscInt lda)
+{
+  JRContBordered    *bo = (JRContBordered *)ctx;
+  const PetscInt     n  = bo->n;
+  const PetscScalar *rw;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMJacobianForm(bo->hbm, bo->J, A, lda));
+  PetscCall(VecGetArrayRead(bo->Rw, &rw));
+  for (PetscInt i = 0; i < n; i++) A[i + n * lda] = rw[i];
+  PetscCall(VecRestoreArrayRead(bo->Rw, &rw));
+  for (PetscInt c = 0; c <= n; c++) A[n + c * lda] = bo->row[c];
+  PetscFunctionReturn(0);
+}
+
 /* Append the point (w, a) to the curve: its unknowns, modal unknowns and responses at the outputs; res: its relative
    residual (JRHBMResidualNorm) */
 PetscErrorCode JRContBranchAdd(JRCont c, JRContBranch *b, PetscReal w, Vec a, PetscInt its, PetscReal step, PetscReal res)

@@ -21,7 +21,10 @@ typedef struct {
   Vec              a, r, Rw;                /* work, size n: the unknowns, R, dR/dw */
   Vec              G, xpred, xk, tk, d;     /* size n + 1: the bordered residual, the predictor, the last point and its tangent, work */
   PetscReal        aref, wref, ds, aunit;   /* aunit: the linearised response scale per unit level */
-  PetscScalar     *tb;                      /* the tangent's bordered matrix ((n+1) x (n+1)) */
+  PetscScalar     *tb;                      /* the tangent's bordered matrix ((n+1) x (n+1)), written for an LU only */
+  JRContBordered   bj, tj;                  /* the corrector's and the tangent's bordered matrices by their products */
+  PetscScalar     *brow, *trow;             /* their last rows (n + 1 each) */
+  PetscBool        lazy;                    /* the corrector takes its Jacobian's products from bj: BJ written for an LU only */
   JRDenseLU        tlu;                     /* its solver: the corrector's, whose last factors are of a nearby matrix */
   PetscBool        towns;                   /* tlu is the tangent's own (the corrector is not newtondense) */
   PetscReal        dAk;                     /* d(amplitude at response 1)/d(scaled arclength) at x_k along t_k */
@@ -102,40 +105,36 @@ static PetscErrorCode BorderedFunction(SNES snes, Vec x, Vec G, void *ctx)
   PetscFunctionReturn(0);
 }
 
-/* bordered Jacobian [J Rw; c^T d] */
+/* bordered Jacobian [J Rw; c^T d]: the point set, and the matrix written unless the corrector takes its products
+   (arc->lazy) */
 static PetscErrorCode BorderedJacobian(SNES snes, Vec x, Mat BJ, Mat P, void *ctx)
 {
   JRCont             c   = (JRCont)ctx;
   JRCont_Arclength  *arc = (JRCont_Arclength *)c->data;
   PetscReal          w;
-  const PetscScalar *j, *rw, *t, *xx, *xk;
-  PetscScalar       *b;
+  const PetscScalar *t, *xx, *xk;
   const PetscInt     n = c->n;
 
   PetscFunctionBeginUser;
   (void)snes;
   (void)P;
   PetscCall(Split(c, x, arc->a, &w));
-  PetscCall(JRHBMComputeJacobian(c->hbm, w, arc->a, arc->J, arc->Rw));
-  PetscCall(MatDenseGetArrayRead(arc->J, &j));
-  PetscCall(VecGetArrayRead(arc->Rw, &rw));
+  PetscCall(JRHBMJacobianSetPoint(c->hbm, w, arc->a, arc->J, arc->Rw));
   PetscCall(VecGetArrayRead(arc->tk, &t));
   PetscCall(VecGetArrayRead(x, &xx));
   PetscCall(VecGetArrayRead(arc->xk, &xk));
-  PetscCall(MatDenseGetArrayWrite(BJ, &b));
-  for (PetscInt col = 0; col < n; col++) {
-    for (PetscInt row = 0; row < n; row++) b[row + col * (n + 1)] = j[row + col * n];
-    b[n + col * (n + 1)] = arc->constraint == JR_CONT_PSEUDO ? t[col] / (arc->aref * arc->aref) : 2.0 * (xx[col] - xk[col]) / (arc->aref * arc->aref);
-  }
-  for (PetscInt row = 0; row < n; row++) b[row + n * (n + 1)] = rw[row];
-  b[n + n * (n + 1)] = arc->constraint == JR_CONT_PSEUDO ? t[n] / (arc->wref * arc->wref) : 2.0 * (xx[n] - xk[n]) / (arc->wref * arc->wref);
-  PetscCall(MatDenseRestoreArrayWrite(BJ, &b));
+  for (PetscInt col = 0; col < n; col++) arc->brow[col] = arc->constraint == JR_CONT_PSEUDO ? t[col] / (arc->aref * arc->aref) : 2.0 * (xx[col] - xk[col]) / (arc->aref * arc->aref);
+  arc->brow[n] = arc->constraint == JR_CONT_PSEUDO ? t[n] / (arc->wref * arc->wref) : 2.0 * (xx[n] - xk[n]) / (arc->wref * arc->wref);
   PetscCall(VecRestoreArrayRead(arc->xk, &xk));
   PetscCall(VecRestoreArrayRead(x, &xx));
   PetscCall(VecRestoreArrayRead(arc->tk, &t));
-  PetscCall(VecRestoreArrayRead(arc->Rw, &rw));
-  PetscCall(MatDenseRestoreArrayRead(arc->J, &j));
-  PetscCall(JRMatDenseAssemble(BJ));
+  if (!arc->lazy) {
+    PetscScalar *b;
+    PetscCall(MatDenseGetArrayWrite(BJ, &b));
+    PetscCall(JRContBorderedForm(&arc->bj, b, n + 1));
+    PetscCall(MatDenseRestoreArrayWrite(BJ, &b));
+    PetscCall(JRMatDenseAssemble(BJ));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -145,31 +144,22 @@ static PetscErrorCode Tangent(JRCont c, Vec x, Vec tprev, Vec t)
   JRCont_Arclength  *arc = (JRCont_Arclength *)c->data;
   PetscReal          w, nrm;
   const PetscInt     n = c->n, m = n + 1;
-  const PetscScalar *j, *rw, *tp;
-  PetscScalar       *b, *tt;
+  const PetscScalar *tp;
+  PetscScalar       *tt;
   PetscBool          singular;
+  const JRDenseOp    op = {JRContBorderedMult, JRContBorderedForm, &arc->tj};
 
   PetscFunctionBeginUser;
   PetscCall(Split(c, x, arc->a, &w));
-  PetscCall(JRHBMComputeJacobian(c->hbm, w, arc->a, arc->J, arc->Rw));
-  if (!arc->tb) PetscCall(PetscMalloc1(m * m, &arc->tb)); /* kept for the whole solve */
-  b = arc->tb;
-  PetscCall(MatDenseGetArrayRead(arc->J, &j));
-  PetscCall(VecGetArrayRead(arc->Rw, &rw));
+  PetscCall(JRHBMJacobianSetPoint(c->hbm, w, arc->a, arc->J, arc->Rw));
   PetscCall(VecGetArrayRead(tprev, &tp));
-  for (PetscInt col = 0; col < n; col++) {
-    for (PetscInt row = 0; row < n; row++) b[row + col * m] = j[row + col * n];
-    b[n + col * m] = tp[col] / (arc->aref * arc->aref);
-  }
-  for (PetscInt row = 0; row < n; row++) b[row + n * m] = rw[row];
-  b[n + n * m] = tp[n] / (arc->wref * arc->wref);
+  for (PetscInt col = 0; col < n; col++) arc->trow[col] = tp[col] / (arc->aref * arc->aref);
+  arc->trow[n] = tp[n] / (arc->wref * arc->wref);
   PetscCall(VecRestoreArrayRead(tprev, &tp));
-  PetscCall(VecRestoreArrayRead(arc->Rw, &rw));
-  PetscCall(MatDenseRestoreArrayRead(arc->J, &j));
   PetscCall(VecZeroEntries(t));
   PetscCall(VecGetArray(t, &tt));
   tt[n] = 1.0;
-  PetscCall(JRDenseLUSolve(arc->tlu, m, b, m, 1e-8, tt, &singular)); /* a predictor's direction */
+  PetscCall(JRDenseLUSolveOp(arc->tlu, m, &op, arc->tb, m, 1e-8, tt, &singular)); /* a predictor's direction */
   PetscCall(VecRestoreArray(t, &tt));
   PetscCheck(!singular, PETSC_COMM_SELF, PETSC_ERR_MAT_LU_ZRPVT, "Continuation: the bordered tangent system is singular at %g Hz (a zero pivot)", (double)(w / (2 * PETSC_PI)));
   PetscCall(ScaledDot(c, t, t, &nrm));
@@ -524,7 +514,15 @@ static PetscErrorCode CreateCorrector(JRCont c)
   PetscCall(SNESSetType(arc->snes, SNESNEWTONDENSE));
   PetscCall(SNESSetFromOptions(arc->snes));
   PetscCall(JRHBMGetJacobianType(c->hbm, &jt));
+  arc->bj   = (JRContBordered){c->hbm, arc->J, arc->Rw, arc->brow, c->n};
+  arc->tj   = (JRContBordered){c->hbm, arc->J, arc->Rw, arc->trow, c->n};
+  arc->lazy = PETSC_FALSE;
   if (jt == JR_HBM_JACOBIAN_FD) PetscCall(SNESSetJacobian(arc->snes, arc->BJ, arc->BJ, SNESComputeJacobianDefault, c));
+  else { /* Newton takes the Jacobian's products (a model condensed onto its joints forms it only for an LU) */
+    const JRDenseOp op = {JRContBorderedMult, JRContBorderedForm, &arc->bj};
+    PetscCall(SNESNewtonDenseSetOperator(arc->snes, &op));
+    PetscCall(SNESNewtonDenseUsesOperator(arc->snes, &arc->lazy));
+  }
   PetscCall(SNESNewtonDenseGetDenseLU(arc->snes, &arc->tlu));
   if (!arc->tlu) {
     PetscCall(JRDenseLUCreate(&arc->tlu));
@@ -540,7 +538,7 @@ static PetscErrorCode Reset(JRCont_Arclength *arc)
   PetscCall(SNESDestroy(&arc->snes));
   PetscCall(MatDestroy(&arc->BJ));
   PetscCall(MatDestroy(&arc->J));
-  PetscCall(PetscFree(arc->tb));
+  PetscCall(PetscFree3(arc->tb, arc->brow, arc->trow));
   if (arc->towns) PetscCall(JRDenseLUDestroy(&arc->tlu));
   arc->tlu   = NULL;
   arc->towns = PETSC_FALSE;
@@ -571,6 +569,7 @@ static PetscErrorCode JRContSetUp_Arclength(JRCont c)
   PetscCall(VecDuplicate(arc->xk, &arc->tk));
   PetscCall(VecDuplicate(arc->xk, &arc->G));
   PetscCall(VecDuplicate(arc->xk, &arc->d));
+  PetscCall(PetscMalloc3((c->n + 1) * (c->n + 1), &arc->tb, c->n + 1, &arc->brow, c->n + 1, &arc->trow));
   PetscCall(CreateCorrector(c));
   PetscFunctionReturn(0);
 }
