@@ -212,6 +212,82 @@ static void TimeIntegrate(double m, double c, double k, double kt, double r, dou
   }
 }
 
+/* The Jacobian as the continuation's solves take it (JRHBMJacobianSetPoint, its products JRHBMJacobianMult on the
+   unit vectors and its array JRHBMJacobianForm) and dR/dw against central finite differences (steps h in a, 1e-6 w in
+   w): the largest differences of the products' columns and of the array, relative to the largest entry, and of dR/dw */
+static PetscErrorCode FDCheckOp(JRHBM hbm, Vec a, double h, double w, double *emult, double *eform, double *ew)
+{
+  Vec          ap, R1, R2, Rw;
+  Mat          J;
+  PetscInt     n;
+  PetscScalar *e, *y, *A;
+  double       jmax = 0, wmax = 0;
+
+  PetscFunctionBeginUser;
+  *emult = *eform = *ew = 0.0;
+  PetscCall(JRHBMCreateVecs(hbm, NULL, &J));
+  PetscCall(VecDuplicate(a, &ap));
+  PetscCall(VecDuplicate(a, &R1));
+  PetscCall(VecDuplicate(a, &R2));
+  PetscCall(VecDuplicate(a, &Rw));
+  PetscCall(VecGetSize(a, &n));
+  PetscCall(PetscCalloc3(n, &e, n, &y, n * n, &A));
+  PetscCall(JRHBMJacobianSetPoint(hbm, w, a, J, Rw));
+  PetscCall(JRHBMJacobianForm(hbm, J, A, n));
+  for (PetscInt j = 0; j < n; j++) {
+    const PetscScalar *r1, *r2;
+    e[j] = 1.0;
+    PetscCall(JRHBMJacobianMult(hbm, J, e, y));
+    e[j] = 0.0;
+    PetscCall(VecCopy(a, ap));
+    PetscCall(VecSetValue(ap, j, h, ADD_VALUES));
+    PetscCall(VecAssemblyBegin(ap));
+    PetscCall(VecAssemblyEnd(ap));
+    PetscCall(JRHBMComputeResidual(hbm, w, ap, R1));
+    PetscCall(VecSetValue(ap, j, -2 * h, ADD_VALUES));
+    PetscCall(VecAssemblyBegin(ap));
+    PetscCall(VecAssemblyEnd(ap));
+    PetscCall(JRHBMComputeResidual(hbm, w, ap, R2));
+    PetscCall(VecGetArrayRead(R1, &r1));
+    PetscCall(VecGetArrayRead(R2, &r2));
+    for (PetscInt i = 0; i < n; i++) {
+      const double fd = (r1[i] - r2[i]) / (2 * h);
+      *emult = fmax(*emult, fabs(y[i] - fd));
+      *eform = fmax(*eform, fabs(A[i + j * n] - fd));
+      jmax   = fmax(jmax, fabs(fd));
+    }
+    PetscCall(VecRestoreArrayRead(R1, &r1));
+    PetscCall(VecRestoreArrayRead(R2, &r2));
+    /* the point is the one set: the products after other evaluations are those of the Jacobian at a */
+  }
+  {
+    const double       hw = 1e-6 * w;
+    const PetscScalar *r1, *r2, *rw;
+    PetscCall(JRHBMComputeResidual(hbm, w + hw, a, R1));
+    PetscCall(JRHBMComputeResidual(hbm, w - hw, a, R2));
+    PetscCall(VecGetArrayRead(R1, &r1));
+    PetscCall(VecGetArrayRead(R2, &r2));
+    PetscCall(VecGetArrayRead(Rw, &rw));
+    for (PetscInt i = 0; i < n; i++) {
+      *ew  = fmax(*ew, fabs(rw[i] - (r1[i] - r2[i]) / (2 * hw)));
+      wmax = fmax(wmax, fabs(rw[i]));
+    }
+    PetscCall(VecRestoreArrayRead(Rw, &rw));
+    PetscCall(VecRestoreArrayRead(R1, &r1));
+    PetscCall(VecRestoreArrayRead(R2, &r2));
+  }
+  *emult /= jmax;
+  *eform /= jmax;
+  *ew /= wmax;
+  PetscCall(PetscFree3(e, y, A));
+  PetscCall(VecDestroy(&ap));
+  PetscCall(VecDestroy(&R1));
+  PetscCall(VecDestroy(&R2));
+  PetscCall(VecDestroy(&Rw));
+  PetscCall(MatDestroy(&J));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   PetscCall(SlepcInitialize(&argc, &argv, NULL, NULL));
@@ -442,6 +518,11 @@ int main(int argc, char **argv)
       PetscCall(JRHBMContactStates(p.hbm, a, cnt));
       CHECK(ej < 1e-6 * jmax && ew < 1e-6 * wmax && cnt[2] >= 1 && cnt[3] >= 1, "HBM Jacobian, H = %" PetscInt_FMT ", 4 modes, jenkins + jenkins_nv + cubic, two gaps (states: %" PetscInt_FMT " stick, %" PetscInt_FMT " slip, %" PetscInt_FMT " separating part of the cycle, %" PetscInt_FMT " open throughout): dR/da %.1e, dR/dw %.1e relative to finite differences", H, cnt[0], cnt[1], cnt[2], cnt[3], ej / jmax, ew / wmax);
     }
+    {
+      double em, ef, eo;
+      PetscCall(FDCheckOp(p.hbm, a, 1e-6 * 6e-6, w, &em, &ef, &eo));
+      CHECK(em < 1e-6 && ef < 1e-6 && eo < 1e-6, "HBM Jacobian as the continuation takes it (modal unknowns), H = %" PetscInt_FMT ": its products on the unit vectors %.1e, its array %.1e, dR/dw %.1e relative to finite differences", H, em, ef, eo);
+    }
     PetscCall(VecDestroy(&a));
     PetscCall(ProblemDestroy(&p));
   }
@@ -556,6 +637,11 @@ int main(int argc, char **argv)
     }
     PetscCall(FDCheck(p.hbm, x, 1e-6 * 6e-6, w, &ej, &jmax, &ew, &wmax));
     CHECK(ej < 1e-6 * jmax && ew < 1e-6 * wmax, "condensed Jacobian, H = %" PetscInt_FMT ", jenkins + jenkins_nv + cubic on 3 joints, proportional viscous + structural damping: dr/dx %.1e, dr/dw %.1e relative to finite differences", H, ej / jmax, ew / wmax);
+    {
+      double em, ef, eo;
+      PetscCall(FDCheckOp(p.hbm, x, 1e-6 * 6e-6, w, &em, &ef, &eo));
+      CHECK(em < 1e-6 && ef < 1e-6 && eo < 1e-6, "condensed Jacobian as the continuation takes it, H = %" PetscInt_FMT ": its products through the modes (on the unit vectors) %.1e, its array formed for an LU %.1e, dr/dw %.1e relative to finite differences", H, em, ef, eo);
+    }
     /* the same solution as the modal equations: solve both at 250 Hz at a level where elements slip, expand the
        joints' motions to modes */
     PetscCall(JRHBMSetForceLevel(p.hbm, 40.0));
@@ -617,6 +703,11 @@ int main(int argc, char **argv)
     PetscCall(CondensedVsModal(p.hbm, q.hbm, w, x, &conv, &da, cnt));
     PetscCall(FDCheck(p.hbm, x, 1e-6 * 1e-5, w, &ej, &jmax, &ew, &wmax));
     CHECK(ej < 1e-6 * jmax && ew < 1e-6 * wmax, "row-space condensed Jacobian, H = %" PetscInt_FMT ", at the solution at 60 Hz: dr/dx %.1e, dr/dw %.1e relative to finite differences", H, ej / jmax, ew / wmax);
+    {
+      double em, ef, eo;
+      PetscCall(FDCheckOp(p.hbm, x, 1e-6 * 1e-5, w, &em, &ef, &eo));
+      CHECK(em < 1e-6 && ef < 1e-6 && eo < 1e-6, "row-space condensed Jacobian as the continuation takes it, H = %" PetscInt_FMT ", at the solution at 60 Hz: its products through the modes (on the unit vectors) %.1e, its array formed for an LU %.1e, dr/dw %.1e relative to finite differences", H, em, ef, eo);
+    }
     CHECK(conv && da < 1e-8 && cnt[1] > 0 && cnt[2] + cnt[3] > 0, "row-space condensed solution at 60 Hz, H = %" PetscInt_FMT ", expanded to the modes = the modal equations' within %.1e (relative; states %" PetscInt_FMT " stick, %" PetscInt_FMT " slip, %" PetscInt_FMT " separating or open)", H, da, cnt[0], cnt[1], cnt[2] + cnt[3]);
     PetscCall(VecDestroy(&x));
     PetscCall(ProblemDestroy(&p));
