@@ -268,6 +268,7 @@ PetscErrorCode JRHBMGroupDestroy(JRHBMGroup *g)
   PetscCall(PetscFree(g->S0));
   PetscCall(PetscFree2(g->qo, g->qw));
   PetscCall(PetscFree2(g->Ct, g->Cn));
+  PetscCall(PetscFree2(g->Kq, g->qb));
   PetscFunctionReturn(0);
 }
 

@@ -329,6 +329,7 @@ static PetscErrorCode ElementCoefficients(JRHBM h, const JRElements *el, const P
     const PetscInt nloc = g->nloc;
     PetscCall(PetscFree2(g->qo, g->qw));
     PetscCall(PetscFree2(g->Ct, g->Cn));
+    PetscCall(PetscFree2(g->Kq, g->qb)); /* of the old rows */
     PetscCall(PetscMalloc2(2 * nloc + 1, &g->qo, 2 * nloc + 1, &g->qw));
     PetscCall(PetscCalloc2(nloc * cw + 1, &g->Ct, g->normal ? nloc * cw + 1 : 1, &g->Cn));
     g->cw = cw;
@@ -469,6 +470,7 @@ PetscErrorCode JRHBMCondenseSetUp(JRHBM h, const JRElements *el)
     for (PetscInt t = 0; t < h->ngroups; t++) {
       PetscCall(PetscFree2(h->g[t].qo, h->g[t].qw));
       PetscCall(PetscFree2(h->g[t].Ct, h->g[t].Cn));
+      PetscCall(PetscFree2(h->g[t].Kq, h->g[t].qb));
     }
     PetscCall(PetscFree4(h->jidx, h->jio, h->dbo, h->Db));
     h->njb = 0;
@@ -505,12 +507,10 @@ static PetscErrorCode CondExpand(JRHBM h, PetscReal w, const PetscReal *x, Petsc
   for (PetscInt hh = 1; hh <= h->H; hh++) {
     const PetscInt   os = (2 * hh - 1) * nq, oc = 2 * hh * nq;
     const PetscReal *ir = h->inv + 4 * (hh - 1) * nm, *ii = ir + nm;
-    for (PetscInt k = 0; k < nm; k++) { /* b = V^T (F fm - Q^T g), then z = b / z_k */
-      PetscReal vr = hh == 1 ? h->level * h->VF[k] : 0.0, vi = 0.0;
-      for (PetscInt r = 0; r < nq; r++) {
-        vr -= h->QV[r * nm + k] * g[os + r];
-        vi -= h->QV[r * nm + k] * g[oc + r];
-      }
+    PetscCall(JRGemm("N", "N", nm, 1, nq, -1.0, h->QV, nm, g + os, nq, 0.0, br, nm)); /* b = V^T (F fm - Q^T g) */
+    PetscCall(JRGemm("N", "N", nm, 1, nq, -1.0, h->QV, nm, g + oc, nq, 0.0, bi, nm));
+    for (PetscInt k = 0; k < nm; k++) { /* then z = b / z_k */
+      const PetscReal vr = br[k] + (hh == 1 ? h->level * h->VF[k] : 0.0), vi = bi[k];
       br[k] = ir[k] * vr - ii[k] * vi;
       bi[k] = ir[k] * vi + ii[k] * vr;
     }

@@ -73,6 +73,26 @@ PetscErrorCode JRHBMGroupMotion(JRHBM h, JRHBMGroup *g, const PetscReal *x)
   PetscFunctionReturn(0);
 }
 
+/* Condensed, friction elements: their Jacobian at rest on the rows, Kq = sum_e pt_e c_e c_e^T + pn_e d_e d_e^T on each
+   joint direction's block, and the blocks' widths qb (once per set-up) */
+static PetscErrorCode CondensedRestJacobian(JRHBM h, JRHBMGroup *g)
+{
+  const PetscInt nq = h->nq, nloc = g->nloc;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc2(nq * nq, &g->Kq, nq, &g->qb));
+  for (PetscInt e = 0; e < nloc; e++)
+    for (PetscInt q = 0; q < 2; q++) {
+      const PetscInt   o = g->qo[2 * e + q], w = g->qw[2 * e + q];
+      const PetscReal  p = q ? g->pn[e] : g->pt[e], *C = q ? g->Cn : g->Ct;
+      if (!w) continue;
+      g->qb[o] = w;
+      for (PetscInt l = 0; l < w; l++)
+        for (PetscInt r = 0; r < w; r++) g->Kq[(o + r) + (o + l) * nq] += p * C[e + r * nloc] * C[e + l * nloc];
+    }
+  PetscFunctionReturn(0);
+}
+
 /* Condensed: every element of group g moves with its joint's few rows (its coefficients Ct, Cn on them): gathers and
    scatter-adds of its forces into loc (n) and, if jac, of its derivatives into loc + n (n x n column-major), on its
    joint's block only */
@@ -97,44 +117,57 @@ static PetscErrorCode GroupCondensed(JRHBM h, JRHBMGroup *g, const PetscReal *a,
       for (PetscInt r = 0; r < qw[2 * e + 1]; r++) yn[r] += Cn[e + r * nloc] * fn;
     }
   if (jac) { /* c^T dF/du c, c^T dF/dv d, d^T dN/dv d on the joint's blocks, c and d the element's coefficients on its
-                tangential and normal rows */
+                tangential and normal rows; for friction elements their part at rest (Kq) on every diagonal block and
+                the rest only for the elements out of their state at rest, as GroupJacobian */
+    PetscInt nsel = 0;
     PetscCall(PetscLogEventBegin(JR_HBMJacobian, 0, 0, 0, 0));
+    if (g->split) {
+      if (!g->Kq) PetscCall(CondensedRestJacobian(h, g));
+      for (PetscInt r0 = 0; r0 < nq; r0++) {
+        const PetscInt w = g->qb[r0];
+        if (!w) continue;
+        for (PetscInt k = 0; k < nc; k++) {
+          PetscReal *blk = loc + n + (k * nq + r0) + (k * nq + r0) * n;
+          for (PetscInt l = 0; l < w; l++)
+            for (PetscInt r = 0; r < w; r++) blk[r + l * n] += g->Kq[(r0 + r) + (r0 + l) * nq];
+        }
+      }
+      for (PetscInt e = 0; e < nloc; e++) {
+        const PetscReal tol = 1e-12 * g->kt[e], toln = 1e-12 * PetscMax(g->kn[e], g->kt[e]);
+        PetscBool       rest = PETSC_TRUE;
+        for (PetscInt q = 0; q < nc * nc && rest; q++) {
+          const PetscBool diag = (PetscBool)(q / nc == q % nc);
+          if (PetscAbsReal(g->DU[q * nloc + e] - (diag ? g->pt[e] : 0.0)) > tol) rest = PETSC_FALSE;
+          if (g->normal && (PetscAbsReal(g->DV[q * nloc + e]) > toln || PetscAbsReal(g->DN[q * nloc + e] - (diag ? g->pn[e] : 0.0)) > toln)) rest = PETSC_FALSE;
+        }
+        if (!rest) g->sel[nsel++] = e;
+      }
+    } else
+      for (PetscInt e = 0; e < nloc; e++) g->sel[nsel++] = e;
     for (PetscInt k = 0; k < nc; k++)
       for (PetscInt m = 0; m < nc; m++) {
         const PetscReal *du = g->DU + (k * nc + m) * nloc, *dv = g->normal ? g->DV + (k * nc + m) * nloc : NULL, *dn = g->normal ? g->DN + (k * nc + m) * nloc : NULL;
-        if (g->cw == 1) { /* one row per direction (a joint's mean motion): scalar coefficients */
-          PetscReal *blk = loc + n + (k * nq) + (m * nq) * n;
-          for (PetscInt e = 0; e < nloc; e++) {
-            const PetscInt  it = qo[2 * e], in = qo[2 * e + 1];
-            const PetscReal ct = Ct[e];
-            if (qw[2 * e]) blk[it + it * n] += ct * du[e] * ct;
-            if (qw[2 * e + 1]) {
-              const PetscReal cn = Cn[e];
-              if (qw[2 * e]) blk[it + in * n] += ct * dv[e] * cn;
-              blk[in + in * n] += cn * dn[e] * cn;
-            }
-          }
-          continue;
-        }
-        for (PetscInt e = 0; e < nloc; e++) {
-          const PetscInt wt = qw[2 * e], wn = qw[2 * e + 1];
-          PetscReal     *btt = loc + n + (k * nq + qo[2 * e]) + (m * nq + qo[2 * e]) * n;
+        const PetscBool  diag = (PetscBool)(g->split && k == m);
+        for (PetscInt s = 0; s < nsel; s++) {
+          const PetscInt  e = g->sel[s], wt = qw[2 * e], wn = qw[2 * e + 1];
+          const PetscReal dut = du[e] - (diag ? g->pt[e] : 0.0), dvt = wn ? dv[e] : 0.0, dnt = wn ? dn[e] - (diag ? g->pn[e] : 0.0) : 0.0;
+          PetscReal      *btt = loc + n + (k * nq + qo[2 * e]) + (m * nq + qo[2 * e]) * n;
           for (PetscInt l = 0; l < wt; l++) {
-            const PetscReal tu = du[e] * Ct[e + l * nloc];
+            const PetscReal tu = dut * Ct[e + l * nloc];
             for (PetscInt r = 0; r < wt; r++) btt[r + l * n] += Ct[e + r * nloc] * tu;
           }
           if (!wn) continue;
           {
             PetscReal *btn = loc + n + (k * nq + qo[2 * e]) + (m * nq + qo[2 * e + 1]) * n, *bnn = loc + n + (k * nq + qo[2 * e + 1]) + (m * nq + qo[2 * e + 1]) * n;
             for (PetscInt l = 0; l < wn; l++) {
-              const PetscReal tv = dv[e] * Cn[e + l * nloc], tn = dn[e] * Cn[e + l * nloc];
+              const PetscReal tv = dvt * Cn[e + l * nloc], tn = dnt * Cn[e + l * nloc];
               for (PetscInt r = 0; r < wt; r++) btn[r + l * n] += Ct[e + r * nloc] * tv;
               for (PetscInt r = 0; r < wn; r++) bnn[r + l * n] += Cn[e + r * nloc] * tn;
             }
           }
         }
       }
-    PetscCall(PetscLogFlops(2.0 * nloc * nc * nc * g->cw * g->cw * (g->normal ? 3 : 1)));
+    PetscCall(PetscLogFlops(2.0 * nsel * nc * nc * g->cw * g->cw * (g->normal ? 3 : 1)));
     PetscCall(PetscLogEventEnd(JR_HBMJacobian, 0, 0, 0, 0));
   }
   PetscFunctionReturn(0);

@@ -44,6 +44,9 @@ typedef struct {
                               that direction among the nq condensed ones, and their number */
   PetscReal *Ct, *Cn;      /* condensed: its rows' coefficients on them (nloc x cw, column-major) */
   PetscInt   cw;           /* the most rows of a joint in one direction */
+  PetscReal *Kq;           /* condensed, split: the elements' Jacobian at rest on the rows, sum pt c c^T and pn d d^T
+                              (nq x nq, nonzero on each joint direction's block), formed on first use */
+  PetscInt  *qb;           /* its blocks: qb[r] the width of the block that starts at row r, else 0 (nq) */
 } JRHBMGroup;
 
 struct _p_JRHBM {
