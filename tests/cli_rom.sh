@@ -169,6 +169,17 @@ check "[ '$czc' = 1 ] && [ '$czl' = 2 ] && [ '${czn:-0}' -gt 100 ] && [ '$czd' =
 # fast modes through a basis of the rows (-frf_stability_time_lowrank yes: fast_rows) flag every point as the fast
 # block's LU does; the incremental dissipativity certifies the points where no element changes state on the
 # condensed unknowns as on the modal ones (the same flags at the common frequencies)
+# the condensed model's Jacobian by its products through the modes, formed only for an LU (default), against formed
+# at every iteration (-hbm_condense_products 0): the same model (72 unknowns: GMRES on the kept LU may take 4
+# iterations) by arclength continuation to 2 N, the same peaks to Newton's tolerance (the curves' points differ at
+# round-off, the peaks are refined on each); the default's GMRES solves counted (the products in use)
+pk() { echo "$1" | awk '/^peak level/{print $4, $6}'; }
+oa=$(mpiexec -n 2 $J -task frf $nv $nvl -frf_force 0.01,2 -rom_joints zones -rom_joint_motion linear -frf_output_file '' -log_view 2>&1)
+ob=$(mpiexec -n 2 $J -task frf $nv $nvl -frf_force 0.01,2 -rom_joints zones -rom_joint_motion linear -frf_output_file '' -hbm_condense_products 0 2>&1)
+pg=$(echo "$oa" | awk '/--- Event Stage/{s6=($4=="6:")} s6&&/^JR_DenseGMRES /{g+=$2} END{print g+0}')
+pd=$(paste <(pk "$oa") <(pk "$ob") | awk 'NF == 4 {n++; f = ($1 - $3) / $3; a = ($2 - $4) / $4; f = f < 0 ? -f : f; a = a < 0 ? -a : a; if (f > d) d = f; if (a > d) d = a} END{printf "%d %.1e", n, d}')
+read pn pdd <<< "$pd"
+check "[ '$pn' = 2 ] && lt '$pdd' 1e-6 && [ '$pg' -gt 100 ]" "jenkins_nv lap1, 4 zone joints, linear field, condensed, arclength to 2 N: the Jacobian by its products ($pg GMRES solves on kept LUs) gives the peaks of the Jacobian formed at every iteration within $pdd (< 1e-6, $pn levels)"
 for c in yes no lu; do
   case $c in yes) a="-frf_stability_time_lowrank yes" ;; no) a="-hbm_condense no" ;; lu) a="-frf_stability_time_lowrank no" ;; esac
   orl=$(mpiexec -n 2 $J -task frf $nv $nvl -frf_force 0.01,0.5 -rom_joints zones -rom_joint_motion linear -cont_type natural -cont_points 120 $a -frf_output_file "$tmp/rl_$c" 2>&1)

@@ -48,6 +48,7 @@ PetscErrorCode JRHBMCreate(MPI_Comm comm, JRHBM *hbm)
   h->H          = 1;
   h->Ns         = 64;
   h->acctol     = 1e-8;
+  h->jprod      = PETSC_TRUE;
   h->fdof       = 0;
   h->level      = 1.0;
   h->jtype      = JR_HBM_JACOBIAN_ANALYTIC;
@@ -111,6 +112,7 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
   PetscCall(PetscOptionsEnum("-hbm_basis", "Modal basis: free (modes of K: the interface held by the bolts only), stuck (modes of K plus every element in contact at rest stuck; the elements then add only their deviation from stuck) or mixed (Ritz vectors of the stuck structure in the span of both)", "JRHBMSetUp", JRHBMBases, (PetscEnum)h->basis, (PetscEnum *)&h->basis, &h->basis_set));
   PetscCall(PetscOptionsInt("-hbm_free_modes", "-hbm_basis mixed: free-interface modes added to the -hbm_modes stuck ones (default: as many)", "JRHBMSetUp", h->nfree, &h->nfree, NULL));
   PetscCall(PetscOptionsEnum("-hbm_condense", "Reduced models: eliminate the modes and solve for the joints' motions only (auto: when it is exact and smaller)", "JRHBMSetUp", JRHBMCondenseTypes, (PetscEnum)h->condense, (PetscEnum *)&h->condense, NULL));
+  PetscCall(PetscOptionsBool("-hbm_condense_products", "Condensed models: the continuation's Newton takes the Jacobian by its products through the modes and forms it only for an LU (0: formed at every iteration)", "JRHBMJacobianSetPoint", h->jprod, &h->jprod, NULL));
   PetscCall(PetscOptionsBool("-hbm_physical", "Physical coordinates instead of modes (small systems: checks modal truncation)", "JRHBMSetUp", h->physical, &h->physical, NULL));
   PetscCall(PetscOptionsReal("-hbm_gamma", "Structural damping H = gamma K (2.17) [-]", "JRHBMSetUp", h->gamma, &h->gamma, NULL));
   PetscCall(PetscOptionsReal("-hbm_zeta", "Modal viscous damping ratio, every mode [-]", "JRHBMSetUp", h->zeta, &h->zeta, NULL));

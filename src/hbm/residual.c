@@ -408,7 +408,7 @@ PetscErrorCode JRHBMComputeJacobian(JRHBM h, PetscReal w, Vec a, Mat J, Vec Rw)
 /* JRHBMJacobianSetPoint - the Jacobian J = dR/da at (w, a) for JRHBMJacobianMult() and JRHBMJacobianForm(), and, if
    Rw is not NULL, dR/dw: written into J (JRHBMComputeJacobian), except for a model condensed onto its joints, whose
    J = I + G dg/dx is kept as the elements' derivatives, block diagonal by joint, and applied through the modes: it is
-   formed only when it is factored (collective) */
+   formed only when it is factored (-hbm_condense_products 0: written into J as the others) (collective) */
 PetscErrorCode JRHBMJacobianSetPoint(JRHBM h, PetscReal w, Vec a, Mat J, Vec Rw)
 {
   const PetscScalar *x;
@@ -416,7 +416,7 @@ PetscErrorCode JRHBMJacobianSetPoint(JRHBM h, PetscReal w, Vec a, Mat J, Vec Rw)
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMSetUp(h));
-  if (!h->cond) {
+  if (!h->cond || !h->jprod) {
     PetscCall(JRHBMComputeJacobian(h, w, a, J, Rw));
     PetscFunctionReturn(0);
   }
@@ -439,7 +439,7 @@ PetscErrorCode JRHBMJacobianMult(JRHBM h, Mat J, const PetscScalar *x, PetscScal
   PetscScalar        sone = 1.0, szero = 0.0;
 
   PetscFunctionBeginUser;
-  if (h->cond) {
+  if (h->cond && h->jprod) {
     PetscCall(JRHBMCondJacobianMult(h, x, y));
     PetscFunctionReturn(0);
   }
@@ -460,7 +460,7 @@ PetscErrorCode JRHBMJacobianForm(JRHBM h, Mat J, PetscScalar *A, PetscInt lda)
   PetscInt           ldj;
 
   PetscFunctionBeginUser;
-  if (h->cond) {
+  if (h->cond && h->jprod) {
     PetscCall(JRHBMCondJacobianForm(h, A, lda));
     PetscFunctionReturn(0);
   }

@@ -6,7 +6,8 @@
 # (HBM + continuation, from the program's own per-level timer).
 # Targets: analytic >= 20x faster than fd at 10^4 elements; 2 ranks >= 1.7x faster at 10^5.
 # Then the dense Newton's LU kept as GMRES's preconditioner against a new LU at every iteration, side by side on
-# the BRB, lap1 node-to-node and reduced models (the solve stage; the LU and GMRES solves counted).
+# the BRB, lap1 node-to-node and reduced models (the solve stage; the LU and GMRES solves counted); and a condensed
+# reduced model's Jacobian by its products against formed at every iteration, side by side.
 cd "$(dirname "$0")/../.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export OPENBLAS_NUM_THREADS=1
@@ -81,5 +82,28 @@ lap1 8 mm, 4 zone joints x 3, linear field|1|3|$lap1 -rom_joints zones -rom_join
 runs/lap1_rom.opts reduced (24 rows, 109 modes)|2|1|-options_file runs/lap1_rom.opts -task frf -frf_stability 0
 runs/lap3_n2n.opts (506 jenkins_nv, adapted basis)|2|1|-options_file runs/lap3_n2n.opts -frf_stability 0
 runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|2|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
+LIST
+rm -f /tmp/jr_bench_new.$$ /tmp/jr_bench_kept.$$
+echo
+# A condensed reduced model's Jacobian by its products through the modes, formed only for an LU (default), against
+# formed at every iteration (-hbm_condense_products 0): the solve stage, interleaved runs, median.
+echo "== condensed models: the Jacobian by its products against formed every iteration, solve stage [s], median of interleaved runs =="
+printf "%-46s %-5s %8s %10s %10s %7s %6s %7s\n" case ranks unknowns formed products speedup LU GMRES
+while IFS='|' read -r name np reps args; do
+  : > /tmp/jr_bench_new.$$
+  : > /tmp/jr_bench_kept.$$
+  for r in $(seq "$reps"); do
+    stage "$np" $args -hbm_condense_products 0 >> /tmp/jr_bench_new.$$
+    stage "$np" $args >> /tmp/jr_bench_kept.$$
+  done
+  new=$(awk '{print $1}' /tmp/jr_bench_new.$$ | median)
+  kept=$(awk '{print $1}' /tmp/jr_bench_kept.$$ | median)
+  read -r _ lu gm un < /tmp/jr_bench_kept.$$
+  printf "%-46s %-5s %8s %10.4g %10.4g %7.2f %6s %7s\n" "$name" "$np" "$un" "$new" "$kept" "$(awk -v a=$new -v b=$kept 'BEGIN{print a/b}')" "$lu" "$gm"
+done <<LIST
+lap1 8 mm, 4 zone joints x 3, linear field|1|3|$lap1 -rom_joints zones -rom_joint_motion linear -rom_elements 3
+runs/lap1_rom.opts reduced (24 rows, 109 modes)|2|3|-options_file runs/lap1_rom.opts -task frf -frf_stability 0
+runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|1|3|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
+runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|2|3|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
 LIST
 rm -f /tmp/jr_bench_new.$$ /tmp/jr_bench_kept.$$

@@ -102,6 +102,7 @@ struct _p_JRHBM {
   MPI_Comm          ecomm;        /* the communicator of sums over the elements: h->comm, or PETSC_COMM_SELF if repl */
   JRJointMotion     jmotion;      /* first reduction: how a joint's members move (-rom_joint_motion) */
   PetscBool         cond;         /* in use: the solve space is the joints' motions */
+  PetscBool         jprod;        /* -hbm_condense_products: JRHBMJacobianSetPoint keeps a condensed Jacobian for its products */
   PetscInt          nq, ns;       /* condensed rows (a basis of each joint's elements' rows, joint by joint); solve-space size */
   PetscReal        *Q, *V, *lamv, *cv, *QV, *VF; /* rows (nq x nm row-major); (Kg, Mm) eigenvectors (col-major), values,
                                                      V^T Cm V (diagonal); Q V (nq x nm row-major); V^T fm */
