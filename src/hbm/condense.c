@@ -65,49 +65,54 @@ static PetscErrorCode CondBlocks(JRHBM h, PetscReal w)
   PetscFunctionReturn(0);
 }
 
-/* T = I + blockdiag(G) D (T: leading dimension ldt) with the blocks G_h of CondBlocks, D the elements' dg/dx (ns x ns)
-   in row blocks of a few joints: plain loops, the inner one over the rows (a BLAS call costs more than its 6 x 6
-   product) */
-static PetscErrorCode CondJacobian(JRHBM h, const PetscReal *D, PetscReal *T, PetscInt ldt)
+/* T = I + blockdiag(G) dg/dx (T: leading dimension ldt) with the blocks G_h of CondBlocks and dg/dx by its joints'
+   blocks (Db): a column of joint j's unknowns is G's columns of the joint's rows times the block's column (plain loops,
+   the inner one over the rows: a BLAS call costs more than its few-term product) */
+static PetscErrorCode CondJacobian(JRHBM h, PetscReal *T, PetscInt ldt)
 {
   const PetscInt nq = h->nq, ns = h->ns;
 
   PetscFunctionBeginUser;
-  for (PetscInt j = 0; j < ns; j++) {
-    const PetscReal *jc = D + j * ns;
-    PetscReal       *tc = T + j * ldt;
-    for (PetscInt r = 0; r < nq; r++) tc[r] = 0.0;
-    for (PetscInt c = 0; c < nq; c++) {
-      const PetscReal v = jc[c];
-      if (v != 0.0)
-        for (PetscInt r = 0; r < nq; r++) tc[r] += h->G0[r + c * nq] * v;
-    }
-    for (PetscInt hh = 1; hh <= h->H; hh++) {
-      const PetscReal *Gr = h->Gb + 2 * (hh - 1) * nq * nq, *Gi = Gr + nq * nq;
-      const PetscInt   os = (2 * hh - 1) * nq, oc = 2 * hh * nq;
-      for (PetscInt r = 0; r < nq; r++) tc[os + r] = tc[oc + r] = 0.0;
-      for (PetscInt c = 0; c < nq; c++) {
-        const PetscReal vs = jc[os + c], vc = jc[oc + c];
-        if (vs == 0.0 && vc == 0.0) continue;
-        for (PetscInt r = 0; r < nq; r++) {
-          tc[os + r] += Gr[r + c * nq] * vs - Gi[r + c * nq] * vc;
-          tc[oc + r] += Gi[r + c * nq] * vs + Gr[r + c * nq] * vc;
+  for (PetscInt j = 0; j < h->njb; j++) {
+    const PetscInt  *ix = h->jidx + h->jio[j], b = h->jio[j + 1] - h->jio[j];
+    const PetscReal *D  = h->Db + h->dbo[j];
+    for (PetscInt c = 0; c < b; c++) {
+      PetscReal *tc = T + ix[c] * ldt;
+      PetscCall(PetscArrayzero(tc, ns));
+      for (PetscInt r = 0; r < b; r++) {
+        const PetscReal v = D[r + c * b];
+        const PetscInt  comp = ix[r] / nq, q = ix[r] % nq, hh = (comp + 1) / 2;
+        if (v == 0.0) continue;
+        if (!comp) {
+          for (PetscInt i = 0; i < nq; i++) tc[i] += h->G0[i + q * nq] * v;
+        } else {
+          const PetscReal *Gr = h->Gb + 2 * (hh - 1) * nq * nq + q * nq, *Gi = Gr + nq * nq;
+          PetscReal       *ts = tc + (2 * hh - 1) * nq, *tcc = tc + 2 * hh * nq;
+          if (comp % 2) /* sin: (Gr + i Gi) v */
+            for (PetscInt i = 0; i < nq; i++) {
+              ts[i] += Gr[i] * v;
+              tcc[i] += Gi[i] * v;
+            }
+          else /* cos: (Gr + i Gi) i v */
+            for (PetscInt i = 0; i < nq; i++) {
+              ts[i] -= Gi[i] * v;
+              tcc[i] += Gr[i] * v;
+            }
         }
       }
+      tc[ix[c]] += 1.0;
     }
-    tc[j] += 1.0;
+    PetscCall(PetscLogFlops(4.0 * b * b * nq));
   }
-  PetscCall(PetscLogFlops(4.0 * ns * nq * ns));
   PetscFunctionReturn(0);
 }
 
-/* Condensed: res holds g(x) on entry and r(x) on exit; jac (if not NULL) dg/dx on entry and I + G dg/dx on exit;
-   dw (if not NULL) gets dr/dw. The residual and dr/dw through the modes, (Q V) (d_k ((Q V)^T g_h)) (a few products
-   of the nq x nm rows with vectors); the blocks G_h only for the Jacobian. */
-PetscErrorCode JRHBMCondApply(JRHBM h, PetscReal w, const PetscReal *x, PetscReal *res, PetscReal *jac, PetscReal *dw)
+/* Condensed: res holds g(x) on entry and r(x) on exit; dw (if not NULL) gets dr/dw. Through the modes,
+   (Q V) (d_k ((Q V)^T g_h)) (a few products of the nq x nm rows with vectors). */
+PetscErrorCode JRHBMCondApply(JRHBM h, PetscReal w, const PetscReal *x, PetscReal *res, PetscReal *dw)
 {
   const PetscInt nq = h->nq, nm = h->nm, ns = h->ns;
-  PetscReal     *t = h->ctmp, *T = h->ctmp + ns;
+  PetscReal     *t = h->ctmp;
 
   PetscFunctionBeginUser;
   PetscCall(CondInverse(h, w));
@@ -147,30 +152,18 @@ PetscErrorCode JRHBMCondApply(JRHBM h, PetscReal w, const PetscReal *x, PetscRea
     }
   }
   PetscCall(PetscLogFlops(4.0 * h->H * nm * nq * (dw ? 3 : 2)));
-  if (jac) {
-    PetscCall(CondBlocks(h, w));
-    PetscCall(CondJacobian(h, jac, T, ns));
-    PetscCall(PetscArraycpy(jac, T, ns * ns));
-  }
   PetscCall(PetscArraycpy(res, t, ns));
   PetscFunctionReturn(0);
 }
 
-/* The Jacobian at a point (JRHBMJacobianSetPoint): the elements' dg/dx at x kept, with its joints' blocks, and the
-   residual's dr/dw into dw (may be NULL) */
+/* The Jacobian at a point (JRHBMJacobianSetPoint, JRHBMComputeJacobian): the elements' dg/dx at x kept by its joints'
+   blocks (an element's force moves only with its joint's rows), the residual into jres and dr/dw into dw (may be
+   NULL) */
 PetscErrorCode JRHBMCondJacobianPoint(JRHBM h, PetscReal w, const PetscReal *x, PetscReal *dw)
 {
-  const PetscInt ns = h->ns;
-
   PetscFunctionBeginUser;
-  PetscCall(JRHBMNonlinear(h, x, h->jres, h->jd));
-  for (PetscInt j = 0; j < h->njb; j++) { /* dg/dx is block diagonal by joint: an element's force moves with its joint's rows */
-    const PetscInt *ix = h->jidx + h->jio[j], b = h->jio[j + 1] - h->jio[j];
-    PetscReal      *D  = h->Db + h->dbo[j];
-    for (PetscInt c = 0; c < b; c++)
-      for (PetscInt r = 0; r < b; r++) D[r + c * b] = h->jd[ix[r] + ix[c] * ns];
-  }
-  PetscCall(JRHBMCondApply(h, w, x, h->jres, NULL, dw));
+  PetscCall(JRHBMNonlinear(h, x, h->jres, h->Db));
+  PetscCall(JRHBMCondApply(h, w, x, h->jres, dw));
   h->jw = w;
   PetscFunctionReturn(0);
 }
@@ -217,7 +210,7 @@ PetscErrorCode JRHBMCondJacobianForm(JRHBM h, PetscReal *A, PetscInt lda)
 {
   PetscFunctionBeginUser;
   PetscCall(CondBlocks(h, h->jw));
-  PetscCall(CondJacobian(h, h->jd, A, lda));
+  PetscCall(CondJacobian(h, A, lda));
   PetscFunctionReturn(0);
 }
 
@@ -236,7 +229,8 @@ static PetscErrorCode CondenseReset(JRHBM h)
   PetscCall(PetscFree3(h->Gb, h->inv, h->ctmp));
   PetscCall(PetscFree2(h->QQ, h->cb)); /* products of the rows: rebuilt from the new ones */
   PetscCall(PetscFree4(h->jidx, h->jio, h->dbo, h->Db));
-  PetscCall(PetscFree2(h->jd, h->ju));
+  PetscCall(PetscFree2(h->qj, h->ql));
+  PetscCall(PetscFree(h->ju));
   h->njb = 0;
   PetscCall(PetscFree(h->jres));       /* sized by the solve space */
   PetscCall(PetscFree2(h->llu, h->lpiv));
@@ -415,7 +409,8 @@ static PetscErrorCode CondenseOperators(JRHBM h, PetscInt nq, const char **why)
   PetscFunctionReturn(0);
 }
 
-/* The solve space's unknowns joint by joint (jidx, jio) and the offsets of the joints' blocks of dg/dx (dbo, Db):
+/* The solve space's unknowns joint by joint (jidx, jio), each row's joint and place in it (qj, ql), and the offsets
+   of the joints' blocks of dg/dx (dbo, Db):
    joint j's rows are off[2 j] .. off[2 j + 2] (tangential, then normal) in the mean and in each harmonic's sin and cos */
 static PetscErrorCode JointBlocks(JRHBM h, PetscInt nj, const PetscInt off[])
 {
@@ -425,10 +420,15 @@ static PetscErrorCode JointBlocks(JRHBM h, PetscInt nj, const PetscInt off[])
   PetscFunctionBeginUser;
   for (PetscInt j = 0; j < nj; j++) nd += PetscSqr(nc * (off[2 * j + 2] - off[2 * j]));
   PetscCall(PetscMalloc4(nc * nq, &h->jidx, nj + 1, &h->jio, nj + 1, &h->dbo, nd, &h->Db));
+  PetscCall(PetscMalloc2(nq, &h->qj, nq, &h->ql));
   h->njb    = nj;
   h->jio[0] = h->dbo[0] = 0;
   for (PetscInt j = 0; j < nj; j++) {
     const PetscInt wj = off[2 * j + 2] - off[2 * j];
+    for (PetscInt r = 0; r < wj; r++) {
+      h->qj[off[2 * j] + r] = j;
+      h->ql[off[2 * j] + r] = r;
+    }
     for (PetscInt c = 0; c < nc; c++)
       for (PetscInt r = 0; r < wj; r++) h->jidx[k++] = c * nq + off[2 * j] + r;
     h->jio[j + 1] = k;
@@ -473,14 +473,15 @@ PetscErrorCode JRHBMCondenseSetUp(JRHBM h, const JRElements *el)
       PetscCall(PetscFree2(h->g[t].Kq, h->g[t].qb));
     }
     PetscCall(PetscFree4(h->jidx, h->jio, h->dbo, h->Db));
+    PetscCall(PetscFree2(h->qj, h->ql));
     h->njb = 0;
     h->nq  = 0;
     PetscFunctionReturn(0);
   }
   h->ns = h->nq * nc;
-  PetscCall(PetscMalloc3(2 * h->H * h->nq * h->nq, &h->Gb, 4 * h->H * nm, &h->inv, h->ns + h->ns * h->ns, &h->ctmp));
+  PetscCall(PetscMalloc3(2 * h->H * h->nq * h->nq, &h->Gb, 4 * h->H * nm, &h->inv, h->ns, &h->ctmp));
   PetscCall(PetscMalloc2(nm * h->nq, &h->QQ, 6 * nm + 4 * h->nq, &h->cb)); /* CondBlocks's and JRHBMCondApply's work */
-  PetscCall(PetscMalloc2(h->ns * h->ns, &h->jd, h->ns, &h->ju));
+  PetscCall(PetscMalloc1(h->ns, &h->ju));
   h->cond = PETSC_TRUE;
   PetscCall(PetscSNPrintf(h->condinfo, sizeof(h->condinfo), "condensed onto %" PetscInt_FMT " joint motions: %" PetscInt_FMT " unknowns instead of %" PetscInt_FMT, h->nq, h->ns, h->n));
   PetscFunctionReturn(0);

@@ -94,8 +94,8 @@ static PetscErrorCode CondensedRestJacobian(JRHBM h, JRHBMGroup *g)
 }
 
 /* Condensed: every element of group g moves with its joint's few rows (its coefficients Ct, Cn on them): gathers and
-   scatter-adds of its forces into loc (n) and, if jac, of its derivatives into loc + n (n x n column-major), on its
-   joint's block only */
+   scatter-adds of its forces into loc (n) and, if jac, of its derivatives into its joint's block at loc + n (the
+   joints' blocks, JRHBM Db's layout) */
 static PetscErrorCode GroupCondensed(JRHBM h, JRHBMGroup *g, const PetscReal *a, PetscBool reuse, PetscBool derivs, PetscBool jac, PetscReal *loc)
 {
   const PetscInt   nq = h->nq, nc = h->nc, n = h->ns, nloc = g->nloc;
@@ -116,20 +116,22 @@ static PetscErrorCode GroupCondensed(JRHBM h, JRHBMGroup *g, const PetscReal *a,
       for (PetscInt r = 0; r < qw[2 * e]; r++) yt[r] += Ct[e + r * nloc] * f;
       for (PetscInt r = 0; r < qw[2 * e + 1]; r++) yn[r] += Cn[e + r * nloc] * fn;
     }
-  if (jac) { /* c^T dF/du c, c^T dF/dv d, d^T dN/dv d on the joint's blocks, c and d the element's coefficients on its
-                tangential and normal rows; for friction elements their part at rest (Kq) on every diagonal block and
-                the rest only for the elements out of their state at rest, as GroupJacobian */
-    PetscInt nsel = 0;
+  if (jac) { /* c^T dF/du c, c^T dF/dv d, d^T dN/dv d on the joint's block of dg/dx (loc + n: the joints' blocks, JRHBM
+                Db's layout), c and d the element's coefficients on its tangential and normal rows; for friction
+                elements their part at rest (Kq) on every diagonal block and the rest only for the elements out of
+                their state at rest, as GroupJacobian */
+    PetscReal *D    = loc + n;
+    PetscInt   nsel = 0;
     PetscCall(PetscLogEventBegin(JR_HBMJacobian, 0, 0, 0, 0));
     if (g->split) {
       if (!g->Kq) PetscCall(CondensedRestJacobian(h, g));
       for (PetscInt r0 = 0; r0 < nq; r0++) {
-        const PetscInt w = g->qb[r0];
+        const PetscInt w = g->qb[r0], j = h->qj[r0], bj = h->jio[j + 1] - h->jio[j], wj = bj / nc;
         if (!w) continue;
         for (PetscInt k = 0; k < nc; k++) {
-          PetscReal *blk = loc + n + (k * nq + r0) + (k * nq + r0) * n;
+          PetscReal *blk = D + h->dbo[j] + (k * wj + h->ql[r0]) * (1 + bj);
           for (PetscInt l = 0; l < w; l++)
-            for (PetscInt r = 0; r < w; r++) blk[r + l * n] += g->Kq[(r0 + r) + (r0 + l) * nq];
+            for (PetscInt r = 0; r < w; r++) blk[r + l * bj] += g->Kq[(r0 + r) + (r0 + l) * nq];
         }
       }
       for (PetscInt e = 0; e < nloc; e++) {
@@ -149,20 +151,22 @@ static PetscErrorCode GroupCondensed(JRHBM h, JRHBMGroup *g, const PetscReal *a,
         const PetscReal *du = g->DU + (k * nc + m) * nloc, *dv = g->normal ? g->DV + (k * nc + m) * nloc : NULL, *dn = g->normal ? g->DN + (k * nc + m) * nloc : NULL;
         const PetscBool  diag = (PetscBool)(g->split && k == m);
         for (PetscInt s = 0; s < nsel; s++) {
-          const PetscInt  e = g->sel[s], wt = qw[2 * e], wn = qw[2 * e + 1];
+          const PetscInt  e = g->sel[s], wt = qw[2 * e], wn = qw[2 * e + 1], j = h->qj[qo[2 * e]], bj = h->jio[j + 1] - h->jio[j], wj = bj / nc;
+          const PetscInt  it = k * wj + h->ql[qo[2 * e]], jt = m * wj + h->ql[qo[2 * e]];
           const PetscReal dut = du[e] - (diag ? g->pt[e] : 0.0), dvt = wn ? dv[e] : 0.0, dnt = wn ? dn[e] - (diag ? g->pn[e] : 0.0) : 0.0;
-          PetscReal      *btt = loc + n + (k * nq + qo[2 * e]) + (m * nq + qo[2 * e]) * n;
+          PetscReal      *Dj = D + h->dbo[j], *btt = Dj + it + jt * bj;
           for (PetscInt l = 0; l < wt; l++) {
             const PetscReal tu = dut * Ct[e + l * nloc];
-            for (PetscInt r = 0; r < wt; r++) btt[r + l * n] += Ct[e + r * nloc] * tu;
+            for (PetscInt r = 0; r < wt; r++) btt[r + l * bj] += Ct[e + r * nloc] * tu;
           }
           if (!wn) continue;
           {
-            PetscReal *btn = loc + n + (k * nq + qo[2 * e]) + (m * nq + qo[2 * e + 1]) * n, *bnn = loc + n + (k * nq + qo[2 * e + 1]) + (m * nq + qo[2 * e + 1]) * n;
+            const PetscInt in = k * wj + h->ql[qo[2 * e + 1]], jn = m * wj + h->ql[qo[2 * e + 1]];
+            PetscReal     *btn = Dj + it + jn * bj, *bnn = Dj + in + jn * bj;
             for (PetscInt l = 0; l < wn; l++) {
               const PetscReal tv = dvt * Cn[e + l * nloc], tn = dnt * Cn[e + l * nloc];
-              for (PetscInt r = 0; r < wt; r++) btn[r + l * n] += Ct[e + r * nloc] * tv;
-              for (PetscInt r = 0; r < wn; r++) bnn[r + l * n] += Cn[e + r * nloc] * tn;
+              for (PetscInt r = 0; r < wt; r++) btn[r + l * bj] += Ct[e + r * nloc] * tv;
+              for (PetscInt r = 0; r < wn; r++) bnn[r + l * bj] += Cn[e + r * nloc] * tn;
             }
           }
         }
@@ -243,14 +247,14 @@ static PetscErrorCode GroupJacobian(JRHBM h, JRHBMGroup *g, PetscReal *loc)
 }
 
 /*
-  Nonlinear part: res (n) and, if jac, the Jacobian (n x n column-major) summed over all elements of
-  all ranks (identical on every rank). a: the unknowns (n). With the analytic Jacobian, every
+  Nonlinear part: res (n) and, if jac, the Jacobian (n x n column-major; condensed, dg/dx by its joints' blocks in
+  the layout of JRHBM's Db) summed over all elements of all ranks (identical on every rank). a: the unknowns (n). With the analytic Jacobian, every
   evaluation also computes the element derivatives and keeps them with a copy of a: the Jacobian that
   Newton asks for next, at the same a, then only assembles them.
 */
 PetscErrorCode JRHBMNonlinear(JRHBM h, const PetscReal *a, PetscReal *res, PetscReal *jac)
 {
-  const PetscInt  nm = h->cond ? h->nq : h->nm, nc = h->nc, n = h->ns, len = jac ? n + n * n : n; /* nm: the rows' length */
+  const PetscInt  nm = h->cond ? h->nq : h->nm, nc = h->nc, n = h->ns, nj = h->cond ? h->dbo[h->njb] : n * n, len = jac ? n + nj : n; /* nm: the rows' length; nj: the Jacobian's, condensed its joints' blocks */
   PetscReal      *loc    = h->buf;
   const PetscBool derivs = (PetscBool)(jac || h->jtype == JR_HBM_JACOBIAN_ANALYTIC);
   PetscBool       reuse  = PETSC_FALSE;
@@ -300,7 +304,7 @@ PetscErrorCode JRHBMNonlinear(JRHBM h, const PetscReal *a, PetscReal *res, Petsc
     PetscCallMPI(MPI_Bcast(loc, (PetscMPIInt)len, MPIU_REAL, 0, h->comm));
   }
   PetscCall(PetscArraycpy(res, loc, n));
-  if (jac) PetscCall(PetscArraycpy(jac, loc + n, n * n));
+  if (jac) PetscCall(PetscArraycpy(jac, loc + n, nj));
   PetscCall(PetscTime(&t1));
   h->telem += t1 - t0;
   h->nelem++;
@@ -373,7 +377,7 @@ PetscErrorCode JRHBMComputeResidual(JRHBM h, PetscReal w, Vec a, Vec R)
   PetscCall(VecGetArrayRead(a, &x));
   PetscCall(VecGetArray(R, &r));
   PetscCall(JRHBMNonlinear(h, x, r, NULL));
-  if (h->cond) PetscCall(JRHBMCondApply(h, w, x, r, NULL, NULL));
+  if (h->cond) PetscCall(JRHBMCondApply(h, w, x, r, NULL));
   else PetscCall(JRHBMLinear(h, w, x, r, NULL, NULL));
   PetscCall(VecRestoreArray(R, &r));
   PetscCall(VecRestoreArrayRead(a, &x));
@@ -395,9 +399,13 @@ PetscErrorCode JRHBMComputeJacobian(JRHBM h, PetscReal w, Vec a, Mat J, Vec Rw)
   PetscCall(VecGetArrayRead(a, &x));
   PetscCall(MatDenseGetArrayWrite(J, &j));
   if (Rw) PetscCall(VecGetArray(Rw, &rw));
-  PetscCall(JRHBMNonlinear(h, x, res, j));
-  if (h->cond) PetscCall(JRHBMCondApply(h, w, x, res, j, rw));
-  else PetscCall(JRHBMLinear(h, w, x, res, j, rw));
+  if (h->cond) { /* the Jacobian at the point, then formed */
+    PetscCall(JRHBMCondJacobianPoint(h, w, x, rw));
+    PetscCall(JRHBMCondJacobianForm(h, j, h->ns));
+  } else {
+    PetscCall(JRHBMNonlinear(h, x, res, j));
+    PetscCall(JRHBMLinear(h, w, x, res, j, rw));
+  }
   if (Rw) PetscCall(VecRestoreArray(Rw, &rw));
   PetscCall(MatDenseRestoreArrayWrite(J, &j));
   PetscCall(VecRestoreArrayRead(a, &x));

@@ -114,13 +114,15 @@ struct _p_JRHBM {
   PetscInt          njb, *jidx, *jio, *dbo; /* condensed: the joints; their unknowns joint by joint (each joint's rows in
                                      the mean, then in the sin and cos of each harmonic), jidx[jio[j]..jio[j+1]) joint j's;
                                      its block's offset in Db (njb + 1 each) */
-  PetscReal        *jd, *Db, *ju, jw; /* JRHBMJacobianSetPoint(), condensed: dg/dx (ns x ns), its joints' blocks, work (ns),
+  PetscInt         *qj, *ql;      /* condensed: each row's joint, and its place among the joint's rows (nq each) */
+  PetscReal        *Db, *ju, jw;  /* condensed, the Jacobian at a point (JRHBMCondJacobianPoint): dg/dx by its joints' blocks
+                                     (joint j's, b x b column-major on its unknowns jidx[jio[j]..], at dbo[j]), work (ns),
                                      the point's frequency */
   PetscReal        *pptab;        /* JRHBMResponse: sin, cos of each harmonic at 16 nc samples of a cycle */
   PetscReal         wq, wi;
   PetscBool         wq_ok, wi_ok;
   char              condinfo[256];
-  PetscReal        *ctmp;         /* ns + ns^2 work */
+  PetscReal        *ctmp;         /* ns work */
   PetscReal        *llu;          /* JRHBMLinearSolution(): LU of the Jacobian (ns x ns) and its pivots */
   PetscBLASInt     *lpiv;
   /* the extended periodic motion concept (JRHBMSetEPMC, src/hbm/epmc.c): no excitation, a negative mass-proportional
@@ -165,7 +167,7 @@ PETSC_INTERN PetscErrorCode JRHBMMonodromyDestroy(JRHBM);
 
 /* src/hbm/condense.c: the condensation onto the joints */
 PETSC_INTERN PetscErrorCode JRHBMCondenseSetUp(JRHBM, const JRElements *);
-PETSC_INTERN PetscErrorCode JRHBMCondApply(JRHBM, PetscReal, const PetscReal *, PetscReal *, PetscReal *, PetscReal *);
+PETSC_INTERN PetscErrorCode JRHBMCondApply(JRHBM, PetscReal, const PetscReal *, PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode JRHBMCondJacobianPoint(JRHBM, PetscReal, const PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode JRHBMCondJacobianMult(JRHBM, const PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode JRHBMCondJacobianForm(JRHBM, PetscReal *, PetscInt);
