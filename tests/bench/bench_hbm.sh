@@ -103,7 +103,7 @@ while IFS='|' read -r name np reps args; do
 done <<LIST
 lap1 8 mm, 4 zone joints x 3, linear field|1|3|$lap1 -rom_joints zones -rom_joint_motion linear -rom_elements 3
 runs/lap1_rom.opts reduced (24 rows, 109 modes)|2|3|-options_file runs/lap1_rom.opts -task frf -frf_stability 0
-runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|1|3|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
-runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|2|3|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
+runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|1|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
+runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|2|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
 LIST
 rm -f /tmp/jr_bench_new.$$ /tmp/jr_bench_kept.$$
