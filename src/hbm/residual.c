@@ -73,6 +73,26 @@ PetscErrorCode JRHBMGroupMotion(JRHBM h, JRHBMGroup *g, const PetscReal *x)
   PetscFunctionReturn(0);
 }
 
+/* The friction elements of g whose derivatives differ from their state at rest (dF/du = pt I, dF/dv = 0, dN/dv = pn
+   I) into g->sel; their number */
+static PetscInt SelectOutOfRest(JRHBMGroup *g, PetscInt nc)
+{
+  const PetscInt nloc = g->nloc;
+  PetscInt       nsel = 0;
+
+  for (PetscInt e = 0; e < nloc; e++) {
+    const PetscReal tol = 1e-12 * g->kt[e], toln = 1e-12 * PetscMax(g->kn[e], g->kt[e]);
+    PetscBool       rest = PETSC_TRUE;
+    for (PetscInt q = 0; q < nc * nc && rest; q++) {
+      const PetscBool diag = (PetscBool)(q / nc == q % nc);
+      if (PetscAbsReal(g->DU[q * nloc + e] - (diag ? g->pt[e] : 0.0)) > tol) rest = PETSC_FALSE;
+      if (g->normal && (PetscAbsReal(g->DV[q * nloc + e]) > toln || PetscAbsReal(g->DN[q * nloc + e] - (diag ? g->pn[e] : 0.0)) > toln)) rest = PETSC_FALSE;
+    }
+    if (!rest) g->sel[nsel++] = e;
+  }
+  return nsel;
+}
+
 /* Condensed, friction elements: their Jacobian at rest on the rows, Kq = sum_e pt_e c_e c_e^T + pn_e d_e d_e^T on each
    joint direction's block, and the blocks' widths qb (once per set-up) */
 static PetscErrorCode CondensedRestJacobian(JRHBM h, JRHBMGroup *g)
@@ -134,16 +154,7 @@ static PetscErrorCode GroupCondensed(JRHBM h, JRHBMGroup *g, const PetscReal *a,
             for (PetscInt r = 0; r < w; r++) blk[r + l * bj] += g->Kq[(r0 + r) + (r0 + l) * nq];
         }
       }
-      for (PetscInt e = 0; e < nloc; e++) {
-        const PetscReal tol = 1e-12 * g->kt[e], toln = 1e-12 * PetscMax(g->kn[e], g->kt[e]);
-        PetscBool       rest = PETSC_TRUE;
-        for (PetscInt q = 0; q < nc * nc && rest; q++) {
-          const PetscBool diag = (PetscBool)(q / nc == q % nc);
-          if (PetscAbsReal(g->DU[q * nloc + e] - (diag ? g->pt[e] : 0.0)) > tol) rest = PETSC_FALSE;
-          if (g->normal && (PetscAbsReal(g->DV[q * nloc + e]) > toln || PetscAbsReal(g->DN[q * nloc + e] - (diag ? g->pn[e] : 0.0)) > toln)) rest = PETSC_FALSE;
-        }
-        if (!rest) g->sel[nsel++] = e;
-      }
+      nsel = SelectOutOfRest(g, nc);
     } else
       for (PetscInt e = 0; e < nloc; e++) g->sel[nsel++] = e;
     for (PetscInt k = 0; k < nc; k++)
@@ -190,18 +201,7 @@ static PetscErrorCode GroupJacobian(JRHBM h, JRHBMGroup *g, PetscReal *loc)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(JR_HBMJacobian, 0, 0, 0, 0));
   if (g->split) {
-    /* which elements differ from their state at rest dF/du = pt I, dF/dv = 0, dN/dv = pn I */
-    nsel = 0;
-    for (PetscInt e = 0; e < nloc; e++) {
-      const PetscReal tol = 1e-12 * g->kt[e], toln = 1e-12 * PetscMax(g->kn[e], g->kt[e]);
-      PetscBool       stuck = PETSC_TRUE;
-      for (PetscInt q = 0; q < nc * nc && stuck; q++) {
-        const PetscBool diag = (PetscBool)(q / nc == q % nc);
-        if (PetscAbsReal(g->DU[q * nloc + e] - (diag ? g->pt[e] : 0.0)) > tol) stuck = PETSC_FALSE;
-        if (g->normal && (PetscAbsReal(g->DV[q * nloc + e]) > toln || PetscAbsReal(g->DN[q * nloc + e] - (diag ? g->pn[e] : 0.0)) > toln)) stuck = PETSC_FALSE;
-      }
-      if (!stuck) g->sel[nsel++] = e;
-    }
+    nsel    = SelectOutOfRest(g, nc);
     g->nsel = nsel;
     for (PetscInt i = 0; i < nm; i++) {
       for (PetscInt s = 0; s < nsel; s++) g->Rc[s + i * nsel] = GR[g->sel[s] + i * nloc];

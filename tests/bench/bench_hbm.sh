@@ -61,20 +61,27 @@ stage() { # np args... -> "solve_seconds lu_count gmres_count unknowns"
     awk '/JR 6 solve:/{t=$5} /--- Event Stage/{s6=($4=="6:")} s6&&/^JR_DenseLU /{l+=$2} s6&&/^JR_DenseGMRES /{g+=$2} /unknowns instead of/{for(i=1;i<=NF;i++) if($i=="unknowns") u=$(i-1)} /harmonics \+ mean, [0-9]+ unknowns/{for(i=1;i<=NF;i++) if($i=="unknowns;") v=$(i-1)} END{printf "%s %d %d %s\n", t, l, g, u != "" ? u : v}'
 }
 median() { sort -g | awk '{a[NR]=$1} END{print a[int((NR+1)/2)]}'; }
+# side_by_side OPTION: each case of the list on stdin (name|ranks|repetitions|arguments) with OPTION (the other
+# way) and without it (the default), interleaved; the medians, their ratio and the default's LU and GMRES counts
+side_by_side() {
+  local off=$1 name np reps args r new def lu gm un
+  while IFS='|' read -r name np reps args; do
+    : > /tmp/jr_bench_new.$$
+    : > /tmp/jr_bench_kept.$$
+    for r in $(seq "$reps"); do
+      stage "$np" $args $off >> /tmp/jr_bench_new.$$
+      stage "$np" $args >> /tmp/jr_bench_kept.$$
+    done
+    new=$(awk '{print $1}' /tmp/jr_bench_new.$$ | median)
+    def=$(awk '{print $1}' /tmp/jr_bench_kept.$$ | median)
+    read -r _ lu gm un < /tmp/jr_bench_kept.$$
+    printf "%-46s %-5s %8s %10.4g %10.4g %7.2f %6s %7s\n" "$name" "$np" "$un" "$new" "$def" "$(awk -v a=$new -v b=$def 'BEGIN{print a/b}')" "$lu" "$gm"
+  done
+  rm -f /tmp/jr_bench_new.$$ /tmp/jr_bench_kept.$$
+}
 echo "== dense Newton: the LU kept for GMRES against a new LU every iteration, solve stage [s], median of interleaved runs =="
 printf "%-46s %-5s %8s %10s %10s %7s %6s %7s\n" case ranks unknowns "new LU" kept speedup LU GMRES
-while IFS='|' read -r name np reps args; do
-  : > /tmp/jr_bench_new.$$
-  : > /tmp/jr_bench_kept.$$
-  for r in $(seq "$reps"); do
-    stage "$np" $args -hbm_snes_newtondense_reuse_its 0 >> /tmp/jr_bench_new.$$
-    stage "$np" $args >> /tmp/jr_bench_kept.$$
-  done
-  new=$(awk '{print $1}' /tmp/jr_bench_new.$$ | median)
-  kept=$(awk '{print $1}' /tmp/jr_bench_kept.$$ | median)
-  read -r _ lu gm un < /tmp/jr_bench_kept.$$
-  printf "%-46s %-5s %8s %10.4g %10.4g %7.2f %6s %7s\n" "$name" "$np" "$un" "$new" "$kept" "$(awk -v a=$new -v b=$kept 'BEGIN{print a/b}')" "$lu" "$gm"
-done <<LIST
+side_by_side "-hbm_snes_newtondense_reuse_its 0" <<LIST
 runs/default.opts (BRB, node-to-node)|2|3|-options_file runs/default.opts -task frf -frf_stability 0
 lap1 8 mm, 132 jenkins_nv, 30 modes|1|3|$lap1
 lap1 8 mm, 132 jenkins_nv, 30 modes|2|3|$lap1
@@ -83,27 +90,14 @@ runs/lap1_rom.opts reduced (24 rows, 109 modes)|2|1|-options_file runs/lap1_rom.
 runs/lap3_n2n.opts (506 jenkins_nv, adapted basis)|2|1|-options_file runs/lap3_n2n.opts -frf_stability 0
 runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|2|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
 LIST
-rm -f /tmp/jr_bench_new.$$ /tmp/jr_bench_kept.$$
 echo
 # A condensed reduced model's Jacobian by its products through the modes, formed only for an LU (default), against
 # formed at every iteration (-hbm_condense_products 0): the solve stage, interleaved runs, median.
 echo "== condensed models: the Jacobian by its products against formed every iteration, solve stage [s], median of interleaved runs =="
 printf "%-46s %-5s %8s %10s %10s %7s %6s %7s\n" case ranks unknowns formed products speedup LU GMRES
-while IFS='|' read -r name np reps args; do
-  : > /tmp/jr_bench_new.$$
-  : > /tmp/jr_bench_kept.$$
-  for r in $(seq "$reps"); do
-    stage "$np" $args -hbm_condense_products 0 >> /tmp/jr_bench_new.$$
-    stage "$np" $args >> /tmp/jr_bench_kept.$$
-  done
-  new=$(awk '{print $1}' /tmp/jr_bench_new.$$ | median)
-  kept=$(awk '{print $1}' /tmp/jr_bench_kept.$$ | median)
-  read -r _ lu gm un < /tmp/jr_bench_kept.$$
-  printf "%-46s %-5s %8s %10.4g %10.4g %7.2f %6s %7s\n" "$name" "$np" "$un" "$new" "$kept" "$(awk -v a=$new -v b=$kept 'BEGIN{print a/b}')" "$lu" "$gm"
-done <<LIST
+side_by_side "-hbm_condense_products 0" <<LIST
 lap1 8 mm, 4 zone joints x 3, linear field|1|3|$lap1 -rom_joints zones -rom_joint_motion linear -rom_elements 3
 runs/lap1_rom.opts reduced (24 rows, 109 modes)|2|3|-options_file runs/lap1_rom.opts -task frf -frf_stability 0
 runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|1|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
 runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|2|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
 LIST
-rm -f /tmp/jr_bench_new.$$ /tmp/jr_bench_kept.$$
