@@ -61,15 +61,17 @@ static PetscErrorCode FDColumn(JRHBM hbm, Vec a, PetscInt j, double h, double w,
 }
 
 /* the Jacobian and dR/dw of hbm at (a, w) against central finite differences (steps h in a, 1e-6 w in w): the largest
-   differences ej, ew and the largest entries jmax, wmax */
-static PetscErrorCode FDCheck(JRHBM hbm, Vec a, double h, double w, double *ej, double *jmax, double *ew, double *wmax)
+   differences ej, ew and the largest entries jmax, wmax; op (if not NULL): the Jacobian as the continuation's solves
+   take it (JRHBMJacobianSetPoint, its products JRHBMJacobianMult on the unit vectors, its array JRHBMJacobianForm)
+   against the same differences, relative to the largest entry: op[0] the products, op[1] the array, op[2] dR/dw */
+static PetscErrorCode FDCheck(JRHBM hbm, Vec a, double h, double w, double *ej, double *jmax, double *ew, double *wmax, double *op)
 {
   Vec                ap, R1, R2, Rw;
   Mat                J;
   PetscInt           n;
   const PetscScalar *Ja, *rw, *r1, *r2;
   const double       hw = 1e-6 * w;
-  double            *fd;
+  double            *fd, *fdw, fmaxj = 0;
 
   PetscFunctionBeginUser;
   *ej = *jmax = *ew = *wmax = 0.0;
@@ -79,30 +81,58 @@ static PetscErrorCode FDCheck(JRHBM hbm, Vec a, double h, double w, double *ej, 
   PetscCall(VecDuplicate(a, &R2));
   PetscCall(VecDuplicate(a, &Rw));
   PetscCall(VecGetSize(a, &n));
-  PetscCall(JRHBMComputeJacobian(hbm, w, a, J, Rw));
-  PetscCall(MatDenseGetArrayRead(J, &Ja));
-  PetscCall(VecGetArrayRead(Rw, &rw));
-  PetscCall(PetscMalloc1(n, &fd));
-  for (PetscInt j = 0; j < n; j++) {
-    PetscCall(FDColumn(hbm, a, j, h, w, ap, R1, R2, fd));
-    for (PetscInt i = 0; i < n; i++) {
-      *ej   = fmax(*ej, fabs(Ja[i + j * n] - fd[i]));
-      *jmax = fmax(*jmax, fabs(Ja[i + j * n]));
-    }
-  }
-  PetscCall(PetscFree(fd));
+  PetscCall(PetscMalloc2(n * n, &fd, n, &fdw));
+  for (PetscInt j = 0; j < n; j++) PetscCall(FDColumn(hbm, a, j, h, w, ap, R1, R2, fd + j * n));
+  for (PetscInt i = 0; i < n * n; i++) fmaxj = fmax(fmaxj, fabs(fd[i]));
   PetscCall(JRHBMComputeResidual(hbm, w + hw, a, R1));
   PetscCall(JRHBMComputeResidual(hbm, w - hw, a, R2));
   PetscCall(VecGetArrayRead(R1, &r1));
   PetscCall(VecGetArrayRead(R2, &r2));
-  for (PetscInt i = 0; i < n; i++) {
-    *ew   = fmax(*ew, fabs(rw[i] - (r1[i] - r2[i]) / (2 * hw)));
-    *wmax = fmax(*wmax, fabs(rw[i]));
-  }
+  for (PetscInt i = 0; i < n; i++) fdw[i] = (r1[i] - r2[i]) / (2 * hw);
   PetscCall(VecRestoreArrayRead(R1, &r1));
   PetscCall(VecRestoreArrayRead(R2, &r2));
+  PetscCall(JRHBMComputeJacobian(hbm, w, a, J, Rw));
+  PetscCall(MatDenseGetArrayRead(J, &Ja));
+  PetscCall(VecGetArrayRead(Rw, &rw));
+  for (PetscInt i = 0; i < n * n; i++) {
+    *ej   = fmax(*ej, fabs(Ja[i] - fd[i]));
+    *jmax = fmax(*jmax, fabs(Ja[i]));
+  }
+  for (PetscInt i = 0; i < n; i++) {
+    *ew   = fmax(*ew, fabs(rw[i] - fdw[i]));
+    *wmax = fmax(*wmax, fabs(rw[i]));
+  }
   PetscCall(VecRestoreArrayRead(Rw, &rw));
   PetscCall(MatDenseRestoreArrayRead(J, &Ja));
+  if (op) {
+    PetscScalar *e, *y, *A;
+    double       wm = 0;
+    op[0] = op[1] = op[2] = 0;
+    PetscCall(PetscCalloc3(n, &e, n, &y, n * n, &A));
+    PetscCall(JRHBMJacobianSetPoint(hbm, w, a, J, Rw));
+    PetscCall(JRHBMJacobianForm(hbm, J, A, n));
+    for (PetscInt j = 0; j < n; j++) {
+      e[j] = 1.0;
+      PetscCall(JRHBMJacobianMult(hbm, J, e, y));
+      e[j] = 0.0;
+      for (PetscInt i = 0; i < n; i++) {
+        op[0] = fmax(op[0], fabs(y[i] - fd[i + j * n]));
+        op[1] = fmax(op[1], fabs(A[i + j * n] - fd[i + j * n]));
+      }
+      if (j == 0) PetscCall(JRHBMComputeResidual(hbm, w + hw, a, R1)); /* the products after another evaluation: still at the point set */
+    }
+    PetscCall(VecGetArrayRead(Rw, &rw));
+    for (PetscInt i = 0; i < n; i++) {
+      op[2] = fmax(op[2], fabs(rw[i] - fdw[i]));
+      wm    = fmax(wm, fabs(rw[i]));
+    }
+    PetscCall(VecRestoreArrayRead(Rw, &rw));
+    op[0] /= fmaxj;
+    op[1] /= fmaxj;
+    op[2] /= wm;
+    PetscCall(PetscFree3(e, y, A));
+  }
+  PetscCall(PetscFree2(fd, fdw));
   PetscCall(VecDestroy(&ap));
   PetscCall(VecDestroy(&R1));
   PetscCall(VecDestroy(&R2));
@@ -226,67 +256,6 @@ static void TimeIntegrate(double m, double c, double k, double kt, double r, dou
       }
     }
   }
-}
-
-/* The Jacobian as the continuation's solves take it (JRHBMJacobianSetPoint, its products JRHBMJacobianMult on the
-   unit vectors and its array JRHBMJacobianForm) and dR/dw against central finite differences (steps h in a, 1e-6 w in
-   w): the largest differences of the products' columns and of the array, relative to the largest entry, and of dR/dw */
-static PetscErrorCode FDCheckOp(JRHBM hbm, Vec a, double h, double w, double *emult, double *eform, double *ew)
-{
-  Vec          ap, R1, R2, Rw;
-  Mat          J;
-  PetscInt     n;
-  PetscScalar *e, *y, *A;
-  double       jmax = 0, wmax = 0, *fd;
-
-  PetscFunctionBeginUser;
-  *emult = *eform = *ew = 0.0;
-  PetscCall(JRHBMCreateVecs(hbm, NULL, &J));
-  PetscCall(VecDuplicate(a, &ap));
-  PetscCall(VecDuplicate(a, &R1));
-  PetscCall(VecDuplicate(a, &R2));
-  PetscCall(VecDuplicate(a, &Rw));
-  PetscCall(VecGetSize(a, &n));
-  PetscCall(PetscCalloc4(n, &e, n, &y, n * n, &A, n, &fd));
-  PetscCall(JRHBMJacobianSetPoint(hbm, w, a, J, Rw));
-  PetscCall(JRHBMJacobianForm(hbm, J, A, n));
-  for (PetscInt j = 0; j < n; j++) { /* the products after the other evaluations of the loop: still at the point set */
-    e[j] = 1.0;
-    PetscCall(JRHBMJacobianMult(hbm, J, e, y));
-    e[j] = 0.0;
-    PetscCall(FDColumn(hbm, a, j, h, w, ap, R1, R2, fd));
-    for (PetscInt i = 0; i < n; i++) {
-      *emult = fmax(*emult, fabs(y[i] - fd[i]));
-      *eform = fmax(*eform, fabs(A[i + j * n] - fd[i]));
-      jmax   = fmax(jmax, fabs(fd[i]));
-    }
-  }
-  {
-    const double       hw = 1e-6 * w;
-    const PetscScalar *r1, *r2, *rw;
-    PetscCall(JRHBMComputeResidual(hbm, w + hw, a, R1));
-    PetscCall(JRHBMComputeResidual(hbm, w - hw, a, R2));
-    PetscCall(VecGetArrayRead(R1, &r1));
-    PetscCall(VecGetArrayRead(R2, &r2));
-    PetscCall(VecGetArrayRead(Rw, &rw));
-    for (PetscInt i = 0; i < n; i++) {
-      *ew  = fmax(*ew, fabs(rw[i] - (r1[i] - r2[i]) / (2 * hw)));
-      wmax = fmax(wmax, fabs(rw[i]));
-    }
-    PetscCall(VecRestoreArrayRead(Rw, &rw));
-    PetscCall(VecRestoreArrayRead(R1, &r1));
-    PetscCall(VecRestoreArrayRead(R2, &r2));
-  }
-  *emult /= jmax;
-  *eform /= jmax;
-  *ew /= wmax;
-  PetscCall(PetscFree4(e, y, A, fd));
-  PetscCall(VecDestroy(&ap));
-  PetscCall(VecDestroy(&R1));
-  PetscCall(VecDestroy(&R2));
-  PetscCall(VecDestroy(&Rw));
-  PetscCall(MatDestroy(&J));
-  PetscFunctionReturn(0);
 }
 
 int main(int argc, char **argv)
@@ -513,15 +482,15 @@ int main(int argc, char **argv)
       for (PetscInt i = 0; i < n; i++) x[i] = 6e-6 * (2.0 * rand() / RAND_MAX - 1.0) / (1 + i / 4);
       PetscCall(VecRestoreArray(a, &x));
     }
-    PetscCall(FDCheck(p.hbm, a, 1e-6 * 6e-6, w, &ej, &jmax, &ew, &wmax));
+    double eop[3];
+    PetscCall(FDCheck(p.hbm, a, 1e-6 * 6e-6, w, &ej, &jmax, &ew, &wmax, eop));
     {
       PetscInt cnt[4];
       PetscCall(JRHBMContactStates(p.hbm, a, cnt));
       CHECK(ej < 1e-6 * jmax && ew < 1e-6 * wmax && cnt[2] >= 1 && cnt[3] >= 1, "HBM Jacobian, H = %" PetscInt_FMT ", 4 modes, jenkins + jenkins_nv + cubic, two gaps (states: %" PetscInt_FMT " stick, %" PetscInt_FMT " slip, %" PetscInt_FMT " separating part of the cycle, %" PetscInt_FMT " open throughout): dR/da %.1e, dR/dw %.1e relative to finite differences", H, cnt[0], cnt[1], cnt[2], cnt[3], ej / jmax, ew / wmax);
     }
     {
-      double em, ef, eo;
-      PetscCall(FDCheckOp(p.hbm, a, 1e-6 * 6e-6, w, &em, &ef, &eo));
+      const double em = eop[0], ef = eop[1], eo = eop[2];
       CHECK(em < 1e-6 && ef < 1e-6 && eo < 1e-6, "HBM Jacobian as the continuation takes it (modal unknowns), H = %" PetscInt_FMT ": its products on the unit vectors %.1e, its array %.1e, dR/dw %.1e relative to finite differences", H, em, ef, eo);
     }
     PetscCall(VecDestroy(&a));
@@ -636,11 +605,11 @@ int main(int argc, char **argv)
       for (PetscInt i = 0; i < ns; i++) v[i] = 6e-6 * (2.0 * rand() / RAND_MAX - 1.0) / (1 + i / 6);
       PetscCall(VecRestoreArray(x, &v));
     }
-    PetscCall(FDCheck(p.hbm, x, 1e-6 * 6e-6, w, &ej, &jmax, &ew, &wmax));
+    double eop[3];
+    PetscCall(FDCheck(p.hbm, x, 1e-6 * 6e-6, w, &ej, &jmax, &ew, &wmax, eop));
     CHECK(ej < 1e-6 * jmax && ew < 1e-6 * wmax, "condensed Jacobian, H = %" PetscInt_FMT ", jenkins + jenkins_nv + cubic on 3 joints, proportional viscous + structural damping: dr/dx %.1e, dr/dw %.1e relative to finite differences", H, ej / jmax, ew / wmax);
     {
-      double em, ef, eo;
-      PetscCall(FDCheckOp(p.hbm, x, 1e-6 * 6e-6, w, &em, &ef, &eo));
+      const double em = eop[0], ef = eop[1], eo = eop[2];
       CHECK(em < 1e-6 && ef < 1e-6 && eo < 1e-6, "condensed Jacobian as the continuation takes it, H = %" PetscInt_FMT ": its products through the modes (on the unit vectors) %.1e, its array formed for an LU %.1e, dr/dw %.1e relative to finite differences", H, em, ef, eo);
     }
     /* the same solution as the modal equations: solve both at 250 Hz at a level where elements slip, expand the
@@ -702,11 +671,11 @@ int main(int argc, char **argv)
     PetscCall(JRHBMSetForceLevel(q.hbm, 2.0));
     PetscCall(JRHBMCreateVecs(p.hbm, &x, NULL));
     PetscCall(CondensedVsModal(p.hbm, q.hbm, w, x, &conv, &da, cnt));
-    PetscCall(FDCheck(p.hbm, x, 1e-6 * 1e-5, w, &ej, &jmax, &ew, &wmax));
+    double eop[3];
+    PetscCall(FDCheck(p.hbm, x, 1e-6 * 1e-5, w, &ej, &jmax, &ew, &wmax, eop));
     CHECK(ej < 1e-6 * jmax && ew < 1e-6 * wmax, "row-space condensed Jacobian, H = %" PetscInt_FMT ", at the solution at 60 Hz: dr/dx %.1e, dr/dw %.1e relative to finite differences", H, ej / jmax, ew / wmax);
     {
-      double em, ef, eo;
-      PetscCall(FDCheckOp(p.hbm, x, 1e-6 * 1e-5, w, &em, &ef, &eo));
+      const double em = eop[0], ef = eop[1], eo = eop[2];
       CHECK(em < 1e-6 && ef < 1e-6 && eo < 1e-6, "row-space condensed Jacobian as the continuation takes it, H = %" PetscInt_FMT ", at the solution at 60 Hz: its products through the modes (on the unit vectors) %.1e, its array formed for an LU %.1e, dr/dw %.1e relative to finite differences", H, em, ef, eo);
     }
     CHECK(conv && da < 1e-8 && cnt[1] > 0 && cnt[2] + cnt[3] > 0, "row-space condensed solution at 60 Hz, H = %" PetscInt_FMT ", expanded to the modes = the modal equations' within %.1e (relative; states %" PetscInt_FMT " stick, %" PetscInt_FMT " slip, %" PetscInt_FMT " separating or open)", H, da, cnt[0], cnt[1], cnt[2] + cnt[3]);
