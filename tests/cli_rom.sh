@@ -383,3 +383,4 @@ expect_error "bad -hbm_condense" "maybe" $J -task frf $brb -frf_force 1 -rom_joi
 expect_error "negative selection weight" "-rom_fit_select_total: -1.: the weights must be non-negative" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_select first -rom_fit_select_total 20,-1 -frf_output_file ''
 expect_error "bad -rom_fit_select" "best" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_fit_select best -frf_output_file ''
 expect_error "save a first reduction" "-rom_save saves a second-reduction model" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_save "$tmp/x.h5" -frf_output_file ''
+expect_error "reduced model saved over the results" "-rom_save $tmp/col_rom.h5: this run writes its results to that file (-frf_output_file $tmp/col)" $J -task frf $brb -frf_force 1 -rom_joints sides -rom_elements 3 -rom_save "$tmp/col_rom.h5" -frf_output_file "$tmp/col"

@@ -111,5 +111,6 @@ PETSC_EXTERN PetscErrorCode JROptionsWarnUnused(MPI_Comm);
 PETSC_EXTERN PetscErrorCode JROptionsHelpSolvers(MPI_Comm, PetscBool, PetscBool, PetscBool, PetscBool);
 /* The directory of an output base name exists (created if missing) and is writable, else an error naming option */
 PETSC_EXTERN PetscErrorCode JRFileCheckOutput(MPI_Comm, const char[], const char[]);
+PETSC_EXTERN PetscErrorCode JRFileCheckNotOutput(MPI_Comm, const char[], const char[], const char[], const char[], const char *const[]);
 
 #endif

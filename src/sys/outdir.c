@@ -54,3 +54,29 @@ PetscErrorCode JRFileCheckOutput(MPI_Comm comm, const char opt[], const char bas
   PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "%s %s: cannot write in the directory %s: %s", opt, base, dir, strerror(err));
   PetscFunctionReturn(0);
 }
+
+/* The same file: equal names once a leading "./" is dropped */
+static PetscBool SameName(const char a[], const char b[])
+{
+  while (a[0] == '.' && a[1] == '/' && a[2] != '/') a += 2;
+  while (b[0] == '.' && b[1] == '/' && b[2] != '/') b += 2;
+  return (PetscBool)!strcmp(a, b);
+}
+
+/*
+  JRFileCheckNotOutput - the file given by option opt is none of the result files the run writes under the output base
+  (option baseopt): base followed by each of the NULL-terminated suffixes sfx (with its extension); a run would
+  otherwise overwrite it with its results. An empty file or base passes. Collective (every rank has the options).
+*/
+PetscErrorCode JRFileCheckNotOutput(MPI_Comm comm, const char opt[], const char file[], const char baseopt[], const char base[], const char *const sfx[])
+{
+  char name[PETSC_MAX_PATH_LEN + 32];
+
+  PetscFunctionBeginUser;
+  if (!file || !file[0] || !base || !base[0]) PetscFunctionReturn(0);
+  for (PetscInt i = 0; sfx[i]; i++) {
+    PetscCall(PetscSNPrintf(name, sizeof(name), "%s%s", base, sfx[i]));
+    PetscCheck(!SameName(file, name), comm, PETSC_ERR_ARG_INCOMP, "%s %s: this run writes its results to that file (%s %s); name another file", opt, file, baseopt, base);
+  }
+  PetscFunctionReturn(0);
+}

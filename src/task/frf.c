@@ -228,6 +228,10 @@ static PetscErrorCode SetFromOptions(FRFRun *r)
   PetscCall(JRPostSetOutput(r->post, r->base, r->plot));
   PetscCall(JROptionsCheck(comm, r->nlmodes ? "-task nlmodes" : r->fe ? (r->compare ? "-task compare" : "-task frf on an FE model") : "-task frf on a matrices model"));
   PetscCall(JRFileCheckOutput(comm, r->nlmodes ? "-nlm_output_file" : "-frf_output_file", r->base));
+  if (r->fe) { /* the reduced model's file is not one of the results' */
+    const char *const results[] = {".h5", "_n2n.h5", "_rom.h5", "_preload.h5", "_modes.h5", "_n2n_nlmodes.h5", "_rom_nlmodes.h5", NULL};
+    PetscCall(JRFileCheckNotOutput(comm, "-rom_save", r->romsave, r->nlmodes ? "-nlm_output_file" : "-frf_output_file", r->base, results));
+  }
   if (r->fe && r->romload[0] && !r->compare) PetscCall(JRHBMDestroy(&r->hbm));
   PetscFunctionReturn(0);
 }
