@@ -12,7 +12,11 @@
       most 2 GMRES iterations (A M^-1 = I + u (M^-T v)^T has a minimal polynomial of degree 2) without a new LU;
       an unrelated matrix gets a new LU;
    6. the cubic system with 96 unknowns: the same root and the same number of iterations with the LU kept as
-      with a new LU at every iteration (-snes_newtondense_reuse_its 0), and fewer LU than iterations.
+      with a new LU at every iteration (-snes_newtondense_reuse_its 0), and fewer LU than iterations;
+   7. unit columns (a condensed model's joints whose elements are all apart, with a bordered row): a 160 x 160
+      random matrix with 48 of its columns e_j but for a random last row; the solution's residual, computed here,
+      within 1e-13, from a factored matrix of 112 (the unit columns eliminated); a rank-1 change of a kept column
+      solved by GMRES on those factors in at most 2 iterations; those columns' 1 made 1.5: an LU of all 160, exact.
 */
 #include "jrtest.h"
 
@@ -198,6 +202,62 @@ static PetscErrorCode DenseLUChecks(void)
   PetscFunctionReturn(0);
 }
 
+/* 7. JRDenseLU with unit columns */
+static PetscErrorCode UnitColumnChecks(void)
+{
+  const PetscInt n = 160, nu = 48;
+  PetscReal     *A, *B, *b, *x, *u;
+  PetscRandom    rnd;
+  JRDenseLU      d;
+  PetscBool      singular;
+  PetscInt       f0, f1, i0, i1, np;
+  PetscReal      res;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc5(n * n, &A, n * n, &B, n, &b, n, &x, n, &u));
+  PetscCall(PetscRandomCreate(PETSC_COMM_SELF, &rnd));
+  PetscCall(PetscRandomSetInterval(rnd, -1.0, 1.0));
+  PetscCall(PetscRandomSetSeed(rnd, 11));
+  PetscCall(PetscRandomSeed(rnd));
+  for (PetscInt i = 0; i < n * n; i++) PetscCall(PetscRandomGetValueReal(rnd, &A[i]));
+  for (PetscInt i = 0; i < n; i++) {
+    A[i + i * n] += 2.0 * PetscSqrtReal((PetscReal)n);
+    PetscCall(PetscRandomGetValueReal(rnd, &b[i]));
+    PetscCall(PetscRandomGetValueReal(rnd, &u[i]));
+  }
+  for (PetscInt k = 0; k < nu; k++) { /* every third column from 1: e_j but for the last row */
+    const PetscInt j = 1 + 3 * k;
+    for (PetscInt i = 0; i < n - 1; i++) A[i + j * n] = i == j ? 1.0 : 0.0;
+  }
+  PetscCall(JRDenseLUCreate(&d));
+  PetscCall(PetscArraycpy(x, b, n));
+  PetscCall(JRDenseLUSolve(d, n, A, n, 0, x, &singular));
+  res = Residual(n, A, x, b);
+  PetscCall(JRDenseLUGetCounts(d, &f0, NULL, &i0));
+  PetscCall(JRDenseLUGetFactoredSize(d, &np));
+  CHECK(!singular && f0 == 1 && np == n - nu && res < 1e-13, "JRDenseLU, unit columns: an LU of %d (the %d unit columns eliminated from %d), residual %.1e", (int)np, (int)nu, (int)n, (double)res);
+  /* a rank-1 change of a kept column (0): GMRES on the factors */
+  PetscCall(PetscArraycpy(B, A, n * n));
+  for (PetscInt i = 0; i < n; i++) B[i] += 0.5 * u[i];
+  PetscCall(PetscArraycpy(x, b, n));
+  PetscCall(JRDenseLUSolve(d, n, B, n, 0, x, &singular));
+  res = Residual(n, B, x, b);
+  PetscCall(JRDenseLUGetCounts(d, &f1, NULL, &i1));
+  CHECK(!singular && f1 == 1 && i1 - i0 <= 2 && res < 1e-12, "JRDenseLU, unit columns: a rank-1 change solved by GMRES on those factors in %d iterations (<= 2), residual %.1e (< 1e-12), no new LU", (int)(i1 - i0), (double)res);
+  /* no longer unit: every column kept, exact */
+  PetscCall(JRDenseLUForget(d));
+  for (PetscInt k = 0; k < nu; k++) A[(1 + 3 * k) * (n + 1)] = 1.5;
+  PetscCall(PetscArraycpy(x, b, n));
+  PetscCall(JRDenseLUSolve(d, n, A, n, 0, x, &singular));
+  res = Residual(n, A, x, b);
+  PetscCall(JRDenseLUGetFactoredSize(d, &np));
+  CHECK(!singular && np == n && res < 1e-13, "JRDenseLU: the same columns with 1.5 on the diagonal: an LU of all %d, residual %.1e", (int)np, (double)res);
+  PetscCall(JRDenseLUDestroy(&d));
+  PetscCall(PetscRandomDestroy(&rnd));
+  PetscCall(PetscFree5(A, B, b, x, u));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   Prob                p;
@@ -248,6 +308,7 @@ int main(int argc, char **argv)
   PetscCall(Solve(&p, SNESNEWTONDENSE, "e_", x0, x1, &it1, &r1));
   CHECK(r1 == SNES_DIVERGED_LINEAR_SOLVE, "x^2 + 1 from 0 (zero Jacobian): %s", SNESConvergedReasons[r1]);
   PetscCall(DenseLUChecks());
+  PetscCall(UnitColumnChecks());
   /* 6. the cubic system with 96 unknowns: the LU kept against a new one at every iteration */
   p.kind = 1;
   p.n    = 96;

@@ -81,6 +81,9 @@ typedef struct {
 } JRDenseOp;
 PETSC_EXTERN PetscErrorCode JRDenseLUSolveOp(JRDenseLU, PetscInt, const JRDenseOp *, PetscScalar *, PetscInt, PetscReal, PetscScalar *, PetscBool *);
 PETSC_EXTERN PetscErrorCode JRDenseLUGetCounts(JRDenseLU, PetscInt *, PetscInt *, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRDenseLUGetFactoredSize(JRDenseLU, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRDenseLUSetEliminate(JRDenseLU, PetscBool);
+PETSC_EXTERN PetscErrorCode JRDenseLUGetEliminate(JRDenseLU, PetscBool *);
 PETSC_EXTERN PetscErrorCode SNESNewtonDenseGetDenseLU(SNES, JRDenseLU *);
 PETSC_EXTERN PetscErrorCode SNESNewtonDenseSetOperator(SNES, const JRDenseOp *);
 PETSC_EXTERN PetscErrorCode SNESNewtonDenseUsesOperator(SNES, PetscBool *);

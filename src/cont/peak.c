@@ -71,6 +71,17 @@ PetscErrorCode JRContPlaneWorkCreate(JRCont c)
   PetscCall(PetscMalloc6((c->n + 1) * (c->n + 1), &pw->B, (c->n + 1) * (c->n + 1), &pw->lu, c->n + 1, &pw->dx, c->n + 1, &pw->W, c->n + 1, &pw->x0, c->n + 1, &pw->d));
   PetscCall(PetscMalloc3(c->n + 1, &pw->piv, c->n + 1, &pw->xm, c->n + 1, &pw->row));
   PetscCall(JRDenseLUCreate(&pw->dlu));
+  { /* as the harmonic-balance solver's (-hbm_snes_newtondense_eliminate) */
+    SNES      hs;
+    JRDenseLU hl = NULL;
+    PetscBool el;
+    PetscCall(JRHBMGetSNES(c->hbm, &hs));
+    PetscCall(SNESNewtonDenseGetDenseLU(hs, &hl));
+    if (hl) {
+      PetscCall(JRDenseLUGetEliminate(hl, &el));
+      PetscCall(JRDenseLUSetEliminate(pw->dlu, el));
+    }
+  }
   pw->bo = (JRContBordered){c->hbm, pw->J, pw->Rw, pw->row, c->n};
   c->pw = pw;
   PetscFunctionReturn(0);

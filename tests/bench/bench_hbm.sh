@@ -101,3 +101,18 @@ runs/lap1_rom.opts reduced (24 rows, 109 modes)|2|3|-options_file runs/lap1_rom.
 runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|1|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
 runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|2|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
 LIST
+echo
+# The unit columns of the joints whose elements are all apart eliminated before the LU (default) against the whole
+# matrix factored (-hbm_snes_newtondense_eliminate 0): lap3's second reduction read back (-rom_load, -modes_load:
+# written once per rank count), so that each run is its solve; the solve stage, 5 interleaved runs, median.
+echo "== condensed models: joints apart eliminated before the LU against the whole matrix, solve stage [s], median of interleaved runs =="
+printf "%-46s %-5s %8s %10s %10s %7s %6s %7s\n" case ranks unknowns whole eliminated speedup LU GMRES
+rl=$(mktemp -d)
+for np in 1 2; do
+  mpiexec -n $np bin/jointrom -options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0 -frf_output_file '' -rom_save "$rl/rom$np.h5" -modes_save "$rl/modes$np.h5" < /dev/null > /dev/null 2>&1
+done
+side_by_side "-hbm_snes_newtondense_eliminate 0" <<LIST
+runs/lap3_shapes_rom_thesis.opts reduced, read back (84 rows)|1|5|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0 -rom_load $rl/rom1.h5 -modes_load $rl/modes1.h5
+runs/lap3_shapes_rom_thesis.opts reduced, read back (84 rows)|2|5|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0 -rom_load $rl/rom2.h5 -modes_load $rl/modes2.h5
+LIST
+rm -rf "$rl"
