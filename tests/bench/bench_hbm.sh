@@ -85,9 +85,12 @@ side_by_side "-hbm_snes_newtondense_reuse_its 0" <<LIST
 runs/default.opts (BRB, node-to-node)|2|3|-options_file runs/default.opts -task frf -frf_stability 0
 lap1 8 mm, 132 jenkins_nv, 30 modes|1|3|$lap1
 lap1 8 mm, 132 jenkins_nv, 30 modes|2|3|$lap1
+runs/lap3_n2n.opts (506 jenkins_nv, adapted basis)|2|1|-options_file runs/lap3_n2n.opts -frf_stability 0
+LIST
+# a reduced model's solvers take the prefix rom_
+side_by_side "-rom_hbm_snes_newtondense_reuse_its 0" <<LIST
 lap1 8 mm, 4 zone joints x 3, linear field|1|3|$lap1 -rom_joints zones -rom_joint_motion linear -rom_elements 3
 runs/lap1_rom.opts reduced (24 rows, 109 modes)|2|1|-options_file runs/lap1_rom.opts -task frf -frf_stability 0
-runs/lap3_n2n.opts (506 jenkins_nv, adapted basis)|2|1|-options_file runs/lap3_n2n.opts -frf_stability 0
 runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|2|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
 LIST
 echo
@@ -103,7 +106,7 @@ runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|2|1|-options_file runs/lap3_s
 LIST
 echo
 # The unit columns of the joints whose elements are all apart eliminated before the LU (default) against the whole
-# matrix factored (-hbm_snes_newtondense_eliminate 0): lap3's second reduction read back (-rom_load, -modes_load:
+# matrix factored (-rom_hbm_snes_newtondense_eliminate 0): lap3's second reduction read back (-rom_load, -modes_load:
 # written once per rank count), so that each run is its solve; the solve stage, 5 interleaved runs, median.
 echo "== condensed models: joints apart eliminated before the LU against the whole matrix, solve stage [s], median of interleaved runs =="
 printf "%-46s %-5s %8s %10s %10s %7s %6s %7s\n" case ranks unknowns whole eliminated speedup LU GMRES
@@ -111,7 +114,7 @@ rl=$(mktemp -d)
 for np in 1 2; do
   mpiexec -n $np bin/jointrom -options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0 -frf_output_file '' -rom_save "$rl/rom$np.h5" -modes_save "$rl/modes$np.h5" < /dev/null > /dev/null 2>&1
 done
-side_by_side "-hbm_snes_newtondense_eliminate 0" <<LIST
+side_by_side "-rom_hbm_snes_newtondense_eliminate 0" <<LIST
 runs/lap3_shapes_rom_thesis.opts reduced, read back (84 rows)|1|5|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0 -rom_load $rl/rom1.h5 -modes_load $rl/modes1.h5
 runs/lap3_shapes_rom_thesis.opts reduced, read back (84 rows)|2|5|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0 -rom_load $rl/rom2.h5 -modes_load $rl/modes2.h5
 LIST
