@@ -323,6 +323,7 @@ static PetscErrorCode SetUpInterface(FRFRun *r)
     PetscCall(JRInterfaceGetElements(r->itf, &el, &r->pair));
     PetscCall(JRElementsDuplicate(el, &r->el));
   }
+  PetscCall(JRPreloadDestroy(&r->pre)); /* the elements have its results: its factorisation of the structure is freed before the modes make theirs */
   PetscCall(JRReduceAssignJoints(r->red, r->model, &r->el, r->pair));
   PetscCall(PetscLogStagePop());
   PetscCall(JRInterfaceView(r->itf, NULL));
