@@ -7,7 +7,8 @@
 # Targets: analytic >= 20x faster than fd at 10^4 elements; 2 ranks >= 1.7x faster at 10^5.
 # Then the dense Newton's LU kept as GMRES's preconditioner against a new LU at every iteration, side by side on
 # the BRB, lap1 node-to-node and reduced models (the solve stage; the LU and GMRES solves counted); and a condensed
-# reduced model's Jacobian by its products against formed at every iteration, side by side.
+# reduced model's Jacobian by its products against formed at every iteration, side by side; and lap3's reduced model
+# with its joints apart eliminated from each LU against the whole matrix factored, side by side.
 cd "$(dirname "$0")/../.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export OPENBLAS_NUM_THREADS=1
@@ -51,7 +52,7 @@ for H in 1 3; do
 done
 echo
 # The dense Newton's LU kept as GMRES's preconditioner (default) against a new LU at every iteration
-# (-hbm_snes_newtondense_reuse_its 0): the solve stage (harmonic balance, continuation, peaks; stability off),
+# (-hbm_snes_newtondense_reuse_its 0; -rom_hbm_snes_newtondense_reuse_its 0 for a reduced model): the solve stage (harmonic balance, continuation, peaks; stability off),
 # interleaved runs, median; the unknowns of each solve and the LU and GMRES counts of the default's run.
 lap1="-task frf -model_type lap1 -model_mesh_h 0.008 -preload_force 10000 -interface_element jenkins_nv -interface_kt 1e8 -interface_mu 0.1 -hbm_basis free -hbm_modes 30 -hbm_gamma 0.002 -frf_force 0.0001,0.01,1 -frf_fmin 120 -frf_fmax 160 -cont_monitor 0 -frf_stability 0"
 stage() { # np args... -> "solve_seconds lu_count gmres_count unknowns"
