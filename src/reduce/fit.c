@@ -498,7 +498,7 @@ static PetscErrorCode FitCoupled(FitCtx *ctx)
   q.nr  = nr;
   q.fn  = JRFitCoupledResidual;
   q.ctx = &cf;
-  PetscCall(JRLSQSolveNonNegative(&q, y, &r0, &r1)); /* linear in the forces: exact */
+  PetscCall(JRLSQSolve(&q, y, 0.0, &r0, &r1, &its));
   PetscCall(CoupledNorms(&cf, y, r, J, &own1, &tot1));
   for (PetscInt k = 0; k < cf.nj; k++) {
     JointFit      *f  = &ctx->jf[cf.jl[k]];

@@ -191,7 +191,7 @@ static PetscErrorCode FitConvex(FitCtx *ctx, PetscInt j)
   q.nr  = FitRows(t);
   q.fn  = JRFitFixedResidual;
   q.ctx = &fx;
-  PetscCall(JRLSQSolveNonNegative(&q, y, &rms0, &rms)); /* linear in the forces: exact */
+  PetscCall(JRLSQSolve(&q, y, 0.0, &rms0, &rms, &its1));
   for (PetscInt i = 0; i < mj; i++) {
     x[i]      = t->fs * y[i] / (fx.delta[i] * t->ks);
     x[mj + i] = y[i];

@@ -121,34 +121,6 @@ PetscErrorCode JRLSQSolve(JRLSQ *q, PetscReal x[], PetscReal lo, PetscReal *rms0
   PetscFunctionReturn(0);
 }
 
-/* min |r(y)|^2 over y >= 0 for a residual linear in y, r(y) = J y + r(0) (the fits with fixed slip displacements):
-   exactly, by the active set on its Gram system (JRActiveSetNNLS), warm-started from the support of y on entry; the
-   same on any number of ranks to round-off. rms0, rms: |r| at y on entry and on return */
-PetscErrorCode JRLSQSolveNonNegative(JRLSQ *q, PetscReal y[], PetscReal *rms0, PetscReal *rms)
-{
-  PetscReal *z, *b, *G, *cg, val;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscMalloc2(q->nr, &q->r, q->nr * q->nx, &q->J));
-  PetscCall(PetscMalloc4(q->nx, &z, q->nr, &b, q->nx * q->nx, &G, q->nx, &cg));
-  PetscCall(q->fn(q->ctx, y, q->r, q->J));
-  *rms0 = 0;
-  for (PetscInt i = 0; i < q->nr; i++) *rms0 += q->r[i] * q->r[i];
-  *rms0 = PetscSqrtReal(*rms0);
-  PetscCall(PetscArrayzero(z, q->nx));
-  PetscCall(q->fn(q->ctx, z, b, q->J)); /* b = -r(0), J the constant Jacobian */
-  for (PetscInt i = 0; i < q->nr; i++) b[i] = -b[i];
-  JRGram(q->nr, q->nx, q->J, b, G, cg);
-  PetscCall(JRActiveSetNNLS(q->nx, G, cg, y, &val));
-  PetscCall(q->fn(q->ctx, y, q->r, q->J));
-  *rms = 0;
-  for (PetscInt i = 0; i < q->nr; i++) *rms += q->r[i] * q->r[i];
-  *rms = PetscSqrtReal(*rms);
-  PetscCall(PetscFree4(z, b, G, cg));
-  PetscCall(PetscFree2(q->r, q->J));
-  PetscFunctionReturn(0);
-}
-
 /* The least squares on a support: A[idx, idx] z = c[idx] (A n x n column-major, k indices; B k x k scratch). info:
    LAPACK's (> 0: singular) */
 static PetscErrorCode SupportSolve(PetscInt n, const PetscReal A[], const PetscReal c[], PetscInt k, const PetscInt idx[], PetscReal B[], PetscReal z[], PetscBLASInt piv[], PetscBLASInt *info)

@@ -57,7 +57,6 @@ PETSC_INTERN PetscErrorCode JRROMElementsSetUp(JRElements *, PetscInt, const cha
 PETSC_INTERN PetscErrorCode JRReduceAssignOnset(JRReduce, JRModel, JRElements *, const PetscReal[], const PetscReal[]);
 
 /* The fit's least-squares solvers (src/reduce/lsq.c), on PETSC_COMM_SELF.
-   JRLSQSolveNonNegative: the same over x >= 0 for a residual linear in x, exactly (JRActiveSetNNLS on its Gram system).
    JRLSQSolve: r(x) -> min 1/2 |r|^2 with x >= lo by TAO (prefix rom_); fn(ctx, x, r, J) gives r and J (nr x nx,
    column-major); rms0, rms: |r| before and after, x updated.
    JRGram: the Gram system G = C^T C, cg = C^T b of the columns C (ld rows, nc columns, column-major) against b.
@@ -71,7 +70,6 @@ typedef struct {
   PetscReal *r, *J;
 } JRLSQ;
 PETSC_INTERN PetscErrorCode JRLSQSolve(JRLSQ *, PetscReal[], PetscReal, PetscReal *, PetscReal *, PetscInt *);
-PETSC_INTERN PetscErrorCode JRLSQSolveNonNegative(JRLSQ *, PetscReal[], PetscReal *, PetscReal *);
 PETSC_INTERN void           JRGram(PetscInt, PetscInt, const PetscReal[], const PetscReal[], PetscReal[], PetscReal[]);
 PETSC_INTERN PetscErrorCode JRGramNNLS(PetscInt, const PetscReal[], const PetscReal[], PetscReal, PetscInt, const PetscInt[], PetscReal[], PetscReal *);
 PETSC_INTERN PetscErrorCode JRActiveSetNNLS(PetscInt, const PetscReal[], const PetscReal[], PetscReal[], PetscReal *);
