@@ -508,7 +508,7 @@ static PetscBool SameExponents(PetscInt m0, const PetscReal *r0, const PetscReal
    (two distinct rows), and two jenkins_nv elements on light mass 3 (tangential) and mass 4 (normal, preloaded,
    slipping in contact and separating): four distinct rows for seven elements. H = 3, its curve at 1 N over 6-14 Hz
    solved. */
-static PetscErrorCode EightDofCurve(Problem *p)
+static PetscErrorCode EightDofCurve(Problem *p, PetscBool coupled)
 {
   const PetscInt n = 8;
   const double   k0 = pow(2 * PETSC_PI * 10, 2), ks = 2e4;
@@ -526,7 +526,10 @@ static PetscErrorCode EightDofCurve(Problem *p)
     M[i + i * n] = i == 4 ? 0.05 : 5e-4 * (1.0 + 0.1 * i);
   }
   PetscCall(Options("-hbm_physical -hbm_gamma 0.01 -hbm_harmonics 3 -frf_force 1.0 -frf_fmin 6 -frf_fmax 14"));
-  PetscCall(ProblemCreate(n, K, M, NULL, 7, (El[]){{"jenkins", 1, -1, -1, -1, 4e3, 0, 0.3, 0.3}, {"jenkins", 1, -1, -1, -1, 3e3, 0, 0.3, 0.6}, {"jenkins", 1, -1, -1, -1, 2e3, 0, 0.3, 1.0}, {"jenkins", 2, -1, -1, -1, 3e3, 0, 0.3, 0.5}, {"jenkins", 2, -1, -1, -1, 1e3, 0, 0.3, 1.2}, {"jenkins_nv", 3, -1, 4, -1, 3e3, 2e3, 0.3, 0.1}, {"jenkins_nv", 3, -1, 4, -1, 2e3, 2e3, 0.3, 0.2}}, p));
+  if (coupled) /* each element between a light mass and the main one (rows over slow and fast modes), one normal load on
+                  the slow DOF 4 opening */
+    PetscCall(ProblemCreate(n, K, M, NULL, 5, (El[]){{"jenkins", 1, 0, -1, -1, 4e3, 0, 0.3, 0.3}, {"jenkins", 2, 0, -1, -1, 3e3, 0, 0.3, 0.5}, {"jenkins", 5, 0, -1, -1, 2e3, 0, 0.3, 1.0}, {"jenkins_nv", 3, 0, 4, -1, 3e3, 2e3, 0.3, 0.1}, {"jenkins_nv", 6, 0, 4, 0, 2e3, 2e3, 0.3, 0.05}}, p));
+  else PetscCall(ProblemCreate(n, K, M, NULL, 7, (El[]){{"jenkins", 1, -1, -1, -1, 4e3, 0, 0.3, 0.3}, {"jenkins", 1, -1, -1, -1, 3e3, 0, 0.3, 0.6}, {"jenkins", 1, -1, -1, -1, 2e3, 0, 0.3, 1.0}, {"jenkins", 2, -1, -1, -1, 3e3, 0, 0.3, 0.5}, {"jenkins", 2, -1, -1, -1, 1e3, 0, 0.3, 1.2}, {"jenkins_nv", 3, -1, 4, -1, 3e3, 2e3, 0.3, 0.1}, {"jenkins_nv", 3, -1, 4, -1, 2e3, 2e3, 0.3, 0.2}}, p));
   PetscCall(JRContSolve(p->cont));
   PetscFunctionReturn(0);
 }
@@ -807,14 +810,14 @@ int main(int argc, char **argv)
        equals the one with every tracked slip marched, the fast modes condensed and every mode marched (every point,
        with slips left out and not) --- to round-off */
   {
-    double           err = 0, ref = 0, erru = 0, refu = 0;
-    PetscInt         npq = 0, nslip = 0, nd0 = -1, nd2 = -1, npu = 0, nleft = 0, nslips = 0, badu = 0;
+    double           err = 0, ref = 0, erru = 0, refu = 0, errw = 0, refw = 0;
+    PetscInt         npq = 0, nslip = 0, nd0 = -1, nd2 = -1, npu = 0, nleft = 0, nslips = 0, badu = 0, nwood = 0, nwoff = 0, nwq;
     Problem          p;
     PetscInt         np, nn;
     const PetscReal *om, *aa;
     Vec              xv;
     PetscScalar     *xa;
-    PetscCall(EightDofCurve(&p));
+    PetscCall(EightDofCurve(&p, PETSC_FALSE));
     PetscCall(JRContGetBranch(p.cont, 0, &np, &om, &aa, NULL));
     PetscCall(JRHBMGetSolveSize(p.hbm, &nn, NULL));
     PetscCall(JRHBMCreateVecs(p.hbm, &xv, NULL));
@@ -831,7 +834,15 @@ int main(int argc, char **argv)
           PetscCall(JRHBMSetFloquetLowRank(p.hbm, 0));
           PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, &m0, r0, i0, &x0, NULL));
           PetscCall(JRHBMGetFloquetLowRankRows(p.hbm, &ndq));
+          PetscCall(JRHBMGetFloquetWoodburyUpdates(p.hbm, &nwq));
           nd0 = PetscMax(nd0, ndq);
+          nwood += nwq;
+          PetscCall(JRHBMSetFloquetWoodbury(p.hbm, PETSC_FALSE)); /* the fast block inverted at every step map */
+          PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, &m1, r1, i1, &x1, NULL));
+          PetscCall(JRHBMGetFloquetWoodburyUpdates(p.hbm, &nwq));
+          nwoff += nwq;
+          PetscCall(JRHBMSetFloquetWoodbury(p.hbm, PETSC_TRUE));
+          if (!SameExponents(m0, r0, i0, m1, r1, i1, om[q], &errw, &refw)) errw = PETSC_INFINITY;
           PetscCall(JRHBMSetFloquetLowRank(p.hbm, 2));
           PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, &m1, r1, i1, &x1, NULL));
           PetscCall(JRHBMGetFloquetLowRankRows(p.hbm, &ndq));
@@ -858,7 +869,48 @@ int main(int argc, char **argv)
     PetscCall(VecDestroy(&xv));
     PetscCall(ProblemDestroy(&p));
     CHECK(nd0 == 0 && nd2 == 4 && nslip > 0 && err <= 1e-9 * ref, "8 DOFs, 7 light masses condensed, 7 elements on 4 distinct rows: at %" PetscInt_FMT " points (%" PetscInt_FMT " with slips marched) every exponent through the distinct rows (%" PetscInt_FMT " used) equals the fast block's inverse's (%" PetscInt_FMT " rows) within %.2e 1/s (largest |real part| %.3g 1/s; <= 1e-9 of it)", npq, nslip, nd2, nd0, err, ref);
+    CHECK(nwood > npq && nwoff == 0 && errw <= 1e-9 * refw, "8 DOFs, 7 light masses condensed by their block's inverse: at %" PetscInt_FMT " points every exponent with that inverse updated from the last step map's by the Woodbury identity (%" PetscInt_FMT " updates) equals the one with it inverted at every step map within %.2e 1/s (largest |real part| %.3g 1/s; <= 1e-9 of it)", npq, nwood, errw, refw);
     CHECK(!badu && nleft > 0 && nleft < npu && erru <= 1e-9 * refu, "8 DOFs, 7 elements, fast modes condensed and marched: at %" PetscInt_FMT " points (%" PetscInt_FMT " with %" PetscInt_FMT " slips in all left out of the march) every exponent equals the one with every tracked slip marched within %.2e 1/s (largest |real part| %.3g 1/s; <= 1e-9 of it)", npu, nleft, nslips, erru, refu);
+  }
+
+  /* ---- EightDofCurve's system with its elements between the light masses and the main one (their rows over the slow
+     and the fast modes; a normal load on the slow DOF 4): at every point of its stick-slip resonance every exponent
+     whose multiplier exceeds 1e-6 with the fast block's inverse, X = -Kff^-1 Kfs and Z = Kff^-T Ksf^T updated by the
+     Woodbury identity equals the one with them formed at every step map, to round-off */
+  {
+    double           errw = 0, refw = 0;
+    PetscInt         npq = 0, nwood = 0, nwq, nsep = 0, np, nn;
+    JRContactState   st[5];
+    Problem          p;
+    const PetscReal *om, *aa;
+    Vec              xv;
+    PetscScalar     *xa;
+    PetscCall(EightDofCurve(&p, PETSC_TRUE));
+    PetscCall(JRContGetBranch(p.cont, 0, &np, &om, &aa, NULL));
+    PetscCall(JRHBMGetSolveSize(p.hbm, &nn, NULL));
+    PetscCall(JRHBMCreateVecs(p.hbm, &xv, NULL));
+    PetscCall(JRHBMSetFloquetFast(p.hbm, 20));
+    PetscCall(JRHBMSetFloquetLowRank(p.hbm, 0));
+    for (PetscInt q = 0; q < np; q++) {
+      PetscInt  m0, m1;
+      PetscReal r0[64], r1[64], i0[64], i1[64], x0, x1;
+      PetscCall(VecGetArray(xv, &xa));
+      for (PetscInt i = 0; i < nn; i++) xa[i] = aa[q * nn + i];
+      PetscCall(VecRestoreArray(xv, &xa));
+      PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, &m0, r0, i0, &x0, NULL));
+      PetscCall(JRHBMGetFloquetWoodburyUpdates(p.hbm, &nwq));
+      nwood += nwq;
+      PetscCall(JRHBMSetFloquetWoodbury(p.hbm, PETSC_FALSE));
+      PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, &m1, r1, i1, &x1, NULL));
+      PetscCall(JRHBMSetFloquetWoodbury(p.hbm, PETSC_TRUE));
+      if (!SameExponents(m0, r0, i0, m1, r1, i1, om[q], &errw, &refw)) errw = PETSC_INFINITY;
+      PetscCall(JRHBMElementStates(p.hbm, xv, st)); /* a normal load opening over part of the cycle: its row updated too */
+      nsep += st[3] == JR_CONTACT_SEPARATION_STICK_SLIP || st[4] == JR_CONTACT_SEPARATION_STICK_SLIP;
+      npq++;
+    }
+    PetscCall(VecDestroy(&xv));
+    PetscCall(ProblemDestroy(&p));
+    CHECK(npq > 20 && nwood > npq && nsep > 0 && errw <= 1e-9 * refw, "8 DOFs, 5 elements between the light masses and the main one: at %" PetscInt_FMT " points (%" PetscInt_FMT " with a contact opening) every exponent with the fast block's inverse and the condensation updated by the Woodbury identity (%" PetscInt_FMT " updates) equals the one with them formed at every step map within %.2e 1/s (largest |real part| %.3g 1/s; <= 1e-9 of it)", npq, nsep, nwood, errw, refw);
   }
 
   /* ---- a symmetric 3-DOF system forced on its axis: symmetry-breaking branch points at H = 1 and 3 ---- */

@@ -106,6 +106,8 @@ PETSC_EXTERN PetscErrorCode JRHBMSetFloquetLowRank(JRHBM, PetscInt);
 PETSC_EXTERN PetscErrorCode JRHBMGetFloquetLowRankRows(JRHBM, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMSetFloquetUnread(JRHBM, PetscBool);
 PETSC_EXTERN PetscErrorCode JRHBMGetFloquetUnreadSlips(JRHBM, PetscInt *);
+PETSC_EXTERN PetscErrorCode JRHBMSetFloquetWoodbury(JRHBM, PetscBool);
+PETSC_EXTERN PetscErrorCode JRHBMGetFloquetWoodburyUpdates(JRHBM, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMFloquetTimePoints(JRHBM, PetscInt, const PetscReal[], const PetscScalar[], PetscInt, const PetscBool[], PetscInt, PetscReal[], PetscInt *);
 PETSC_EXTERN PetscErrorCode JRHBMJacobianSign(JRHBM, PetscReal, Vec, PetscInt *);
 /* What decides a point's stability (src/hbm/dissipative.c) */

@@ -93,6 +93,11 @@ struct _JRMonodromy {
   PetscReal *Ts, *KFs, *bws;          /* per kept map: the modes over the slow ones T (nk x nsl, stride nk nk), Kff^-1
                                          (nfa x nfa, stride nk nk), the held slips' stiffness (Bw = [r_e kt], nt, stride cap) */
   PetscBLASInt *pivs;                 /* per kept map: Kff's pivots (stride nk) */
+  PetscReal *KFc, *XZc, *WB;          /* of the last condensation: Kff^-1 (nfa x nfa), X = -Kff^-1 Kfs and Z = Kff^-T Ksf^T
+                                         (nfa x nsl each); their update's work (3 nk x nk) */
+  PetscBool  kfvalid, wood;           /* KFc is that of Kp before the last StiffnessUpdate; update it (JRHBMSetFloquetWoodbury) */
+  PetscInt   nupd, nwood, nwtot;      /* that update's columns (Kp += A V^T, in DUV), KFc's updates since its inverse, and
+                                         at the point */
   PetscReal *Rfa, *bwt;               /* per point: the tracked elements' r over the fast modes (nfa x nt); the step's held
                                          slips' stiffness (nt) */
   PetscInt   cap;                     /* the tracked elements bws, Rfa, bwt have room for */
@@ -123,6 +128,7 @@ struct _JRMonodromy {
 #define JR_MONO_SLOTS  16 /* step maps kept per point: a period's stick-slip patterns mostly repeat */
 #define JR_MONO_TAYLOR 8   /* terms of the step map's Taylor polynomial: error (w_max dt)^9 / 9! <= 3e-6 per step */
 #define JR_MONO_WDT    1.0 /* the Taylor polynomial's dt w_max at most: larger steps are halved and the map squared */
+#define JR_MONO_WOOD   16  /* Kff^-1 updated by the Woodbury identity at most this many times before a new inverse */
 /* an element's slip over a point's period: it changes state (tracked), or it is stuck throughout (held: its slip a
    neutral state, multiplier 1), or it slips at every step (forgotten at every step: multiplier 0) */
 enum {
@@ -158,6 +164,7 @@ PetscErrorCode JRHBMMonodromyDestroy(JRHBM h)
   PetscCall(PetscFree5(f->isl, f->ifa, f->Mm, f->Cv, f->QW));
   PetscCall(PetscFree(f->MCb));
   PetscCall(PetscFree4(f->Ts, f->KFs, f->bws, f->pivs));
+  PetscCall(PetscFree3(f->KFc, f->XZc, f->WB));
   PetscCall(PetscFree2(f->Rfa, f->bwt));
   PetscCall(PetscFree4(f->RSt, f->Kp, f->Rg, f->rows));
   PetscCall(PetscFree(f->CB));
@@ -839,6 +846,7 @@ static PetscErrorCode StiffnessUpdate(struct _JRMonodromy *f)
     if (f->memp[e] >= 0) f->bwt[f->memp[e]] = bw;
   }
   f->svalid = PETSC_TRUE;
+  f->nupd = 0;
   if (f->lowrank && f->nfa) { /* LowRankStatic takes the coefficients, not Kp */
     f->kvalid = PETSC_FALSE;
   } else if (!f->kvalid) { /* Kp = K + [R; S]^T V^T, V's columns a r + b s (row e) and c s (row srow[e]) */
@@ -852,7 +860,8 @@ static PetscErrorCode StiffnessUpdate(struct _JRMonodromy *f)
     PetscCall(PetscArraycpy(f->Kp, f->K, nk * nk));
     PetscCall(JRGemm("N", "T", nk, nk, f->l, 1.0, f->RSt, nk, V, nk, 1.0, f->Kp, nk));
     PetscCall(PetscArraycpy(f->cf, f->cfn, 3 * ne));
-    f->kvalid = PETSC_TRUE;
+    f->kvalid  = PETSC_TRUE;
+    f->kfvalid = PETSC_FALSE;
   } else { /* Kp += A V^T over the elements whose coefficients change: A's columns r (and s), V's a r + b s (and c s) */
     PetscReal *A = f->DUV, *V = A + 2 * nk * ne;
     PetscInt   nu = 0;
@@ -879,6 +888,7 @@ static PetscErrorCode StiffnessUpdate(struct _JRMonodromy *f)
       }
     }
     if (nu) PetscCall(JRGemm("N", "T", nk, nk, nu, 1.0, A, nk, V, nk, 1.0, f->Kp, nk));
+    f->nupd = nu;
   }
   PetscFunctionReturn(0);
 }
@@ -999,6 +1009,59 @@ static void PointBlocks(struct _JRMonodromy *f)
   }
 }
 
+/* Kff^-1, X = -Kff^-1 Kfs and Z = Kff^-T Ksf^T (f->KFc, f->XZc) of the stiffness after the last StiffnessUpdate, from
+   those before it, by the Woodbury identity: the update Kp + A V^T (nu columns) is Kff + Af Vf^T on the fast block
+   (As, Vs: A's, V's slow rows), and with U = Kff^-1 Af, W = Vf^T Kff^-1, S = I + Vf^T U
+     Kff^-1 <- Kff^-1 - U S^-1 W,   X <- X - U S^-1 (Vf^T X + Vs^T),   Z <- Z - W^T S^-T (Af^T Z - As^T)
+   (6 nfa^2 nu multiply-adds against the 2 nfa^3 of an inverse and 4 nfa^2 nsl of X and Z). *done false where it does
+   not apply (no inverse before, too many columns or updates since the last inverse, S singular). */
+static PetscErrorCode WoodburyFast(struct _JRMonodromy *f, PetscBool *done)
+{
+  const PetscInt   nk = f->nk, nfa = f->nfa, nsl = f->nsl, nu = f->nupd;
+  const PetscReal *A = f->DUV, *V = A + 2 * nk * f->ne;
+  PetscReal       *Af = f->WB, *Vf = Af + nfa * nu, *U = Vf + nfa * nu, *W = U + nfa * nu, *P = W + nu * nfa, *S = P + nu * nfa;
+  PetscReal       *Sw = S + nu * nu, *R = Sw + nu * nu, *R2 = R + nu * nsl, *X = f->XZc, *Z = X + nfa * nsl;
+  PetscBool        singular;
+
+  PetscFunctionBeginUser;
+  *done = PETSC_FALSE;
+  if (!f->wood || !f->kfvalid || 3 * nu > nfa || f->nwood >= JR_MONO_WOOD) PetscFunctionReturn(0);
+  *done = PETSC_TRUE;
+  if (!nu) PetscFunctionReturn(0);
+  for (PetscInt c = 0; c < nu; c++)
+    for (PetscInt a = 0; a < nfa; a++) {
+      Af[a + c * nfa] = A[f->ifa[a] + c * nk];
+      Vf[a + c * nfa] = V[f->ifa[a] + c * nk];
+    }
+  PetscCall(JRGemm("N", "N", nfa, nu, nfa, 1.0, f->KFc, nfa, Af, nfa, 0.0, U, nfa));
+  PetscCall(JRGemm("T", "N", nu, nu, nfa, 1.0, Vf, nfa, U, nfa, 0.0, S, nu));
+  for (PetscInt i = 0; i < nu; i++) S[i + i * nu] += 1.0;
+  PetscCall(SmallInverse(nu, S, f->piv, Sw, &singular));
+  if (singular) {
+    *done = PETSC_FALSE;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(JRGemm("T", "N", nu, nfa, nfa, 1.0, Vf, nfa, f->KFc, nfa, 0.0, W, nu));
+  /* X: R = Vf^T X + Vs^T, X -= U (S^-1 R) */
+  PetscCall(JRGemm("T", "N", nu, nsl, nfa, 1.0, Vf, nfa, X, nfa, 0.0, R, nu));
+  for (PetscInt b = 0; b < nsl; b++)
+    for (PetscInt c = 0; c < nu; c++) R[c + b * nu] += V[f->isl[b] + c * nk];
+  PetscCall(JRGemm("N", "N", nu, nsl, nu, 1.0, S, nu, R, nu, 0.0, R2, nu));
+  PetscCall(JRGemm("N", "N", nfa, nsl, nu, -1.0, U, nfa, R2, nu, 1.0, X, nfa));
+  /* Z: R = Af^T Z - As^T, Z -= W^T (S^-T R) */
+  PetscCall(JRGemm("T", "N", nu, nsl, nfa, 1.0, Af, nfa, Z, nfa, 0.0, R, nu));
+  for (PetscInt b = 0; b < nsl; b++)
+    for (PetscInt c = 0; c < nu; c++) R[c + b * nu] -= A[f->isl[b] + c * nk];
+  PetscCall(JRGemm("T", "N", nu, nsl, nu, 1.0, S, nu, R, nu, 0.0, R2, nu));
+  PetscCall(JRGemm("T", "N", nfa, nsl, nu, -1.0, W, nu, R2, nu, 1.0, Z, nfa));
+  /* Kff^-1 -= U (S^-1 W) */
+  PetscCall(JRGemm("N", "N", nu, nfa, nu, 1.0, S, nu, W, nu, 0.0, P, nu));
+  PetscCall(JRGemm("N", "N", nfa, nfa, nu, -1.0, U, nfa, P, nu, 1.0, f->KFc, nfa));
+  f->nwood++;
+  f->nwtot++;
+  PetscFunctionReturn(0);
+}
+
 /* The fast kept modes (f->ifa) condensed quasi-statically for the step's element states (f->Kp, the stiffness with
    them, StiffnessUpdate; Bw, the held slips' forces): the fast modes follow the slow ones and the
    held slips statically, q = T q_s + T_w w, T = [I; X], X = -Kff^-1 Kfs, T_w = [0; Kff^-1 Bw_f] (rows slow; fast),
@@ -1014,25 +1077,33 @@ static PetscErrorCode QuasiStatic(struct _JRMonodromy *f, PetscInt k, PetscInt n
   PetscReal     *Kp = f->Kp, *T = f->Ts + k * nk * nk, *MT = f->QW + 2 * nk * nk, *Mr = MT + nk * nk, *KF = f->KFs + k * nk * nk, *RH = Mr + 2 * nk * nk;
   PetscReal     *KS = f->QW, *BY = f->QW + nk * nk; /* Ksf (nsl x nfa); Bfs + Bff X (nfa x nsl) */
   PetscBLASInt  *piv = f->pivs + k * nk;
-  PetscBool      singular;
+  PetscBool      singular, done;
 
   PetscFunctionBeginUser;
-  /* Kff^-1 (kept for the commits: small, so an inverse and products cost less than triangular solves);
-     X = -Kff^-1 Kfs (in MT) */
-  Block(Kp, nk, f->ifa, nfa, f->ifa, nfa, KF);
-  PetscCall(SmallInverse(nfa, KF, piv, BY, &singular));
-  PetscCheck(!singular, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the fast modes' stiffness is singular; -frf_stability_time_fast 0 marches every mode");
+  /* Kff^-1 (kept for the commits: small, so an inverse and products cost less than triangular solves), X = -Kff^-1 Kfs
+     (in MT) and Z = Kff^-T Ksf^T, updated from the last step's where few elements change state (WoodburyFast) */
+  PetscCall(WoodburyFast(f, &done));
+  if (!done) {
+    PetscReal *X0 = f->XZc, *Z0 = X0 + nfa * nsl, *BF = f->CB;
+    Block(Kp, nk, f->ifa, nfa, f->ifa, nfa, f->KFc);
+    PetscCall(SmallInverse(nfa, f->KFc, piv, BY, &singular));
+    PetscCheck(!singular, PETSC_COMM_SELF, PETSC_ERR_LIB, "Floquet exponents in time: the fast modes' stiffness is singular; -frf_stability_time_fast 0 marches every mode");
+    for (PetscInt b = 0; b < nsl; b++)
+      for (PetscInt a = 0; a < nfa; a++) {
+        Z0[a + b * nfa] = Kp[f->ifa[a] + f->isl[b] * nk]; /* Kfs */
+        BF[a + b * nfa] = Kp[f->isl[b] + f->ifa[a] * nk]; /* Ksf^T */
+      }
+    PetscCall(JRGemm("N", "N", nfa, nsl, nfa, -1.0, f->KFc, nfa, Z0, nfa, 0.0, X0, nfa));
+    PetscCall(JRGemm("T", "N", nfa, nsl, nfa, 1.0, f->KFc, nfa, BF, nfa, 0.0, Z0, nfa));
+    f->nwood = 0;
+  }
+  f->kfvalid = PETSC_TRUE;
+  PetscCall(PetscArraycpy(KF, f->KFc, nfa * nfa));
+  PetscCall(PetscArraycpy(MT, f->XZc, nfa * nsl));
   PetscCall(PetscArraycpy(f->bws + k * f->cap, f->bwt, nt));
   { /* RH's last block Br = Bw_s - Ksf Kff^-1 Bw_f = Bw_s - Z^T Bw_f, Z = Kff^-T Ksf^T (nfa x nsl), by the columns
        of the held slips of stuck elements (col; the others are 0) */
-    PetscReal *Z = f->CB, *BF = Z + nfa * nsl, *BR = RH + 2 * nsl * nsl;
-    for (PetscInt b = 0; b < nsl; b++)
-      for (PetscInt a = 0; a < nfa; a++) {
-        Z[a + b * nfa]  = Kp[f->ifa[a] + f->isl[b] * nk]; /* Kfs */
-        BF[a + b * nfa] = Kp[f->isl[b] + f->ifa[a] * nk]; /* Ksf^T */
-      }
-    PetscCall(JRGemm("N", "N", nfa, nsl, nfa, -1.0, KF, nfa, Z, nfa, 0.0, MT, nfa));
-    PetscCall(JRGemm("T", "N", nfa, nsl, nfa, 1.0, KF, nfa, BF, nfa, 0.0, Z, nfa));
+    PetscReal *Z = f->XZc + nfa * nsl, *BF = f->CB, *BR = RH + 2 * nsl * nsl;
     for (PetscInt q = 0; q < nc; q++) { /* Bw's column: bwt r_e */
       const PetscReal *r = f->RSt + f->tel[col[q]] * nk, bw = f->bwt[col[q]];
       for (PetscInt a = 0; a < nfa; a++) BF[a + q * nfa] = bw * r[f->ifa[a]];
@@ -1434,10 +1505,12 @@ static PetscErrorCode FastModes(JRHBM h, PetscReal w, PetscInt *mt)
   }
   if (!f->Ts || nt > f->cap) {
     PetscCall(PetscFree4(f->Ts, f->KFs, f->bws, f->pivs));
+    PetscCall(PetscFree3(f->KFc, f->XZc, f->WB));
     PetscCall(PetscFree2(f->Rfa, f->bwt));
     PetscCall(PetscFree(f->CB));
     f->cap = nt;
     PetscCall(PetscMalloc4((JR_MONO_SLOTS + 1) * nk * nk + 1, &f->Ts, (JR_MONO_SLOTS + 1) * nk * nk + 1, &f->KFs, (JR_MONO_SLOTS + 1) * nt + 1, &f->bws, (JR_MONO_SLOTS + 1) * nk + 1, &f->pivs));
+    PetscCall(PetscMalloc3(nk * nk + 1, &f->KFc, 2 * nk * nk + 1, &f->XZc, 3 * nk * nk + 1, &f->WB));
     PetscCall(PetscMalloc2(nk * nt + 1, &f->Rfa, nt + 1, &f->bwt));
     PetscCall(PetscMalloc1(2 * nt * (2 * nk + nt) + nk * nk + 1, &f->CB));
   }
@@ -1477,6 +1550,8 @@ static PetscErrorCode FloquetLocal(JRHBM h, PetscReal w, const PetscScalar *x, P
   for (PetscInt i = 0; i < nk * nk; i++) Cv[i] = f->C[i] + h->gamma / w * f->Kg[i];
   PetscCall(PointMotion(h, w, x));
   f->unread = (PetscBool)!h->monomarch;
+  f->wood   = h->monowood;
+  f->nwtot  = 0;
   mt        = f->smooth ? m : Classify(f);
   f->nsl = nk;
   f->nfa = 0;
@@ -1589,10 +1664,12 @@ PetscErrorCode JRHBMFloquetTime(JRHBM h, PetscReal w, Vec a, PetscInt steps, Pet
     out[0]    = m ? out[1] : 0.0;
     h->monond = f->lowrank ? f->nd : 0;
     h->mononp = f->smooth ? 0 : f->np;
+    h->monowu = f->nwtot;
   }
   if (h->size > 1) PetscCallMPI(MPI_Bcast(out, (PetscMPIInt)(1 + 2 * m), MPIU_REAL, 0, h->comm));
   if (h->size > 1) PetscCallMPI(MPI_Bcast(&h->monond, 1, MPIU_INT, 0, h->comm));
   if (h->size > 1) PetscCallMPI(MPI_Bcast(&h->mononp, 1, MPIU_INT, 0, h->comm));
+  if (h->size > 1) PetscCallMPI(MPI_Bcast(&h->monowu, 1, MPIU_INT, 0, h->comm));
   if (nexp) *nexp = m;
   if (nsteps) *nsteps = Steps(h, w, steps);
   *maxre = out[0];
@@ -1685,6 +1762,30 @@ PetscErrorCode JRHBMGetFloquetUnreadSlips(JRHBM h, PetscInt *np)
 {
   PetscFunctionBeginUser;
   *np = h->mononp;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMSetFloquetWoodbury - update = PETSC_TRUE (the default): where the fast modes are condensed by their block's
+  inverse, JRHBMFloquetTime updates that inverse from the last step map's by the Woodbury identity where few elements
+  changed state since (at most a third as many columns as fast modes; a new inverse after 16 updates); PETSC_FALSE
+  inverts the block at every step map. The same exponents to round-off. Logically collective.
+*/
+PetscErrorCode JRHBMSetFloquetWoodbury(JRHBM h, PetscBool update)
+{
+  PetscFunctionBeginUser;
+  h->monowood = update;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMGetFloquetWoodburyUpdates - the updates of the fast block's inverse at the last JRHBMFloquetTime point
+  (JRHBMSetFloquetWoodbury). Not collective.
+*/
+PetscErrorCode JRHBMGetFloquetWoodburyUpdates(JRHBM h, PetscInt *nu)
+{
+  PetscFunctionBeginUser;
+  *nu = h->monowu;
   PetscFunctionReturn(0);
 }
 

@@ -55,6 +55,7 @@ PetscErrorCode JRHBMCreate(MPI_Comm comm, JRHBM *hbm)
   h->nmodes_opt = -1;
   h->nfree      = -1;
   h->monolr     = 1;
+  h->monowood   = PETSC_TRUE;
   PetscCallMPI(MPI_Comm_rank(comm, &h->rank));
   PetscCallMPI(MPI_Comm_size(comm, &h->size));
   *hbm = h;

@@ -138,6 +138,8 @@ struct _p_JRHBM {
   PetscReal         monofast;     /* JRHBMSetFloquetFast(): kept modes above monofast x H w quasi-static there (0: none) */
   PetscBool         monomarch;    /* JRHBMSetFloquetUnread(): the slips not read before their first commit marched too */
   PetscInt          mononp;       /* the slips JRHBMFloquetTime left out of the march at its last point */
+  PetscBool         monowood;     /* JRHBMSetFloquetWoodbury(): the fast block's inverse updated from the last step map's */
+  PetscInt          monowu;       /* the updates so at JRHBMFloquetTime's last point */
   PetscInt          dissip;       /* JRHBMStabilityVerdict(): 0 not yet known, 1 no certificate (smooth or other elements, or
                                      a linear part that is not dissipative), 2 every element jenkins, 3 jenkins and
                                      jenkins_nv (decided per point) */
