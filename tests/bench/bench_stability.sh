@@ -7,6 +7,7 @@ cd "$(dirname "$0")/../.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export OPENBLAS_NUM_THREADS=1
 lap1="-task frf -model_type lap1 -model_mesh_h 0.008 -preload_force 10000 -interface_element jenkins_nv -interface_kt 1e8 -interface_mu 0.1 -hbm_basis free -hbm_modes 30 -hbm_gamma 0.002 -frf_force 0.0001,0.01,1 -frf_fmin 120 -frf_fmax 160 -cont_monitor 0"
+slip=$(awk 'BEGIN{for(i=0;i<=20;i++) printf "%s%g", i ? "," : "", 0.5 + 0.125 * i}') # 21 levels of 0.5-3 N: gross slip
 solve() { # np stab args... -> "solve_seconds stability_seconds curve_seconds"
   local np=$1 st=$2
   shift 2
@@ -14,7 +15,7 @@ solve() { # np stab args... -> "solve_seconds stability_seconds curve_seconds"
     awk '/JR 6 solve:/{t=$5} /^stability level/{for(i=1;i<=NF;i++){if($i=="seconds")s+=$(i+1); if($i=="(curve")c+=$(i+1)}} END{printf "%s %.4g %.4g\n", t, s, c}'
 }
 median() { sort -g | awk '{a[NR]=$1} END{print a[int((NR+1)/2)]}'; }
-echo "== stability: solve stage [s], off and on, median of 3 interleaved runs (runs/lap3_n2n.opts and runs/lap1_rom.opts: one each, their set-up 15 s-1 min per run) =="
+echo "== stability: solve stage [s], off and on, median of 3 interleaved runs (runs/lap3_n2n.opts, runs/lap1_rom.opts and lap3_shapes_rom_thesis: one each, their set-up 15 s-1 min per run) =="
 printf "%-44s %-5s %10s %10s %7s %12s %12s\n" case ranks off on ratio stability curve
 while IFS='|' read -r name np reps args; do
   : > /tmp/jr_bench_off.$$
@@ -42,5 +43,8 @@ lap1 8 mm, 4 zone joints x 3 condensed|1|3|$lap1 -rom_joints zones -rom_joint_mo
 lap1 8 mm, 4 zone joints x 3 condensed|2|3|$lap1 -rom_joints zones -rom_joint_motion mean -rom_elements 3
 runs/lap3_n2n.opts, 506 jenkins_nv, 88 modes|2|1|-options_file runs/lap3_n2n.opts
 runs/lap1_rom.opts reduced, linear field, 24 rows|2|1|-options_file runs/lap1_rom.opts -task frf
+lap1 8 mm, 4 zone joints x 3, 21 levels 0.5-3 N|1|3|$lap1 -rom_joints zones -rom_joint_motion mean -rom_elements 3 -frf_force $slip
+runs/lap3_shapes_rom_thesis.opts reduced, 84 rows|1|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf
+runs/lap3_shapes_rom_thesis.opts reduced, 84 rows|2|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf
 EOF
 rm -f /tmp/jr_bench_off.$$ /tmp/jr_bench_on.$$
