@@ -880,7 +880,7 @@ int main(int argc, char **argv)
   {
     double           errw = 0, refw = 0;
     PetscInt         npq = 0, nwood = 0, nwq, nsep = 0, np, nn;
-    JRContactState   st[5];
+    JRContactState   st[5] = {JR_CONTACT_FULL_STICK, JR_CONTACT_FULL_STICK, JR_CONTACT_FULL_STICK, JR_CONTACT_FULL_STICK, JR_CONTACT_FULL_STICK};
     Problem          p;
     const PetscReal *om, *aa;
     Vec              xv;
@@ -908,6 +908,7 @@ int main(int argc, char **argv)
       nsep += st[3] == JR_CONTACT_SEPARATION_STICK_SLIP || st[4] == JR_CONTACT_SEPARATION_STICK_SLIP;
       npq++;
     }
+    PetscCallMPI(MPI_Bcast(&nsep, 1, MPIU_INT, 0, PETSC_COMM_WORLD)); /* the states are gathered on rank 0 */
     PetscCall(VecDestroy(&xv));
     PetscCall(ProblemDestroy(&p));
     CHECK(npq > 20 && nwood > npq && nsep > 0 && errw <= 1e-9 * refw, "8 DOFs, 5 elements between the light masses and the main one: at %" PetscInt_FMT " points (%" PetscInt_FMT " with a contact opening) every exponent with the fast block's inverse and the condensation updated by the Woodbury identity (%" PetscInt_FMT " updates) equals the one with them formed at every step map within %.2e 1/s (largest |real part| %.3g 1/s; <= 1e-9 of it)", npq, nsep, nwood, errw, refw);
