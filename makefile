@@ -37,7 +37,7 @@ endif
 
 JR_OPT  ?= -O3 -march=native
 JR_WARN := -Wall -Wextra $(if $(filter 1,$(WERROR)),-Werror)
-JR_CFLAGS = $(JR_OPT) $(JR_WARN) -std=gnu11 -fPIC -MMD -MP -Iinclude -DJR_SHARE_DIR='"$(CURDIR)/share"'
+JR_CFLAGS = $(JR_OPT) $(JR_WARN) -std=gnu11 -fopenmp-simd -fPIC -MMD -MP -Iinclude -DJR_SHARE_DIR='"$(CURDIR)/share"'
 NP ?= 2
 MPIRUN ?= mpiexec
 

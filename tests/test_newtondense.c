@@ -16,9 +16,13 @@
    7. unit columns (a condensed model's joints whose elements are all apart, with a bordered row): a 160 x 160
       random matrix with 48 of its columns e_j but for a random last row; the solution's residual, computed here,
       within 1e-13, from a factored matrix of 112 (the unit columns eliminated); a rank-1 change of a kept column
-      solved by GMRES on those factors in at most 2 iterations; those columns' 1 made 1.5: an LU of all 160, exact.
+      solved by GMRES on those factors in at most 2 iterations; those columns' 1 made 1.5: an LU of all 160, exact;
+   8. the dense products (JRGemm; its loops for at most 4 columns, BLAS beyond) against a triple loop in long double:
+      op(A) = A and A^T, 1-6 columns, beta 0 (C's NaN ignored, as BLAS does), 1 and -0.5, strided operands.
 */
 #include "jrtest.h"
+
+PETSC_INTERN PetscErrorCode JRGemm(const char *, const char *, PetscInt, PetscInt, PetscInt, PetscReal, const PetscReal *, PetscInt, const PetscReal *, PetscInt, PetscReal, PetscReal *, PetscInt);
 
 typedef struct {
   PetscInt  kind, n;
@@ -331,6 +335,36 @@ int main(int argc, char **argv)
     CHECK(r1 > 0 && r2 > 0 && it1 == it2 && RelDiff(p.n, y1, ys, MaxAbs(p.n, ys)) < 1e-13 && RelDiff(p.n, y2, ys, MaxAbs(p.n, ys)) < 1e-13, "cubic system (96 unknowns): the LU kept and a new LU each iteration reach the root (errors %.1e, %.1e) in the same %d and %d iterations", RelDiff(p.n, y1, ys, MaxAbs(p.n, ys)), RelDiff(p.n, y2, ys, MaxAbs(p.n, ys)), (int)it1, (int)it2);
     CHECK(l2 == it2 && l1 < l2, "cubic system (96 unknowns): %d LU with the LU kept, %d with a new one each iteration", (int)l1, (int)l2);
     PetscCall(PetscFree4(ys, y0, y1, y2));
+  }
+  { /* 8. JRGemm against a triple loop */
+    const PetscInt ms[3] = {1, 7, 138}, ks[3] = {1, 5, 84};
+    const PetscReal betas[3] = {0.0, 1.0, -0.5};
+    PetscReal      err = 0, *A, *B, *C, *R;
+    PetscInt       ncase = 0;
+    PetscCall(PetscMalloc4(141 * 141, &A, 141 * 8, &B, 141 * 8, &C, 141 * 8, &R));
+    for (PetscInt i = 0; i < 141 * 141; i++) A[i] = PetscSinReal(0.37 * i + 0.1) + 0.01 * (i % 7);
+    for (PetscInt i = 0; i < 141 * 8; i++) B[i] = PetscCosReal(0.53 * i + 0.2);
+    for (PetscInt im = 0; im < 3; im++)
+      for (PetscInt ik = 0; ik < 3; ik++)
+        for (PetscInt n = 1; n <= 6; n++)
+          for (PetscInt at = 0; at < 2; at++)
+            for (PetscInt ib = 0; ib < 3; ib++) {
+              const PetscInt  m = ms[im], k = ks[ik], lda = (at ? k : m) + 3, ldb = k + 1, ldc = m + 2;
+              const PetscReal alpha = ib == 1 ? -2.0 : 1.5, beta = betas[ib];
+              for (PetscInt j = 0; j < n; j++)
+                for (PetscInt i = 0; i < m; i++) {
+                  long double t = 0;
+                  for (PetscInt q = 0; q < k; q++) t += (long double)(at ? A[q + i * lda] : A[i + q * lda]) * B[q + j * ldb];
+                  C[i + j * ldc] = beta == 0.0 ? NAN : PetscSinReal(1.0 + i + 3.0 * j);
+                  R[i + j * ldc] = (PetscReal)(alpha * t + (beta == 0.0 ? 0.0L : (long double)beta * C[i + j * ldc]));
+                }
+              PetscCall(JRGemm(at ? "T" : "N", "N", m, n, k, alpha, A, lda, B, ldb, beta, C, ldc));
+              for (PetscInt j = 0; j < n; j++)
+                for (PetscInt i = 0; i < m; i++) err = PetscIsNanReal(C[i + j * ldc]) ? PETSC_INFINITY : PetscMax(err, PetscAbsReal(C[i + j * ldc] - R[i + j * ldc]) / (1.0 + PetscAbsReal(R[i + j * ldc])));
+              ncase++;
+            }
+    PetscCall(PetscFree4(A, B, C, R));
+    CHECK(err < 1e-13, "dense products (JRGemm: loops up to 4 columns, BLAS beyond; A and A^T; beta 0, 1, -0.5): %" PetscInt_FMT " cases within %.1e of a triple loop in long double (relative, < 1e-13)", ncase, err);
   }
   PetscCall(PetscFinalize());
   return TestSummary("test_newtondense");
