@@ -17,7 +17,7 @@
       random matrix with 48 of its columns e_j but for a random last row; the solution's residual, computed here,
       within 1e-13, from a factored matrix of 112 (the unit columns eliminated); a rank-1 change of a kept column
       solved by GMRES on those factors in at most 2 iterations; those columns' 1 made 1.5: an LU of all 160, exact;
-   8. the dense products (JRGemm; its loops for at most 4 columns, BLAS beyond) against a triple loop in long double:
+   8. the dense products (JRGemm; its loops for one or two columns, BLAS beyond) against a triple loop in long double:
       op(A) = A and A^T, 1-6 columns, beta 0 (C's NaN ignored, as BLAS does), 1 and -0.5, strided operands.
 */
 #include "jrtest.h"
@@ -364,7 +364,7 @@ int main(int argc, char **argv)
               ncase++;
             }
     PetscCall(PetscFree4(A, B, C, R));
-    CHECK(err < 1e-13, "dense products (JRGemm: loops up to 4 columns, BLAS beyond; A and A^T; beta 0, 1, -0.5): %" PetscInt_FMT " cases within %.1e of a triple loop in long double (relative, < 1e-13)", ncase, err);
+    CHECK(err < 1e-13, "dense products (JRGemm: loops for 1-2 columns, BLAS beyond; A and A^T; beta 0, 1, -0.5): %" PetscInt_FMT " cases within %.1e of a triple loop in long double (relative, < 1e-13)", ncase, err);
   }
   PetscCall(PetscFinalize());
   return TestSummary("test_newtondense");

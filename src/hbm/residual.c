@@ -5,10 +5,11 @@
 */
 #include <jointrom/private/hbmimpl.h>
 
-/* C (m x n) = alpha op(A) B + beta C for n <= 4 (JRGemm): BLAS packs its operands for any n, which costs more than
-   the product itself at two columns (a condensed model's Jacobian products through the modes, the sine and cosine
-   of a harmonic: 5 against 11 us on lap3's 138 modes x 84 rows); here A is read once, by columns (op(A) = A: axpys
-   of its columns into C's) or by rows of op(A) (dot products with B's columns), both as SIMD loops */
+/* C (m x n) = alpha op(A) B + beta C for n <= 2 (JRGemm): BLAS packs its operands for any n, which costs more than
+   the product itself at one or two columns (a condensed model's Jacobian products through the modes, the sine and
+   cosine of a harmonic: 5 against 11 us on lap3's 138 modes x 84 rows); here A is read once, by columns (op(A) = A:
+   axpys of its columns into C's) or by rows of op(A) (dot products with B's columns), both as SIMD loops. From
+   three columns on BLAS is faster (node-to-node's projections onto the modes, 2H + 1 columns: 40% slower by loops) */
 static void GemmFewColumns(PetscBool at, PetscInt m, PetscInt n, PetscInt k, PetscReal alpha, const PetscReal *A, PetscInt lda, const PetscReal *B, PetscInt ldb, PetscReal beta, PetscReal *C, PetscInt ldc)
 {
   if (!at) {
@@ -65,7 +66,7 @@ static void GemmFewColumns(PetscBool at, PetscInt m, PetscInt n, PetscInt k, Pet
   }
 }
 
-/* C = alpha op(A) op(B) + beta C, column-major, by BLAS gemm (by GemmFewColumns for at most 4 columns of B not
+/* C = alpha op(A) op(B) + beta C, column-major, by BLAS gemm (by GemmFewColumns for one or two columns of B not
    transposed); k = 0 only scales C (BLAS would not be called) */
 PetscErrorCode JRGemm(const char *ta, const char *tb, PetscInt m, PetscInt n, PetscInt k, PetscReal alpha, const PetscReal *A, PetscInt lda, const PetscReal *B, PetscInt ldb, PetscReal beta, PetscReal *C, PetscInt ldc)
 {
@@ -85,7 +86,7 @@ PetscErrorCode JRGemm(const char *ta, const char *tb, PetscInt m, PetscInt n, Pe
         for (PetscInt i = 0; i < m; i++) C[i + j * ldc] *= beta;
     PetscFunctionReturn(0);
   }
-  if (n <= 4 && (tb[0] == 'N' || tb[0] == 'n')) {
+  if (n <= 2 && (tb[0] == 'N' || tb[0] == 'n')) {
     GemmFewColumns((PetscBool)(ta[0] != 'N' && ta[0] != 'n'), m, n, k, alpha, A, lda, B, ldb, beta, C, ldc);
     PetscFunctionReturn(0);
   }
