@@ -486,6 +486,20 @@ static PetscErrorCode SymmetricCase(const Sym3 *o, PetscInt H, double f1, double
   PetscFunctionReturn(0);
 }
 
+/* xv <- the curve's point q (aa: the points' unknowns, xv's size each) */
+static PetscErrorCode PointVec(Vec xv, const PetscReal *aa, PetscInt q)
+{
+  PetscScalar *xa;
+  PetscInt     n;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetSize(xv, &n));
+  PetscCall(VecGetArray(xv, &xa));
+  for (PetscInt i = 0; i < n; i++) xa[i] = aa[q * n + i];
+  PetscCall(VecRestoreArray(xv, &xa));
+  PetscFunctionReturn(0);
+}
+
 /* Two lists of Floquet exponents (real parts re, imaginary im, largest first) of the same point at frequency w: the
    same where every exponent whose multiplier exp(re T) exceeds 1e-6 (the smaller ones are at the monodromy
    matrix's round-off) is in both, *err the largest difference of those, *ref the largest |real part| among them */
@@ -675,9 +689,7 @@ int main(int argc, char **argv)
       PetscCall(JRHBMCreateVecs(p.hbm, &xv, NULL));
       for (PetscInt q = 0; q < np; q++) {
         PetscReal mt, mh;
-        PetscCall(VecGetArray(xv, &xa));
-        for (PetscInt i = 0; i < n; i++) xa[i] = aa[q * n + i];
-        PetscCall(VecRestoreArray(xv, &xa));
+        PetscCall(PointVec(xv, aa, q));
         PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, NULL, NULL, NULL, &mt, NULL));
         PetscCall(JRHBMFloquet(p.hbm, om[q], xv, JR_HILL_SELECT_VECTOR, 1000, NULL, NULL, NULL, &mh, NULL));
         if (fabs(mt - mh) > dmax) {
@@ -768,7 +780,6 @@ int main(int argc, char **argv)
       PetscInt         np, n;
       const PetscReal *om, *aa;
       Vec              xv;
-      PetscScalar     *xa;
       char             opts[256];
       PetscCall(PetscSNPrintf(opts, sizeof(opts), "-hbm_physical -hbm_gamma %g -hbm_harmonics %d -frf_force 1.0 -frf_fmin 6 -frf_fmax 14", gam, (int)Hq));
       PetscCall(Options(opts));
@@ -779,9 +790,7 @@ int main(int argc, char **argv)
       PetscCall(JRHBMCreateVecs(p.hbm, &xv, NULL));
       for (PetscInt q = 0; q < np; q += PetscMax(1, np / 40)) {
         PetscReal m0, m1;
-        PetscCall(VecGetArray(xv, &xa));
-        for (PetscInt i = 0; i < n; i++) xa[i] = aa[q * n + i];
-        PetscCall(VecRestoreArray(xv, &xa));
+        PetscCall(PointVec(xv, aa, q));
         for (int st = 0; st < (pass ? 1 : 2); st++) {
           PetscCall(JRHBMSetFloquetFast(p.hbm, 0));
           PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, st ? 0 : 16384, NULL, NULL, NULL, &m0, NULL));
@@ -816,7 +825,6 @@ int main(int argc, char **argv)
     PetscInt         np, nn;
     const PetscReal *om, *aa;
     Vec              xv;
-    PetscScalar     *xa;
     PetscCall(EightDofCurve(&p, PETSC_FALSE));
     PetscCall(JRContGetBranch(p.cont, 0, &np, &om, &aa, NULL));
     PetscCall(JRHBMGetSolveSize(p.hbm, &nn, NULL));
@@ -826,9 +834,7 @@ int main(int argc, char **argv)
       for (PetscInt q = 0; q < np; q++) {
         PetscInt  m0, m1, nl;
         PetscReal r0[64], r1[64], i0[64], i1[64], x0, x1;
-        PetscCall(VecGetArray(xv, &xa));
-        for (PetscInt i = 0; i < nn; i++) xa[i] = aa[q * nn + i];
-        PetscCall(VecRestoreArray(xv, &xa));
+        PetscCall(PointVec(xv, aa, q));
         if (fast && q % PetscMax(1, np / 30) == 0) { /* distinct rows against the fast block's inverse */
           PetscInt ndq, fin = 0;
           PetscCall(JRHBMSetFloquetLowRank(p.hbm, 0));
@@ -884,7 +890,6 @@ int main(int argc, char **argv)
     Problem          p;
     const PetscReal *om, *aa;
     Vec              xv;
-    PetscScalar     *xa;
     PetscCall(EightDofCurve(&p, PETSC_TRUE));
     PetscCall(JRContGetBranch(p.cont, 0, &np, &om, &aa, NULL));
     PetscCall(JRHBMGetSolveSize(p.hbm, &nn, NULL));
@@ -894,9 +899,7 @@ int main(int argc, char **argv)
     for (PetscInt q = 0; q < np; q++) {
       PetscInt  m0, m1;
       PetscReal r0[64], r1[64], i0[64], i1[64], x0, x1;
-      PetscCall(VecGetArray(xv, &xa));
-      for (PetscInt i = 0; i < nn; i++) xa[i] = aa[q * nn + i];
-      PetscCall(VecRestoreArray(xv, &xa));
+      PetscCall(PointVec(xv, aa, q));
       PetscCall(JRHBMFloquetTime(p.hbm, om[q], xv, 0, &m0, r0, i0, &x0, NULL));
       PetscCall(JRHBMGetFloquetWoodburyUpdates(p.hbm, &nwq));
       nwood += nwq;
