@@ -9,7 +9,8 @@
    the product itself at one or two columns (a condensed model's Jacobian products through the modes, the sine and
    cosine of a harmonic: 5 against 11 us on lap3's 138 modes x 84 rows); here A is read once, by columns (op(A) = A:
    axpys of its columns into C's) or by rows of op(A) (dot products with B's columns), both as SIMD loops. From
-   three columns on BLAS is faster (node-to-node's projections onto the modes, 2H + 1 columns: 40% slower by loops) */
+   three columns on BLAS is kept: loops up to four columns were not measurably faster there (node-to-node's
+   projections onto the modes, 2H + 1 columns) */
 static void GemmFewColumns(PetscBool at, PetscInt m, PetscInt n, PetscInt k, PetscReal alpha, const PetscReal *A, PetscInt lda, const PetscReal *B, PetscInt ldb, PetscReal beta, PetscReal *C, PetscInt ldc)
 {
   if (!at) {
