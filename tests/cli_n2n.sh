@@ -72,7 +72,11 @@ check "[ \$(echo \"\$sp\" | wc -l) = 5 ] && awk -v d=$d 'BEGIN{exit !(d < 1e-7)}
 r=$($J $brb -frf_force $lev -frf_fmin 128 -frf_fmax 138 -modes_load "$tmp/lev_modes.h5" -frf_output_file "$tmp/re" 2>&1 | grep '^peak level')
 check "[ -n '$r' ] && [ \"\$r\" = \"\$a\" ]" "-modes_load: the same peaks as the run that saved the modes"
 expect_error "modes of another interface" "this run needs a mixed basis of this interface" $J $brb -interface_kt 2e6 -frf_force 1 -modes_load "$tmp/lev_modes.h5" -frf_output_file ''
-expect_error "modes of another partition" "was written on 1 ranks, this run has 2" mpiexec -n 2 $J $brb -frf_force 1 -modes_load "$tmp/lev_modes.h5" -frf_output_file ''
+# saved on 1 rank, read on 2: the file holds the modes in the DOFs' natural order (the mesh's points as built), which
+# the 2 ranks' numbering maps back; the same modes, so the peaks agree to the 2 ranks' round-off
+r2=$(mpiexec -n 2 $J $brb -frf_force $lev -frf_fmin 128 -frf_fmax 138 -modes_load "$tmp/lev_modes.h5" -frf_output_file '' 2>&1 | grep '^peak level')
+d=$(paste <(echo "$a") <(echo "$r2") | awk '{for (i = 5; i <= 9; i += 2) {x = $i; y = $(i+9); e = (x-y)/x; if (e < 0) e = -e; if (e > m) m = e}} END{printf "%.1e", m+0}')
+check "[ \$(echo \"\$r2\" | wc -l) = 5 ] && awk -v d=$d 'BEGIN{exit !(d < 2e-7)}'" "-modes_load on 2 ranks of modes saved on 1: the same 5 peaks (max relative difference $d)"
 expect_error "modes file missing" "-modes_load $tmp/none.h5: cannot read the file" $J $brb -frf_force 1 -modes_load "$tmp/none.h5" -frf_output_file ''
 expect_error "excitation outside the model" "-frf_at (1., 0., 0.) m: the nearest node is" $J $brb -frf_force 1 -frf_at 1,0,0 -frf_output_file ''
 expect_error "negative contact stiffness" "-interface_kt -1.: the tangential stiffness must be positive" $J $brb -frf_force 1 -interface_kt -1 -frf_output_file ''

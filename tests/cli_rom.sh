@@ -107,6 +107,11 @@ osv=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 0.1,50 -rom_joints sides -r
 o=$(mpiexec -n 2 $J -task frf $brb $fix -frf_force 0.1,50 -rom_load "$tmp/rom.h5" -frf_output_file "$tmp/ld" 2>&1)
 read nm dm <<< "$(same "$tmp/sv.csv" "$tmp/ld.csv" 2>/dev/null)"
 check "[ '$nm' -ge 100 ] && lt '$dm' 1e-7 && ! echo \"\$o\" | grep -q '^preload total'" "-rom_load reproduces the saving run (no preload solved): amplitudes at $nm common frequencies within $dm (< 1e-7)"
+# on 1 rank, the model and the modes the saving run wrote on 2 (both in the DOFs' natural order): the same model,
+# so the same amplitudes to round-off
+o1=$($J -task frf $brb $fix -frf_force 0.1,50 -rom_load "$tmp/rom.h5" -modes_load "$tmp/sv_modes.h5" -frf_output_file "$tmp/ld1" 2>&1)
+read nm1 dm1 <<< "$(same "$tmp/sv.csv" "$tmp/ld1.csv" 2>/dev/null)"
+check "[ '$nm1' -ge 100 ] && lt '$dm1' 1e-9 && echo \"\$o1\" | grep -q '^rom: loaded 18 '" "-rom_load and -modes_load on 1 rank of a model and modes saved on 2: amplitudes at $nm1 common frequencies within $dm1 (< 1e-9)"
 cs=$(field "$(echo "$osv" | grep '^rom stiffness_correction')" stiffness_correction); cl=$(echo "$o" | grep '^rom stiffness_correction')
 check "[ -n '$cs' ] && close \$(field \"\$cl\" stiffness_correction) $cs 1e-7 && echo \"\$cl\" | grep -q 'file $tmp/rom.h5'" "-rom_load prints the factor in its file: '$cl' (the saving run's $cs)"
 

@@ -74,7 +74,7 @@ static PetscErrorCode LapCreate(Lap *L)
       L->k[r] = 1e8;
     }
   }
-  PetscCall(JRElementsCreateStuckStiffness(L->K, &L->el, &S, NULL));
+  PetscCall(JRElementsCreateStuckStiffness(L->K, &L->el, &S));
   PetscCall(MatDuplicate(L->K, MAT_COPY_VALUES, &L->Ks));
   PetscCall(MatAXPY(L->Ks, 1.0, S, DIFFERENT_NONZERO_PATTERN));
   PetscCall(MatDestroy(&S));

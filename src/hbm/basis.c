@@ -120,7 +120,8 @@ static PetscErrorCode SolveModes(JRHBM h, Mat K, Mat M, const JRElements *el)
   if (h->basis != JR_HBM_BASIS_FREE) {
     Mat       Ks, KK;
     PetscReal sig;
-    PetscCall(JRElementsCreateStuckStiffness(K, el, &Ks, &sig));
+    PetscCall(JRElementsCreateStuckStiffness(K, el, &Ks));
+    PetscCall(JRElementsStuckSignature(h->model, el, &sig));
     PetscCall(MatDuplicate(K, MAT_COPY_VALUES, &KK));
     PetscCall(MatAXPY(KK, 1.0, Ks, DIFFERENT_NONZERO_PATTERN));
     PetscCall(JRModesSetOperators(h->modes, KK, M));
@@ -143,6 +144,11 @@ static PetscErrorCode SolveModes(JRHBM h, Mat K, Mat M, const JRElements *el)
       PetscCall(JRModelGetCoordinates(h->model, &X));
       PetscCall(JRModesSetCoordinates(h->modes, X));
       PetscCall(VecDestroy(&X));
+    }
+    {
+      IS nat;
+      PetscCall(JRModelGetNaturalOrdering(h->model, &nat));
+      PetscCall(JRModesSetNaturalOrdering(h->modes, nat));
     }
   }
   if (el) PetscCall(SetInterfaceRows(h->modes, el));

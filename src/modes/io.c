@@ -6,16 +6,76 @@
 #include <petscviewerhdf5.h>
 #include <petscblaslapack.h>
 
-/* Write omega^2 and the modes (and the coordinates) to an HDF5 file, through a temporary name */
+/* The scatter between the DOF layout (x) and a vector in the natural order (*y, PETSc's layout of its size): NULL
+   where the modes have no other order (md->nat NULL) */
+static PetscErrorCode NaturalScatter(JRModes md, Vec x, Vec *y, VecScatter *sc)
+{
+  PetscInt N, n, rs;
+  IS       ig;
+
+  PetscFunctionBeginUser;
+  *y  = NULL;
+  *sc = NULL;
+  if (!md->nat) PetscFunctionReturn(0);
+  PetscCall(VecGetSize(x, &N));
+  PetscCall(VecGetLocalSize(x, &n));
+  PetscCall(VecGetOwnershipRange(x, &rs, NULL));
+  PetscCall(VecCreateMPI(md->comm, PETSC_DECIDE, N, y));
+  PetscCall(ISCreateStride(md->comm, n, rs, 1, &ig));
+  PetscCall(VecScatterCreate(x, ig, *y, md->nat, sc));
+  PetscCall(ISDestroy(&ig));
+  PetscFunctionReturn(0);
+}
+
+/* x written under its name, in the natural order where there is one (sc, y from NaturalScatter) */
+static PetscErrorCode ViewNatural(PetscViewer v, Vec x, Vec y, VecScatter sc)
+{
+  const char *name;
+
+  PetscFunctionBeginUser;
+  if (!sc) {
+    PetscCall(VecView(x, v));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscObjectGetName((PetscObject)x, &name));
+  PetscCall(PetscObjectSetName((PetscObject)y, name));
+  PetscCall(VecScatterBegin(sc, x, y, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, x, y, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecView(y, v));
+  PetscFunctionReturn(0);
+}
+
+/* x read under its name, from the natural order where there is one (sc, y from NaturalScatter) */
+static PetscErrorCode LoadNatural(PetscViewer v, Vec x, Vec y, VecScatter sc)
+{
+  const char *name;
+
+  PetscFunctionBeginUser;
+  if (!sc) {
+    PetscCall(VecLoad(x, v));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscObjectGetName((PetscObject)x, &name));
+  PetscCall(PetscObjectSetName((PetscObject)y, name));
+  PetscCall(VecLoad(y, v));
+  PetscCall(VecScatterBegin(sc, y, x, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(sc, y, x, INSERT_VALUES, SCATTER_REVERSE));
+  PetscFunctionReturn(0);
+}
+
+/* Write omega^2 and the modes (and the coordinates) to an HDF5 file, through a temporary name: the vectors in the
+   natural order of the DOFs (JRModesSetNaturalOrdering), which does not depend on the number of ranks */
 PetscErrorCode JRModesSave(JRModes md, const char file[])
 {
   PetscViewer v;
   char        tmp[PETSC_MAX_PATH_LEN + 32];
-  Vec         lam;
+  Vec         lam, y0;
+  VecScatter  sc;
   PetscMPIInt rank, size;
   PetscInt    nm = md->nm, hasx = md->X ? 1 : 0;
 
   PetscFunctionBeginUser;
+  PetscCall(NaturalScatter(md, md->phi[0], &y0, &sc));
   PetscCallMPI(MPI_Comm_rank(md->comm, &rank));
   PetscCallMPI(MPI_Comm_size(md->comm, &size));
   PetscCall(JRFileTempName(md->comm, file, tmp, sizeof(tmp)));
@@ -33,14 +93,14 @@ PetscErrorCode JRModesSave(JRModes md, const char file[])
     char name[32];
     PetscCall(PetscSNPrintf(name, sizeof(name), "phi_%" PetscInt_FMT, i));
     PetscCall(PetscObjectSetName((PetscObject)md->phi[i], name));
-    PetscCall(VecView(md->phi[i], v));
+    PetscCall(ViewNatural(v, md->phi[i], y0, sc));
   }
   if (md->X) { /* a plain copy: a vector of a DMPlex would go to /fields */
     Vec y;
     PetscCall(MatCreateVecs(md->K, &y, NULL));
     PetscCall(VecCopy(md->X, y));
     PetscCall(PetscObjectSetName((PetscObject)y, "coordinates"));
-    PetscCall(VecView(y, v));
+    PetscCall(ViewNatural(v, y, y0, sc));
     PetscCall(VecDestroy(&y));
   }
   PetscCall(PetscViewerHDF5PopGroup(v));
@@ -48,8 +108,11 @@ PetscErrorCode JRModesSave(JRModes md, const char file[])
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "ranks", PETSC_INT, &size));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "has_coordinates", PETSC_INT, &hasx));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "stuck_signature", PETSC_REAL, &md->sig));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "units", PETSC_STRING, "omega2: rad^2/s^2; phi_i: mass-normalised modes over every DOF (kg^-1/2) in the model's parallel DOF numbering; coordinates: m"));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "dof_order", PETSC_STRING, "natural"));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "units", PETSC_STRING, "omega2: rad^2/s^2; phi_i: mass-normalised modes over every DOF (kg^-1/2), in the natural order of the DOFs (an FE model's: by mesh point as built, then component; the same on any number of ranks); coordinates: m"));
   PetscCall(PetscViewerDestroy(&v));
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecDestroy(&y0));
   PetscCall(JRFileRename(md->comm, tmp, file));
   PetscFunctionReturn(0);
 }
@@ -60,9 +123,9 @@ PetscErrorCode JRModesLoad_Private(JRModes md, const char file[])
   PetscViewer        v;
   PetscInt           nm = 0, ranks = 0, hasx = 0, n, nf;
   PetscMPIInt        size;
-  PetscBool          has;
-  Vec                lam, all, x;
-  VecScatter         sc;
+  PetscBool          has, natural = PETSC_FALSE;
+  Vec                lam, all, x, y = NULL;
+  VecScatter         sc, scn = NULL;
   const PetscScalar *l;
 
   PetscFunctionBeginUser;
@@ -83,7 +146,16 @@ PetscErrorCode JRModesLoad_Private(JRModes md, const char file[])
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "has_coordinates", PETSC_INT, NULL, &hasx));
   if (md->load_all) md->nev = nm; /* a mixed basis: every vector of the file */
   PetscCheck(nm >= md->nev, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s holds %" PetscInt_FMT " modes, %" PetscInt_FMT " are asked for (-hbm_modes / -modes_nev)", file, nm, md->nev);
-  PetscCheck(ranks == size, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s was written on %" PetscInt_FMT " ranks, this run has %d: the FE DOF numbering depends on the partition; run on %" PetscInt_FMT " ranks or recompute the modes", file, ranks, (int)size, ranks);
+  PetscCall(PetscViewerHDF5HasAttribute(v, "/jointrom_modes", "dof_order", &natural)); /* else in the DOFs of the ranks that wrote it */
+  if (natural) {
+    char *order = NULL, got[32];
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "dof_order", PETSC_STRING, NULL, &order));
+    PetscCall(PetscStrncpy(got, order, sizeof(got)));
+    PetscCall(PetscFree(order));
+    natural = (PetscBool)!strcmp(got, "natural");
+    PetscCheck(natural, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: DOF order '%s', not natural (a file of another program?)", file, got);
+  }
+  PetscCheck(natural || ranks == size, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s was written on %" PetscInt_FMT " ranks in their DOF numbering (an older file), this run has %d: run on %" PetscInt_FMT " ranks or recompute the modes", file, ranks, (int)size, ranks);
   {
     PetscReal sig = 0;
     PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "stuck_signature", PETSC_REAL, NULL, &sig));
@@ -93,14 +165,15 @@ PetscErrorCode JRModesLoad_Private(JRModes md, const char file[])
   PetscCall(MatGetSize(md->K, &n, NULL));
   PetscCall(PetscViewerHDF5PushGroup(v, "/jointrom_modes"));
   PetscCall(MatCreateVecs(md->K, &x, NULL));
+  if (natural) PetscCall(NaturalScatter(md, x, &y, &scn));
   if (md->X && hasx) {
     PetscReal d, s;
     PetscCall(PetscObjectSetName((PetscObject)x, "coordinates"));
-    PetscCall(VecLoad(x, v));
+    PetscCall(LoadNatural(v, x, y, scn));
     PetscCall(VecAXPY(x, -1.0, md->X));
     PetscCall(VecNorm(x, NORM_INFINITY, &d));
     PetscCall(VecNorm(md->X, NORM_INFINITY, &s));
-    PetscCheck(d <= 1e-9 * s, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: its node coordinates differ from the model's by %g m: it was computed for another mesh (or DOF numbering)", file, (double)d);
+    PetscCheck(d <= 1e-9 * s, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: its node coordinates differ from the model's by %g m: it was computed for another mesh", file, (double)d);
   }
   PetscCall(VecCreateMPI(md->comm, PETSC_DECIDE, nm, &lam));
   PetscCall(PetscObjectSetName((PetscObject)lam, "omega2"));
@@ -128,7 +201,7 @@ PetscErrorCode JRModesLoad_Private(JRModes md, const char file[])
     PetscCall(PetscSNPrintf(name, sizeof(name), "phi_%" PetscInt_FMT, i));
     PetscCall(PetscObjectSetName((PetscObject)md->phi[i], name));
     PetscCall(VecGetSize(md->phi[i], &nf));
-    PetscCall(VecLoad(md->phi[i], v));
+    PetscCall(LoadNatural(v, md->phi[i], y, scn));
     {
       PetscReal nrm;
       PetscCall(VecNorm(md->phi[i], NORM_INFINITY, &nrm));
@@ -139,6 +212,8 @@ PetscErrorCode JRModesLoad_Private(JRModes md, const char file[])
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscViewerDestroy(&v));
   PetscCall(VecDestroy(&x));
+  PetscCall(VecDestroy(&y));
+  PetscCall(VecScatterDestroy(&scn));
   PetscCall(PetscInfo(NULL, "Read %" PetscInt_FMT " modes of %" PetscInt_FMT " DOFs from %s\n", md->nm, nf, file));
   PetscFunctionReturn(0);
 }

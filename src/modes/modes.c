@@ -4,8 +4,9 @@
    below zero (so that a singular, free-free K is fine) with a sparse LDL^T factorisation (MUMPS); or every mode by
    dense LAPACK for small systems (-modes_nev equal to the number of DOFs).
    Options: -modes_nev n, -modes_target t [rad^2/s^2], -modes_view, and every -modes_eps_*, -modes_st_*;
-   -modes_save FILE.h5 writes the modes for reuse, -modes_load FILE.h5 reads them instead of solving (the
-   node coordinates saved with them must match the model's: same mesh, same number of ranks).
+   -modes_save FILE.h5 writes the modes for reuse, in the natural order of the DOFs (JRModesSetNaturalOrdering: the
+   same on any number of ranks), -modes_load FILE.h5 reads them instead of solving (the node coordinates saved with
+   them must match the model's: the same mesh).
    The mixed basis (JRModesMix) of a model with interface rows (JRModesSetInterface) also holds static correction
    vectors of the interface (-modes_static n, -modes_static_tol t, -modes_static_max n; their solver
    -modes_static_ksp_*, -modes_static_pc_*) and gives the basis check (-modes_check, -modes_check_tol;
@@ -170,6 +171,17 @@ PetscErrorCode JRModesSetCoordinates(JRModes md, Vec X)
   if (X) PetscCall(PetscObjectReference((PetscObject)X));
   PetscCall(VecDestroy(&md->X));
   md->X = X;
+  PetscFunctionReturn(0);
+}
+
+/* The order in which the modes are saved (JRModelGetNaturalOrdering; reference kept; NULL: the DOFs' own), so that a
+   file written on some ranks reads back on others */
+PetscErrorCode JRModesSetNaturalOrdering(JRModes md, IS nat)
+{
+  PetscFunctionBeginUser;
+  if (nat) PetscCall(PetscObjectReference((PetscObject)nat));
+  PetscCall(ISDestroy(&md->nat));
+  md->nat = nat;
   PetscFunctionReturn(0);
 }
 
@@ -450,6 +462,7 @@ PetscErrorCode JRModesDestroy(JRModes *modes)
   PetscCall(PetscFree3(md->irdof, md->ircoef, md->irk));
   PetscCall(EPSDestroy(&md->eps));
   PetscCall(VecDestroy(&md->X));
+  PetscCall(ISDestroy(&md->nat));
   PetscCall(MatDestroy(&md->K));
   PetscCall(MatDestroy(&md->M));
   PetscCall(PetscFree(md));

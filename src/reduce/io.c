@@ -79,7 +79,8 @@ static void GetRow(JRElements *el, PetscInt e, const PetscReal r[])
 /*
   JRROMSave - write a reduced model (elements with members) to an HDF5 file: /rom/elements (joint, kt, kn, mu, n0,
   type per element), /rom/members (joint, kt, kn, mu, n0, type, the 6 DOFs, t, n and the nodes' coordinates per
-  member), attributes njoints, types, stiffness_correction, joint_motion (JRJointMotions[jmotion]). Written by rank 0
+  member; the DOFs in the model's natural order, JRModelDOFsToNatural, so that the file reads back on any number of
+  ranks), attributes njoints, types, stiffness_correction, joint_motion (JRJointMotions[jmotion]). Written by rank 0
   to a temporary file, then renamed.
 */
 PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, PetscInt jmotion, const char file[])
@@ -88,6 +89,7 @@ PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, P
   PetscMPIInt       rank;
   const JRElements *mem = rom->members;
   PetscReal        *xc;
+  PetscInt         *na, *nb;
 
   PetscFunctionBeginUser;
   PetscCall(JRModelGetComm(model, &comm));
@@ -95,6 +97,9 @@ PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, P
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(PetscMalloc1(6 * mem->n, &xc));
   PetscCall(MemberCoordinates(model, mem, xc));
+  PetscCall(PetscMalloc2(3 * mem->n, &na, 3 * mem->n, &nb));
+  PetscCall(JRModelDOFsToNatural(model, 3 * mem->n, mem->vdof_a, na)); /* the same on any number of ranks */
+  PetscCall(JRModelDOFsToNatural(model, 3 * mem->n, mem->vdof_b, nb));
   if (!rank) {
     PetscViewer v;
     char        tmp[PETSC_MAX_PATH_LEN + 32];
@@ -112,8 +117,8 @@ PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, P
       PetscReal *r = a + JR_ROM_MEM * e;
       PutRow(mem, e, r);
       for (PetscInt c = 0; c < 3; c++) {
-        r[6 + c]  = mem->vdof_a[3 * e + c];
-        r[9 + c]  = mem->vdof_b[3 * e + c];
+        r[6 + c]  = na[3 * e + c];
+        r[9 + c]  = nb[3 * e + c];
         r[12 + c] = mem->tdir[3 * e + c];
         r[15 + c] = mem->ndir[3 * e + c];
         r[18 + c] = xc[6 * e + c];
@@ -145,6 +150,7 @@ PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, P
     PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "njoints", PETSC_INT, &nj));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "element_type", PETSC_STRING, rom->typename[0]));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "members", "element_type", PETSC_STRING, mem->typename[0]));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "members", "dof_order", PETSC_STRING, "natural"));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "stiffness_correction", PETSC_REAL, &corr));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "elements", "joint_motion", PETSC_STRING, JRJointMotions[jmotion]));
     PetscCall(PetscViewerHDF5PopGroup(v));
@@ -154,6 +160,7 @@ PetscErrorCode JRROMSave(JRModel model, const JRElements *rom, PetscReal corr, P
   }
   PetscCallMPI(MPI_Barrier(comm));
   PetscCall(PetscFree(xc));
+  PetscCall(PetscFree2(na, nb));
   PetscCall(PetscPrintf(comm, "rom: saved %" PetscInt_FMT " elements in %" PetscInt_FMT " joints (%" PetscInt_FMT " members) to %s\n", rom->n, rom->njoints, mem->n, file));
   PetscFunctionReturn(0);
 }
@@ -195,6 +202,7 @@ typedef struct {
   char       *ty, *mty;  /* the elements' and the members' type */
   char       *jm;        /* the joint motion that saved it (NULL: the file does not say) */
   PetscReal   corr;      /* the stiffness correction (1 if the file has none) */
+  PetscBool   natural;   /* the members' DOFs in the model's natural order (else in the DOFs of the ranks that wrote it) */
 } ROMFile;
 
 /* Every dataset and attribute of the file; the element type and the counts checked */
@@ -234,6 +242,14 @@ static PetscErrorCode ROMFileRead(MPI_Comm comm, const char file[], ROMFile *f)
   }
   f->corr = 1.0;
   PetscCall(PetscViewerHDF5ReadAttribute(v, "elements", "stiffness_correction", PETSC_REAL, &f->corr, &f->corr));
+  PetscCall(PetscViewerHDF5HasAttribute(v, "members", "dof_order", &f->natural));
+  if (f->natural) {
+    char *order = NULL, got[32];
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "members", "dof_order", PETSC_STRING, NULL, &order));
+    PetscCall(PetscStrncpy(got, order, sizeof(got)));
+    PetscCall(PetscFree(order));
+    PetscCheck(!strcmp(got, "natural"), comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: DOF order '%s', not natural (a file of another program?)", file, got);
+  }
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscViewerDestroy(&v));
   PetscCheck(!strcmp(f->ty, JRCONTACTJENKINS) || !strcmp(f->ty, JRCONTACTJENKINSNV), comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: element type '%s' (jenkins or jenkins_nv)", file, f->ty);
@@ -283,6 +299,7 @@ static PetscErrorCode ROMFileMembers(JRModel model, const ROMFile *f, JRElements
   PetscCall(PetscNew(&mem));
   PetscCall(JRROMElementsSetUp(mem, f->nmem, f->mty, PETSC_TRUE));
   mem->njoints = f->nj;
+  if (f->natural) PetscCall(JRModelNaturalToDOFs(model, 0, NULL, NULL)); /* its tables, on every rank */
   for (PetscInt e = 0; e < f->nmem; e++) {
     const PetscReal *r = f->mem + JR_ROM_MEM * e;
     GetRow(mem, e, r);
@@ -292,6 +309,12 @@ static PetscErrorCode ROMFileMembers(JRModel model, const ROMFile *f, JRElements
       mem->vdof_b[3 * e + c] = (PetscInt)r[9 + c];
       mem->tdir[3 * e + c]   = r[12 + c];
       mem->ndir[3 * e + c]   = r[15 + c];
+    }
+    if (f->natural) { /* to this run's DOFs (numbers out of range stay, and are refused below) */
+      PetscCall(JRModelNaturalToDOFs(model, 3, mem->vdof_a + 3 * e, mem->vdof_a + 3 * e));
+      PetscCall(JRModelNaturalToDOFs(model, 3, mem->vdof_b + 3 * e, mem->vdof_b + 3 * e));
+    }
+    for (PetscInt c = 0; c < 3; c++) {
       PetscCheck(mem->vdof_a[3 * e + c] >= 0 && mem->vdof_a[3 * e + c] < ndof && mem->vdof_b[3 * e + c] >= 0 && mem->vdof_b[3 * e + c] < ndof, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT " has DOFs outside the model's 0..%" PetscInt_FMT ": the file is for another mesh", f->file, e, ndof - 1);
     }
   }
@@ -351,7 +374,7 @@ static PetscErrorCode ROMFileCheckNodes(JRModel model, const ROMFile *f, const J
         bad   = e;
       }
     }
-  PetscCheck(worst <= 1e-9 * size, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT "'s nodes are %g m from where the file puts them: the file is for another mesh or partition (run with the options and ranks that saved it)", f->file, bad, (double)worst);
+  PetscCheck(worst <= 1e-9 * size, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT "'s nodes are %g m from where the file puts them: the file is for another mesh%s", f->file, bad, (double)worst, f->natural ? "" : " or partition (an older file, in the DOFs of the ranks that wrote it: run on as many ranks)");
   PetscCall(PetscFree(xc));
   PetscFunctionReturn(0);
 }

@@ -30,7 +30,7 @@ static PetscErrorCode StickFE(JRModel model, const JRElements *el, PetscInt nf, 
 
   PetscFunctionBeginUser;
   PetscCall(JRModelGetMatrices(model, &K, &M, NULL));
-  PetscCall(JRElementsCreateStuckStiffness(K, el, &B, NULL));
+  PetscCall(JRElementsCreateStuckStiffness(K, el, &B));
   PetscCall(MatDuplicate(K, MAT_COPY_VALUES, &Ks));
   PetscCall(MatAXPY(Ks, 1.0, B, DIFFERENT_NONZERO_PATTERN));
   PetscCall(MatDestroy(&B));

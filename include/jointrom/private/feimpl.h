@@ -40,6 +40,7 @@ typedef struct {
   PetscInt   ncontact[2];       /* nodes on each contact surface */
   PetscReal  pairgap;           /* largest distance between the two nodes of a pair [m] */
   PetscReal  contact_area;      /* area of contact surface A [m^2] */
+  PetscInt  *orig;              /* each local mesh point's number in the mesh as built, before it was distributed */
 } Model_FE;
 
 /* -model_bolt_tie rigid and -model_interface tied: penalty stiffness, times E and a length of the footprint
@@ -65,6 +66,7 @@ PETSC_INTERN PetscErrorCode JRFEMeshCheckMemory(MPI_Comm, const Model_FE *, Pets
 PETSC_INTERN PetscErrorCode JRFEGeometryBeam(MPI_Comm, Model_FE *, DM *);
 PETSC_INTERN PetscErrorCode JRFEGeometryLap(MPI_Comm, Model_FE *, DM *);
 PETSC_INTERN PetscErrorCode JRFEGeometryGmsh(MPI_Comm, Model_FE *, DM *);
+PETSC_INTERN PetscErrorCode JRFEDistribute(Model_FE *, DM *);
 /* the set-up: fe.c, and its steps in assemble.c, bolts.c, pairs.c */
 PETSC_INTERN PetscErrorCode JRFESetUp(JRModel, Model_FE *);
 PETSC_INTERN PetscErrorCode JRFEDiscretise(MPI_Comm, Model_FE *);
@@ -83,5 +85,6 @@ PETSC_INTERN PetscErrorCode JRFEFaceNodes(DM, const char *, PetscInt, PetscInt *
 /* the same with each node's area weight (free x, dof with PetscFree2, w with PetscFree) */
 PETSC_INTERN PetscErrorCode JRFEFaceNodeAreas(DM, const char *, PetscInt, PetscInt *, PetscReal **, PetscInt **, PetscReal **);
 PETSC_INTERN PetscErrorCode JRFENodalCoordinates(DM, Vec);
+PETSC_INTERN PetscErrorCode JRFENaturalOrdering(DM, const PetscInt *, IS *);
 
 #endif

@@ -28,6 +28,8 @@ struct _p_JRModel {
   JRPairs            pairs;
   JRBolts            bolts;
   DM                 dm;         /* the FE mesh and discretisation (NULL for matrices) */
+  IS                 nat;        /* FE: each owned DOF's position in the partition-independent order (NULL: the DOFs' own) */
+  PetscInt          *g2n, *n2g;  /* that order over every DOF, and its inverse, on every rank (JRModelDOFsToNatural) */
   PetscReal          mass, volume_mass; /* total mass from M, and density x volume */
 };
 
@@ -61,6 +63,7 @@ struct _p_JRModes {
   PetscBool  use_rb;     /* -modes_rigid_basis */
   PetscReal  sig;        /* signature of the stuck springs added to K (0: none), saved and checked */
   Vec        X;          /* node coordinates in the DOF layout (optional): checks a loaded file's layout */
+  IS         nat;        /* each owned DOF's position in the partition-independent order of saved modes (NULL: the DOFs' own) */
   char       load[PETSC_MAX_PATH_LEN], save[PETSC_MAX_PATH_LEN]; /* -modes_load, -modes_save */
   PetscBool  load_all;   /* -modes_load reads every vector of the file (a mixed basis) */
   PetscBool  mixed;      /* JRModesSetMixed(): a mixed basis, made by JRModesMix */

@@ -167,67 +167,104 @@ PetscErrorCode JRElementsDuplicate(const JRElements *a, JRElements *b)
   PetscFunctionReturn(0);
 }
 
+/* Element e's stuck springs if it is a friction element in contact at rest (n0 > 0): its m DOFs d and their weights
+   v in the tangential and normal motions (kt along t, kn along n for jenkins_nv); 0 otherwise */
+static PetscInt StuckSprings(const JRElements *el, PetscInt e, PetscInt d[6], PetscReal v[6][2], PetscReal *kn)
+{
+  const char     *ty = el->typename[el->type[e]];
+  const PetscBool nv = (PetscBool)!strcmp(ty, JRCONTACTJENKINSNV);
+  PetscInt        m  = 0;
+
+  *kn = nv ? el->kn[e] : 0.0;
+  if (!(el->n0[e] > 0) || !(nv || !strcmp(ty, JRCONTACTJENKINS))) return 0;
+  if (el->vdof_a) {
+    for (PetscInt c = 0; c < 3; c++) {
+      d[m]      = el->vdof_a[3 * e + c];
+      v[m][0]   = el->tdir[3 * e + c];
+      v[m++][1] = el->ndir[3 * e + c];
+    }
+    for (PetscInt c = 0; c < 3; c++) {
+      d[m]      = el->vdof_b[3 * e + c];
+      v[m][0]   = -el->tdir[3 * e + c];
+      v[m++][1] = -el->ndir[3 * e + c];
+    }
+    return m;
+  }
+  {
+    const PetscInt  dd[4]    = {el->dof_a[e], el->dof_b[e], nv ? el->ndof_a[e] : -1, nv ? el->ndof_b[e] : -1};
+    const PetscReal wt[4][2] = {
+      {1,  0 },
+      {-1, 0 },
+      {0,  1 },
+      {0,  -1}
+    };
+    for (PetscInt k = 0; k < 4; k++) {
+      PetscInt j;
+      if (dd[k] < 0) continue;
+      for (j = 0; j < m; j++)
+        if (d[j] == dd[k]) break;
+      if (j == m) {
+        d[m]    = dd[k];
+        v[m][0] = v[m][1] = 0.0;
+        m++;
+      }
+      v[j][0] += wt[k][0];
+      v[j][1] += wt[k][1];
+    }
+  }
+  return m;
+}
+
 /*
   JRElementsCreateStuckStiffness - Ks: the springs of every friction element in contact at rest (n0 > 0) stuck,
   kt along its tangential direction and kn along its normal one (jenkins_nv), between its DOFs, as a
-  matrix of K's layout (add it with MatAXPY(..., DIFFERENT_NONZERO_PATTERN)); sig: a signature of the set
-  (sum of the springs' stiffness over the elements and their DOFs) that identifies it in saved modes.
+  matrix of K's layout (add it with MatAXPY(..., DIFFERENT_NONZERO_PATTERN)).
 */
-PetscErrorCode JRElementsCreateStuckStiffness(Mat K, const JRElements *el, Mat *Ks, PetscReal *sig)
+PetscErrorCode JRElementsCreateStuckStiffness(Mat K, const JRElements *el, Mat *Ks)
 {
   PetscInt  *bn, **bd, nb = 0;
-  PetscReal **bv, sg = 0.0;
+  PetscReal **bv;
 
   PetscFunctionBeginUser;
   if (el->members) el = el->members; /* a reduced model: its basis is that of the node-to-node elements */
   PetscCall(PetscMalloc3(el->n, &bn, el->n, &bd, el->n, &bv));
   for (PetscInt e = 0; e < el->n; e++) {
-    const char     *ty  = el->typename[el->type[e]];
-    const PetscBool nv  = (PetscBool)!strcmp(ty, JRCONTACTJENKINSNV);
-    const PetscReal kn  = nv ? el->kn[e] : 0.0;
-    PetscInt        d[6], m = 0;
-    PetscReal       v[6][2]; /* per DOF: its weight in u and in v */
-    if (!(el->n0[e] > 0) || !(nv || !strcmp(ty, JRCONTACTJENKINS))) continue;
-    if (el->vdof_a) {
-      for (PetscInt c = 0; c < 3; c++) {
-        d[m]      = el->vdof_a[3 * e + c];
-        v[m][0]   = el->tdir[3 * e + c];
-        v[m++][1] = el->ndir[3 * e + c];
-      }
-      for (PetscInt c = 0; c < 3; c++) {
-        d[m]      = el->vdof_b[3 * e + c];
-        v[m][0]   = -el->tdir[3 * e + c];
-        v[m++][1] = -el->ndir[3 * e + c];
-      }
-    } else {
-      const PetscInt dd[4] = {el->dof_a[e], el->dof_b[e], nv ? el->ndof_a[e] : -1, nv ? el->ndof_b[e] : -1};
-      const PetscReal wt[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
-      for (PetscInt k = 0; k < 4; k++) {
-        PetscInt j;
-        if (dd[k] < 0) continue;
-        for (j = 0; j < m; j++)
-          if (d[j] == dd[k]) break;
-        if (j == m) {
-          d[m]    = dd[k];
-          v[m][0] = v[m][1] = 0.0;
-          m++;
-        }
-        v[j][0] += wt[k][0];
-        v[j][1] += wt[k][1];
-      }
-    }
+    PetscInt  d[6], m;
+    PetscReal v[6][2], kn;
+    if (!(m = StuckSprings(el, e, d, v, &kn))) continue;
     bn[nb] = m;
     PetscCall(PetscMalloc2(m, &bd[nb], m * m, &bv[nb]));
     for (PetscInt i = 0; i < m; i++) {
       bd[nb][i] = d[i];
       for (PetscInt j = 0; j < m; j++) bv[nb][i * m + j] = el->kt[e] * v[i][0] * v[j][0] + kn * v[i][1] * v[j][1];
-      sg += (el->kt[e] + kn) * (1.0 + 1e-7 * (PetscReal)d[i]);
     }
     nb++;
   }
   PetscCall(JRMatCreateFromBlocks(K, nb, bn, (const PetscInt *const *)bd, (const PetscReal *const *)bv, Ks));
   for (PetscInt b = 0; b < nb; b++) PetscCall(PetscFree2(bd[b], bv[b]));
   PetscCall(PetscFree3(bn, bd, bv));
-  if (sig) *sig = sg;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRElementsStuckSignature - a number that identifies the stuck springs of JRElementsCreateStuckStiffness in saved
+  modes: the sum of the springs' stiffness over the elements and their DOFs, each DOF weighted by its natural number
+  (JRModelDOFsToNatural), so that it does not depend on the number of ranks. Collective.
+*/
+PetscErrorCode JRElementsStuckSignature(JRModel model, const JRElements *el, PetscReal *sig)
+{
+  PetscReal sg = 0.0;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelDOFsToNatural(model, 0, NULL, NULL)); /* its tables, on every rank */
+  if (el->members) el = el->members;
+  for (PetscInt e = 0; e < el->n; e++) {
+    PetscInt  d[6], m;
+    PetscReal v[6][2], kn;
+    if (!(m = StuckSprings(el, e, d, v, &kn))) continue;
+    PetscCall(JRModelDOFsToNatural(model, m, d, d));
+    for (PetscInt i = 0; i < m; i++) sg += (el->kt[e] + kn) * (1.0 + 1e-7 * (PetscReal)d[i]);
+  }
+  *sig = sg;
   PetscFunctionReturn(0);
 }

@@ -173,6 +173,72 @@ PetscErrorCode JRModelGetCoordinates(JRModel m, Vec *X)
   PetscFunctionReturn(0);
 }
 
+/*
+  JRModelGetNaturalOrdering - the position of each DOF this rank owns (in the order of K's rows) in an order of all
+  DOFs that does not depend on the number of ranks: NULL where the DOFs' own numbering does not (a matrices model).
+  An FE model's DOFs are numbered by the partition; in this order (its mesh points as built, then the components) a
+  vector written on some ranks reads back on others (-modes_save, -rom_save).
+*/
+PetscErrorCode JRModelGetNaturalOrdering(JRModel m, IS *nat)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRModelSetUp(m));
+  *nat = m->nat;
+  PetscFunctionReturn(0);
+}
+
+/* Every DOF's natural position and its inverse, on every rank (m->g2n, m->n2g), from m->nat */
+static PetscErrorCode NaturalTables(JRModel m)
+{
+  PetscInt        nloc, N;
+  const PetscInt *idx;
+  PetscMPIInt     size, nl, *cnt, *dsp;
+
+  PetscFunctionBeginUser;
+  if (m->g2n || !m->nat) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_size(m->comm, &size));
+  PetscCall(ISGetLocalSize(m->nat, &nloc));
+  PetscCall(ISGetSize(m->nat, &N));
+  PetscCall(PetscMPIIntCast(nloc, &nl));
+  PetscCall(PetscMalloc2(size, &cnt, size + 1, &dsp));
+  PetscCallMPI(MPI_Allgather(&nl, 1, MPI_INT, cnt, 1, MPI_INT, m->comm));
+  dsp[0] = 0;
+  for (PetscMPIInt r = 0; r < size; r++) dsp[r + 1] = dsp[r] + cnt[r];
+  PetscCall(PetscMalloc2(N + 1, &m->g2n, N + 1, &m->n2g));
+  PetscCall(ISGetIndices(m->nat, &idx));
+  PetscCallMPI(MPI_Allgatherv(idx, nl, MPIU_INT, m->g2n, cnt, dsp, MPIU_INT, m->comm));
+  PetscCall(ISRestoreIndices(m->nat, &idx));
+  for (PetscInt g = 0; g < N; g++) m->n2g[g] = -1;
+  for (PetscInt g = 0; g < N; g++) {
+    PetscCheck(m->g2n[g] >= 0 && m->g2n[g] < N && m->n2g[m->g2n[g]] < 0, m->comm, PETSC_ERR_PLIB, "The natural order of the DOFs is not a permutation (DOF %" PetscInt_FMT ")", g);
+    m->n2g[m->g2n[g]] = g;
+  }
+  PetscCall(PetscFree2(cnt, dsp));
+  PetscFunctionReturn(0);
+}
+
+/* JRModelDOFsToNatural - n DOFs (any, on every rank) to their natural positions (JRModelGetNaturalOrdering); the same
+   numbers where the model has no other order. in and out may be the same. Collective. */
+PetscErrorCode JRModelDOFsToNatural(JRModel m, PetscInt n, const PetscInt in[], PetscInt out[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRModelSetUp(m));
+  PetscCall(NaturalTables(m));
+  for (PetscInt i = 0; i < n; i++) out[i] = m->g2n && in[i] >= 0 && in[i] < m->ndof ? m->g2n[in[i]] : in[i];
+  PetscFunctionReturn(0);
+}
+
+/* JRModelNaturalToDOFs - the inverse of JRModelDOFsToNatural (a number outside 0..ndof-1 is returned as it is, for the
+   caller to refuse). Collective. */
+PetscErrorCode JRModelNaturalToDOFs(JRModel m, PetscInt n, const PetscInt in[], PetscInt out[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRModelSetUp(m));
+  PetscCall(NaturalTables(m));
+  for (PetscInt i = 0; i < n; i++) out[i] = m->n2g && in[i] >= 0 && in[i] < m->ndof ? m->n2g[in[i]] : in[i];
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode JRModelGetComm(JRModel m, MPI_Comm *comm)
 {
   PetscFunctionBeginUser;
@@ -261,6 +327,8 @@ PetscErrorCode JRModelDestroy(JRModel *model)
   PetscCall(JRPairsDestroy(&m->pairs));
   PetscCall(JRBoltsDestroy(&m->bolts));
   PetscCall(DMDestroy(&m->dm));
+  PetscCall(ISDestroy(&m->nat));
+  PetscCall(PetscFree2(m->g2n, m->n2g));
   PetscCall(PetscFree(m));
   *model = NULL;
   PetscFunctionReturn(0);

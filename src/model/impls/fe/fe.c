@@ -103,6 +103,7 @@ PetscErrorCode JRFESetUp(JRModel m, Model_FE *fe)
   if (fe->lap && fe->tied) PetscCall(JRFETieInterface(m, fe));
   m->tied = fe->lap && fe->tied ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(SetNearNullSpace(m, fe));
+  PetscCall(JRFENaturalOrdering(fe->dm, fe->orig, &m->nat));
   m->dm = fe->dm;
   PetscCall(PetscObjectReference((PetscObject)fe->dm));
   PetscFunctionReturn(0);

@@ -13,6 +13,7 @@
    through each half height.
 */
 #include <jointrom/private/feimpl.h>
+#include <petscsf.h>
 #include <unistd.h>
 
 /* grid lines: n cells of equal size over each segment [b_i, b_{i+1}] of size at most hs[i] */
@@ -160,7 +161,6 @@ static PetscErrorCode BuildMesh(MPI_Comm comm, Model_FE *fe, const LapCtx *lc, P
   PetscMPIInt rank;
   PetscInt    ncell = 0, nvert = 0, *cells = NULL, *body = NULL;
   PetscReal  *coords = NULL;
-  DM          dist   = NULL;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
@@ -234,17 +234,48 @@ static PetscErrorCode BuildMesh(MPI_Comm comm, Model_FE *fe, const LapCtx *lc, P
     PetscCall(PetscFree3(cells, coords, body));
   }
   { /* the cells are numbered along the beam axis: the simple partitioner cuts the beams into slabs (minimal
-       cuts for a beam) and, unlike PT-Scotch, gives the same DOF numbering every run, so that saved modes can
-       be read back (-modes_load); -petscpartitioner_type chooses another */
+       cuts for a beam) and, unlike PT-Scotch, gives the same DOF numbering every run (saved modes and reduced
+       models do not need it: they are written in the natural order, JRFEDistribute); -petscpartitioner_type
+       chooses another */
     PetscPartitioner part;
     PetscCall(DMPlexGetPartitioner(*dm, &part));
     PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERSIMPLE));
     PetscCall(PetscPartitionerSetFromOptions(part));
   }
-  PetscCall(DMPlexDistribute(*dm, 0, NULL, &dist));
+  PetscCall(JRFEDistribute(fe, dm));
+  PetscFunctionReturn(0);
+}
+
+/* Distribute the mesh built on rank 0 (the partitioner the caller set) and keep, in fe->orig, each local point's number
+   in the mesh as built: the same on any number of ranks, it orders the DOFs of saved modes and reduced models
+   (JRFENaturalOrdering) */
+PetscErrorCode JRFEDistribute(Model_FE *fe, DM *dm)
+{
+  DM       dist = NULL;
+  PetscSF  sf   = NULL;
+  PetscInt ps, pe;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexDistribute(*dm, 0, &sf, &dist));
   if (dist) {
     PetscCall(DMDestroy(dm));
     *dm = dist;
+  }
+  PetscCall(DMPlexGetChart(*dm, &ps, &pe));
+  PetscCall(PetscFree(fe->orig));
+  PetscCall(PetscMalloc1(pe - ps + 1, &fe->orig));
+  for (PetscInt p = ps; p < pe; p++) fe->orig[p - ps] = p; /* one rank: the mesh as built */
+  if (sf) {                                                 /* the migration: each new point (leaf) from a built one (root) */
+    PetscInt           nl;
+    const PetscInt    *il;
+    const PetscSFNode *ir;
+    PetscCall(PetscSFGetGraph(sf, NULL, &nl, &il, &ir));
+    for (PetscInt i = 0; i < nl; i++) {
+      const PetscInt p = il ? il[i] : i;
+      PetscCheck(ir[i].rank == 0 && p >= ps && p < pe, PETSC_COMM_SELF, PETSC_ERR_PLIB, "The mesh's point %" PetscInt_FMT " does not come from the mesh built on rank 0", p);
+      fe->orig[p - ps] = ir[i].index;
+    }
+    PetscCall(PetscSFDestroy(&sf));
   }
   PetscFunctionReturn(0);
 }

@@ -47,7 +47,6 @@ PetscErrorCode JRFEGeometryGmsh(MPI_Comm comm, Model_FE *fe, DM *dm)
 {
   PetscBool ok, given;
   PetscInt  na, nb, cs, ce;
-  DM        dist = NULL;
 
   PetscFunctionBeginUser;
   PetscCheck(fe->file[0], comm, PETSC_ERR_USER_INPUT, "-model_type gmsh needs -model_file FILE.msh");
@@ -109,10 +108,6 @@ PetscErrorCode JRFEGeometryGmsh(MPI_Comm comm, Model_FE *fe, DM *dm)
   PetscCall(PetscCalloc1(PetscMax(fe->nbolts, 1), &fe->bolt));
   for (PetscInt i = 0; i < fe->nbolts; i++) fe->bolt[i].d = fe->dbolt;
   fe->lap = PETSC_TRUE;
-  PetscCall(DMPlexDistribute(*dm, 0, NULL, &dist));
-  if (dist) {
-    PetscCall(DMDestroy(dm));
-    *dm = dist;
-  }
+  PetscCall(JRFEDistribute(fe, dm));
   PetscFunctionReturn(0);
 }

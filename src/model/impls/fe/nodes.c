@@ -65,6 +65,74 @@ PetscErrorCode JRFENodalCoordinates(DM dm, Vec X)
   PetscFunctionReturn(0);
 }
 
+/* The natural position of every owned DOF of dm's global vector, in its order (nat: an IS of local size the owned
+   DOFs): the DOFs sorted by their mesh point's number in the mesh as built (orig, JRFEDistribute) and then by
+   component, which does not depend on the partition, so that a vector written in that order reads back on any number
+   of ranks */
+PetscErrorCode JRFENaturalOrdering(DM dm, const PetscInt *orig, IS *nat)
+{
+  MPI_Comm     comm;
+  PetscSection ls, gs;
+  PetscInt     ps, pe, cs, nloc = 0, rs = 0, N = 0, *key, *all, *idx;
+  PetscMPIInt  size, *cnt, *dsp, nl;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetComm((PetscObject)dm, &comm));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(DMGetLocalSection(dm, &ls));
+  PetscCall(DMGetGlobalSection(dm, &gs));
+  PetscCall(PetscSectionGetChart(ls, &ps, &pe));
+  PetscCall(DMPlexGetChart(dm, &cs, NULL)); /* orig's first point */
+  {
+    Vec g;
+    PetscCall(DMGetGlobalVector(dm, &g));
+    PetscCall(VecGetLocalSize(g, &nloc));
+    PetscCall(VecGetOwnershipRange(g, &rs, NULL));
+    PetscCall(DMRestoreGlobalVector(dm, &g));
+  }
+  PetscCall(PetscMalloc1(nloc + 1, &key));
+  for (PetscInt i = 0; i < nloc; i++) key[i] = -1;
+  for (PetscInt p = ps; p < pe; p++) {
+    PetscInt        d, cd, off, j = 0;
+    const PetscInt *ci = NULL;
+    PetscCall(PetscSectionGetOffset(gs, p, &off));
+    if (off < 0) continue; /* not owned */
+    PetscCall(PetscSectionGetDof(ls, p, &d));
+    PetscCall(PetscSectionGetConstraintDof(ls, p, &cd));
+    if (cd) PetscCall(PetscSectionGetConstraintIndices(ls, p, &ci));
+    PetscCheck(d <= 8, comm, PETSC_ERR_SUP, "A mesh point with %" PetscInt_FMT " DOFs: at most 8", d);
+    for (PetscInt c = 0; c < d; c++) {
+      PetscBool con = PETSC_FALSE;
+      for (PetscInt q = 0; q < cd; q++) con = (PetscBool)(con || ci[q] == c);
+      if (con) continue;
+      PetscCheck(off - rs + j >= 0 && off - rs + j < nloc, comm, PETSC_ERR_PLIB, "Point %" PetscInt_FMT "'s DOF %" PetscInt_FMT " is outside the owned range", p, off + j);
+      key[off - rs + j++] = 8 * orig[p - cs] + c; /* a point's global DOFs: its unconstrained components in order */
+    }
+  }
+  for (PetscInt i = 0; i < nloc; i++) PetscCheck(key[i] >= 0, comm, PETSC_ERR_PLIB, "Owned DOF %" PetscInt_FMT " belongs to no mesh point", rs + i);
+  /* the position of each key among all of them */
+  PetscCall(PetscMPIIntCast(nloc, &nl));
+  PetscCall(PetscMalloc2(size, &cnt, size + 1, &dsp));
+  PetscCallMPI(MPI_Allgather(&nl, 1, MPI_INT, cnt, 1, MPI_INT, comm));
+  dsp[0] = 0;
+  for (PetscMPIInt r = 0; r < size; r++) dsp[r + 1] = dsp[r] + cnt[r];
+  N = dsp[size];
+  PetscCall(PetscMalloc2(N + 1, &all, nloc + 1, &idx));
+  PetscCallMPI(MPI_Allgatherv(key, nl, MPIU_INT, all, cnt, dsp, MPIU_INT, comm));
+  PetscCall(PetscSortInt(N, all));
+  for (PetscInt i = 0; i < nloc; i++) {
+    PetscInt loc;
+    PetscCall(PetscFindInt(key[i], N, all, &loc));
+    PetscCheck(loc >= 0 && (loc == 0 || all[loc - 1] != key[i]), comm, PETSC_ERR_PLIB, "Two DOFs share the natural key %" PetscInt_FMT, key[i]);
+    idx[i] = loc;
+  }
+  PetscCall(ISCreateGeneral(comm, nloc, idx, PETSC_COPY_VALUES, nat));
+  PetscCall(PetscFree2(all, idx));
+  PetscCall(PetscFree2(cnt, dsp));
+  PetscCall(PetscFree(key));
+  PetscFunctionReturn(0);
+}
+
 /* the mean of a cell's vertex coordinates (independent of the closure order, which the Q2 kernel permutes
    to tensor order on the coordinate DM: DMPlexComputeCellGeometryFVM expects DMPlex's own order) */
 PetscErrorCode JRFECellCentre(DM dm, PetscInt c, PetscReal x[3])

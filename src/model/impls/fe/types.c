@@ -182,6 +182,7 @@ static PetscErrorCode JRModelDestroy_FE(JRModel m)
   PetscFunctionBeginUser;
   PetscCall(DMDestroy(&ft->fe.dm));
   PetscCall(PetscFree(ft->fe.bolt));
+  PetscCall(PetscFree(ft->fe.orig));
   PetscCall(PetscFree(m->data));
   PetscFunctionReturn(0);
 }
