@@ -92,7 +92,7 @@ PETSC_EXTERN PetscErrorCode JRModelNaturalToDOFs(JRModel, PetscInt, const PetscI
 PETSC_EXTERN PetscErrorCode JRElementsDestroy(JRElements *);
 PETSC_EXTERN PetscErrorCode JRElementsDuplicate(const JRElements *, JRElements *);
 PETSC_EXTERN PetscErrorCode JRElementsCreateStuckStiffness(Mat, const JRElements *, Mat *);
-PETSC_EXTERN PetscErrorCode JRElementsStuckSignature(JRModel, const JRElements *, PetscReal *);
+PETSC_EXTERN PetscErrorCode JRElementsStuckSignature(JRModel, const JRElements *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRModelGetBoundingBox(JRModel, PetscReal[3], PetscReal[3]);
 PETSC_EXTERN PetscErrorCode JRModelFindDof(JRModel, const PetscReal[3], PetscInt, PetscInt *, PetscReal *);
 PETSC_EXTERN PetscErrorCode JRModelGetRigidBasis(JRModel, PetscInt *, Vec[6]);

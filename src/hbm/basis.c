@@ -119,13 +119,13 @@ static PetscErrorCode SolveModes(JRHBM h, Mat K, Mat M, const JRElements *el)
   PetscCall(JRModesCreate(h->comm, &h->modes));
   if (h->basis != JR_HBM_BASIS_FREE) {
     Mat       Ks, KK;
-    PetscReal sig;
+    PetscReal sig, sigraw;
     PetscCall(JRElementsCreateStuckStiffness(K, el, &Ks));
-    PetscCall(JRElementsStuckSignature(h->model, el, &sig));
+    PetscCall(JRElementsStuckSignature(h->model, el, &sig, &sigraw));
     PetscCall(MatDuplicate(K, MAT_COPY_VALUES, &KK));
     PetscCall(MatAXPY(KK, 1.0, Ks, DIFFERENT_NONZERO_PATTERN));
     PetscCall(JRModesSetOperators(h->modes, KK, M));
-    PetscCall(JRModesSetSignature(h->modes, sig));
+    PetscCall(JRModesSetSignature(h->modes, sig, sigraw));
     PetscCall(MatDestroy(&KK));
     PetscCall(MatDestroy(&Ks));
   } else PetscCall(JRModesSetOperators(h->modes, K, M));
@@ -208,7 +208,8 @@ PetscErrorCode JRHBMSetUpBasis(JRHBM h, Mat K, Mat M, Mat C, PetscInt ndof, cons
   PetscFunctionReturn(0);
 }
 
-/* The excitation shape in the basis, fm (-frf_dof or -frf_force_file), and the output DOFs' rows, Phiout */
+/* The excitation shape in the basis, fm (-frf_dof or -frf_force_file: one value per DOF in the natural order of the
+   model's DOFs, JRModelDOFsToNatural, as the coordinates of a -modes_save file), and the output DOFs' rows, Phiout */
 PetscErrorCode JRHBMSetUpExcitation(JRHBM h, PetscInt ndof)
 {
   PetscFunctionBeginUser;
@@ -220,14 +221,23 @@ PetscErrorCode JRHBMSetUpExcitation(JRHBM h, PetscInt ndof)
     PetscReal *f;
     PetscCall(PetscMalloc1(ndof, &f));
     PetscCall(JRVecLoadFile(h->comm, h->ffile, ndof, f));
-    if (h->physical) PetscCall(PetscArraycpy(h->fm, f, ndof));
-    else {
+    if (h->physical) {
+      for (PetscInt i = 0; i < ndof; i++) {
+        PetscInt n = i;
+        PetscCall(JRModelDOFsToNatural(h->model, 1, &n, &n));
+        h->fm[i] = f[n];
+      }
+    } else {
       Vec          fv;
-      PetscInt     lo, hi;
+      PetscInt     lo, hi, *nat;
       PetscScalar *d;
       PetscCall(VecDuplicate(h->modes->phi[0], &fv));
       PetscCall(VecGetOwnershipRange(fv, &lo, &hi));
-      for (PetscInt i = lo; i < hi; i++) PetscCall(VecSetValue(fv, i, f[i], INSERT_VALUES));
+      PetscCall(PetscMalloc1(hi - lo + 1, &nat));
+      for (PetscInt i = lo; i < hi; i++) nat[i - lo] = i;
+      PetscCall(JRModelDOFsToNatural(h->model, hi - lo, nat, nat)); /* the file's order */
+      for (PetscInt i = lo; i < hi; i++) PetscCall(VecSetValue(fv, i, f[nat[i - lo]], INSERT_VALUES));
+      PetscCall(PetscFree(nat));
       PetscCall(VecAssemblyBegin(fv));
       PetscCall(VecAssemblyEnd(fv));
       PetscCall(PetscMalloc1(h->nm, &d));

@@ -121,7 +121,7 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
   PetscCall(PetscOptionsReal("-hbm_residual_tol", "A solution is accepted when ||R|| <= tol ||F f||: the residual against the excitation in the same space (condensed: the joints' static motion under it)", "JRHBMSolve", h->acctol, &h->acctol, NULL));
   PetscCall(PetscOptionsBool("-hbm_view", "Print the harmonic-balance set-up", "JRHBMView", h->view, &h->view, NULL));
   if (!h->fdof_set) PetscCall(PetscOptionsInt("-frf_dof", "Excitation F sin(w t) at this DOF (0-based)", "JRHBMSetUp", h->fdof, &h->fdof, NULL));
-  PetscCall(PetscOptionsString("-frf_force_file", "Excitation shape from a file instead (one value per DOF: .csv/.txt, .bin, .h5)", "JRHBMSetUp", h->ffile, h->ffile, sizeof(h->ffile), NULL));
+  PetscCall(PetscOptionsString("-frf_force_file", "Excitation shape from a file instead (one value per DOF, in an FE model's natural order: that of the coordinates in a -modes_save file; .csv/.txt, .bin, .h5)", "JRHBMSetUp", h->ffile, h->ffile, sizeof(h->ffile), NULL));
   PetscCall(PetscOptionsIntArray("-frf_output", "Response DOFs (default: the excitation DOF)", "JRHBMResponse", out, &nout, &flg));
   PetscOptionsEnd();
   if (h->nout && h->fdof_set) flg = PETSC_FALSE; /* JRHBMSetExcitationDof() called */

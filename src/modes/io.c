@@ -16,7 +16,7 @@ static PetscErrorCode NaturalScatter(JRModes md, Vec x, Vec *y, VecScatter *sc)
   PetscFunctionBeginUser;
   *y  = NULL;
   *sc = NULL;
-  if (!md->nat) PetscFunctionReturn(0);
+  if (!md->nat) PetscFunctionReturn(0); /* none, or the DOFs' own */
   PetscCall(VecGetSize(x, &N));
   PetscCall(VecGetLocalSize(x, &n));
   PetscCall(VecGetOwnershipRange(x, &rs, NULL));
@@ -107,9 +107,9 @@ PetscErrorCode JRModesSave(JRModes md, const char file[])
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "modes", PETSC_INT, &nm));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "ranks", PETSC_INT, &size));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "has_coordinates", PETSC_INT, &hasx));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "stuck_signature", PETSC_REAL, &md->sig));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "dof_order", PETSC_STRING, "natural"));
-  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "units", PETSC_STRING, "omega2: rad^2/s^2; phi_i: mass-normalised modes over every DOF (kg^-1/2), in the natural order of the DOFs (an FE model's: by mesh point as built, then component; the same on any number of ranks); coordinates: m"));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "stuck_signature", PETSC_REAL, md->natset ? &md->sig : &md->sigraw));
+  if (md->natset) PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "dof_order", PETSC_STRING, "natural"));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "units", PETSC_STRING, md->natset ? "omega2: rad^2/s^2; phi_i: mass-normalised modes over every DOF (kg^-1/2), in the natural order of the DOFs (an FE model's: by mesh point as built, then component; the same on any number of ranks); coordinates: m" : "omega2: rad^2/s^2; phi_i: mass-normalised modes over every DOF (kg^-1/2) in the model's parallel DOF numbering; coordinates: m"));
   PetscCall(PetscViewerDestroy(&v));
   PetscCall(VecScatterDestroy(&sc));
   PetscCall(VecDestroy(&y0));
@@ -159,12 +159,14 @@ PetscErrorCode JRModesLoad_Private(JRModes md, const char file[])
   {
     PetscReal sig = 0;
     PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "stuck_signature", PETSC_REAL, NULL, &sig));
-    PetscCall(PetscInfo(NULL, "stuck signature: file %.17g, this run %.17g\n", (double)sig, (double)md->sig));
-    PetscCheck(PetscAbsReal(sig - md->sig) <= 1e-9 * PetscMax(PetscAbsReal(sig), PetscAbsReal(md->sig)), md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: its modes are of %s, this run needs %s (-hbm_basis, -interface_*, preload): recompute them", file, sig == 0 ? "the free structure" : sig < 0 ? "a mixed basis (stuck + free)" : "a stuck interface", md->sig == 0 ? "the free structure's" : md->sig < 0 ? "a mixed basis of this interface" : "those of this stuck interface");
+    const PetscReal mine = natural ? md->sig : md->sigraw; /* the file's DOF numbers */
+    PetscCall(PetscInfo(NULL, "stuck signature: file %.17g, this run %.17g\n", (double)sig, (double)mine));
+    PetscCheck(PetscAbsReal(sig - mine) <= 1e-9 * PetscMax(PetscAbsReal(sig), PetscAbsReal(mine)), md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s: its modes are of %s, this run needs %s (-hbm_basis, -interface_*, preload): recompute them", file, sig == 0 ? "the free structure" : sig < 0 ? "a mixed basis (stuck + free)" : "a stuck interface", mine == 0 ? "the free structure's" : mine < 0 ? "a mixed basis of this interface" : "those of this stuck interface");
   }
   PetscCall(MatGetSize(md->K, &n, NULL));
   PetscCall(PetscViewerHDF5PushGroup(v, "/jointrom_modes"));
   PetscCall(MatCreateVecs(md->K, &x, NULL));
+  PetscCheck(!natural || md->natset, md->comm, PETSC_ERR_ARG_WRONGSTATE, "-modes_load %s: the file is in the natural order of the DOFs, which this run did not set (JRModesSetNaturalOrdering)", file);
   if (natural) PetscCall(NaturalScatter(md, x, &y, &scn));
   if (md->X && hasx) {
     PetscReal d, s;

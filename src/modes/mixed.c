@@ -20,6 +20,7 @@ PetscErrorCode JRModesSetMixed(JRModes md)
   md->save[0]  = 0;
   md->load_all = PETSC_TRUE;
   md->sig      = -md->sig - 1.0;
+  md->sigraw   = -md->sigraw - 1.0;
   PetscFunctionReturn(0);
 }
 

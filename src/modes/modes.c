@@ -181,15 +181,18 @@ PetscErrorCode JRModesSetNaturalOrdering(JRModes md, IS nat)
   PetscFunctionBeginUser;
   if (nat) PetscCall(PetscObjectReference((PetscObject)nat));
   PetscCall(ISDestroy(&md->nat));
-  md->nat = nat;
+  md->nat    = nat;
+  md->natset = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
-/* A number identifying stuck contact springs added to K (stuck basis), saved with the modes and checked on load */
-PetscErrorCode JRModesSetSignature(JRModes md, PetscReal sig)
+/* A number identifying stuck contact springs added to K (stuck basis), saved with the modes and checked on load: on
+   the natural DOFs (sig) and on the DOFs' own numbers (sigraw, for files written before the natural order) */
+PetscErrorCode JRModesSetSignature(JRModes md, PetscReal sig, PetscReal sigraw)
 {
   PetscFunctionBeginUser;
-  md->sig = sig;
+  md->sig    = sig;
+  md->sigraw = sigraw;
   PetscFunctionReturn(0);
 }
 

@@ -51,6 +51,17 @@ PetscErrorCode JRTaskModes(MPI_Comm comm)
   PetscCall(JRModelGetRigidBasis(model, &nrb, rb));
   PetscCall(JRModesSetRigidBasis(modes, nrb, rb));
   for (PetscInt i = 0; i < nrb; i++) PetscCall(VecDestroy(&rb[i]));
+  { /* saved (-modes_save) in the DOFs' natural order, with an FE model's coordinates: read back on any ranks */
+    IS  nat;
+    Vec X;
+    PetscCall(JRModelGetNaturalOrdering(model, &nat));
+    PetscCall(JRModesSetNaturalOrdering(modes, nat));
+    if (nrb) {
+      PetscCall(JRModelGetCoordinates(model, &X));
+      PetscCall(JRModesSetCoordinates(modes, X));
+      PetscCall(VecDestroy(&X));
+    }
+  }
   PetscCall(JRModesSolve(modes));
   PetscCall(PetscTime(&t2));
   PetscCall(PetscLogStagePop());

@@ -61,9 +61,11 @@ struct _p_JRModes {
   PetscInt   nrb;        /* exact rigid-body basis supplied (deflated; kept as the first modes) */
   Vec       *rb;
   PetscBool  use_rb;     /* -modes_rigid_basis */
-  PetscReal  sig;        /* signature of the stuck springs added to K (0: none), saved and checked */
+  PetscReal  sig;        /* signature of the stuck springs added to K (0: none), saved and checked; on the natural DOFs */
+  PetscReal  sigraw;     /* the same on the DOFs' own numbers: checks a file written before the natural order */
   Vec        X;          /* node coordinates in the DOF layout (optional): checks a loaded file's layout */
   IS         nat;        /* each owned DOF's position in the partition-independent order of saved modes (NULL: the DOFs' own) */
+  PetscBool  natset;     /* JRModesSetNaturalOrdering() called: files are written in that order (else in the DOFs') */
   char       load[PETSC_MAX_PATH_LEN], save[PETSC_MAX_PATH_LEN]; /* -modes_load, -modes_save */
   PetscBool  load_all;   /* -modes_load reads every vector of the file (a mixed basis) */
   PetscBool  mixed;      /* JRModesSetMixed(): a mixed basis, made by JRModesMix */

@@ -249,11 +249,12 @@ PetscErrorCode JRElementsCreateStuckStiffness(Mat K, const JRElements *el, Mat *
 /*
   JRElementsStuckSignature - a number that identifies the stuck springs of JRElementsCreateStuckStiffness in saved
   modes: the sum of the springs' stiffness over the elements and their DOFs, each DOF weighted by its natural number
-  (JRModelDOFsToNatural), so that it does not depend on the number of ranks. Collective.
+  (JRModelDOFsToNatural), so that it does not depend on the number of ranks; sigraw (may be NULL) the same on the DOFs'
+  own numbers, as files written before the natural order hold it. Collective.
 */
-PetscErrorCode JRElementsStuckSignature(JRModel model, const JRElements *el, PetscReal *sig)
+PetscErrorCode JRElementsStuckSignature(JRModel model, const JRElements *el, PetscReal *sig, PetscReal *sigraw)
 {
-  PetscReal sg = 0.0;
+  PetscReal sg = 0.0, sr = 0.0;
 
   PetscFunctionBeginUser;
   PetscCall(JRModelDOFsToNatural(model, 0, NULL, NULL)); /* its tables, on every rank */
@@ -262,9 +263,11 @@ PetscErrorCode JRElementsStuckSignature(JRModel model, const JRElements *el, Pet
     PetscInt  d[6], m;
     PetscReal v[6][2], kn;
     if (!(m = StuckSprings(el, e, d, v, &kn))) continue;
+    for (PetscInt i = 0; i < m; i++) sr += (el->kt[e] + kn) * (1.0 + 1e-7 * (PetscReal)d[i]);
     PetscCall(JRModelDOFsToNatural(model, m, d, d));
     for (PetscInt i = 0; i < m; i++) sg += (el->kt[e] + kn) * (1.0 + 1e-7 * (PetscReal)d[i]);
   }
   *sig = sg;
+  if (sigraw) *sigraw = sr;
   PetscFunctionReturn(0);
 }
