@@ -77,6 +77,12 @@ expect_error "modes of another interface" "this run needs a mixed basis of this 
 r2=$(mpiexec -n 2 $J $brb -frf_force $lev -frf_fmin 128 -frf_fmax 138 -modes_load "$tmp/lev_modes.h5" -frf_output_file '' 2>&1 | grep '^peak level')
 d=$(paste <(echo "$a") <(echo "$r2") | awk '{for (i = 5; i <= 9; i += 2) {x = $i; y = $(i+9); e = (x-y)/x; if (e < 0) e = -e; if (e > m) m = e}} END{printf "%.1e", m+0}')
 check "[ \$(echo \"\$r2\" | wc -l) = 5 ] && awk -v d=$d 'BEGIN{exit !(d < 2e-7)}'" "-modes_load on 2 ranks of modes saved on 1: the same 5 peaks (max relative difference $d)"
+# -task modes saves in the same order: its free modes, saved on 2 ranks, give the free basis's peak on 1
+mpiexec -n 2 $J -task modes -model_type brb -model_mesh_h 0.01 -modes_nev 12 -modes_save "$tmp/tm.h5" -modes_output_file '' > /dev/null 2>&1
+fr=$($J $brb -hbm_basis free -frf_force 1 -frf_fmin 128 -frf_fmax 138 -frf_output_file '' 2>&1 | grep '^peak level')
+fl=$($J $brb -hbm_basis free -frf_force 1 -frf_fmin 128 -frf_fmax 138 -modes_load "$tmp/tm.h5" -frf_output_file '' 2>&1 | grep '^peak level')
+d=$(paste <(echo "$fr") <(echo "$fl") | awk '{for (i = 5; i <= 7; i += 2) {x = $i; y = $(i+9); e = (x-y)/x; if (e < 0) e = -e; if (e > m) m = e}} END{printf "%.1e", m+0}')
+check "[ -n '$fl' ] && awk -v d=$d 'BEGIN{exit !(d < 1e-6)}'" "-task modes -modes_save on 2 ranks, read by a free-basis frf on 1: its peak as with the modes solved there (relative difference $d)"
 expect_error "modes file missing" "-modes_load $tmp/none.h5: cannot read the file" $J $brb -frf_force 1 -modes_load "$tmp/none.h5" -frf_output_file ''
 expect_error "excitation outside the model" "-frf_at (1., 0., 0.) m: the nearest node is" $J $brb -frf_force 1 -frf_at 1,0,0 -frf_output_file ''
 expect_error "negative contact stiffness" "-interface_kt -1.: the tangential stiffness must be positive" $J $brb -frf_force 1 -interface_kt -1 -frf_output_file ''
