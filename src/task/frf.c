@@ -486,8 +486,13 @@ static PetscErrorCode SetUpModels(FRFRun *r)
   PetscFunctionBeginUser;
   if (r->n2n) {
     char mfile[PETSC_MAX_PATH_LEN + 16];
-    PetscCall(PetscPrintf(comm, "frf: excitation F sin(w t) along %s at (%g, %g, %g) m: DOF %" PetscInt_FMT " (node %.2g mm away)\n", Dirs[r->dir], (double)r->at[0], (double)r->at[1], (double)r->at[2], r->fdof, (double)(r->fdist * 1e3)));
-    for (PetscInt o = 0; o < r->nout; o++) PetscCall(PetscPrintf(comm, "frf: response %" PetscInt_FMT " along %s at (%g, %g, %g) m: DOF %" PetscInt_FMT "\n", o + 1, Dirs[r->dir], (double)r->oat[3 * o], (double)r->oat[3 * o + 1], (double)r->oat[3 * o + 2], r->odof[o]));
+    PetscInt nd;
+    PetscCall(JRModelDOFsToNatural(r->model, 1, &r->fdof, &nd)); /* the DOF's number in the natural order: the same on any ranks */
+    PetscCall(PetscPrintf(comm, "frf: excitation F sin(w t) along %s at (%g, %g, %g) m: natural DOF %" PetscInt_FMT " (node %.2g mm away)\n", Dirs[r->dir], (double)r->at[0], (double)r->at[1], (double)r->at[2], nd, (double)(r->fdist * 1e3)));
+    for (PetscInt o = 0; o < r->nout; o++) {
+      PetscCall(JRModelDOFsToNatural(r->model, 1, &r->odof[o], &nd));
+      PetscCall(PetscPrintf(comm, "frf: response %" PetscInt_FMT " along %s at (%g, %g, %g) m: natural DOF %" PetscInt_FMT "\n", o + 1, Dirs[r->dir], (double)r->oat[3 * o], (double)r->oat[3 * o + 1], (double)r->oat[3 * o + 2], nd));
+    }
     if (r->base[0] && r->hbm) { /* the modes are saved for reuse unless they are read (-modes_load) or saved elsewhere */
       PetscCall(PetscSNPrintf(mfile, sizeof(mfile), "%s_modes.h5", r->base));
       PetscCall(JRHBMSetModesFile(r->hbm, mfile));
