@@ -44,7 +44,7 @@ cub="-task modes -model_type beam -model_mesh_h 0.04 -model_fe_order 3 -modes_ne
 c1=$($J $cub 2>&1 | awk '/^mode [78] /{print $3}' | tr '\n' ' ')
 c2=$(mpiexec -n 2 $J $cub 2>&1 | awk '/^mode [78] /{print $3}' | tr '\n' ' ')
 d=$(echo "$c1|$c2" | awk -F'|' '{n = split($1, a, " "); m = split($2, b, " "); if (n != 2 || m != 2) {print 1; exit} for (i = 1; i <= n; i++) {e = (a[i] - b[i]) / a[i]; if (e < 0) e = -e; if (e > x) x = e} printf "%.1e", x}')
-check "awk -v d='$d' 'BEGIN{exit !(d < 1e-7)}'" "-model_fe_order 3 on 1 and 2 ranks: modes 7 and 8 at $c1Hz (max relative difference $d)"
+check "awk -v d='$d' 'BEGIN{exit !(d < 1e-7)}'" "-model_fe_order 3 on 1 and 2 ranks: modes 7 and 8 at ${c1}Hz (max relative difference $d)"
 
 # the run file of the Brake-Reuss beam parses and names what it runs (its run is the bench's job)
 check "grep -q '^-model_type brb' runs/brb_modes.opts && $J -options_file runs/brb_modes.opts -model_mesh_h 0.01 -modes_nev 7 -modes_output_file '' 2>&1 | grep -q '^mode 7 '" "runs/brb_modes.opts runs (coarse mesh here)"
