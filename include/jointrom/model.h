@@ -88,7 +88,7 @@ PETSC_EXTERN PetscErrorCode JRModelGetDM(JRModel, DM *);
 PETSC_EXTERN PetscErrorCode JRModelGetComm(JRModel, MPI_Comm *);
 PETSC_EXTERN PetscErrorCode JRModelGetNaturalOrdering(JRModel, IS *);
 PETSC_EXTERN PetscErrorCode JRModelDOFsToNatural(JRModel, PetscInt, const PetscInt[], PetscInt[]);
-PETSC_EXTERN PetscErrorCode JRModelNaturalToDOFs(JRModel, PetscInt, const PetscInt[], PetscInt[]);
+PETSC_EXTERN PetscErrorCode JRModelDOFsFromNatural(JRModel, PetscInt, const PetscInt[], PetscInt[]);
 PETSC_EXTERN PetscErrorCode JRElementsDestroy(JRElements *);
 PETSC_EXTERN PetscErrorCode JRElementsDuplicate(const JRElements *, JRElements *);
 PETSC_EXTERN PetscErrorCode JRElementsCreateStuckStiffness(Mat, const JRElements *, Mat *);

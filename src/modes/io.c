@@ -27,39 +27,22 @@ static PetscErrorCode NaturalScatter(JRModes md, Vec x, Vec *y, VecScatter *sc)
   PetscFunctionReturn(0);
 }
 
-/* x written under its name, in the natural order where there is one (sc, y from NaturalScatter) */
-static PetscErrorCode ViewNatural(PetscViewer v, Vec x, Vec y, VecScatter sc)
+/* x written (load: read) under its name, in the natural order where there is one (sc, y from NaturalScatter) */
+static PetscErrorCode NaturalIO(PetscViewer v, Vec x, Vec y, VecScatter sc, PetscBool load)
 {
   const char *name;
 
   PetscFunctionBeginUser;
   if (!sc) {
-    PetscCall(VecView(x, v));
+    PetscCall(load ? VecLoad(x, v) : VecView(x, v));
     PetscFunctionReturn(0);
   }
   PetscCall(PetscObjectGetName((PetscObject)x, &name));
   PetscCall(PetscObjectSetName((PetscObject)y, name));
-  PetscCall(VecScatterBegin(sc, x, y, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(sc, x, y, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecView(y, v));
-  PetscFunctionReturn(0);
-}
-
-/* x read under its name, from the natural order where there is one (sc, y from NaturalScatter) */
-static PetscErrorCode LoadNatural(PetscViewer v, Vec x, Vec y, VecScatter sc)
-{
-  const char *name;
-
-  PetscFunctionBeginUser;
-  if (!sc) {
-    PetscCall(VecLoad(x, v));
-    PetscFunctionReturn(0);
-  }
-  PetscCall(PetscObjectGetName((PetscObject)x, &name));
-  PetscCall(PetscObjectSetName((PetscObject)y, name));
-  PetscCall(VecLoad(y, v));
-  PetscCall(VecScatterBegin(sc, y, x, INSERT_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterEnd(sc, y, x, INSERT_VALUES, SCATTER_REVERSE));
+  if (load) PetscCall(VecLoad(y, v));
+  PetscCall(VecScatterBegin(sc, load ? y : x, load ? x : y, INSERT_VALUES, load ? SCATTER_REVERSE : SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, load ? y : x, load ? x : y, INSERT_VALUES, load ? SCATTER_REVERSE : SCATTER_FORWARD));
+  if (!load) PetscCall(VecView(y, v));
   PetscFunctionReturn(0);
 }
 
@@ -93,14 +76,14 @@ PetscErrorCode JRModesSave(JRModes md, const char file[])
     char name[32];
     PetscCall(PetscSNPrintf(name, sizeof(name), "phi_%" PetscInt_FMT, i));
     PetscCall(PetscObjectSetName((PetscObject)md->phi[i], name));
-    PetscCall(ViewNatural(v, md->phi[i], y0, sc));
+    PetscCall(NaturalIO(v, md->phi[i], y0, sc, PETSC_FALSE));
   }
   if (md->X) { /* a plain copy: a vector of a DMPlex would go to /fields */
     Vec y;
     PetscCall(MatCreateVecs(md->K, &y, NULL));
     PetscCall(VecCopy(md->X, y));
     PetscCall(PetscObjectSetName((PetscObject)y, "coordinates"));
-    PetscCall(ViewNatural(v, y, y0, sc));
+    PetscCall(NaturalIO(v, y, y0, sc, PETSC_FALSE));
     PetscCall(VecDestroy(&y));
   }
   PetscCall(PetscViewerHDF5PopGroup(v));
@@ -171,7 +154,7 @@ PetscErrorCode JRModesLoad_Private(JRModes md, const char file[])
   if (md->X && hasx) {
     PetscReal d, s;
     PetscCall(PetscObjectSetName((PetscObject)x, "coordinates"));
-    PetscCall(LoadNatural(v, x, y, scn));
+    PetscCall(NaturalIO(v, x, y, scn, PETSC_TRUE));
     PetscCall(VecAXPY(x, -1.0, md->X));
     PetscCall(VecNorm(x, NORM_INFINITY, &d));
     PetscCall(VecNorm(md->X, NORM_INFINITY, &s));
@@ -203,7 +186,7 @@ PetscErrorCode JRModesLoad_Private(JRModes md, const char file[])
     PetscCall(PetscSNPrintf(name, sizeof(name), "phi_%" PetscInt_FMT, i));
     PetscCall(PetscObjectSetName((PetscObject)md->phi[i], name));
     PetscCall(VecGetSize(md->phi[i], &nf));
-    PetscCall(LoadNatural(v, md->phi[i], y, scn));
+    PetscCall(NaturalIO(v, md->phi[i], y, scn, PETSC_TRUE));
     {
       PetscReal nrm;
       PetscCall(VecNorm(md->phi[i], NORM_INFINITY, &nrm));

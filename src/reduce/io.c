@@ -299,7 +299,7 @@ static PetscErrorCode ROMFileMembers(JRModel model, const ROMFile *f, JRElements
   PetscCall(PetscNew(&mem));
   PetscCall(JRROMElementsSetUp(mem, f->nmem, f->mty, PETSC_TRUE));
   mem->njoints = f->nj;
-  if (f->natural) PetscCall(JRModelNaturalToDOFs(model, 0, NULL, NULL)); /* its tables, on every rank */
+  if (f->natural) PetscCall(JRModelDOFsFromNatural(model, 0, NULL, NULL)); /* its tables, on every rank */
   for (PetscInt e = 0; e < f->nmem; e++) {
     const PetscReal *r = f->mem + JR_ROM_MEM * e;
     GetRow(mem, e, r);
@@ -311,8 +311,8 @@ static PetscErrorCode ROMFileMembers(JRModel model, const ROMFile *f, JRElements
       mem->ndir[3 * e + c]   = r[15 + c];
     }
     if (f->natural) { /* to this run's DOFs (numbers out of range stay, and are refused below) */
-      PetscCall(JRModelNaturalToDOFs(model, 3, mem->vdof_a + 3 * e, mem->vdof_a + 3 * e));
-      PetscCall(JRModelNaturalToDOFs(model, 3, mem->vdof_b + 3 * e, mem->vdof_b + 3 * e));
+      PetscCall(JRModelDOFsFromNatural(model, 3, mem->vdof_a + 3 * e, mem->vdof_a + 3 * e));
+      PetscCall(JRModelDOFsFromNatural(model, 3, mem->vdof_b + 3 * e, mem->vdof_b + 3 * e));
     }
     for (PetscInt c = 0; c < 3; c++) {
       PetscCheck(mem->vdof_a[3 * e + c] >= 0 && mem->vdof_a[3 * e + c] < ndof && mem->vdof_b[3 * e + c] >= 0 && mem->vdof_b[3 * e + c] < ndof, comm, PETSC_ERR_FILE_UNEXPECTED, "-rom_load %s: member %" PetscInt_FMT " has DOFs outside the model's 0..%" PetscInt_FMT ": the file is for another mesh", f->file, e, ndof - 1);

@@ -217,25 +217,35 @@ static PetscErrorCode NaturalTables(JRModel m)
   PetscFunctionReturn(0);
 }
 
+/* n DOF numbers to their natural positions (tonat) or back, through the tables (none: the same numbers); a number
+   outside 0..ndof-1 is returned as it is */
+static PetscErrorCode MapDOFs(JRModel m, PetscBool tonat, PetscInt n, const PetscInt in[], PetscInt out[])
+{
+  const PetscInt *t;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelSetUp(m));
+  PetscCall(NaturalTables(m));
+  t = tonat ? m->g2n : m->n2g;
+  for (PetscInt i = 0; i < n; i++) out[i] = t && in[i] >= 0 && in[i] < m->ndof ? t[in[i]] : in[i];
+  PetscFunctionReturn(0);
+}
+
 /* JRModelDOFsToNatural - n DOFs (any, on every rank) to their natural positions (JRModelGetNaturalOrdering); the same
    numbers where the model has no other order. in and out may be the same. Collective. */
 PetscErrorCode JRModelDOFsToNatural(JRModel m, PetscInt n, const PetscInt in[], PetscInt out[])
 {
   PetscFunctionBeginUser;
-  PetscCall(JRModelSetUp(m));
-  PetscCall(NaturalTables(m));
-  for (PetscInt i = 0; i < n; i++) out[i] = m->g2n && in[i] >= 0 && in[i] < m->ndof ? m->g2n[in[i]] : in[i];
+  PetscCall(MapDOFs(m, PETSC_TRUE, n, in, out));
   PetscFunctionReturn(0);
 }
 
-/* JRModelNaturalToDOFs - the inverse of JRModelDOFsToNatural (a number outside 0..ndof-1 is returned as it is, for the
-   caller to refuse). Collective. */
-PetscErrorCode JRModelNaturalToDOFs(JRModel m, PetscInt n, const PetscInt in[], PetscInt out[])
+/* JRModelDOFsFromNatural - the inverse of JRModelDOFsToNatural (a number outside 0..ndof-1 is returned as it is, for
+   the caller to refuse). Collective. */
+PetscErrorCode JRModelDOFsFromNatural(JRModel m, PetscInt n, const PetscInt in[], PetscInt out[])
 {
   PetscFunctionBeginUser;
-  PetscCall(JRModelSetUp(m));
-  PetscCall(NaturalTables(m));
-  for (PetscInt i = 0; i < n; i++) out[i] = m->n2g && in[i] >= 0 && in[i] < m->ndof ? m->n2g[in[i]] : in[i];
+  PetscCall(MapDOFs(m, PETSC_FALSE, n, in, out));
   PetscFunctionReturn(0);
 }
 

@@ -68,7 +68,7 @@ PetscErrorCode JRModelFindDof(JRModel model, const PetscReal p[3], PetscInt comp
   PetscCall(MPIU_Allreduce(&bd, &dmin, 1, MPIU_REAL, MPIU_MIN, comm));
   if (bd != dmin) nb = PETSC_MAX_INT;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nb, 1, MPIU_INT, MPI_MIN, comm));
-  PetscCall(JRModelNaturalToDOFs(model, 1, &nb, &best));
+  PetscCall(JRModelDOFsFromNatural(model, 1, &nb, &best));
   *dof = best;
   if (dist) *dist = PetscSqrtReal(dmin);
   PetscFunctionReturn(0);
