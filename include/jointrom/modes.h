@@ -14,6 +14,7 @@ PETSC_EXTERN PetscErrorCode JRModesSetNumber(JRModes, PetscInt);
 PETSC_EXTERN PetscErrorCode JRModesSetRigidBasis(JRModes, PetscInt, Vec[]);
 PETSC_EXTERN PetscErrorCode JRModesSetCoordinates(JRModes, Vec);
 PETSC_EXTERN PetscErrorCode JRModesSetNaturalOrdering(JRModes, IS);
+PETSC_EXTERN PetscErrorCode JRModesSetModel(JRModes, JRModel);
 PETSC_EXTERN PetscErrorCode JRModesSetSignature(JRModes, PetscReal, PetscReal);
 PETSC_EXTERN PetscErrorCode JRModesGetVecs(JRModes, Vec **);
 PETSC_EXTERN PetscErrorCode JRModesGetNumRigid(JRModes, PetscInt *);

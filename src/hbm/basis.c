@@ -133,24 +133,7 @@ static PetscErrorCode SolveModes(JRHBM h, Mat K, Mat M, const JRElements *el)
   PetscCall(JRModesSetFromOptions(h->modes));
   PetscCall(JRModesSetNumber(h->modes, h->nm)); /* -hbm_modes wins over -modes_nev */
   PetscCall(JRModesSetSaveDefault(h->modes, h->modes_file));
-  {
-    PetscInt nrb;
-    Vec      rb[6];
-    PetscCall(JRModelGetRigidBasis(h->model, &nrb, rb));
-    PetscCall(JRModesSetRigidBasis(h->modes, nrb, rb));
-    for (PetscInt i = 0; i < nrb; i++) PetscCall(VecDestroy(&rb[i]));
-    if (nrb) { /* an FE model: its coordinates go with saved modes */
-      Vec X;
-      PetscCall(JRModelGetCoordinates(h->model, &X));
-      PetscCall(JRModesSetCoordinates(h->modes, X));
-      PetscCall(VecDestroy(&X));
-    }
-    {
-      IS nat;
-      PetscCall(JRModelGetNaturalOrdering(h->model, &nat));
-      PetscCall(JRModesSetNaturalOrdering(h->modes, nat));
-    }
-  }
+  PetscCall(JRModesSetModel(h->modes, h->model));
   if (el) PetscCall(SetInterfaceRows(h->modes, el));
   if (h->basis == JR_HBM_BASIS_MIXED) PetscCall(JRModesSetMixed(h->modes));
   PetscCall(JRModesSolve(h->modes));
@@ -222,11 +205,12 @@ PetscErrorCode JRHBMSetUpExcitation(JRHBM h, PetscInt ndof)
     PetscCall(PetscMalloc1(ndof, &f));
     PetscCall(JRVecLoadFile(h->comm, h->ffile, ndof, f));
     if (h->physical) {
-      for (PetscInt i = 0; i < ndof; i++) {
-        PetscInt n = i;
-        PetscCall(JRModelDOFsToNatural(h->model, 1, &n, &n));
-        h->fm[i] = f[n];
-      }
+      PetscInt *nat;
+      PetscCall(PetscMalloc1(ndof, &nat));
+      for (PetscInt i = 0; i < ndof; i++) nat[i] = i;
+      PetscCall(JRModelDOFsToNatural(h->model, ndof, nat, nat)); /* the file's order */
+      for (PetscInt i = 0; i < ndof; i++) h->fm[i] = f[nat[i]];
+      PetscCall(PetscFree(nat));
     } else {
       Vec          fv;
       PetscInt     lo, hi, *nat;

@@ -186,6 +186,30 @@ PetscErrorCode JRModesSetNaturalOrdering(JRModes md, IS nat)
   PetscFunctionReturn(0);
 }
 
+/* JRModesSetModel - what the modes take from the model besides its matrices: its exact rigid-body modes (none for a
+   matrices model), an FE model's node coordinates (checked against a loaded file) and the natural order of its DOFs
+   (saved files read back on any number of ranks). Collective. */
+PetscErrorCode JRModesSetModel(JRModes md, JRModel model)
+{
+  PetscInt nrb;
+  Vec      rb[6];
+  IS       nat;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRModelGetRigidBasis(model, &nrb, rb));
+  PetscCall(JRModesSetRigidBasis(md, nrb, rb));
+  for (PetscInt i = 0; i < nrb; i++) PetscCall(VecDestroy(&rb[i]));
+  if (nrb) { /* an FE model */
+    Vec X;
+    PetscCall(JRModelGetCoordinates(model, &X));
+    PetscCall(JRModesSetCoordinates(md, X));
+    PetscCall(VecDestroy(&X));
+  }
+  PetscCall(JRModelGetNaturalOrdering(model, &nat));
+  PetscCall(JRModesSetNaturalOrdering(md, nat));
+  PetscFunctionReturn(0);
+}
+
 /* A number identifying stuck contact springs added to K (stuck basis), saved with the modes and checked on load: on
    the natural DOFs (sig) and on the DOFs' own numbers (sigraw, for files written before the natural order) */
 PetscErrorCode JRModesSetSignature(JRModes md, PetscReal sig, PetscReal sigraw)

@@ -14,7 +14,6 @@ PetscErrorCode JRTaskModes(MPI_Comm comm)
   JRPost           post;
   Mat              K, M;
   PetscInt         nm, nrb, nplot = 4, ndof;
-  Vec              rb[6];
   char             base[PETSC_MAX_PATH_LEN] = "out/modes";
   PetscBool        plot = PETSC_TRUE, help;
   PetscLogDouble   t0, t1, t2;
@@ -48,20 +47,7 @@ PetscErrorCode JRTaskModes(MPI_Comm comm)
   PetscCall(JRModelGetMatrices(model, &K, &M, NULL));
   PetscCall(JRModelGetNumDofs(model, &ndof));
   PetscCall(JRModesSetOperators(modes, K, M));
-  PetscCall(JRModelGetRigidBasis(model, &nrb, rb));
-  PetscCall(JRModesSetRigidBasis(modes, nrb, rb));
-  for (PetscInt i = 0; i < nrb; i++) PetscCall(VecDestroy(&rb[i]));
-  { /* saved (-modes_save) in the DOFs' natural order, with an FE model's coordinates: read back on any ranks */
-    IS  nat;
-    Vec X;
-    PetscCall(JRModelGetNaturalOrdering(model, &nat));
-    PetscCall(JRModesSetNaturalOrdering(modes, nat));
-    if (nrb) {
-      PetscCall(JRModelGetCoordinates(model, &X));
-      PetscCall(JRModesSetCoordinates(modes, X));
-      PetscCall(VecDestroy(&X));
-    }
-  }
+  PetscCall(JRModesSetModel(modes, model));
   PetscCall(JRModesSolve(modes));
   PetscCall(PetscTime(&t2));
   PetscCall(PetscLogStagePop());
