@@ -89,6 +89,9 @@ refused "-frf_force 1,2x" "-frf_force 1,2x: '2x' is not a number; it takes a num
 refused "-frf_output 0-0 (an empty range)" "-frf_output 0-0: '0-0' is not an integer; it takes an integer or a list of integers" $J $osc -frf_output 0-0 -frf_output_file
 printf -- '-task frf\n-hbm_samples\n' > "$tmp/run.opts"
 refused "-hbm_samples without a value in an options file" "-hbm_samples is given without a value: it takes an integer" $J $osc -options_file "$tmp/run.opts" -frf_output_file
+refused "-task model (not a task)" "Unknown option model for -task. Available options: element frf modes preload compare nlmodes" $J $osc -task model -frf_output_file
+refused "-frf_stability_select foo" "Unknown option foo for -frf_stability_select. Available options: vector imag" $J $osc -frf_stability_select foo -frf_output_file
+refused "-model_mesh_hz -1" "-model_mesh_hz -1.: an element size in m, or 0 for -model_mesh_h" $J -task modes -model_type lap1 -model_mesh_hz -1 -modes_output_file
 # 4. CSV rows: as many fields as the header, at least one element; a byte-order mark skipped
 printf 'type,dof_a,dof_b,kt,kn,mu,n0,ndof_a,ndof_b\njenkins,0,-1,3e5,,0.1,100,,,5\n' > "$tmp/el_extra.csv"
 refused "element CSV row with an extra field" "CSV file $tmp/el_extra.csv line 2: 10 fields, but the header has 9 columns" $J $osc -model_elements "$tmp/el_extra.csv" -frf_output_file
@@ -132,3 +135,11 @@ est=$(echo "$o" | sed -n 's/.*estimate before the mesh: \([0-9]*\) nodes, \([0-9
 peak=$(echo "$o" | sed -n 's/^modes: peak memory \([0-9]*\) MB per process.*/\1/p')
 set -- $est
 check "[ -n '$nodes' ] && [ -n '$peak' ] && close '$1' '$nodes' 0.1 && close '$2' '$3' 0.1 && awk -v e='$4' -v p='$peak' 'BEGIN{r = e * 1024 / p; exit !(r > 0.5 && r < 2)}'" "estimate before the mesh: $1 nodes (built: $nodes), $2 nonzeros in K (built: $3), $4 GiB in all (peak: $peak MB)"
+# -model_mesh_hz: the beam with 4 instead of 2 cells through each half height has 17 instead of 9 node layers through
+# its height (order 2; the lap's doubled contact plane and the holes aside, within 3 per cent), so about 17/9 times
+# the nodes, and the same contact pairs; the estimate follows it
+o2=$($J -task modes -model_type brb -model_mesh_h 0.01 -model_mesh_hz 0.004 -model_view -modes_nev 4 -modes_output_file '' 2>&1)
+nodes2=$(echo "$o2" | sed -n 's/.* hexahedra, order 2, \([0-9]*\) nodes.*/\1/p')
+est2=$(echo "$o2" | sed -n 's/.*estimate before the mesh: \([0-9]*\) nodes.*/\1/p')
+pairs=$(echo "$o" | sed -n 's/.* \([0-9]*\) facing pairs.*/\1/p') pairs2=$(echo "$o2" | sed -n 's/.* \([0-9]*\) facing pairs.*/\1/p')
+check "[ -n '$nodes2' ] && [ -n '$nodes' ] && close '$nodes2' \$(awk -v n='$nodes' 'BEGIN{print n * 17 / 9}') 0.03 && close '$est2' '$nodes2' 0.1 && [ -n '$pairs' ] && [ '$pairs' = '$pairs2' ]" "-model_mesh_hz 0.004: $nodes2 nodes (17/9 of $nodes: $(awk -v n=$nodes 'BEGIN{print n * 17 / 9}')), estimated $est2; $pairs2 pairs (hz default: $pairs)"

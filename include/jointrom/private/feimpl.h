@@ -21,7 +21,7 @@ typedef struct {
 
 typedef struct {
   /* geometry and mesh parameters (SI) */
-  PetscReal  L1, L2, W, H, Llap, pitch, dbolt, dhole, dwasher, h, grade;
+  PetscReal  L1, L2, W, H, Llap, pitch, dbolt, dhole, dwasher, h, grade, hz; /* hz: lap's size through the height, 0: h */
   PetscInt   nbolts, order;
   PetscReal  E, nu, rho, pairtol;
   PetscBool  clamp, lap;        /* clamp x = 0; the geometry has a lap joint */

@@ -9,8 +9,8 @@
    lap faces coincide without being joined, and every node of one contact surface faces a node of the
    other (one grid in x and y for both). Bolt holes are the cells whose centre lies inside the hole
    (a stair-step hole); the washer footprints are the outer faces (A's top, B's bottom) whose centre
-   lies in the washer annulus. Grid: spacing h over the lap, h * grade outside it, at least two cells
-   through each half height.
+   lies in the washer annulus. Grid: spacing h over the lap, h * grade outside it, hz (default h) through the
+   height, at least two cells through each half height.
 */
 #include <jointrom/private/feimpl.h>
 #include <petscsf.h>
@@ -66,7 +66,7 @@ PetscErrorCode JRFEMeshEstimate(const Model_FE *fe, PetscBool lap, JRFEMeshSize 
   if (lap) {
     const PetscReal xl = fe->L1 - fe->Llap, xr = fe->L1, xe = fe->L1 - fe->Llap + fe->L2;
     const PetscReal bx[4] = {0, xl, xr, xe}, hx[3] = {fe->h * fe->grade, fe->h, fe->h * fe->grade};
-    const PetscReal by[2] = {0, fe->W}, hy[1] = {fe->h}, bz[3] = {0, 0.5 * fe->H, fe->H}, hz[2] = {fe->h, fe->h};
+    const PetscReal by[2] = {0, fe->W}, hy[1] = {fe->h}, bz[3] = {0, 0.5 * fe->H, fe->H}, hz[2] = {fe->hz > 0 ? fe->hz : fe->h, fe->hz > 0 ? fe->hz : fe->h};
     nx = GridCount(3, bx, hx, 1);
     ny = GridCount(1, by, hy, 2);
     nz = GridCount(2, bz, hz, 2);
@@ -309,7 +309,7 @@ PetscErrorCode JRFEGeometryLap(MPI_Comm comm, Model_FE *fe, DM *dm)
   PetscReal      *X, *Y, *Z;
   LapCtx          lc    = {fe, xl, xr};
   const PetscReal bx[4] = {0, xl, xr, xe}, hx[3] = {fe->h * fe->grade, fe->h, fe->h * fe->grade};
-  const PetscReal by[2] = {0, fe->W}, hy[1] = {fe->h}, bz[3] = {0, 0.5 * fe->H, fe->H}, hz[2] = {fe->h, fe->h};
+  const PetscReal by[2] = {0, fe->W}, hy[1] = {fe->h}, bz[3] = {0, 0.5 * fe->H, fe->H}, hz[2] = {fe->hz > 0 ? fe->hz : fe->h, fe->hz > 0 ? fe->hz : fe->h};
 
   PetscFunctionBeginUser;
   fe->lap = PETSC_TRUE;

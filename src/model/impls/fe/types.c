@@ -59,6 +59,7 @@ static PetscErrorCode JRModelSetFromOptions_FE(JRModel m, PetscOptionItems *Pets
     PetscCall(PetscOptionsReal("-model_hole_diameter", "Bolt hole diameter [m]", "JRModelSetUp", fe->dhole, &fe->dhole, NULL));
     PetscCall(PetscOptionsReal("-model_washer_diameter", "Washer outer diameter [m] (the footprint the bolt is tied to)", "JRModelSetUp", fe->dwasher, &fe->dwasher, NULL));
     PetscCall(PetscOptionsReal("-model_mesh_grade", "Element size outside the lap / inside", "JRModelSetUp", fe->grade, &fe->grade, NULL));
+    PetscCall(PetscOptionsReal("-model_mesh_hz", "Element size through the height [m] (0: -model_mesh_h; at least two elements through each beam's half height)", "JRModelSetUp", fe->hz, &fe->hz, NULL));
   }
   if (ft->kind != KIND_BEAM) {
     {
@@ -115,6 +116,7 @@ static PetscErrorCode JRModelSetUp_FE(JRModel m)
     PetscCall(CheckPositive(m->comm, "-model_hole_diameter", fe->dhole));
     PetscCall(CheckPositive(m->comm, "-model_washer_diameter", fe->dwasher));
     PetscCall(CheckPositive(m->comm, "-model_mesh_grade", fe->grade));
+    PetscCheck(fe->hz >= 0 && !PetscIsInfOrNanReal(fe->hz), m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-model_mesh_hz %g: an element size in m, or 0 for -model_mesh_h", (double)fe->hz);
     PetscCheck(fe->nbolts >= 0, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-model_nbolts %" PetscInt_FMT ": must be non-negative", fe->nbolts);
     PetscCheck(fe->nbolts <= 1 || fe->pitch >= fe->dwasher, m->comm, PETSC_ERR_ARG_OUTOFRANGE, "-model_bolt_pitch %g m: the washers (diameter %g m) would overlap", (double)fe->pitch, (double)fe->dwasher);
     PetscCall(JRFEMeshCheckMemory(m->comm, fe, PETSC_TRUE));
