@@ -5,6 +5,7 @@
 */
 #include <jointrom.h>
 #include <slepcsys.h>
+#include <errno.h>
 
 static const char help[] = "jointrom: reduced-order models of bolted joints by harmonic balance with friction contact elements.\n"
                            "Units are SI throughout (N, m, kg, s; angles in degrees where stated).\n"
@@ -67,14 +68,47 @@ static PetscErrorCode Run(MPI_Comm comm)
   PetscFunctionReturn(0);
 }
 
+/* An -options_file on the command line that cannot be read: one line on rank 0 (PETSc's own message, from inside its
+   initialisation, is a stack dump), true on every rank */
+static int OptionsFileUnreadable(int argc, char **argv)
+{
+  int rank = 0, bad = 0;
+
+  (void)MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (!rank)
+    for (int i = 1; i < argc && !bad; i++) {
+      FILE *fp;
+      if (strcmp(argv[i], "-options_file")) continue;
+      if (i + 1 >= argc || argv[i + 1][0] == '-') {
+        fprintf(stderr, "jointrom: error: -options_file is given without a value: it takes a file name\n");
+        bad = 1;
+      } else if (!(fp = fopen(argv[i + 1], "r"))) {
+        fprintf(stderr, "jointrom: error: -options_file %s: cannot be read (%s)\n", argv[i + 1], strerror(errno));
+        bad = 1;
+      } else fclose(fp);
+    }
+  (void)MPI_Bcast(&bad, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return bad;
+}
+
 int main(int argc, char **argv)
 {
   PetscErrorCode ierr;
 
+  (void)MPI_Init(&argc, &argv); /* before PETSc, to check the options files first; PETSc then leaves MPI_Finalize to us */
+  if (OptionsFileUnreadable(argc, argv)) {
+    (void)MPI_Finalize();
+    return 1;
+  }
   PetscCall(SlepcInitialize(&argc, &argv, NULL, help));
   PetscCall(JRErrorHandlerPush());
   ierr = Run(PETSC_COMM_WORLD);
-  if (ierr) return JRErrorExit(ierr);
+  if (ierr) {
+    ierr = (PetscErrorCode)JRErrorExit(ierr);
+    (void)MPI_Finalize();
+    return (int)ierr;
+  }
   PetscCall(SlepcFinalize());
+  (void)MPI_Finalize();
   return 0;
 }

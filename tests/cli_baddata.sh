@@ -90,7 +90,11 @@ refused "-frf_output 0-0 (an empty range)" "-frf_output 0-0: '0-0' is not an int
 printf -- '-task frf\n-hbm_samples\n' > "$tmp/run.opts"
 refused "-hbm_samples without a value in an options file" "-hbm_samples is given without a value: it takes an integer" $J $osc -options_file "$tmp/run.opts" -frf_output_file
 refused "-task model (not a task)" "Unknown option model for -task. Available options: element frf modes preload compare nlmodes" $J $osc -task model -frf_output_file
+refused "-task model on 2 ranks" "Unknown option model for -task" -np2 $J $osc -task model -frf_output_file
+refused "-options_file that does not exist" "-options_file $tmp/none.opts: cannot be read (No such file or directory)" $J $osc -options_file "$tmp/none.opts" -frf_output_file
+refused "-options_file that does not exist, 2 ranks" "-options_file $tmp/none.opts: cannot be read" -np2 $J $osc -options_file "$tmp/none.opts" -frf_output_file
 refused "-frf_stability_select foo" "Unknown option foo for -frf_stability_select. Available options: vector imag" $J $osc -frf_stability_select foo -frf_output_file
+refused "-hbm_modes 0" "-hbm_modes 0: at least 1 (unset: every mode up to 200 DOFs, else 10)" $J $osc -hbm_modes 0 -frf_output_file
 refused "-model_mesh_hz -1" "-model_mesh_hz -1.: an element size in m, or 0 for -model_mesh_h" $J -task modes -model_type lap1 -model_mesh_hz -1 -modes_output_file
 # 4. CSV rows: as many fields as the header, at least one element; a byte-order mark skipped
 printf 'type,dof_a,dof_b,kt,kn,mu,n0,ndof_a,ndof_b\njenkins,0,-1,3e5,,0.1,100,,,5\n' > "$tmp/el_extra.csv"

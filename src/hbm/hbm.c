@@ -102,16 +102,16 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
 {
   PetscInt  nout = 64;
   PetscInt  out[64] = {0};
-  PetscBool flg;
+  PetscBool flg, nmset, nfset;
 
   PetscFunctionBeginUser;
   out[0] = h->fdof; /* the default shown by -help */
   PetscOptionsBegin(h->comm, NULL, "Harmonic balance (JRHBM)", "JRHBM");
   PetscCall(PetscOptionsInt("-hbm_harmonics", "Harmonics H (plus the mean) in the response", "JRHBMSetUp", h->H, &h->H, NULL));
   PetscCall(PetscOptionsInt("-hbm_samples", "Time samples per cycle N for alternating frequency-time (N >= 2H+1)", "JRHBMSetUp", h->Ns, &h->Ns, NULL));
-  PetscCall(PetscOptionsInt("-hbm_modes", "Number of linear modes in the modal superposition (default: all up to 200 DOFs, else 10)", "JRHBMSetUp", h->nmodes_opt, &h->nmodes_opt, NULL));
+  PetscCall(PetscOptionsInt("-hbm_modes", "Number of linear modes in the modal superposition (default: all up to 200 DOFs, else 10)", "JRHBMSetUp", h->nmodes_opt, &h->nmodes_opt, &nmset));
   PetscCall(PetscOptionsEnum("-hbm_basis", "Modal basis: free (modes of K: the interface held by the bolts only), stuck (modes of K plus every element in contact at rest stuck; the elements then add only their deviation from stuck) or mixed (Ritz vectors of the stuck structure in the span of both)", "JRHBMSetUp", JRHBMBases, (PetscEnum)h->basis, (PetscEnum *)&h->basis, &h->basis_set));
-  PetscCall(PetscOptionsInt("-hbm_free_modes", "-hbm_basis mixed: free-interface modes added to the -hbm_modes stuck ones (default: as many)", "JRHBMSetUp", h->nfree, &h->nfree, NULL));
+  PetscCall(PetscOptionsInt("-hbm_free_modes", "-hbm_basis mixed: free-interface modes added to the -hbm_modes stuck ones (default: as many)", "JRHBMSetUp", h->nfree, &h->nfree, &nfset));
   PetscCall(PetscOptionsEnum("-hbm_condense", "Reduced models: eliminate the modes and solve for the joints' motions only (auto: when it is exact and smaller)", "JRHBMSetUp", JRHBMCondenseTypes, (PetscEnum)h->condense, (PetscEnum *)&h->condense, NULL));
   PetscCall(PetscOptionsBool("-hbm_condense_products", "Condensed models: the continuation's Newton takes the Jacobian by its products through the modes and forms it only for an LU (0: formed at every iteration)", "JRHBMJacobianSetPoint", h->jprod, &h->jprod, NULL));
   PetscCall(PetscOptionsBool("-hbm_physical", "Physical coordinates instead of modes (small systems: checks modal truncation)", "JRHBMSetUp", h->physical, &h->physical, NULL));
@@ -138,6 +138,8 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
     PetscCall(JRModesSetFromOptions(md));
     PetscCall(JRModesDestroy(&md));
   }
+  PetscCheck(!nmset || h->nmodes_opt >= 1, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_modes %" PetscInt_FMT ": at least 1 (unset: every mode up to 200 DOFs, else 10)", h->nmodes_opt);
+  PetscCheck(!nfset || h->nfree >= 0, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_free_modes %" PetscInt_FMT ": 0 or more (unset: as many as -hbm_modes)", h->nfree);
   PetscCheck(h->H >= 1 && h->H <= JR_MAX_HARMONICS, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_harmonics %" PetscInt_FMT ": between 1 and %d", h->H, JR_MAX_HARMONICS);
   PetscCheck(h->Ns >= 2 * h->H + 1, h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_samples %" PetscInt_FMT " must be at least 2H+1 = %" PetscInt_FMT " for -hbm_harmonics %" PetscInt_FMT, h->Ns, 2 * h->H + 1, h->H);
   PetscCheck(h->gamma >= 0.0 && !PetscIsInfOrNanReal(h->gamma), h->comm, PETSC_ERR_ARG_OUTOFRANGE, "-hbm_gamma %g: the structural damping coefficient must be non-negative", (double)h->gamma);

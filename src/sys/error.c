@@ -49,8 +49,8 @@ static PetscErrorCode Handler(MPI_Comm comm, int line, const char *fun, const ch
     MPI_Comm_size(MPI_COMM_WORLD, &wsize);
     MPI_Comm_rank(MPI_COMM_WORLD, &wrank);
     jr_user_error = n;
-    jr_collective = (PetscBool)(size == wsize);
-    if (!rank) {
+    jr_collective = (PetscBool)(size == wsize || choice); /* options are the same on every rank, so is their check */
+    if (choice ? !wrank : !rank) {
       const char *ctx = jr_ncontext ? jr_context[jr_ncontext - 1] : "", *sep = jr_ncontext ? ": " : "";
       const char *hint = n == PETSC_ERR_MISSING_FACTOR ? " (a -*pc_factor_mat_solver_type option chose a package that cannot factor this matrix: PETSc's own LU and Cholesky factor only sequential ones, so on more than one rank use mumps, the default)" : "";
       char        one[1024];
