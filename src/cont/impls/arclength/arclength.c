@@ -453,7 +453,8 @@ static PetscErrorCode JRContSolveLevel_Arclength(JRCont c, PetscInt lev, JRContB
       }
       if (err > c->itol && ds > dsmin) { /* too coarse to interpolate: shorter */
         char what[96];
-        PetscCall(PetscSNPrintf(what, sizeof(what), "interpolation error %.2e above -cont_interp_tol %.2e", (double)err, (double)c->itol));
+        if (err >= PETSC_INFINITY) PetscCall(PetscSNPrintf(what, sizeof(what), "the curve's point on the chord not found (interpolation not checked)"));
+        else PetscCall(PetscSNPrintf(what, sizeof(what), "interpolation error %.2e above -cont_interp_tol %.2e", (double)err, (double)c->itol));
         PetscCall(Retry(c, lev, b, wk, PetscMax(PetscMax(0.2, 0.8 * PetscSqrtReal(c->itol / err)), dsmin / ds), what, &ds, dsmin, &stop));
         continue;
       }
