@@ -242,7 +242,8 @@ static PetscErrorCode ResidualFlexibility(JRModes md, KSP ksp, Interface *c, Pet
   and one more: LAPACK's syevx, which on lap3's 4,420 patterns takes 8 s where the whole spectrum took 100 s), and,
   for the ns largest (nwant >= 0: that many; -1: those above -modes_static_tol, at most -modes_static_max), the static
   responses g_k = P A^-1 P^T B W^1/2 v_k to their patterns v_k (residual flexibility modes: M-orthogonal to Q), in one
-  block solve, returned in G (unnormalised; *G NULL if ns = 0). md->rho0 = lam_1 (the check before the correction), md->rho = lam_{ns+1} (after).
+  block solve, returned in G (unnormalised; *G NULL if ns = 0). md->rho0 = lam_1 (the check before the correction),
+  md->rho = lam_{ns+1} (after).
   modes: Q are md's modes (eigenvectors or Ritz vectors, A-orthogonal: S in the energy of A, ResidualFlexibility).
 */
 static PetscErrorCode StaticCorrection(JRModes md, PetscInt nq, Vec Q[], Vec MQ[], PetscBool modes, PetscInt nwant, PetscInt *ns, Vec **G)
@@ -302,7 +303,7 @@ static PetscErrorCode StaticCorrection(JRModes md, PetscInt nq, Vec Q[], Vec MQ[
   md->rho0 = PetscMax(lam[top - 1], 0.0);
   md->rho  = n < nr ? PetscMax(lam[top - 1 - n], 0.0) : 0.0;
   if (n) { /* the k-th largest pattern's static response, residual to Q, for the n patterns in one block solve */
-    Mat     Bn, Xn;
+    Mat      Bn, Xn;
     PetscInt nloc, N;
     PetscCall(VecGetLocalSize(Q[0], &nloc));
     PetscCall(VecGetSize(Q[0], &N));

@@ -39,9 +39,9 @@ static PetscBool IsUserError(PetscErrorCode n)
 
 static PetscErrorCode Handler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
 {
-  if (jr_user_error) return n; /* the error already reported, passing up the stack */
-  PetscBool choice = (PetscBool)(n == PETSC_ERR_USER && fun && !strncmp(fun, "PetscOptions", 12)); /* a value not among an option's choices */
+  const PetscBool choice = (PetscBool)(n == PETSC_ERR_USER && fun && !strncmp(fun, "PetscOptions", 12)); /* a value not among an option's choices */
 
+  if (jr_user_error) return n; /* the error already reported, passing up the stack */
   if (p == PETSC_ERROR_INITIAL && (IsUserError(n) || choice || (jr_ncontext && n == PETSC_ERR_LIB)) && !jr_error_trace) { /* a library's error on a file being read: the file's fault */
     PetscMPIInt size = 1, rank = 0, wsize = 1, wrank = 0;
     MPI_Comm_size(comm, &size);

@@ -33,6 +33,12 @@ static PetscErrorCode GridLines(PetscInt nseg, const PetscReal b[], const PetscR
   PetscFunctionReturn(0);
 }
 
+/* the lap's element size through the height: -model_mesh_hz, or -model_mesh_h */
+static PetscReal LapHz(const Model_FE *fe)
+{
+  return fe->hz > 0 ? fe->hz : fe->h;
+}
+
 /* the number of cells GridLines makes (a real: a mesh too fine to build is still counted) */
 static PetscReal GridCount(PetscInt nseg, const PetscReal b[], const PetscReal hs[], PetscInt minc)
 {
@@ -66,7 +72,7 @@ PetscErrorCode JRFEMeshEstimate(const Model_FE *fe, PetscBool lap, JRFEMeshSize 
   if (lap) {
     const PetscReal xl = fe->L1 - fe->Llap, xr = fe->L1, xe = fe->L1 - fe->Llap + fe->L2;
     const PetscReal bx[4] = {0, xl, xr, xe}, hx[3] = {fe->h * fe->grade, fe->h, fe->h * fe->grade};
-    const PetscReal by[2] = {0, fe->W}, hy[1] = {fe->h}, bz[3] = {0, 0.5 * fe->H, fe->H}, hz[2] = {fe->hz > 0 ? fe->hz : fe->h, fe->hz > 0 ? fe->hz : fe->h};
+    const PetscReal by[2] = {0, fe->W}, hy[1] = {fe->h}, bz[3] = {0, 0.5 * fe->H, fe->H}, hz[2] = {LapHz(fe), LapHz(fe)};
     nx = GridCount(3, bx, hx, 1);
     ny = GridCount(1, by, hy, 2);
     nz = GridCount(2, bz, hz, 2);
@@ -309,7 +315,7 @@ PetscErrorCode JRFEGeometryLap(MPI_Comm comm, Model_FE *fe, DM *dm)
   PetscReal      *X, *Y, *Z;
   LapCtx          lc    = {fe, xl, xr};
   const PetscReal bx[4] = {0, xl, xr, xe}, hx[3] = {fe->h * fe->grade, fe->h, fe->h * fe->grade};
-  const PetscReal by[2] = {0, fe->W}, hy[1] = {fe->h}, bz[3] = {0, 0.5 * fe->H, fe->H}, hz[2] = {fe->hz > 0 ? fe->hz : fe->h, fe->hz > 0 ? fe->hz : fe->h};
+  const PetscReal by[2] = {0, fe->W}, hy[1] = {fe->h}, bz[3] = {0, 0.5 * fe->H, fe->H}, hz[2] = {LapHz(fe), LapHz(fe)};
 
   PetscFunctionBeginUser;
   fe->lap = PETSC_TRUE;
