@@ -20,6 +20,7 @@ PETSC_EXTERN PetscLogEvent  JR_InterfaceSetUp, JR_ReduceJoints, JR_ReduceSelect,
 PETSC_EXTERN PetscErrorCode JRLogRegister(void);
 PETSC_EXTERN PetscClassId  JR_CONTACT_CLASSID, JR_MODEL_CLASSID, JR_HBM_CLASSID;
 PETSC_EXTERN PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_ModesStatic, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep, JR_DenseLU, JR_DenseGMRES;
+PETSC_EXTERN PetscLogEvent JR_ContTangent, JR_ContChord, JR_ContPeak; /* the continuation's tangents, chord checks, peak refinements */
 PETSC_EXTERN PetscLogEvent JR_HBMHill; /* Floquet exponents by Hill's method (src/hbm/hill.c) */
 PETSC_EXTERN PetscLogEvent JR_HBMFloquetTime; /* Floquet exponents from the monodromy matrix (src/hbm/floquet.c) */
 

@@ -380,9 +380,11 @@ PetscErrorCode JRContRefinePeaks(JRCont c, JRContBranch *b)
   PeakWork *pw = c->pw;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(JR_ContPeak, 0, 0, 0, 0));
   b->refine_its = 0;
   Weights(c, b, pw);
   for (PetscInt o = c->nout - 1; o >= 0; o--) PetscCall(RefineOne(c, b, pw, o, &b->wpk[o], &b->apk[o]));
+  PetscCall(PetscLogEventEnd(JR_ContPeak, 0, 0, 0, 0));
   b->kpeak = 0;
   for (PetscInt i = 1; i < b->np; i++)
     if (b->amp[i * c->nout] > b->amp[b->kpeak * c->nout]) b->kpeak = i;
@@ -419,7 +421,9 @@ PetscErrorCode JRContChordError(JRCont c, JRContBranch *b, Vec a, PetscReal w, P
     s += pw->W[i] * pw->d[i] * pw->d[i];
     pw->xm[i] = pw->x0[i] + t * pw->d[i];
   }
+  PetscCall(PetscLogEventBegin(JR_ContChord, 0, 0, 0, 0));
   PetscCall(SolveOnPlane(c, pw, t * s, 1e-6, pw->xm, &res, its, &ok)); /* the amplitude to about 1e-4: enough to judge the chord */
+  PetscCall(PetscLogEventEnd(JR_ContChord, 0, 0, 0, 0));
   if (!ok) {
     *err = PETSC_INFINITY;
     PetscFunctionReturn(0);

@@ -61,6 +61,28 @@ static PetscErrorCode LSQHessian(Tao tao, Vec X, Mat Hm, Mat Pm, void *ctx)
   PetscFunctionReturn(0);
 }
 
+/* TAO's gradient test, and a stall: the objective lowered by less than 1e-12 of itself over the last 5 iterations.
+   A fit whose objective is at its round-off floor (refitted from its own solution, or the gradient not computable to
+   the tolerance) would otherwise take steps along the directions the loops do not see until the iteration limit,
+   which end where round-off took them: on another rank count, elsewhere. */
+static PetscErrorCode LSQConverged(Tao tao, void *ctx)
+{
+  JRLSQ             *q = (JRLSQ *)ctx;
+  PetscInt           it;
+  PetscReal          f;
+  TaoConvergedReason reason;
+
+  PetscFunctionBeginUser;
+  PetscCall(TaoDefaultConvergenceTest(tao, NULL));
+  PetscCall(TaoGetSolutionStatus(tao, &it, &f, NULL, NULL, NULL, &reason));
+  if (reason != TAO_CONTINUE_ITERATING) PetscFunctionReturn(0);
+  if (!it || f < q->fkeep * (1 - 1e-12)) {
+    q->fkeep = f;
+    q->kkeep = it;
+  } else if (it - q->kkeep >= 5) PetscCall(TaoSetConvergedReason(tao, TAO_CONVERGED_USER));
+  PetscFunctionReturn(0);
+}
+
 /* rms: sqrt(|r|^2) before (rms0) and after; x updated */
 PetscErrorCode JRLSQSolve(JRLSQ *q, PetscReal x[], PetscReal lo, PetscReal *rms0, PetscReal *rms, PetscInt *its)
 {
@@ -100,6 +122,7 @@ PetscErrorCode JRLSQSolve(JRLSQ *q, PetscReal x[], PetscReal lo, PetscReal *rms0
   PetscCall(TaoSetMaximumIterations(tao, 2000));
   PetscCall(TaoSetFunctionLowerBound(tao, 1e-26)); /* an exact fit stops there */
   PetscCall(TaoSetMaximumFunctionEvaluations(tao, 20000));
+  PetscCall(TaoSetConvergenceTest(tao, LSQConverged, q));
   PetscCall(TaoSetFromOptions(tao));
   PetscCall(TaoSolve(tao));
   PetscCall(TaoGetConvergedReason(tao, &reason));

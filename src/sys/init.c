@@ -4,6 +4,7 @@
 
 PetscClassId  JR_CONTACT_CLASSID, JR_MODEL_CLASSID, JR_HBM_CLASSID;
 PetscLogEvent JR_ContactEval, JR_ContactSetUp, JR_ContactLoop, JR_ModelLoad, JR_ModesSolve, JR_ModesStatic, JR_PreloadSetUp, JR_PreloadSolve, JR_HBMResidual, JR_HBMJacobian, JR_HBMSolve, JR_ContStep, JR_DenseLU, JR_DenseGMRES;
+PetscLogEvent JR_ContTangent, JR_ContChord, JR_ContPeak;
 PetscLogEvent JR_HBMHill;
 PetscLogEvent JR_HBMFloquetTime;
 
@@ -32,6 +33,9 @@ PetscErrorCode JRInitializePackage(void)
   PetscCall(PetscLogEventRegister("JR_FloquetTime", JR_HBM_CLASSID, &JR_HBMFloquetTime));
   PetscCall(PetscLogEventRegister("JR_HBMSolve", JR_HBM_CLASSID, &JR_HBMSolve));
   PetscCall(PetscLogEventRegister("JR_ContStep", JR_HBM_CLASSID, &JR_ContStep));
+  PetscCall(PetscLogEventRegister("JR_ContTangent", JR_HBM_CLASSID, &JR_ContTangent));
+  PetscCall(PetscLogEventRegister("JR_ContChord", JR_HBM_CLASSID, &JR_ContChord));
+  PetscCall(PetscLogEventRegister("JR_ContPeak", JR_HBM_CLASSID, &JR_ContPeak));
   PetscCall(PetscLogEventRegister("JR_DenseLU", JR_HBM_CLASSID, &JR_DenseLU));
   PetscCall(PetscLogEventRegister("JR_DenseGMRES", JR_HBM_CLASSID, &JR_DenseGMRES));
   PetscCall(JRLogRegister());

@@ -68,6 +68,8 @@ typedef struct {
   PetscErrorCode (*fn)(void *, const PetscReal[], PetscReal[], PetscReal[]);
   void      *ctx;
   PetscReal *r, *J;
+  PetscReal  fkeep; /* the objective at the last iteration that lowered it measurably */
+  PetscInt   kkeep; /* that iteration */
 } JRLSQ;
 PETSC_INTERN PetscErrorCode JRLSQSolve(JRLSQ *, PetscReal[], PetscReal, PetscReal *, PetscReal *, PetscInt *);
 PETSC_INTERN void           JRGram(PetscInt, PetscInt, const PetscReal[], const PetscReal[], PetscReal[], PetscReal[]);

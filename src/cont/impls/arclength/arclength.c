@@ -150,6 +150,7 @@ static PetscErrorCode Tangent(JRCont c, Vec x, Vec tprev, Vec t)
   const JRDenseOp    op = {JRContBorderedMult, JRContBorderedForm, &arc->tj};
 
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(JR_ContTangent, 0, 0, 0, 0));
   PetscCall(Split(c, x, arc->a, &w));
   PetscCall(JRHBMJacobianSetPoint(c->hbm, w, arc->a, arc->J, arc->Rw));
   PetscCall(VecGetArrayRead(tprev, &tp));
@@ -164,6 +165,7 @@ static PetscErrorCode Tangent(JRCont c, Vec x, Vec tprev, Vec t)
   PetscCheck(!singular, PETSC_COMM_SELF, PETSC_ERR_MAT_LU_ZRPVT, "Continuation: the bordered tangent system is singular at %g Hz (a zero pivot)", (double)(w / (2 * PETSC_PI)));
   PetscCall(ScaledDot(c, t, t, &nrm));
   PetscCall(VecScale(t, 1.0 / PetscSqrtReal(nrm)));
+  PetscCall(PetscLogEventEnd(JR_ContTangent, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
