@@ -34,6 +34,8 @@ PETSC_EXTERN PetscErrorCode JRModesGetBasisCheck(JRModes, PetscReal *, PetscReal
 PETSC_EXTERN PetscErrorCode JRModesEnrich(JRModes, PetscInt, Vec[], const PetscReal[], PetscReal, PetscReal *, PetscInt *);
 PETSC_EXTERN PetscErrorCode JRModesEnrichEnd(JRModes);
 PETSC_EXTERN PetscErrorCode JRModesGetAdapt(JRModes, PetscInt *, PetscReal *, PetscReal *, PetscInt *, PetscLogDouble *);
+PETSC_EXTERN PetscErrorCode JRModesSaveAdaptation(JRModes, PetscInt, PetscReal, PetscBool);
+PETSC_EXTERN PetscErrorCode JRModesGetReadAdaptation(JRModes, PetscInt *, PetscInt *, PetscReal *, PetscBool *);
 PETSC_EXTERN PetscErrorCode JRModesReference(JRModes);
 PETSC_EXTERN PetscErrorCode JRModesDestroy(JRModes *);
 

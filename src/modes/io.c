@@ -100,6 +100,43 @@ PetscErrorCode JRModesSave(JRModes md, const char file[])
   PetscFunctionReturn(0);
 }
 
+/*
+  JRModesSaveAdaptation - records in the saved mixed basis (-modes_save or the default file, if written) how it was
+  adapted to the peaks (the caller's rounds, JRModesEnrich): the rounds made, the vectors added, the last round's
+  deformation of the interface by the peaks' loads in units of the springs' stretch, and whether that round added
+  nothing. A run that reads the file (-modes_load) then reports them instead of checking the basis against every
+  interface pattern, a test that such a basis need not pass (JRModesMix). Collective.
+*/
+PetscErrorCode JRModesSaveAdaptation(JRModes md, PetscInt rounds, PetscReal deform, PetscBool conv)
+{
+  PetscViewer v;
+  PetscBool   has;
+  PetscInt    c = conv ? 1 : 0;
+
+  PetscFunctionBeginUser;
+  if (!md->save_mixed[0] || !md->mixed) PetscFunctionReturn(0);
+  PetscCall(PetscTestFile(md->save_mixed, 'r', &has));
+  if (!has) PetscFunctionReturn(0);
+  PetscCall(PetscViewerHDF5Open(md->comm, md->save_mixed, FILE_MODE_APPEND, &v));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "adapt_rounds", PETSC_INT, &rounds));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "adapt_vectors_added", PETSC_INT, &md->nadapt));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "adapt_peak_load_deformation", PETSC_REAL, &deform));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/jointrom_modes", "adapt_converged", PETSC_INT, &c));
+  PetscCall(PetscViewerDestroy(&v));
+  PetscFunctionReturn(0);
+}
+
+/* JRModesGetReadAdaptation - the adaptation recorded in the file read (-modes_load; rounds 0: none recorded) */
+PetscErrorCode JRModesGetReadAdaptation(JRModes md, PetscInt *rounds, PetscInt *added, PetscReal *deform, PetscBool *conv)
+{
+  PetscFunctionBeginUser;
+  if (rounds) *rounds = md->load[0] ? md->read_rounds : 0;
+  if (added) *added = md->read_added;
+  if (deform) *deform = md->read_deform;
+  if (conv) *conv = md->load[0] ? md->read_conv : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
 /* Read the nev lowest modes from a -modes_save file */
 PetscErrorCode JRModesLoad_Private(JRModes md, const char file[])
 {
@@ -129,6 +166,18 @@ PetscErrorCode JRModesLoad_Private(JRModes md, const char file[])
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "has_coordinates", PETSC_INT, NULL, &hasx));
   if (md->load_all) md->nev = nm; /* a mixed basis: every vector of the file */
   PetscCheck(nm >= md->nev, md->comm, PETSC_ERR_FILE_UNEXPECTED, "-modes_load %s holds %" PetscInt_FMT " modes, %" PetscInt_FMT " are asked for (-hbm_modes / -modes_nev)", file, nm, md->nev);
+  PetscCall(PetscViewerHDF5HasAttribute(v, "/jointrom_modes", "adapt_rounds", &has)); /* JRModesSaveAdaptation */
+  md->read_rounds = md->read_added = 0;
+  md->read_deform = -1.0;
+  md->read_conv   = PETSC_FALSE;
+  if (has) {
+    PetscInt c = 0;
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "adapt_rounds", PETSC_INT, NULL, &md->read_rounds));
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "adapt_vectors_added", PETSC_INT, NULL, &md->read_added));
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "adapt_peak_load_deformation", PETSC_REAL, NULL, &md->read_deform));
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/jointrom_modes", "adapt_converged", PETSC_INT, NULL, &c));
+    md->read_conv = (PetscBool)(c != 0);
+  }
   PetscCall(PetscViewerHDF5HasAttribute(v, "/jointrom_modes", "dof_order", &natural)); /* else in the DOFs of the ranks that wrote it */
   if (natural) {
     char *order = NULL, got[32];

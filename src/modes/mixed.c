@@ -451,7 +451,8 @@ static PetscErrorCode Ritz(JRModes md, PetscInt nq, Vec Q[], Vec Mv, PetscScalar
   (dependent vectors dropped), then the Ritz vectors of (K + Ks, M) in their span, which replace md's modes: exact for
   the stuck structure and for the structure with the interface free, and static-complete for the patterns kept. Saved
   (-modes_save or the default file) once mixed; when the modes were read (-modes_load: the file holds the mixed basis)
-  only the basis check is made.
+  only the basis check is made, and not even that for a basis whose file records its adaptation to the peaks as
+  converged (JRModesSaveAdaptation) unless -modes_adapt 0.
 */
 PetscErrorCode JRModesMix(JRModes md, Mat K, PetscInt nf, PetscInt nrb, Vec rb[])
 {
@@ -463,8 +464,9 @@ PetscErrorCode JRModesMix(JRModes md, Mat K, PetscInt nf, PetscInt nrb, Vec rb[]
 
   PetscFunctionBeginUser;
   PetscCheck(md->mixed, md->comm, PETSC_ERR_ARG_WRONGSTATE, "JRModesSetMixed() first");
-  if (md->load[0]) {
-    PetscCall(JRModesCheckBasis(md));
+  if (md->load[0]) { /* a basis adapted to its peaks until a round added nothing (JRModesSaveAdaptation) is not checked: it
+                        answers to the peaks' loads, not to every interface pattern */
+    if (!(md->adapt && md->read_rounds && md->read_conv)) PetscCall(JRModesCheckBasis(md));
     PetscFunctionReturn(0);
   }
   PetscCall(JRModesCreate(md->comm, &fm));

@@ -471,6 +471,7 @@ static PetscErrorCode AdaptBasis(FRFRun *r)
   PetscCall(JRHBMGetModes(r->hbm, &md));
   PetscCall(JRModesEnrichEnd(md));
   PetscCall(JRModesGetAdapt(md, NULL, NULL, NULL, &r->adapt_added, NULL));
+  PetscCall(JRModesSaveAdaptation(md, r->adapt_rounds, r->adapt_lmax, r->adapt_conv));
   PetscCall(PetscTime(&t1));
   r->adapt_s = t1 - t0;
   PetscFunctionReturn(0);
@@ -543,9 +544,18 @@ static PetscErrorCode ViewBasisCheck(FRFRun *r)
   PetscReal      rho, rho0, tol;
   PetscInt       ns;
   PetscLogDouble t;
+  JRModes        md;
 
   PetscFunctionBeginUser;
   PetscCall(JRHBMGetBasisCheck(r->hbmc, &rho, &rho0, &tol, &ns, &t));
+  PetscCall(JRHBMGetModes(r->hbmc, &md));
+  if (rho < 0 && md) { /* a basis read whose file records its adaptation (JRModesMix does not check it) */
+    PetscInt  rounds, added;
+    PetscReal deform;
+    PetscBool conv;
+    PetscCall(JRModesGetReadAdaptation(md, &rounds, &added, &deform, &conv));
+    if (rounds && conv) PetscCall(PetscPrintf(comm, "basis check: not made: the basis read (-modes_load) was adapted to the peaks of the run that wrote it (%" PetscInt_FMT " vectors added in %" PetscInt_FMT " rounds, the last adding none: the peaks' contact forces deform the interface outside the basis by %.3g times the springs' stretch); it holds for that run's levels and excitation (-modes_adapt 0: checked against every interface pattern)\n", added, rounds, (double)deform));
+  }
   if (rho < 0) PetscFunctionReturn(0);
   PetscCall(PetscPrintf(comm, "basis check: rho %.3g rho_modes %.3g static_vectors %" PetscInt_FMT " seconds %.3g (rho: the largest interface residual flexibility x contact stiffness outside the basis; rho_modes: the same without the static correction vectors)\n", (double)rho, (double)rho0, ns, (double)t));
   if (r->adapt_rounds) {

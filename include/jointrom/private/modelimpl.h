@@ -88,6 +88,9 @@ struct _p_JRModes {
   PetscReal  adapt_move; /* -modes_adapt_move: the peaks' move between rounds below which the rounds may stop */
   PetscInt   nadapt;     /* vectors added */
   PetscLogDouble tadapt; /* their seconds */
+  PetscInt   read_rounds, read_added; /* a basis read (-modes_load): the adaptation recorded in its file (JRModesSaveAdaptation; rounds 0: none) */
+  PetscReal  read_deform; /* its last round's deformation of the interface by the peaks' loads (JRModesEnrich's lmax) */
+  PetscBool  read_conv;  /* its last round added nothing */
   KSP        sksp;       /* the static solver of A = K - ssigma M, kept between rounds (JRModesEnrichEnd frees it) */
   Mat        sA;
   PetscReal  ssigma;
