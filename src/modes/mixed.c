@@ -191,8 +191,11 @@ static PetscErrorCode ResidualFlexibility(JRModes md, KSP ksp, Interface *c, Pet
   Vec            g;
   PetscScalar   *d;
   PetscReal     *w, *r;
+  PetscLogDouble t0, tl, t;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  tl = t0;
   PetscCall(VecGetLocalSize(Q[0], &nloc));
   PetscCall(VecGetSize(Q[0], &N));
   PetscCall(MatCreateDense(md->comm, nloc, PETSC_DECIDE, N, bs, NULL, &B));
@@ -224,6 +227,11 @@ static PetscErrorCode ResidualFlexibility(JRModes md, KSP ksp, Interface *c, Pet
       } else PetscCall(ProjectOut(nq, Q, MQ, d, g));
       PetscCall(InterfaceRows(md, c, g, r));
       for (PetscInt i = 0; i < nr; i++) S[i + (c0 + j) * nr] = r[i];
+    }
+    PetscCall(PetscTime(&t)); /* progress on a large interface (minutes): first rank's clock */
+    if (t - tl >= 20.0 && c0 + nb < nr) {
+      PetscCall(PetscPrintf(md->comm, "modes: the interface's residual flexibility (static correction, basis check): %" PetscInt_FMT " of %" PetscInt_FMT " patterns solved, %.0f s\n", c0 + nb, nr, (double)(t - t0)));
+      tl = t;
     }
   }
   for (PetscInt j = 0; j < nr; j++)
