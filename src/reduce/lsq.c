@@ -63,8 +63,8 @@ static PetscErrorCode LSQHessian(Tao tao, Vec X, Mat Hm, Mat Pm, void *ctx)
 
 /* TAO's gradient test, and a stall: the objective lowered by less than 1e-12 of itself over the last 5 iterations.
    A fit whose objective is at its round-off floor (refitted from its own solution, or the gradient not computable to
-   the tolerance) would otherwise take steps along the directions the loops do not see until the iteration limit,
-   which end where round-off took them: on another rank count, elsewhere. */
+   the tolerance) would otherwise take steps along the directions the loops do not see until the iteration limit:
+   up to 2,000 iterations that lower nothing. */
 static PetscErrorCode LSQConverged(Tao tao, void *ctx)
 {
   JRLSQ             *q = (JRLSQ *)ctx;
