@@ -76,7 +76,7 @@ static PetscErrorCode LSQConverged(Tao tao, void *ctx)
   PetscCall(TaoDefaultConvergenceTest(tao, NULL));
   PetscCall(TaoGetSolutionStatus(tao, &it, &f, NULL, NULL, NULL, &reason));
   if (reason != TAO_CONTINUE_ITERATING) PetscFunctionReturn(0);
-  if (!it || f < q->fkeep * (1 - 1e-12)) {
+  if (f < q->fkeep * (1 - 1e-12)) {
     q->fkeep = f;
     q->kkeep = it;
   } else if (it - q->kkeep >= 5) PetscCall(TaoSetConvergedReason(tao, TAO_CONVERGED_USER));
@@ -122,6 +122,8 @@ PetscErrorCode JRLSQSolve(JRLSQ *q, PetscReal x[], PetscReal lo, PetscReal *rms0
   PetscCall(TaoSetMaximumIterations(tao, 2000));
   PetscCall(TaoSetFunctionLowerBound(tao, 1e-26)); /* an exact fit stops there */
   PetscCall(TaoSetMaximumFunctionEvaluations(tao, 20000));
+  q->fkeep = PETSC_MAX_REAL;
+  q->kkeep = 0;
   PetscCall(TaoSetConvergenceTest(tao, LSQConverged, q));
   PetscCall(TaoSetFromOptions(tao));
   PetscCall(TaoSolve(tao));
