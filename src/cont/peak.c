@@ -87,6 +87,14 @@ PetscErrorCode JRContPlaneWorkCreate(JRCont c)
   PetscFunctionReturn(0);
 }
 
+/* The plane solves' kept factors dropped (JRContSolve, at each level) */
+PetscErrorCode JRContPlaneWorkForget(JRCont c)
+{
+  PetscFunctionBeginUser;
+  if (c->pw) PetscCall(JRDenseLUForget(c->pw->dlu));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode JRContPlaneWorkDestroy(JRCont c)
 {
   PeakWork *pw = c->pw;

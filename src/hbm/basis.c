@@ -515,7 +515,8 @@ PetscErrorCode JRHBMSetUpStuckSprings(JRHBM h, const JRElements *el)
       for (PetscInt i = 0; i < nm * nm; i++) h->Kc[i] += g->Kc[i];
     }
     PetscCall(PetscArraycpy(loc, h->Kc, nm * nm));
-    PetscCall(MPIU_Allreduce(loc, all, nm * nm, MPIU_REAL, MPIU_SUM, h->comm));
+    /* a reduced model's members are split over the ranks (JRJointRows), the elements with h->repl are not */
+    PetscCall(MPIU_Allreduce(loc, all, nm * nm, MPIU_REAL, MPIU_SUM, el->members ? h->comm : h->ecomm));
     if (h->repl) PetscCall(PetscArraycpy(h->Kc, all, nm * nm)); /* every rank has every element: the whole sum */
     for (PetscInt i = 0; i < nm; i++)
       for (PetscInt j = 0; j < nm; j++) h->Kg[i * nm + j] -= all[i + j * nm];

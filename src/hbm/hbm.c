@@ -119,6 +119,7 @@ PetscErrorCode JRHBMSetFromOptions(JRHBM h)
   PetscCall(PetscOptionsReal("-hbm_zeta", "Modal viscous damping ratio, every mode [-]", "JRHBMSetUp", h->zeta, &h->zeta, NULL));
   PetscCall(PetscOptionsEnum("-hbm_jacobian", "Jacobian: analytic (element derivatives projected) or fd (finite differences, thesis 2.23)", "JRHBMSetUp", JRHBMJacobianTypes, (PetscEnum)h->jtype, (PetscEnum *)&h->jtype, NULL));
   PetscCall(PetscOptionsReal("-hbm_residual_tol", "A solution is accepted when ||R|| <= tol ||F f||: the residual against the excitation in the same space (condensed: the joints' static motion under it)", "JRHBMSolve", h->acctol, &h->acctol, NULL));
+  PetscCall(PetscOptionsBool("-hbm_elements_replicated", "Every rank holds all the contact elements, as a reduced model's always: no sums over the ranks, and the levels' curves shared out over the ranks (-cont_levels_parallel); 0: split over the ranks", "JRHBMSetUp", h->replopt, &h->replopt, NULL));
   PetscCall(PetscOptionsBool("-hbm_view", "Print the harmonic-balance set-up", "JRHBMView", h->view, &h->view, NULL));
   if (!h->fdof_set) PetscCall(PetscOptionsInt("-frf_dof", "Excitation F sin(w t) at this DOF (0-based)", "JRHBMSetUp", h->fdof, &h->fdof, NULL));
   PetscCall(PetscOptionsString("-frf_force_file", "Excitation shape from a file instead (one value per DOF, in an FE model's natural order: that of the coordinates in a -modes_save file; .csv/.txt, .bin, .h5)", "JRHBMSetUp", h->ffile, h->ffile, sizeof(h->ffile), NULL));
@@ -214,9 +215,10 @@ PetscErrorCode JRHBMSetUp(JRHBM h)
     PetscCall(PetscMalloc1(el->njoints * JR_FIELD_WIDTH(2, h->nm), &field));
     PetscCall(JRJointRows(h, el->members, (PetscBool)(el->pos != NULL), field, h->basis != JR_HBM_BASIS_FREE ? h->Kc : NULL));
   }
-  /* element groups, one per type, split across the ranks; a reduced model's few elements are on every rank instead
-     (each rank's Newton iteration then needs no sum over the ranks: the same numbers, bit for bit, everywhere) */
-  h->repl  = (PetscBool)(el->members && h->size > 1);
+  /* element groups, one per type, split across the ranks; a reduced model's few elements (and with
+     -hbm_elements_replicated any model's) are on every rank instead (each rank's Newton iteration then needs no sum
+     over the ranks: the same numbers, bit for bit, everywhere; a rank can solve a level alone, JRHBMSetLocal) */
+  h->repl  = (PetscBool)((el->members || h->replopt) && h->size > 1);
   h->ecomm = h->repl ? PETSC_COMM_SELF : h->comm;
   PetscCall(JRHBMSetUpGroups(h, el, field));
   /* stuck basis: the elements add their deviation from stuck; structural damping on the structure's own stiffness */
@@ -464,6 +466,64 @@ PetscErrorCode JRHBMGetSNES(JRHBM h, SNES *snes)
   PetscFunctionBeginUser;
   PetscCall(JRHBMSetUp(h));
   *snes = h->snes;
+  PetscFunctionReturn(0);
+}
+
+/* JRHBMForgetFactors - the harmonic-balance solver's kept LU (the next solves' preconditioner) dropped: the next solve
+   factors its own Jacobian, so that it does not depend on the solves before it */
+PetscErrorCode JRHBMForgetFactors(JRHBM h)
+{
+  JRDenseLU lu = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  PetscCall(SNESNewtonDenseGetDenseLU(h->snes, &lu));
+  if (lu) PetscCall(JRDenseLUForget(lu));
+  PetscFunctionReturn(0);
+}
+
+/* JRHBMGetReplicated - whether every rank holds all the elements (a reduced model on several ranks) */
+PetscErrorCode JRHBMGetReplicated(JRHBM h, PetscBool *repl)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  *repl = h->repl;
+  PetscFunctionReturn(0);
+}
+
+/*
+  JRHBMSetLocal - with local, every call on a replicated h (JRHBMGetReplicated) is the calling rank's alone: its
+  communicator PETSC_COMM_SELF, so that the ranks solve different things at once (the levels of a curve); without,
+  the communicator it was created on again. The time in the elements while local is summed over the ranks when
+  local ends (so that the ranks agree) and divided by their number.
+*/
+PetscErrorCode JRHBMSetLocal(JRHBM h, PetscBool local)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetUp(h));
+  if (local == h->local) PetscFunctionReturn(0);
+  PetscCheck(!local || h->repl, h->comm, PETSC_ERR_ARG_WRONGSTATE, "JRHBMSetLocal: the elements are split over the ranks");
+  if (local) {
+    h->gcomm = h->comm;
+    h->grank = h->rank;
+    h->gsize = h->size;
+    h->comm  = PETSC_COMM_SELF;
+    h->rank  = 0;
+    h->size  = 1;
+    h->tlocal[0] = h->telem;
+    h->tlocal[1] = h->nelem;
+    h->tlocal[2] = h->nelemjac;
+  } else {
+    PetscReal d[3] = {h->telem - h->tlocal[0], (PetscReal)(h->nelem - (PetscInt)h->tlocal[1]), (PetscReal)(h->nelemjac - (PetscInt)h->tlocal[2])};
+    h->comm = h->gcomm;
+    h->rank = h->grank;
+    h->size = h->gsize;
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, d, 3, MPIU_REAL, MPIU_SUM, h->comm));
+    h->telem    = h->tlocal[0] + d[0] / h->size;
+    h->nelem    = (PetscInt)h->tlocal[1] + (PetscInt)d[1];
+    h->nelemjac = (PetscInt)h->tlocal[2] + (PetscInt)d[2];
+  }
+  h->local = local;
   PetscFunctionReturn(0);
 }
 

@@ -40,6 +40,7 @@ struct _JRContOps {
   PetscErrorCode (*setfromoptions)(JRCont, PetscOptionItems *);
   PetscErrorCode (*setup)(JRCont);                                 /* at every JRContSolve, once the sizes are known: the type's work */
   PetscErrorCode (*solvelevel)(JRCont, PetscInt, JRContBranch *, Vec); /* level lev's curve over [wmin, wmax] (b->F set); a: work, size n */
+  PetscErrorCode (*forget)(JRCont);                                /* drops the factors kept from earlier solves (may be NULL) */
   PetscErrorCode (*destroy)(JRCont);                               /* frees data */
 };
 
@@ -75,6 +76,10 @@ struct _p_JRCont {
   PetscInt          stablr;     /* -frf_stability_time_lowrank: 0 no, 1 auto, 2 yes (JRHBMSetFloquetLowRank) */
   PetscReal         stabfast;   /* -frf_stability_time_fast: modes above this x H w quasi-static there (0: none) */
   PetscBool         stabdiss;   /* -frf_stability_dissipative: the incremental-dissipativity certificate where it holds */
+  PetscBool         levpar;     /* -cont_levels_parallel: a replicated model's levels shared out over the ranks */
+  PetscBool         buffered;   /* the rank solves levels alone: JRContPrintf into text instead of to the output */
+  char             *text;       /* its text (length tlen, allocated tcap) */
+  size_t            tlen, tcap;
 };
 
 PETSC_INTERN PetscErrorCode JRContCreate_Natural(JRCont);
@@ -114,6 +119,8 @@ PETSC_INTERN PetscBool JRContGoldenUpdate(JRContGolden *, PetscReal, PetscReal, 
 PETSC_INTERN PetscErrorCode JRContPlanePoint(JRCont, PetscReal, PetscReal *, Vec *, PetscInt *, PetscBool *);
 PETSC_INTERN PetscErrorCode JRContTangentSign(JRCont, PetscReal, Vec, PetscInt *, PetscInt *);
 PETSC_INTERN PetscErrorCode JRContMonitor(JRCont, PetscInt, JRContBranch *);
+PETSC_INTERN PetscErrorCode JRContPrintf(JRCont, const char[], ...) PETSC_ATTRIBUTE_FORMAT(2, 3);
+PETSC_INTERN PetscErrorCode JRContPlaneWorkForget(JRCont);
 /* src/cont/stability.c */
 PETSC_INTERN PetscErrorCode JRContStability(JRCont, PetscInt, Vec);
 PETSC_INTERN PetscErrorCode JRContBranchStabilityFree(JRContBranch *);

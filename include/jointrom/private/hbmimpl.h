@@ -100,6 +100,11 @@ struct _p_JRHBM {
   PetscBool         repl;         /* a reduced model on several ranks: every rank evaluates all its (few) elements, so
                                      the per-iteration sum over the ranks is not needed */
   MPI_Comm          ecomm;        /* the communicator of sums over the elements: h->comm, or PETSC_COMM_SELF if repl */
+  MPI_Comm          gcomm;        /* JRHBMSetLocal(): h->comm while the rank works alone */
+  PetscMPIInt       grank, gsize;
+  PetscBool         local;
+  PetscBool         replopt;      /* -hbm_elements_replicated */
+  PetscReal         tlocal[3];    /* telem, nelem, nelemjac when local began */
   JRJointMotion     jmotion;      /* first reduction: how a joint's members move (-rom_joint_motion) */
   PetscBool         cond;         /* in use: the solve space is the joints' motions */
   PetscBool         jprod;        /* -hbm_condense_products: JRHBMJacobianSetPoint keeps a condensed Jacobian for its products */

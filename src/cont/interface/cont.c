@@ -64,6 +64,7 @@ PetscErrorCode JRContCreate(MPI_Comm comm, JRCont *cont)
   c->stabsteps = 64;
   c->stabfast  = 20;
   c->stablr    = 1;
+  c->levpar    = PETSC_TRUE;
   PetscCall(PetscMalloc1(1, &c->levels));
   c->levels[0] = 1.0;
   PetscCall(PetscStrncpy(c->out, "out/frf", sizeof(c->out)));
@@ -223,6 +224,7 @@ PetscErrorCode JRContSetFromOptions(JRCont c)
   PetscCall(PetscOptionsReal("-cont_locate_tol", "Relative frequency tolerance of the folds and branch points (-frf_stability), located by harmonic-balance solves along the curve", "JRContStability", c->ltol, &c->ltol, NULL));
   PetscCall(PetscOptionsReal("-cont_locate_pair_tol", "The same for branch points of kind pair (bisection on the stability, a monodromy matrix per step; the exponents' own error moves them more)", "JRContStability", c->ptolb, &c->ptolb, NULL));
   PetscCall(PetscOptionsInt("-cont_monitor", "Progress: 0 none, 1 every 25th point and each level, 2 every point", "JRContSetFromOptions", c->monitor, &c->monitor, NULL));
+  PetscCall(PetscOptionsBool("-cont_levels_parallel", "A reduced model (its elements on every rank): its levels' curves shared out over the ranks, each solved by one rank; 0: every rank solves every level", "JRContSolve", c->levpar, &c->levpar, NULL));
   PetscCall(PetscOptionsRealArray("-frf_force", "Excitation levels F [N]: f(t) = F sin(w t) at -frf_dof", "JRContSetLevels", lv, &nl, &fl));
   PetscCall(PetscOptionsReal("-frf_omega_min", "Lowest frequency [rad/s]", "JRContSetRange", wmin, &wmin, &f1));
   PetscCall(PetscOptionsReal("-frf_omega_max", "Highest frequency [rad/s]", "JRContSetRange", wmax, &wmax, &f2));
@@ -374,7 +376,7 @@ PetscErrorCode JRContMonitor(JRCont c, PetscInt lev, JRContBranch *b)
   if (!c->monitor || c->quiet || !b->np) PetscFunctionReturn(0);
   if (c->monitor >= 2 || (b->np - 1) % 25 == 0) {
     const PetscInt k = b->np - 1;
-    PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT "/%" PetscInt_FMT " F %g N  point %4" PetscInt_FMT "  f %.6g Hz  amp %.4e m  newton %" PetscInt_FMT "  step %.3g\n", lev + 1, c->nlev, (double)b->F, k, (double)(b->omega[k] / (2 * PETSC_PI)), (double)b->amp[k * c->nout], b->its[k], (double)b->step[k]));
+    PetscCall(JRContPrintf(c, "cont: level %" PetscInt_FMT "/%" PetscInt_FMT " F %g N  point %4" PetscInt_FMT "  f %.6g Hz  amp %.4e m  newton %" PetscInt_FMT "  step %.3g\n", lev + 1, c->nlev, (double)b->F, k, (double)(b->omega[k] / (2 * PETSC_PI)), (double)b->amp[k * c->nout], b->its[k], (double)b->step[k]));
   }
   PetscFunctionReturn(0);
 }
@@ -484,8 +486,19 @@ static PetscErrorCode SolveSetUp(JRCont c, Vec *a)
   PetscFunctionReturn(0);
 }
 
-/* Level lev: its curve by the type, its peak, and (unless quiet) its lines */
-static PetscErrorCode SolveLevel(JRCont c, PetscInt lev, Vec a)
+/* The factors kept from earlier solves dropped: what follows does not depend on the levels solved before, nor on
+   which rank solved them */
+static PetscErrorCode ForgetFactors(JRCont c)
+{
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMForgetFactors(c->hbm));
+  PetscCall(JRContPlaneWorkForget(c));
+  if (c->ops->forget) PetscCall((*c->ops->forget)(c));
+  PetscFunctionReturn(0);
+}
+
+/* Level lev's curve by the type and its peak */
+static PetscErrorCode CurveLevel(JRCont c, PetscInt lev, Vec a)
 {
   JRContBranch  *b = &c->br[lev];
   PetscLogDouble t0, t1;
@@ -494,10 +507,22 @@ static PetscErrorCode SolveLevel(JRCont c, PetscInt lev, Vec a)
   PetscCall(PetscTime(&t0));
   b->F = c->levels[lev];
   PetscCall(JRHBMSetForceLevel(c->hbm, b->F));
+  PetscCall(ForgetFactors(c));
   PetscCall((*c->ops->solvelevel)(c, lev, b, a));
   PetscCall(PetscTime(&t1));
   b->seconds = t1 - t0;
   PetscCall(Peak(c, lev, c->amod));
+  PetscFunctionReturn(0);
+}
+
+/* Level lev after its curve: the stability of its points and (unless quiet) its lines. Collective. */
+static PetscErrorCode EndLevel(JRCont c, PetscInt lev, Vec a)
+{
+  JRContBranch *b = &c->br[lev];
+
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMSetForceLevel(c->hbm, b->F));
+  PetscCall(ForgetFactors(c));
   PetscCall(JRContStability(c, lev, a));
   if (c->quiet) PetscFunctionReturn(0);
   if (c->monitor) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT "/%" PetscInt_FMT " F %g N done: %" PetscInt_FMT " points, %" PetscInt_FMT " Newton iterations, %" PetscInt_FMT " retries, largest relative residual %.2e, %.3g s%s\n", lev + 1, c->nlev, (double)b->F, b->np, b->newton, b->retries, (double)b->resmax, (double)b->seconds, b->complete ? "" : " (incomplete: see above)"));
@@ -506,14 +531,178 @@ static PetscErrorCode SolveLevel(JRCont c, PetscInt lev, Vec a)
   PetscFunctionReturn(0);
 }
 
+/* Print on rank 0 of c's communicator; while the rank solves levels alone (CurvesApart), into its text instead */
+PetscErrorCode JRContPrintf(JRCont c, const char fmt[], ...)
+{
+  char    line[2048];
+  size_t  len;
+  va_list ap;
+
+  PetscFunctionBeginUser;
+  va_start(ap, fmt);
+  PetscCall(PetscVSNPrintf(line, sizeof(line), fmt, &len, ap));
+  va_end(ap);
+  if (!c->buffered) {
+    PetscCall(PetscPrintf(c->comm, "%s", line));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscStrlen(line, &len));
+  if (c->tlen + len + 1 > c->tcap) {
+    char *t;
+    c->tcap = 2 * (c->tlen + len + 1) + 4096;
+    PetscCall(PetscMalloc1(c->tcap, &t));
+    if (c->tlen) PetscCall(PetscArraycpy(t, c->text, c->tlen));
+    PetscCall(PetscFree(c->text));
+    c->text = t;
+  }
+  PetscCall(PetscArraycpy(c->text + c->tlen, line, len));
+  c->tlen += len;
+  c->text[c->tlen] = 0;
+  PetscFunctionReturn(0);
+}
+
+/* Level b's curve and peak, as the rank root computed them, on every rank of c's communicator */
+static PetscErrorCode BranchBcast(JRCont c, JRContBranch *b, PetscMPIInt root)
+{
+  PetscMPIInt rank;
+  PetscInt    ni[11];
+  PetscReal   nr[7];
+  MPI_Comm    comm = c->comm;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == root) {
+    PetscInt k = 0;
+    ni[k++] = b->np;
+    ni[k++] = b->retries;
+    for (PetscInt i = 0; i < 4; i++) ni[k++] = b->states[i];
+    ni[k++] = b->complete;
+    ni[k++] = b->newton;
+    ni[k++] = b->kpeak;
+    ni[k++] = b->refine_its;
+    ni[k++] = b->estate ? 1 : 0;
+    nr[0]   = b->F;
+    nr[1]   = b->seconds;
+    nr[2]   = b->wpeak;
+    nr[3]   = b->apeak;
+    nr[4]   = b->resmax;
+    nr[5]   = b->zeta;
+    nr[6]   = b->ebal;
+  }
+  PetscCallMPI(MPI_Bcast(ni, 11, MPIU_INT, root, comm));
+  PetscCallMPI(MPI_Bcast(nr, 7, MPIU_REAL, root, comm));
+  PetscCallMPI(MPI_Bcast(b->why, sizeof(b->why), MPI_CHAR, root, comm));
+  if (rank != root) {
+    const PetscInt np = ni[0], cap = PetscMax(np, 1);
+    PetscInt       k  = 1;
+    PetscCheck(!b->cap, PETSC_COMM_SELF, PETSC_ERR_PLIB, "BranchBcast: the level was solved here too");
+    b->np      = np;
+    b->cap     = cap;
+    b->retries = ni[k++];
+    for (PetscInt i = 0; i < 4; i++) b->states[i] = ni[k++];
+    b->complete   = (PetscBool)ni[k++];
+    b->newton     = ni[k++];
+    b->kpeak      = ni[k++];
+    b->refine_its = ni[k++];
+    b->F          = nr[0];
+    b->seconds    = nr[1];
+    b->wpeak      = nr[2];
+    b->apeak      = nr[3];
+    b->resmax     = nr[4];
+    b->zeta       = nr[5];
+    b->ebal       = nr[6];
+    PetscCall(PetscMalloc6(cap, &b->omega, cap * c->nmod, &b->a, cap * c->nout, &b->amp, cap * c->nout, &b->pp, cap, &b->step, cap, &b->its));
+    PetscCall(PetscMalloc2(cap * c->n, &b->x, cap, &b->res));
+    PetscCall(PetscCalloc2(c->nout, &b->wpk, c->nout, &b->apk));
+    if (ni[10]) PetscCall(PetscMalloc1(b->states[0] + b->states[1] + b->states[2] + b->states[3], &b->estate));
+  }
+  if (b->np) {
+    PetscCallMPI(MPI_Bcast(b->omega, (PetscMPIInt)b->np, MPIU_REAL, root, comm));
+    PetscCallMPI(MPI_Bcast(b->a, (PetscMPIInt)(b->np * c->nmod), MPIU_REAL, root, comm));
+    PetscCallMPI(MPI_Bcast(b->amp, (PetscMPIInt)(b->np * c->nout), MPIU_REAL, root, comm));
+    PetscCallMPI(MPI_Bcast(b->pp, (PetscMPIInt)(b->np * c->nout), MPIU_REAL, root, comm));
+    PetscCallMPI(MPI_Bcast(b->step, (PetscMPIInt)b->np, MPIU_REAL, root, comm));
+    PetscCallMPI(MPI_Bcast(b->its, (PetscMPIInt)b->np, MPIU_INT, root, comm));
+    PetscCallMPI(MPI_Bcast(b->x, (PetscMPIInt)(b->np * c->n), MPIU_REAL, root, comm));
+    PetscCallMPI(MPI_Bcast(b->res, (PetscMPIInt)b->np, MPIU_REAL, root, comm));
+  }
+  if (b->wpk) {
+    PetscCallMPI(MPI_Bcast(b->wpk, (PetscMPIInt)c->nout, MPIU_REAL, root, comm));
+    PetscCallMPI(MPI_Bcast(b->apk, (PetscMPIInt)c->nout, MPIU_REAL, root, comm));
+  }
+  if (ni[10]) PetscCallMPI(MPI_Bcast(b->estate, (PetscMPIInt)(b->states[0] + b->states[1] + b->states[2] + b->states[3]), MPI_INT, root, comm));
+  PetscFunctionReturn(0);
+}
+
+/*
+  The levels' curves and peaks of a replicated model (a reduced one: every rank holds all its elements) shared out
+  over the ranks, level l on rank l mod size, each rank alone (JRHBMSetLocal), then every level's on every rank; the
+  lines each rank printed for its levels, text[l], are for the caller to print in the levels' order. Every
+  level starts from no kept factors (ForgetFactors) and samples its response scale at 1 N, so a level's curve is the
+  same, to the bit, whichever rank solves it and after whichever levels.
+*/
+static PetscErrorCode CurvesApart(JRCont c, Vec a, char ***txt)
+{
+  MPI_Comm    comm = c->comm;
+  PetscMPIInt rank, size;
+  char      **text;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(PetscCalloc1(c->nlev, &text));
+  PetscCall(JRHBMSetLocal(c->hbm, PETSC_TRUE));
+  c->comm     = PETSC_COMM_SELF;
+  c->buffered = PETSC_TRUE;
+  for (PetscInt lev = rank; lev < c->nlev; lev += size) {
+    c->tlen = 0;
+    if (c->text) c->text[0] = 0;
+    PetscCall(CurveLevel(c, lev, a));
+    PetscCall(PetscStrallocpy(c->text ? c->text : "", &text[lev]));
+  }
+  c->buffered = PETSC_FALSE;
+  c->comm     = comm;
+  PetscCall(JRHBMSetLocal(c->hbm, PETSC_FALSE));
+  for (PetscInt lev = 0; lev < c->nlev; lev++) {
+    const PetscMPIInt root = (PetscMPIInt)(lev % size);
+    size_t            sl   = 0;
+    PetscInt          len  = 0;
+    PetscCall(BranchBcast(c, &c->br[lev], root));
+    if (rank == root) PetscCall(PetscStrlen(text[lev], &sl));
+    len = (PetscInt)sl;
+    PetscCallMPI(MPI_Bcast(&len, 1, MPIU_INT, root, comm));
+    if (rank != root) PetscCall(PetscMalloc1(len + 1, &text[lev]));
+    PetscCallMPI(MPI_Bcast(text[lev], (PetscMPIInt)(len + 1), MPI_CHAR, root, comm));
+  }
+  *txt = text;
+  PetscFunctionReturn(0);
+}
+
 /* Trace the frequency-response curve of every level, then (unless quiet) print the summary table */
 PetscErrorCode JRContSolve(JRCont c)
 {
-  Vec a;
+  Vec         a;
+  PetscBool   repl;
+  PetscMPIInt size;
 
   PetscFunctionBeginUser;
   PetscCall(SolveSetUp(c, &a));
-  for (PetscInt lev = 0; lev < c->nlev; lev++) PetscCall(SolveLevel(c, lev, a));
+  PetscCall(JRHBMGetReplicated(c->hbm, &repl));
+  PetscCallMPI(MPI_Comm_size(c->comm, &size));
+  if (repl && size > 1 && c->nlev > 1 && c->levpar) {
+    char **text = NULL;
+    PetscCall(CurvesApart(c, a, &text));
+    for (PetscInt lev = 0; lev < c->nlev; lev++) {
+      PetscCall(PetscPrintf(c->comm, "%s", text[lev]));
+      PetscCall(PetscFree(text[lev]));
+      PetscCall(EndLevel(c, lev, a));
+    }
+    PetscCall(PetscFree(text));
+  } else
+    for (PetscInt lev = 0; lev < c->nlev; lev++) {
+      PetscCall(CurveLevel(c, lev, a));
+      PetscCall(EndLevel(c, lev, a));
+    }
   PetscCall(VecDestroy(&a));
   if (!c->quiet) PetscCall(JRContPrintSummary(c));
   PetscFunctionReturn(0);
@@ -656,6 +845,7 @@ PetscErrorCode JRContDestroy(JRCont *cont)
   if (c->ops->destroy) PetscCall((*c->ops->destroy)(c));
   PetscCall(BranchesDestroy(c));
   PetscCall(PetscFree(c->levels));
+  PetscCall(PetscFree(c->text));
   PetscCall(VecDestroy(&c->amod));
   PetscCall(PetscFree(c->ampw));
   PetscCall(JRContPlaneWorkDestroy(c));

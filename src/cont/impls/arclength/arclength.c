@@ -176,15 +176,21 @@ static PetscErrorCode ResponseScale(JRCont c, PetscReal F, Vec a)
   PetscReal         m   = 0.0, nrm;
 
   PetscFunctionBeginUser;
-  if (arc->aunit <= 0 || F <= 0) { /* the linearised response is proportional to the level: sampled once */
+  if (arc->aunit <= 0 || F <= 0) { /* the linearised response is proportional to the level: sampled once, at 1 N (the
+                                      same whichever level comes first: a level's curve does not depend on the others) */
+    if (F > 0) PetscCall(JRHBMSetForceLevel(c->hbm, 1.0));
     for (PetscInt k = 0; k <= 64; k++) {
       const PetscReal w = c->wmin + (c->wmax - c->wmin) * k / 64.0;
       PetscCall(JRHBMLinearSolution(c->hbm, w, a));
       PetscCall(VecNorm(a, NORM_2, &nrm));
       m = PetscMax(m, nrm);
     }
-    if (F > 0) arc->aunit = m / F;
-  } else m = arc->aunit * F;
+    if (F > 0) {
+      PetscCall(JRHBMSetForceLevel(c->hbm, F));
+      arc->aunit = m;
+    }
+  }
+  if (F > 0) m = arc->aunit * F;
   arc->aref = m > 0 ? m : 1.0;
   arc->wref = c->wmax - c->wmin;
   PetscFunctionReturn(0);
@@ -319,7 +325,7 @@ static PetscErrorCode LandOnEnd(JRCont c, PetscInt lev, JRContBranch *b, Vec a, 
     b->complete = PETSC_TRUE;
   } else {
     PetscCall(PetscSNPrintf(b->why, sizeof(b->why), "no solution exactly at the end of the range; the curve ends at %.6g Hz", (double)(wk / (2 * PETSC_PI))));
-    PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: %s\n", lev + 1, (double)b->F, b->why));
+    PetscCall(JRContPrintf(c, "cont: level %" PetscInt_FMT " F %g N: %s\n", lev + 1, (double)b->F, b->why));
   }
   PetscFunctionReturn(0);
 }
@@ -387,10 +393,10 @@ static PetscErrorCode Retry(JRCont c, PetscInt lev, JRContBranch *b, PetscReal w
   b->retries++;
   *ds = RoundStep(*ds * factor) < dsmin && *ds * factor >= dsmin ? dsmin : RoundStep(*ds * factor); /* the least step is still tried */
   *stop = *ds < dsmin ? PETSC_TRUE : PETSC_FALSE;
-  if (c->monitor && (!*stop || c->monitor > 1)) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: %s after %.6g Hz, retrying with step %.3g\n", lev + 1, (double)b->F, what, (double)(wk / (2 * PETSC_PI)), (double)*ds));
+  if (c->monitor && (!*stop || c->monitor > 1)) PetscCall(JRContPrintf(c, "cont: level %" PetscInt_FMT " F %g N: %s after %.6g Hz, retrying with step %.3g\n", lev + 1, (double)b->F, what, (double)(wk / (2 * PETSC_PI)), (double)*ds));
   if (*stop) {
     PetscCall(PetscSNPrintf(b->why, sizeof(b->why), "the corrector found no solution after %.6g Hz (%s) with steps down to %.3g (-cont_step_min)", (double)(wk / (2 * PETSC_PI)), what, (double)dsmin));
-    PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: stopped: %s\n", lev + 1, (double)b->F, b->why));
+    PetscCall(JRContPrintf(c, "cont: level %" PetscInt_FMT " F %g N: stopped: %s\n", lev + 1, (double)b->F, b->why));
   }
   PetscFunctionReturn(0);
 }
@@ -467,7 +473,7 @@ static PetscErrorCode JRContSolveLevel_Arclength(JRCont c, PetscInt lev, JRContB
     if (na > arc->aref) arc->aref = na; /* the next tangent is normalised in the new metric */
     if (w < c->wmin) {
       PetscCall(PetscSNPrintf(b->why, sizeof(b->why), "the curve turned back below the start of the range at %.6g Hz", (double)(w / (2 * PETSC_PI))));
-      PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: %s; stopped\n", lev + 1, (double)b->F, b->why));
+      PetscCall(JRContPrintf(c, "cont: level %" PetscInt_FMT " F %g N: %s; stopped\n", lev + 1, (double)b->F, b->why));
       break;
     }
     if (na >= arc->aref) { /* the metric changed: the tangent renormalised, its amplitude slope with it */
@@ -481,7 +487,7 @@ static PetscErrorCode JRContSolveLevel_Arclength(JRCont c, PetscInt lev, JRContB
   }
   if (b->np >= c->maxpts) {
     PetscCall(PetscSNPrintf(b->why, sizeof(b->why), "-cont_max_points %" PetscInt_FMT " reached before the end of the range", c->maxpts));
-    PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: %s\n", lev + 1, (double)b->F, b->why));
+    PetscCall(JRContPrintf(c, "cont: level %" PetscInt_FMT " F %g N: %s\n", lev + 1, (double)b->F, b->why));
   }
   PetscCall(VecDestroy(&tnew));
   PetscCall(VecDestroy(&x));
@@ -531,6 +537,16 @@ static PetscErrorCode CreateCorrector(JRCont c)
     PetscCall(JRDenseLUCreate(&arc->tlu));
     arc->towns = PETSC_TRUE;
   }
+  PetscFunctionReturn(0);
+}
+
+/* The corrector's and the tangent's kept factors dropped */
+static PetscErrorCode JRContForget_Arclength(JRCont c)
+{
+  JRCont_Arclength *arc = (JRCont_Arclength *)c->data;
+
+  PetscFunctionBeginUser;
+  if (arc->tlu) PetscCall(JRDenseLUForget(arc->tlu)); /* the corrector's own (newtondense), or the tangent's */
   PetscFunctionReturn(0);
 }
 
@@ -608,6 +624,7 @@ PetscErrorCode JRContCreate_Arclength(JRCont c)
   c->ops->setfromoptions = JRContSetFromOptions_Arclength;
   c->ops->setup          = JRContSetUp_Arclength;
   c->ops->solvelevel     = JRContSolveLevel_Arclength;
+  c->ops->forget         = JRContForget_Arclength;
   c->ops->destroy        = JRContDestroy_Arclength;
   PetscFunctionReturn(0);
 }

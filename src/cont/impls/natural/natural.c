@@ -55,17 +55,17 @@ static PetscErrorCode JRContSolveLevel_Natural(JRCont c, PetscInt lev, JRContBra
       if (err > 2 * c->itol && dw > dwmin) {
         b->retries++;
         dw = PetscMax(dwmin, dw * PetscMax(0.2, 0.8 * PetscSqrtReal(c->itol / err)));
-        if (c->monitor > 1) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: interpolation error %.2e above -cont_interp_tol %.2e at %.6g Hz, retrying with step %.3g rad/s\n", lev + 1, (double)b->F, (double)err, (double)c->itol, (double)(wn / (2 * PETSC_PI)), (double)dw));
+        if (c->monitor > 1) PetscCall(JRContPrintf(c, "cont: level %" PetscInt_FMT " F %g N: interpolation error %.2e above -cont_interp_tol %.2e at %.6g Hz, retrying with step %.3g rad/s\n", lev + 1, (double)b->F, (double)err, (double)c->itol, (double)(wn / (2 * PETSC_PI)), (double)dw));
         continue;
       }
     }
     if (!conv) {
       b->retries++;
       dw *= 0.5;
-      if (c->monitor) PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: Newton failed at %.6g Hz (relative residual %.2e), retrying with step %.3g rad/s\n", lev + 1, (double)b->F, (double)(wn / (2 * PETSC_PI)), (double)res, (double)dw));
+      if (c->monitor) PetscCall(JRContPrintf(c, "cont: level %" PetscInt_FMT " F %g N: Newton failed at %.6g Hz (relative residual %.2e), retrying with step %.3g rad/s\n", lev + 1, (double)b->F, (double)(wn / (2 * PETSC_PI)), (double)res, (double)dw));
       if (dw < dwmin) {
         PetscCall(PetscSNPrintf(b->why, sizeof(b->why), "Newton found no solution after %.6g Hz with steps down to %.3g rad/s (-cont_step_min)", (double)(w / (2 * PETSC_PI)), (double)dwmin));
-        PetscCall(PetscPrintf(c->comm, "cont: level %" PetscInt_FMT " F %g N: stopped: %s\n", lev + 1, (double)b->F, b->why));
+        PetscCall(JRContPrintf(c, "cont: level %" PetscInt_FMT " F %g N: stopped: %s\n", lev + 1, (double)b->F, b->why));
         break;
       }
       continue;
