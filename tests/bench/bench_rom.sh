@@ -10,7 +10,9 @@
 # ratio if its elements cost nothing). Then the three-bolt lap joint (runs/lap3_rom.opts: jenkins_nv, 506 pairs,
 # 12 joints x 3 elements on the stuck-mode field, not condensed: its rows outnumber its modes) and the single-bolt lap
 # joint (runs/lap1_rom.opts: 4 zone joints on the linear field, first reduction, condensed onto their rows) with the
-# same split. On 1 and 2 ranks.
+# same split. On 1 and 2 ranks; the reduced model's levels are shared out over the ranks (its elements are on every
+# rank), the node-to-node model's elements split over them; ranks "2r": the node-to-node model's elements on every
+# rank too (-hbm_elements_replicated), its levels shared out the same way.
 # JR_BENCH_ROM_SPLITS sets the k's.
 cd "$(dirname "$0")/../.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
@@ -44,8 +46,9 @@ compare_run() { # title, run file: the compare lines on 1 and 2 ranks
   echo
   echo "== reduced-order joints vs node-to-node: $1 =="
   printf "%-5s %11s %11s %8s %13s %13s %13s %13s %7s %9s %9s\n" ranks n2n_solve_s rom_solve_s speedup n2n_elem_s n2n_rest_s rom_elem_s rom_rest_s cap freq_err amp_err
-  for np in 1 2; do
-    o=$(mpiexec -n $np bin/jointrom -options_file $2 -frf_plot 0 -cont_monitor 0 -frf_output_file "$tmp/cmp_$np" 2>&1)
+  for np in 1 2 2r; do
+    extra=; [ $np = 2r ] && extra=-hbm_elements_replicated
+    o=$(mpiexec -n ${np%r} bin/jointrom -options_file $2 -frf_plot 0 -cont_monitor 0 -frf_output_file "$tmp/cmp_$np" $extra 2>&1)
     if ! echo "$o" | grep -q '^compare time_split'; then
       printf "%-5s failed: %s\n" $np "$(echo "$o" | grep -m1 -E 'ERROR: [A-Z]|Killed|memory' | cut -c1-100)"; continue
     fi
