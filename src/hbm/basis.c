@@ -826,6 +826,7 @@ PetscErrorCode JRHBMEnrichBasis(JRHBM h, PetscInt ns, Vec a[], PetscReal tol, Pe
   PetscInt          nloc = 0;
   Vec              *F;
   PetscReal        *Dt, *Dn, *D, *Dall, *T; /* T: each solution's dynamic contact forces in the springs' compliance */
+  PetscBool         mine;                    /* this rank adds its elements' loads (every element on every rank: rank 0's) */
 
   PetscFunctionBeginUser;
   *lmax = 0.0;
@@ -833,7 +834,8 @@ PetscErrorCode JRHBMEnrichBasis(JRHBM h, PetscInt ns, Vec a[], PetscReal tol, Pe
   PetscCall(JRHBMSetUp(h));
   PetscCall(JRHBMGetElements(h, &el));
   if (!ns || h->physical || h->cond || !el || el->members || !el->vdof_a) PetscFunctionReturn(0);
-  for (PetscInt t = 0; t < h->ngroups; t++) nloc += h->g[t].split ? h->g[t].nloc : 0;
+  mine = (PetscBool)(!h->repl || !h->rank);
+  for (PetscInt t = 0; t < h->ngroups && mine; t++) nloc += h->g[t].split ? h->g[t].nloc : 0;
   PetscCall(VecDuplicateVecs(h->modes->phi[0], np, &F));
   for (PetscInt p = 0; p < np; p++) PetscCall(VecZeroEntries(F[p]));
   PetscCall(PetscCalloc4(PetscMax(nloc * np, 1), &Dt, PetscMax(nloc * np, 1), &Dn, np * np, &D, np * np, &Dall));
@@ -843,7 +845,7 @@ PetscErrorCode JRHBMEnrichBasis(JRHBM h, PetscInt ns, Vec a[], PetscReal tol, Pe
     const PetscScalar *x;
     PetscInt           off = 0;
     PetscCall(VecGetArrayRead(a[s], &x));
-    for (PetscInt t = 0; t < h->ngroups; t++) {
+    for (PetscInt t = 0; t < h->ngroups && mine; t++) {
       JRHBMGroup *g = &h->g[t];
       if (!g->split || !g->nloc) continue;
       PetscCall(JRGemm("N", "N", g->nloc, nc, nm, 1.0, g->R, g->nloc, x, nm, 0.0, g->U, g->nloc));
