@@ -127,10 +127,11 @@ ad=$(echo "$oa" | grep '^basis adapt: [0-9]* vectors added')
 check "[ -n '$fc2' ] && [ -n '$fa2' ] && close $fa1 $fc1 1e-3 && close $aa1 $ac1 1e-2 && close $fa2 $fc2 1e-3 && close $aa2 $ac2 1e-2 && ! close $a02 $ac2 1e-2 && [ -n \"\$ad\" ] && ! echo \"\$oa\" | grep -q '^WARNING' && echo \"\$o0\" | grep -q '^WARNING basis check'" "jenkins_nv lap, basis adapted to the peaks ($(echo "$ad" | awk '{print $3}') vectors added to 30): 0.5 N $fa1 Hz, $aa1 m, 2 N $fa2 Hz, $aa2 m = the static-complete basis's $fc1, $ac1, $fc2, $ac2 (0.1%, 1%); the seed alone $f01, $a01, $f02, $a02 (and a warning)"
 
 # the same adaptation with every element on every rank (-hbm_elements_replicated: each rank holds all the contact
-# forces, which must be added once) and the levels solved apart: the same vectors, rounds and peaks
+# forces, which must be added once) and the levels solved apart: the same vectors, rounds and peaks (the frequencies
+# to 1e-6: the top of a peak is flat, and each run's preload and modes differ by MUMPS's round-off)
 orp=$(eval mpiexec -n 2 $J $nv -modes_static_max 30 -hbm_elements_replicated 2>&1)
 ar=$(echo "$orp" | grep '^basis adapt: [0-9]* vectors added'); read fr1 ar1 fr2 ar2 <<< "$(pks "$orp")"
-check "[ -n \"\$ar\" ] && [ \"\$(echo \"\$ar\" | awk '{print \$3, \$7}')\" = \"\$(echo \"\$ad\" | awk '{print \$3, \$7}')\" ] && close \$(echo \"\$ar\" | awk '{print \$22}') \$(echo \"\$ad\" | awk '{print \$22}') 1e-3 && close '$fr1' '$fa1' 1e-8 && close '$ar1' '$aa1' 1e-7 && close '$fr2' '$fa2' 1e-8 && close '$ar2' '$aa2' 1e-7" "jenkins_nv lap, every element on every rank (-hbm_elements_replicated): the basis adapted as with the elements split ($(echo "$ar" | awk '{print $3, "vectors in", $7, "rounds, deformation", $22}')), peaks $fr1, $ar1, $fr2, $ar2"
+check "[ -n \"\$ar\" ] && [ \"\$(echo \"\$ar\" | awk '{print \$3, \$7}')\" = \"\$(echo \"\$ad\" | awk '{print \$3, \$7}')\" ] && close \$(echo \"\$ar\" | awk '{print \$22}') \$(echo \"\$ad\" | awk '{print \$22}') 1e-3 && close '$fr1' '$fa1' 1e-6 && close '$ar1' '$aa1' 1e-7 && close '$fr2' '$fa2' 1e-6 && close '$ar2' '$aa2' 1e-7" "jenkins_nv lap, every element on every rank (-hbm_elements_replicated): the basis adapted as with the elements split ($(echo "$ar" | awk '{print $3, "vectors in", $7, "rounds, deformation", $22}')), peaks $fr1, $ar1, $fr2, $ar2"
 
 # -rom_joints auto: 2 rings of equal load around each of the 3 bolts, each cut at the bolt's axis: 12 joints, all
 # 133 members; by construction each bolt's inner ring carries at most half its load and the next member would take it

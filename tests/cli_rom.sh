@@ -122,16 +122,16 @@ check "[ -n '$cs' ] && close \$(field \"\$cl\" stiffness_correction) $cs 1e-7 &&
 # every rank (-hbm_elements_replicated): its peaks those of its elements split over the ranks to round-off.
 l4="-frf_force 0.1,5,20,50"
 pk() { echo "$1" | awk '/^peak level/{printf "%s %s %s ", $3, $5, $7}'; }
-pkd() { awk -v a="$1" -v b="$2" 'BEGIN{n = split(a, x, " "); m = split(b, y, " "); if (n != m || n == 0) {print 1; exit}; for (i = 1; i <= n; i++) {d = x[i] - y[i]; if (d < 0) d = -d; s = x[i] < 0 ? -x[i] : x[i]; if (s > 0 && d / s > r) r = d / s}; printf "%.2e\n", r}'; }
+pkd() { awk -v a="$1" -v b="$2" 'BEGIN{n = split(a, x, " "); m = split(b, y, " "); if (n != m || n == 0) {print 1, 1; exit}; for (i = 1; i <= n; i++) {d = x[i] - y[i]; if (d < 0) d = -d; s = x[i] < 0 ? -x[i] : x[i]; if (s > 0 && i % 3 == 2 && d / s > rf) rf = d / s; if (s > 0 && i % 3 == 0 && d / s > ra) ra = d / s}; printf "%.2e %.2e\n", rf, ra}'; }
 ola=$(mpiexec -n 2 $J -task frf $brb $l4 -rom_load "$tmp/rom.h5" -modes_load "$tmp/sv_modes.h5" -frf_output_file "$tmp/la" 2>&1)
 ols=$(mpiexec -n 2 $J -task frf $brb $l4 -rom_load "$tmp/rom.h5" -modes_load "$tmp/sv_modes.h5" -cont_levels_parallel 0 -frf_output_file "$tmp/ls" 2>&1)
 ol1=$($J -task frf $brb $l4 -rom_load "$tmp/rom.h5" -modes_load "$tmp/sv_modes.h5" -frf_output_file "$tmp/l1" 2>&1)
-d1=$(pkd "$(pk "$ol1")" "$(pk "$ola")"); np=$(grep -c . "$tmp/la.csv" 2>/dev/null)
-check "[ -s '$tmp/la.csv' ] && cmp -s '$tmp/la.csv' '$tmp/ls.csv' && [ \"\$(pk \"\$ola\")\" = \"\$(pk \"\$ols\")\" ] && [ \$(echo \"\$ola\" | grep -c '^peak level') = 4 ] && lt '$d1' 1e-8" "reduced model, 4 levels shared out over 2 ranks: the CSV ($np lines) and the peaks of every rank solving every level, byte for byte; the peaks of 1 rank within $d1 (< 1e-8)"
+read d1f d1 <<< "$(pkd "$(pk "$ol1")" "$(pk "$ola")")"; np=$(grep -c . "$tmp/la.csv" 2>/dev/null)
+check "[ -s '$tmp/la.csv' ] && cmp -s '$tmp/la.csv' '$tmp/ls.csv' && [ \"\$(pk \"\$ola\")\" = \"\$(pk \"\$ols\")\" ] && [ \$(echo \"\$ola\" | grep -c '^peak level') = 4 ] && lt '$d1f' 1e-6 && lt '$d1' 1e-8" "reduced model, 4 levels shared out over 2 ranks: the CSV ($np lines) and the peaks of every rank solving every level, byte for byte; the peaks of 1 rank within $d1f in frequency (< 1e-6: the top of a peak is flat, so round-off in its amplitude moves its frequency by about the square root) and $d1 in amplitude (< 1e-8)"
 ona=$(mpiexec -n 2 $J -task frf $brb $l4 -modes_load "$tmp/sv_modes.h5" -hbm_elements_replicated -frf_output_file '' 2>&1)
 ons=$(mpiexec -n 2 $J -task frf $brb $l4 -modes_load "$tmp/sv_modes.h5" -frf_output_file '' 2>&1)
-dn=$(pkd "$(pk "$ons")" "$(pk "$ona")")
-check "[ \$(echo \"\$ona\" | grep -c '^peak level') = 4 ] && lt '$dn' 1e-8" "node-to-node model, its elements on every rank (-hbm_elements_replicated) and its levels shared out: the peaks of its elements split over the ranks within $dn (< 1e-8)"
+read dnf dn <<< "$(pkd "$(pk "$ons")" "$(pk "$ona")")"
+check "[ \$(echo \"\$ona\" | grep -c '^peak level') = 4 ] && lt '$dnf' 1e-6 && lt '$dn' 1e-8" "node-to-node model, its elements on every rank (-hbm_elements_replicated) and its levels shared out: the peaks of its elements split over the ranks within $dnf in frequency (< 1e-6) and $dn in amplitude (< 1e-8; each run solves its preload)"
 
 # 4b. condensation onto the joints (-hbm_condense, on by default for reduced models): the modal equations with the
 # modes eliminated exactly, so on the frequencies both solve the amplitudes agree to round-off and solver tolerance.
