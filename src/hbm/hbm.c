@@ -510,18 +510,20 @@ PetscErrorCode JRHBMSetLocal(JRHBM h, PetscBool local)
     h->comm  = PETSC_COMM_SELF;
     h->rank  = 0;
     h->size  = 1;
-    h->tlocal[0] = h->telem;
-    h->tlocal[1] = h->nelem;
-    h->tlocal[2] = h->nelemjac;
+    h->telem0    = h->telem;
+    h->nelem0    = h->nelem;
+    h->nelemjac0 = h->nelemjac;
   } else {
-    PetscReal d[3] = {h->telem - h->tlocal[0], (PetscReal)(h->nelem - (PetscInt)h->tlocal[1]), (PetscReal)(h->nelemjac - (PetscInt)h->tlocal[2])};
+    PetscLogDouble dt = h->telem - h->telem0;
+    PetscInt       dn[2] = {h->nelem - h->nelem0, h->nelemjac - h->nelemjac0};
     h->comm = h->gcomm;
     h->rank = h->grank;
     h->size = h->gsize;
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, d, 3, MPIU_REAL, MPIU_SUM, h->comm));
-    h->telem    = h->tlocal[0] + d[0] / h->size;
-    h->nelem    = (PetscInt)h->tlocal[1] + (PetscInt)d[1];
-    h->nelemjac = (PetscInt)h->tlocal[2] + (PetscInt)d[2];
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &dt, 1, MPI_DOUBLE, MPI_SUM, h->comm)); /* PetscLogDouble: a double */
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, dn, 2, MPIU_INT, MPI_SUM, h->comm));
+    h->telem    = h->telem0 + dt / h->size;
+    h->nelem    = h->nelem0 + dn[0];
+    h->nelemjac = h->nelemjac0 + dn[1];
   }
   h->local = local;
   PetscFunctionReturn(0);

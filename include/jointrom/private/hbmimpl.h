@@ -104,7 +104,8 @@ struct _p_JRHBM {
   PetscMPIInt       grank, gsize;
   PetscBool         local;
   PetscBool         replopt;      /* -hbm_elements_replicated */
-  PetscReal         tlocal[3];    /* telem, nelem, nelemjac when local began */
+  PetscLogDouble    telem0;       /* telem, nelem, nelemjac when local began */
+  PetscInt          nelem0, nelemjac0;
   JRJointMotion     jmotion;      /* first reduction: how a joint's members move (-rom_joint_motion) */
   PetscBool         cond;         /* in use: the solve space is the joints' motions */
   PetscBool         jprod;        /* -hbm_condense_products: JRHBMJacobianSetPoint keeps a condensed Jacobian for its products */

@@ -310,6 +310,41 @@ PetscErrorCode JRContBorderedForm(void *ctx, PetscScalar *A, PetscInt lda)
   PetscFunctionReturn(0);
 }
 
+/* Room for cap points on the curve b, its points so far kept */
+static PetscErrorCode BranchReserve(JRCont c, JRContBranch *b, PetscInt cap)
+{
+  PetscReal *o, *aa, *amp, *pp, *st, *xs, *rs;
+  PetscInt  *it;
+
+  PetscFunctionBeginUser;
+  if (cap <= b->cap) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc6(cap, &o, cap * c->nmod, &aa, cap * c->nout, &amp, cap * c->nout, &pp, cap, &st, cap, &it));
+  PetscCall(PetscMalloc2(cap * c->n, &xs, cap, &rs));
+  if (b->np) {
+    PetscCall(PetscArraycpy(o, b->omega, b->np));
+    PetscCall(PetscArraycpy(aa, b->a, b->np * c->nmod));
+    PetscCall(PetscArraycpy(amp, b->amp, b->np * c->nout));
+    PetscCall(PetscArraycpy(pp, b->pp, b->np * c->nout));
+    PetscCall(PetscArraycpy(st, b->step, b->np));
+    PetscCall(PetscArraycpy(it, b->its, b->np));
+    PetscCall(PetscArraycpy(xs, b->x, b->np * c->n));
+    PetscCall(PetscArraycpy(rs, b->res, b->np));
+  }
+  PetscCall(PetscFree6(b->omega, b->a, b->amp, b->pp, b->step, b->its));
+  PetscCall(PetscFree2(b->x, b->res));
+  if (!b->wpk) PetscCall(PetscCalloc2(c->nout, &b->wpk, c->nout, &b->apk));
+  b->omega = o;
+  b->a     = aa;
+  b->amp   = amp;
+  b->pp    = pp;
+  b->step  = st;
+  b->its   = it;
+  b->x     = xs;
+  b->res   = rs;
+  b->cap   = cap;
+  PetscFunctionReturn(0);
+}
+
 /* Append the point (w, a) to the curve: its unknowns, modal unknowns and responses at the outputs; res: its relative
    residual (JRHBMResidualNorm) */
 PetscErrorCode JRContBranchAdd(JRCont c, JRContBranch *b, PetscReal w, Vec a, PetscInt its, PetscReal step, PetscReal res)
@@ -317,40 +352,7 @@ PetscErrorCode JRContBranchAdd(JRCont c, JRContBranch *b, PetscReal w, Vec a, Pe
   const PetscScalar *x;
 
   PetscFunctionBeginUser;
-  if (b->np == b->cap) {
-    PetscInt   cap = b->cap ? 2 * b->cap : 128;
-    PetscReal *o, *aa, *amp, *pp, *st;
-    PetscInt  *it;
-    PetscCall(PetscMalloc6(cap, &o, cap * c->nmod, &aa, cap * c->nout, &amp, cap * c->nout, &pp, cap, &st, cap, &it));
-    if (b->np) {
-      PetscCall(PetscArraycpy(o, b->omega, b->np));
-      PetscCall(PetscArraycpy(aa, b->a, b->np * c->nmod));
-      PetscCall(PetscArraycpy(amp, b->amp, b->np * c->nout));
-      PetscCall(PetscArraycpy(pp, b->pp, b->np * c->nout));
-      PetscCall(PetscArraycpy(st, b->step, b->np));
-      PetscCall(PetscArraycpy(it, b->its, b->np));
-    }
-    PetscCall(PetscFree6(b->omega, b->a, b->amp, b->pp, b->step, b->its));
-    b->omega = o;
-    b->a     = aa;
-    b->amp   = amp;
-    b->pp    = pp;
-    b->step  = st;
-    b->its   = it;
-    {
-      PetscReal *xs, *rs;
-      PetscCall(PetscMalloc2(cap * c->n, &xs, cap, &rs));
-      if (b->np) {
-        PetscCall(PetscArraycpy(xs, b->x, b->np * c->n));
-        PetscCall(PetscArraycpy(rs, b->res, b->np));
-      }
-      PetscCall(PetscFree2(b->x, b->res));
-      if (!b->wpk) PetscCall(PetscCalloc2(c->nout, &b->wpk, c->nout, &b->apk));
-      b->x   = xs;
-      b->res = rs;
-    }
-    b->cap = cap;
-  }
+  if (b->np == b->cap) PetscCall(BranchReserve(c, b, b->cap ? 2 * b->cap : 128));
   b->omega[b->np] = w;
   b->res[b->np]   = res;
   b->resmax       = PetscMax(b->resmax, res);
@@ -596,8 +598,6 @@ static PetscErrorCode BranchBcast(JRCont c, JRContBranch *b, PetscMPIInt root)
     const PetscInt np = ni[0], cap = PetscMax(np, 1);
     PetscInt       k  = 1;
     PetscCheck(!b->cap, PETSC_COMM_SELF, PETSC_ERR_PLIB, "BranchBcast: the level was solved here too");
-    b->np      = np;
-    b->cap     = cap;
     b->retries = ni[k++];
     for (PetscInt i = 0; i < 4; i++) b->states[i] = ni[k++];
     b->complete   = (PetscBool)ni[k++];
@@ -611,9 +611,8 @@ static PetscErrorCode BranchBcast(JRCont c, JRContBranch *b, PetscMPIInt root)
     b->resmax     = nr[4];
     b->zeta       = nr[5];
     b->ebal       = nr[6];
-    PetscCall(PetscMalloc6(cap, &b->omega, cap * c->nmod, &b->a, cap * c->nout, &b->amp, cap * c->nout, &b->pp, cap, &b->step, cap, &b->its));
-    PetscCall(PetscMalloc2(cap * c->n, &b->x, cap, &b->res));
-    PetscCall(PetscCalloc2(c->nout, &b->wpk, c->nout, &b->apk));
+    PetscCall(BranchReserve(c, b, cap));
+    b->np = np;
     if (ni[10]) PetscCall(PetscMalloc1(b->states[0] + b->states[1] + b->states[2] + b->states[3], &b->estate));
   }
   if (b->np) {
