@@ -278,12 +278,8 @@ PetscErrorCode JRReduceCreate(MPI_Comm comm, JRReduce *red)
   r->bands         = 6;
   r->obands        = 1;
   r->upto          = 0.9;
-  r->nrel          = 5;
-  r->rel[0]        = 0.003; /* released modes: from the first slip at the lap's ends to a third of the slip force */
-  r->rel[1]        = 0.01;
-  r->rel[2]        = 0.03;
-  r->rel[3]        = 0.1;
-  r->rel[4]        = 0.3;
+  r->nrel          = JR_NREL; /* released modes: from the first members to slip to a third of the slip force (ReleasedModes) */
+  r->relauto       = PETSC_TRUE;
   r->mode_weights  = PETSC_TRUE;
   r->corr_on       = PETSC_TRUE;
   r->nst           = 3;
@@ -334,7 +330,7 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
   PetscCall(PetscOptionsInt("-onset_bands", "-rom_joints onset: bands of slip onset in the stuck mode of interest (each split by bolt side)", "JRReduceAssignJoints", r->bands, &r->bands, &bdset));
   PetscCall(PetscOptionsInt("-onset_open_bands", "-rom_joints onset: bands of closing onset in the stuck mode of interest that divide the open members (each split by bolt side)", "JRReduceAssignJoints", r->obands, &r->obands, &obset));
   PetscCall(PetscOptionsReal("-onset_upto", "-rom_joints onset: the bands divide, in equal ratios, the slip onsets from the first to the one by which this fraction of the interface's slip force mu n0 slips (later onsets join the last band)", "JRReduceAssignJoints", r->upto, &r->upto, &uset));
-  PetscCall(PetscOptionsRealArray("-release_fractions", "-rom_joint_motion shapes (or mode): the released modes, each the stuck mode of interest with the members that slip first (in the order of their slip onsets in it) freed until they hold this fraction of the interface's slip force mu n0; increasing, in (0, 1), up to 6", "JRReduceSetUp", r->rel, &nrel, &relset));
+  PetscCall(PetscOptionsRealArray("-release_fractions", "-rom_joint_motion shapes (or mode): the released modes, each the stuck mode of interest with the members that slip first (in the order of their slip onsets in it) freed until they hold this fraction of the interface's slip force mu n0; increasing, in (0, 1), up to 6 (default for shapes: 6, from the first members to slip, in equal ratios up to 0.3)", "JRReduceSetUp", r->rel, &nrel, &relset));
   PetscCall(PetscOptionsBool("-split_width", "Split every strip at mid-width into two joints", "JRReduceAssignJoints", r->split_width, &r->split_width, NULL));
   PetscCall(PetscOptionsInt("-elements", "Second reduction: fit this many elements per joint to its hysteresis loops (0: the first reduction only)", "JRReduceSetUp", r->m, &r->m, NULL));
   PetscCall(PetscOptionsBool("-mode_weights", "Weight every member of a joint by its motion relative to the joint's in the stuck mode of interest (w^2 kt, |w| f; jenkins)", "JRReduceSetUp", r->mode_weights, &r->mode_weights, NULL));
@@ -376,11 +372,13 @@ PetscErrorCode JRReduceSetFromOptions(JRReduce r)
   }
   PetscCall(JRROMFitSetFromOptions(comm, &r->fit));
   PetscCheck(!r->fit.mmax || (r->m > 0 && r->fit.mmax >= r->m), comm, PETSC_ERR_ARG_INCOMP, "-rom_fit_elements_max %" PetscInt_FMT ": at least -rom_elements (%" PetscInt_FMT "), the elements every joint starts with", r->fit.mmax, r->m);
-  if (relset) r->nrel = nrel;
-  else if (r->fit.jmotion != JR_JOINT_MOTION_SHAPES) r->nrel = 0; /* mode: released modes only when asked for */
+  if (relset) {
+    r->nrel    = nrel;
+    r->relauto = PETSC_FALSE;
+  } else if (r->fit.jmotion != JR_JOINT_MOTION_SHAPES) r->nrel = 0; /* mode: released modes only when asked for */
   PetscCheck(!relset || r->fit.jmotion >= JR_JOINT_MOTION_MODE, comm, PETSC_ERR_ARG_INCOMP, "-rom_release_fractions needs -rom_joint_motion mode or shapes");
   PetscCheck(!relset || r->nrel > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_release_fractions: 1 to %d fractions", JR_NREL);
-  for (PetscInt i = 0; i < r->nrel; i++) PetscCheck(r->rel[i] > 0 && r->rel[i] < 1 && (!i || r->rel[i] > r->rel[i - 1]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_release_fractions: %g: the fractions must increase, each in (0, 1)", (double)r->rel[i]);
+  for (PetscInt i = 0; relset && i < r->nrel; i++) PetscCheck(r->rel[i] > 0 && r->rel[i] < 1 && (!i || r->rel[i] > r->rel[i - 1]), comm, PETSC_ERR_ARG_OUTOFRANGE, "-rom_release_fractions: %g: the fractions must increase, each in (0, 1)", (double)r->rel[i]);
   r->setfromoptions = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
@@ -459,6 +457,16 @@ static PetscErrorCode ReleasedModes(JRReduce r, JRHBM hbm, JRElements *elj, Pets
     if (elj->n0[e] > 0) tot += elj->mu[e] * elj->n0[e];
   }
   PetscCall(PetscSortRealWithPermutation(n, a, perm));
+  if (r->relauto) { /* the first members to slip (their onsets tied), s1 of the slip force, then in equal ratios to 0.3 */
+    PetscReal s1 = 0;
+    for (PetscInt q = 0; q < n && a[perm[q]] < PETSC_MAX_REAL && (q == 0 || a[perm[q]] <= a[perm[q - 1]] * (1 + 1e-6)); q++) s1 += elj->mu[perm[q]] * elj->n0[perm[q]];
+    s1 = tot > 0 ? s1 / tot : 0;
+    PetscCheck(s1 > 0, r->comm, PETSC_ERR_ARG_WRONG, "-rom_joint_motion %s: no member in contact moves in the stuck mode of interest, so none slips first; -rom_release_fractions sets the released modes", r->fit.jmotion == JR_JOINT_MOTION_SHAPES ? "shapes" : "mode");
+    r->nrel = s1 < JR_REL_TOP ? JR_NREL : 1;
+    r->rel[0] = 0.5 * s1; /* frees the first tied members alone */
+    for (PetscInt i = 1; i < r->nrel; i++) r->rel[i] = s1 * PetscPowReal(JR_REL_TOP / s1, i / (PetscReal)(r->nrel - 1));
+    PetscCall(PetscPrintf(r->comm, "rom: the %" PetscInt_FMT " released modes free the first members to slip (%.3g of the interface's slip force), then more in equal ratios up to %g of it (-rom_release_fractions sets them)\n", r->nrel, (double)s1, (double)JR_REL_TOP));
+  }
   for (PetscInt i = 0; i < r->nrel; i++) {
     PetscReal cum = 0, um = 0, fr;
     PetscInt  nfree = 0, nj = 0;
@@ -545,7 +553,7 @@ PetscErrorCode JRReduceSetUp(JRReduce r, JRModel model, JRHBM hbm, JRElements *e
         elj->phi[2 * e + 1] = v[e] / smax;
       }
       if (jmotion == JR_JOINT_MOTION_MODE) PetscCall(PetscPrintf(comm, "rom: joints move with a field linear in their members' positions and motions in stuck mode %" PetscInt_FMT " (%.6g Hz)%s\n", k, (double)ft, r->nrel ? " and their tangential motions in the released modes" : ""));
-      else PetscCall(PetscPrintf(comm, "rom: joints move with a field linear in their members' positions and tangential motions in stuck mode %" PetscInt_FMT " (%.6g Hz) and in %" PetscInt_FMT " released modes (tangential rows), their normal motion in it (normal rows)\n", k, (double)ft, r->nrel));
+      else PetscCall(PetscPrintf(comm, "rom: joints move with a field linear in their members' positions and tangential motions in stuck mode %" PetscInt_FMT " (%.6g Hz) and in released modes (tangential rows), their normal motion in it (normal rows)\n", k, (double)ft));
       if (r->nrel) PetscCall(ReleasedModes(r, hbm, elj, k, u));
     }
     if (r->mode_weights || jmotion >= JR_JOINT_MOTION_MODE) {

@@ -12,6 +12,7 @@ typedef struct {
   char      kind[64];
 } JRJointInfo;
 
+#define JR_REL_TOP 0.3 /* the largest share of the slip force a default released mode frees */
 struct _p_JRReduce {
   MPI_Comm  comm;
   PetscBool setfromoptions;
@@ -21,8 +22,9 @@ struct _p_JRReduce {
   PetscInt  bands;  /* -rom_onset_bands */
   PetscInt  obands; /* -rom_onset_open_bands */
   PetscReal upto;   /* -rom_onset_upto */
-  PetscReal rel[JR_NREL]; /* -rom_release_fractions */
+  PetscReal rel[JR_NREL]; /* -rom_release_fractions, or from the first members to slip to JR_REL_TOP (relauto) */
   PetscInt  nrel;
+  PetscBool relauto;
   const PetscInt *pair; /* each element's pair (JRReduceAssignJoints' argument, kept for onset) */
   PetscInt  ncut, nbox;
   PetscReal cut[64], box[256], zone_fraction;
