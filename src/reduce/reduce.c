@@ -465,9 +465,9 @@ static PetscErrorCode ReleasedModes(JRReduce r, JRHBM hbm, JRElements *elj, Pets
     r->nrel = s1 < JR_REL_TOP ? JR_NREL : 1;
     r->rel[0] = 0.5 * s1; /* frees the first tied members alone */
     for (PetscInt i = 1; i < r->nrel; i++) r->rel[i] = s1 * PetscPowReal(JR_REL_TOP / s1, i / (PetscReal)(r->nrel - 1));
-    PetscCall(PetscPrintf(r->comm, "rom: the %" PetscInt_FMT " released modes free the first members to slip (%.3g of the interface's slip force), then more in equal ratios up to %g of it (-rom_release_fractions sets them)\n", r->nrel, (double)s1, (double)JR_REL_TOP));
+    PetscCall(PetscPrintf(r->comm, "rom: release fractions from the first members to slip (%.3g of the interface's slip force) in equal ratios up to %g (-rom_release_fractions sets them)\n", (double)s1, (double)JR_REL_TOP));
   }
-  for (PetscInt i = 0; i < r->nrel; i++) {
+  for (PetscInt i = 0, c = 0, last = 0; i < r->nrel; i++) {
     PetscReal cum = 0, um = 0, fr;
     PetscInt  nfree = 0, nj = 0;
     for (PetscInt e = 0; e < n; e++) ktf[e] = 1.0;
@@ -479,12 +479,18 @@ static PetscErrorCode ReleasedModes(JRReduce r, JRHBM hbm, JRElements *elj, Pets
       has[elj->joint[e]] = 1;
       nfree++;
     }
+    if (nfree == last) { /* the same members as the fraction before (a group of tied onsets): the same mode again */
+      PetscCall(PetscPrintf(r->comm, "rom: release fraction %g frees the same %" PetscInt_FMT " members as the one before: no mode from it\n", (double)r->rel[i], nfree));
+      continue;
+    }
+    last = nfree;
     PetscCall(JRHBMReleasedModeMotion(hbm, k, ktf, ur, &fr));
     for (PetscInt e = 0; e < n; e++) um = PetscMax(um, PetscAbsReal(ur[e]));
-    PetscCheck(um > 0, r->comm, PETSC_ERR_ARG_WRONG, "-rom_release_fractions: the interface does not move in released mode %" PetscInt_FMT " (%g of the slip force freed)", i, (double)r->rel[i]);
-    for (PetscInt e = 0; e < n; e++) elj->phir[JR_NREL * e + i] = has[elj->joint[e]] ? ur[e] / um : 0.0;
+    PetscCheck(um > 0, r->comm, PETSC_ERR_ARG_WRONG, "-rom_release_fractions: the interface does not move in released mode %" PetscInt_FMT " (%g of the slip force freed)", c, (double)r->rel[i]);
+    for (PetscInt e = 0; e < n; e++) elj->phir[JR_NREL * e + c] = has[elj->joint[e]] ? ur[e] / um : 0.0;
     for (PetscInt j = 0; j < elj->njoints; j++) nj += has[j];
-    PetscCall(PetscPrintf(r->comm, "rom: released mode %" PetscInt_FMT ": %.6g Hz, %" PetscInt_FMT " members freed (%.3g of the slip force, the first to slip) in %" PetscInt_FMT " joints\n", i, (double)fr, nfree, (double)(tot > 0 ? cum / tot : 0), nj));
+    PetscCall(PetscPrintf(r->comm, "rom: released mode %" PetscInt_FMT ": %.6g Hz, %" PetscInt_FMT " members freed (%.3g of the slip force, the first to slip) in %" PetscInt_FMT " joints\n", c, (double)fr, nfree, (double)(tot > 0 ? cum / tot : 0), nj));
+    c++;
   }
   PetscCall(PetscFree(has));
   PetscCall(PetscFree4(a, ktf, ur, perm));
