@@ -88,6 +88,7 @@ PETSC_INTERN PetscErrorCode JRContCreate_Arclength(JRCont);
 /* src/cont/interface/cont.c: the steps every type shares */
 PETSC_INTERN PetscErrorCode JRContBranchStart(JRCont, PetscInt, JRContBranch *, Vec);
 PETSC_INTERN PetscErrorCode JRContBranchAdd(JRCont, JRContBranch *, PetscReal, Vec, PetscInt, PetscReal, PetscReal);
+PETSC_INTERN PetscErrorCode JRContBranchAddExpanded(JRCont, JRContBranch *, PetscReal, Vec, Vec, PetscInt, PetscReal, PetscReal);
 PETSC_INTERN PetscErrorCode JRContOutputAmplitude(JRCont, PetscReal, Vec, PetscInt, PetscReal *);
 PETSC_INTERN PetscErrorCode JRContInterpolationError(JRCont, PetscReal, PetscReal, PetscReal, PetscReal, PetscReal, PetscReal, PetscReal, PetscReal, PetscReal *);
 PETSC_INTERN PetscErrorCode JRContRefinePeaks(JRCont, JRContBranch *);

@@ -349,6 +349,15 @@ static PetscErrorCode BranchReserve(JRCont c, JRContBranch *b, PetscInt cap)
    residual (JRHBMResidualNorm) */
 PetscErrorCode JRContBranchAdd(JRCont c, JRContBranch *b, PetscReal w, Vec a, PetscInt its, PetscReal step, PetscReal res)
 {
+  PetscFunctionBeginUser;
+  PetscCall(JRHBMExpand(c->hbm, w, a, c->amod)); /* the branch keeps the modal unknowns */
+  PetscCall(JRContBranchAddExpanded(c, b, w, a, c->amod, its, step, res));
+  PetscFunctionReturn(0);
+}
+
+/* The same with the point's modal unknowns amod given (JRHBMExpand of (w, a), computed by the caller) */
+PetscErrorCode JRContBranchAddExpanded(JRCont c, JRContBranch *b, PetscReal w, Vec a, Vec amod, PetscInt its, PetscReal step, PetscReal res)
+{
   const PetscScalar *x;
 
   PetscFunctionBeginUser;
@@ -359,11 +368,10 @@ PetscErrorCode JRContBranchAdd(JRCont c, JRContBranch *b, PetscReal w, Vec a, Pe
   PetscCall(VecGetArrayRead(a, &x));
   for (PetscInt i = 0; i < c->n; i++) b->x[b->np * c->n + i] = PetscRealPart(x[i]);
   PetscCall(VecRestoreArrayRead(a, &x));
-  PetscCall(JRHBMExpand(c->hbm, w, a, c->amod)); /* the branch keeps the modal unknowns */
-  PetscCall(VecGetArrayRead(c->amod, &x));
+  PetscCall(VecGetArrayRead(amod, &x));
   for (PetscInt i = 0; i < c->nmod; i++) b->a[b->np * c->nmod + i] = PetscRealPart(x[i]);
-  PetscCall(VecRestoreArrayRead(c->amod, &x));
-  PetscCall(JRHBMResponse(c->hbm, c->amod, NULL, b->amp + b->np * c->nout, b->pp + b->np * c->nout));
+  PetscCall(VecRestoreArrayRead(amod, &x));
+  PetscCall(JRHBMResponse(c->hbm, amod, NULL, b->amp + b->np * c->nout, b->pp + b->np * c->nout));
   b->its[b->np]  = its;
   b->step[b->np] = step;
   b->newton += its;

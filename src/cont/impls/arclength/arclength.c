@@ -29,6 +29,7 @@ typedef struct {
   PetscBool        towns;                   /* tlu is the tangent's own (the corrector is not newtondense) */
   PetscReal        dAk;                     /* d(amplitude at response 1)/d(scaled arclength) at x_k along t_k */
   PetscReal        Anew;                    /* the amplitude at response 1 of the candidate point */
+  Vec              amodx;                   /* its modal unknowns (JRHBMExpand), kept for the branch if it is taken */
 } JRCont_Arclength;
 
 /* scaled inner product <x, y> over (a, w) */
@@ -292,6 +293,7 @@ static PetscErrorCode StepError(JRCont c, JRContBranch *b, Vec x, Vec tnew, Pets
   L = PetscMax(ds, PetscSqrtReal(L));
   PetscCall(Split(c, x, arc->a, &w));
   PetscCall(JRContOutputAmplitude(c, w, arc->a, 0, &A));
+  PetscCall(VecCopy(c->amod, arc->amodx)); /* a condensed model's expansion costs its elements' forces: done once */
   arc->Anew = A;
   PetscCall(AmplitudeSlope(c, x, tnew, A, dA));
   PetscCall(VecGetArrayRead(arc->tk, &t0));
@@ -467,7 +469,8 @@ static PetscErrorCode JRContSolveLevel_Arclength(JRCont c, PetscInt lev, JRContB
         continue;
       }
     }
-    PetscCall(JRContBranchAdd(c, b, w, a, its, ds, res));
+    if (c->itol > 0) PetscCall(JRContBranchAddExpanded(c, b, w, a, arc->amodx, its, ds, res)); /* StepError's expansion of a */
+    else PetscCall(JRContBranchAdd(c, b, w, a, its, ds, res));
     PetscCall(JRContMonitor(c, lev, b));
     PetscCall(VecNorm(a, NORM_2, &na)); /* the amplitude scale follows the largest response met: slipping joints respond far more than stuck ones */
     if (na > arc->aref) arc->aref = na; /* the next tangent is normalised in the new metric */
@@ -569,6 +572,7 @@ static PetscErrorCode Reset(JRCont_Arclength *arc)
   PetscCall(VecDestroy(&arc->xk));
   PetscCall(VecDestroy(&arc->tk));
   PetscCall(VecDestroy(&arc->d));
+  PetscCall(VecDestroy(&arc->amodx));
   PetscFunctionReturn(0);
 }
 
@@ -588,6 +592,7 @@ static PetscErrorCode JRContSetUp_Arclength(JRCont c)
   PetscCall(VecDuplicate(arc->xk, &arc->tk));
   PetscCall(VecDuplicate(arc->xk, &arc->G));
   PetscCall(VecDuplicate(arc->xk, &arc->d));
+  PetscCall(VecDuplicate(c->amod, &arc->amodx));
   PetscCall(PetscMalloc3((c->n + 1) * (c->n + 1), &arc->tb, c->n + 1, &arc->brow, c->n + 1, &arc->trow));
   PetscCall(CreateCorrector(c));
   PetscFunctionReturn(0);
