@@ -92,7 +92,7 @@ LIST
 side_by_side "-rom_hbm_snes_newtondense_reuse_its 0" <<LIST
 lap1 8 mm, 4 zone joints x 3, linear field|1|3|$lap1 -rom_joints zones -rom_joint_motion linear -rom_elements 3
 runs/lap1_rom.opts reduced (24 rows, 109 modes)|2|1|-options_file runs/lap1_rom.opts -task frf -frf_stability 0
-runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|2|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
+runs/lap3_shapes_rom_thesis.opts reduced (86 rows)|2|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
 LIST
 echo
 # A condensed reduced model's Jacobian by its products through the modes, formed only for an LU (default), against
@@ -102,8 +102,8 @@ printf "%-46s %-5s %8s %10s %10s %7s %6s %7s\n" case ranks unknowns formed produ
 side_by_side "-hbm_condense_products 0" <<LIST
 lap1 8 mm, 4 zone joints x 3, linear field|1|3|$lap1 -rom_joints zones -rom_joint_motion linear -rom_elements 3
 runs/lap1_rom.opts reduced (24 rows, 109 modes)|2|3|-options_file runs/lap1_rom.opts -task frf -frf_stability 0
-runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|1|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
-runs/lap3_shapes_rom_thesis.opts reduced (84 rows)|2|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
+runs/lap3_shapes_rom_thesis.opts reduced (86 rows)|1|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
+runs/lap3_shapes_rom_thesis.opts reduced (86 rows)|2|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0
 LIST
 echo
 # The unit columns of the joints whose elements are all apart eliminated before the LU (default) against the whole
@@ -116,7 +116,7 @@ for np in 1 2; do
   mpiexec -n $np bin/jointrom -options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0 -frf_output_file '' -rom_save "$rl/rom$np.h5" -modes_save "$rl/modes$np.h5" < /dev/null > /dev/null 2>&1
 done
 side_by_side "-rom_hbm_snes_newtondense_eliminate 0" <<LIST
-runs/lap3_shapes_rom_thesis.opts reduced, read back (84 rows)|1|5|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0 -rom_load $rl/rom1.h5 -modes_load $rl/modes1.h5
-runs/lap3_shapes_rom_thesis.opts reduced, read back (84 rows)|2|5|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0 -rom_load $rl/rom2.h5 -modes_load $rl/modes2.h5
+runs/lap3_shapes_rom_thesis.opts reduced, read back (86 rows)|1|5|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0 -rom_load $rl/rom1.h5 -modes_load $rl/modes1.h5
+runs/lap3_shapes_rom_thesis.opts reduced, read back (86 rows)|2|5|-options_file runs/lap3_shapes_rom_thesis.opts -task frf -frf_stability 0 -rom_load $rl/rom2.h5 -modes_load $rl/modes2.h5
 LIST
 rm -rf "$rl"

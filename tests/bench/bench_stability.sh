@@ -44,7 +44,7 @@ lap1 8 mm, 4 zone joints x 3 condensed|2|3|$lap1 -rom_joints zones -rom_joint_mo
 runs/lap3_n2n.opts, 506 jenkins_nv, 88 modes|2|1|-options_file runs/lap3_n2n.opts
 runs/lap1_rom.opts reduced, linear field, 24 rows|2|1|-options_file runs/lap1_rom.opts -task frf
 lap1 8 mm, 4 zone joints x 3, 21 levels 0.5-3 N|1|3|$lap1 -rom_joints zones -rom_joint_motion mean -rom_elements 3 -frf_force $slip
-runs/lap3_shapes_rom_thesis.opts reduced, 84 rows|1|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf
-runs/lap3_shapes_rom_thesis.opts reduced, 84 rows|2|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf
+runs/lap3_shapes_rom_thesis.opts reduced, 86 rows|1|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf
+runs/lap3_shapes_rom_thesis.opts reduced, 86 rows|2|1|-options_file runs/lap3_shapes_rom_thesis.opts -task frf
 EOF
 rm -f /tmp/jr_bench_off.$$ /tmp/jr_bench_on.$$
